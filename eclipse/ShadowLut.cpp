@@ -1,0 +1,89 @@
+#include "ShadowLut.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <stdexcept>
+
+namespace umbra::eclipse {
+
+double luminance(const glm::dvec3& rgb) {
+  return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
+}
+
+glm::dvec3 ShadowLut::texel(int i, int j) const {
+  const std::size_t k = 3 * (static_cast<std::size_t>(j) * width + i);
+  return {rgb[k], rgb[k + 1], rgb[k + 2]};
+}
+
+glm::dvec3 ShadowLut::sample(const LutCoords& c) const {
+  // GL_LINEAR with GL_CLAMP_TO_EDGE: texel centres at (i + 0.5) / size.
+  const double x = std::clamp(c.u * width - 0.5, 0.0, width - 1.0);
+  const double y = std::clamp(c.v * height - 0.5, 0.0, height - 1.0);
+  const int i0 = std::min(static_cast<int>(x), width - 1), j0 = std::min(static_cast<int>(y), height - 1);
+  const int i1 = std::min(i0 + 1, width - 1), j1 = std::min(j0 + 1, height - 1);
+  const double fx = x - i0, fy = y - j0;
+  return (1 - fy) * ((1 - fx) * texel(i0, j0) + fx * texel(i1, j0)) +
+         fy * ((1 - fx) * texel(i0, j1) + fx * texel(i1, j1));
+}
+
+double airlessShadow(const LutCoords& c, double limbDarkening, double tol) {
+  if (c.v >= 1.0) return 1.0;
+  const NormalisedDiscs n = normalisedDiscs(c);
+  return visibleFractionLimbDarkened(n.occluderRadius, n.separation, limbDarkening, tol).value;
+}
+
+ShadowLut buildAirlessShadowLut(const ShadowLutParams& p, const Progress& progress) {
+  if (p.width < 2 || p.height < 2) throw std::invalid_argument("shadow LuT size must be at least 2x2");
+  ShadowLut lut;
+  lut.width = p.width;
+  lut.height = p.height;
+  lut.rgb.assign(3 * static_cast<std::size_t>(p.width) * p.height, 0.0f);
+  std::atomic<int> rowsDone{0};
+  std::atomic<bool> cancelled{false};
+
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int j = 0; j < p.height; ++j) {
+    if (cancelled.load()) continue;
+    for (int i = 0; i < p.width; ++i) {
+      const LutCoords c{(i + 0.5) / p.width, (j + 0.5) / p.height};
+      const float value = static_cast<float>(airlessShadow(c, p.limbDarkening, p.relativeTolerance));
+      float* t = &lut.rgb[3 * (static_cast<std::size_t>(j) * p.width + i)];
+      t[0] = t[1] = t[2] = value;
+    }
+    const int done = ++rowsDone;
+    // Report from whichever thread finishes a row; callers see a monotone sequence
+    // only approximately, which is all a progress bar needs.
+#pragma omp critical(umbra_progress)
+    if (progress && !progress(static_cast<double>(done) / p.height)) cancelled = true;
+  }
+  if (cancelled) return {};
+  return lut;
+}
+
+glm::dvec3 eclipseFactor(const glm::dvec3& p, const glm::dvec3& sun, double sunRadiusM,
+                         const Occluder& occ, const ShadowLut* lut, double limbDarkening) {
+  if (!occluderInFront(p, sun, occ.centreM)) return glm::dvec3(1.0);
+  const LutCoords c = lutCoords(shadowAngles(p, sun, sunRadiusM, occ.centreM, occ.radiusM));
+  if (c.v >= 1.0) return glm::dvec3(1.0);
+  return lut ? lut->sample(c) : glm::dvec3(airlessShadow(c, limbDarkening));
+}
+
+std::vector<ProfileSample> shadowProfile(const SunOccluderSystem& s, double distanceBehindM,
+                                         double maxOffsetM, int samples, const ShadowLut* lut,
+                                         double limbDarkening) {
+  if (samples < 2) throw std::invalid_argument("a shadow profile needs at least 2 samples");
+  // Sun at (-d, 0, 0), occluder at the origin, the shadow axis along +x.
+  const glm::dvec3 sun(-s.sunOccluderDistanceM, 0.0, 0.0);
+  const Occluder occ{{0.0, 0.0, 0.0}, s.occluderRadiusM};
+  std::vector<ProfileSample> out(samples);
+#pragma omp parallel for schedule(dynamic, 16)
+  for (int k = 0; k < samples; ++k) {
+    const double offset = maxOffsetM * k / (samples - 1);
+    const glm::dvec3 rgb = eclipseFactor({distanceBehindM, offset, 0.0}, sun, s.sunRadiusM, occ, lut, limbDarkening);
+    out[k] = {offset, rgb, luminance(rgb)};
+  }
+  return out;
+}
+
+} // namespace umbra::eclipse

@@ -1,0 +1,164 @@
+#include "ShadowMapping.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace umbra::eclipse {
+namespace {
+constexpr double kHalfPi = 1.57079632679489661923;
+}
+
+double angularRadiusRad(double radiusM, double distanceM) {
+  return distanceM <= radiusM ? kHalfPi : std::asin(radiusM / distanceM);
+}
+
+double angleBetweenRad(const glm::dvec3& a, const glm::dvec3& b) {
+  const glm::dvec3 na = a / glm::length(a), nb = b / glm::length(b);
+  return 2.0 * std::atan2(glm::length(na - nb), glm::length(na + nb));
+}
+
+ShadowAngles shadowAngles(const glm::dvec3& p, const glm::dvec3& sun, double sunRadiusM,
+                          const glm::dvec3& occ, double occRadiusM) {
+  return {angularRadiusRad(sunRadiusM, glm::length(sun - p)),
+          angularRadiusRad(occRadiusM, glm::length(occ - p)), angleBetweenRad(sun - p, occ - p)};
+}
+
+bool occluderInFront(const glm::dvec3& p, const glm::dvec3& sun, const glm::dvec3& occ) {
+  return glm::length(occ - p) < glm::length(sun - p);
+}
+
+LutCoords lutCoords(const ShadowAngles& a) {
+  const double sum = a.occluderAngularRadiusRad + a.sunAngularRadiusRad;
+  return {a.sunAngularRadiusRad / sum, a.separationRad / sum};
+}
+
+NormalisedDiscs normalisedDiscs(const ShadowAngles& a) {
+  return {a.occluderAngularRadiusRad / a.sunAngularRadiusRad,
+          a.separationRad / a.sunAngularRadiusRad};
+}
+
+NormalisedDiscs normalisedDiscs(const LutCoords& c) {
+  // phi_occ/phi_sun = 1/u - 1 and delta/phi_sun = v (phi_occ/phi_sun + 1) = v/u.
+  return {(1.0 - c.u) / c.u, c.v / c.u};
+}
+
+namespace {
+
+/// One step of Eq. 5-6 for a fixed (u, v): from a guess of d_sun to the next one.
+struct Eq56 {
+  LutCoords c;
+  SunOccluderSystem s;
+
+  struct State {
+    double phiSun, phiOcc, delta, dOcc, dSun;
+  };
+  State at(double dSun) const {
+    State st{};
+    st.phiSun = angularRadiusRad(s.sunRadiusM, dSun);
+    st.phiOcc = st.phiSun * (1.0 - c.u) / c.u;                       // Eq. 5
+    st.delta = c.v * (st.phiOcc + st.phiSun);
+    st.dOcc = s.occluderRadiusM / std::sin(std::min(st.phiOcc, kHalfPi));  // Eq. 6
+    const double sinD = std::sin(st.delta), cosD = std::cos(st.delta);
+    const double disc = s.sunOccluderDistanceM * s.sunOccluderDistanceM - st.dOcc * st.dOcc * sinD * sinD;
+    st.dSun = st.dOcc * cosD + std::sqrt(std::max(0.0, disc));
+    return st;
+  }
+};
+
+/// Solve the law of cosines for the point at distance dOcc from the occluder whose
+/// occluder and Sun are `delta` apart: returns the u reached there (used for clamping).
+double uAtOccluderDistance(double dOcc, double v, const SunOccluderSystem& s) {
+  const double phiOcc = angularRadiusRad(s.occluderRadiusM, dOcc);
+  double phiSun = angularRadiusRad(s.sunRadiusM, s.sunOccluderDistanceM + dOcc);
+  for (int i = 0; i < 50; ++i) {  // contracts by ~phi_sun per step
+    const double delta = v * (phiOcc + phiSun);
+    const double d = s.sunOccluderDistanceM, sinD = std::sin(delta);
+    const double dSun = dOcc * std::cos(delta) + std::sqrt(std::max(0.0, d * d - dOcc * dOcc * sinD * sinD));
+    const double next = angularRadiusRad(s.sunRadiusM, dSun);
+    if (std::abs(next - phiSun) <= 1e-15 * phiSun) break;
+    phiSun = next;
+  }
+  return phiSun / (phiOcc + phiSun);
+}
+
+} // namespace
+
+InverseMapping inverseLutCoords(const LutCoords& requested, const SunOccluderSystem& sys,
+                                double tol, int maxIterations, double maxDistanceFactor) {
+  InverseMapping out;
+  LutCoords c{std::clamp(requested.u, 0.0, 1.0), std::clamp(requested.v, 0.0, 1.0)};
+
+  // Points behind the occluder see u between its value at the occluder's surface and its
+  // value "at infinity" (here maxDistanceFactor * d); outside that range no point exists.
+  const double uMin = uAtOccluderDistance(sys.occluderRadiusM * (1.0 + 1e-9), c.v, sys);
+  const double uMax = uAtOccluderDistance(maxDistanceFactor * sys.sunOccluderDistanceM, c.v, sys);
+  if (!(c.u >= uMin)) { c.u = uMin; out.clamped = true; }
+  if (!(c.u <= uMax)) { c.u = uMax; out.clamped = true; }
+
+  // Eq. 5-6 as a fixed-point iteration on d_sun, starting at the occluder (d_sun = d).
+  // Near u_max the iteration contracts slowly (rate -> 1); then an Aitken extrapolation
+  // over the last three iterates jumps to the limit (Steffensen's method).
+  const Eq56 eq{c, sys};
+  double x = sys.sunOccluderDistanceM;
+  Eq56::State st = eq.at(x);
+  double prevStep = std::numeric_limits<double>::quiet_NaN();
+  double prevDOcc = st.dOcc;
+  out.iterations = 1;
+  while (out.iterations < maxIterations) {
+    const double step = st.dSun - x;
+    const double dOccChange = std::abs(st.dOcc - prevDOcc);
+    x = st.dSun;
+    if (std::abs(step) <= tol * x && dOccChange <= tol * st.dOcc && out.iterations > 1) {
+      out.converged = true;
+      break;
+    }
+    if (std::isfinite(prevStep) && prevStep != 0.0) {
+      const double ratio = step / prevStep;
+      if (ratio > 0.3 && ratio < 1.0) {            // slow, monotone: extrapolate
+        x += step * ratio / (1.0 - ratio);
+        x = std::max(x, sys.sunRadiusM * (1.0 + 1e-12));
+        prevStep = std::numeric_limits<double>::quiet_NaN();
+        prevDOcc = st.dOcc;
+        st = eq.at(x);
+        ++out.iterations;
+        continue;
+      }
+    }
+    prevStep = step;
+    prevDOcc = st.dOcc;
+    st = eq.at(x);
+    ++out.iterations;
+  }
+
+  // The point itself: in the triangle (point, occluder, Sun) the angle at the Sun is
+  // sigma = asin(d_occ sin(delta) / d); the point lies delta + sigma off the anti-Sun axis.
+  const double sigma = std::asin(std::min(1.0, st.dOcc * std::sin(st.delta) / sys.sunOccluderDistanceM));
+  const double off = st.delta + sigma;
+  out.pointM = {st.dOcc * std::cos(off), st.dOcc * std::sin(off), 0.0};
+  out.occluderDistanceM = st.dOcc;
+  out.sunDistanceM = glm::length(out.pointM - glm::dvec3(-sys.sunOccluderDistanceM, 0.0, 0.0));
+  out.angles = shadowAngles(out.pointM, {-sys.sunOccluderDistanceM, 0.0, 0.0}, sys.sunRadiusM,
+                            {0.0, 0.0, 0.0}, sys.occluderRadiusM);
+  out.reached = lutCoords(out.angles);
+  return out;
+}
+
+ShadowConeRadii shadowConeRadii(const SunOccluderSystem& s, double x) {
+  // Umbra: the cone of external tangents, half angle asin((R_sun - R_occ) / d), tip at
+  // R_occ / sin(half angle) behind the occluder. Penumbra: internal tangents, half angle
+  // asin((R_sun + R_occ) / d), tip R_occ / sin(half angle) in front of the occluder.
+  const double sinU = (s.sunRadiusM - s.occluderRadiusM) / s.sunOccluderDistanceM;
+  const double sinP = (s.sunRadiusM + s.occluderRadiusM) / s.sunOccluderDistanceM;
+  const double tanU = sinU / std::sqrt(1.0 - sinU * sinU);
+  const double tanP = sinP / std::sqrt(1.0 - sinP * sinP);
+  ShadowConeRadii r;
+  r.umbraLengthM = s.occluderRadiusM / sinU;
+  r.umbraRadiusM = (r.umbraLengthM - x) * tanU;
+  r.penumbraRadiusM = (s.occluderRadiusM / sinP + x) * tanP;
+  return r;
+}
+
+} // namespace umbra::eclipse

@@ -1,0 +1,44 @@
+#pragma once
+// The Sun as a limb-darkened disc and the fraction of it left visible when a spherical
+// occluder covers part of it (eclipse paper, section 2.2, Eq. 1).
+//
+// Everything here works in *normalised* angles: the solar disc has radius 1 and is centred
+// at the origin; the occluder disc has radius `occluderRadius` (= phi_occ / phi_sun) and
+// its centre is `separation` (= delta / phi_sun) away. Both discs are treated as flat
+// circles in the sky, which is exact to the order of phi_sun^2 (< 2e-5 at 1 au).
+namespace umbra::eclipse {
+
+/// Solar radius used by the eclipse papers [m].
+inline constexpr double kSunRadiusM = 696342e3;
+/// Linear limb-darkening coefficient of Eq. 1.
+inline constexpr double kDefaultLimbDarkening = 0.6;
+
+/// Luminance of the limb-darkened disc at normalised radius rho in [0, 1] (Eq. 1),
+/// normalised so that its mean over the disc is 1 (the uniform disc's flux).
+double limbDarkenedLuminance(double rho, double limbDarkening);
+
+/// Flux of the limb-darkened disc inside radius rho, as a fraction of the whole disc's.
+double limbDarkenedFluxInside(double rho, double limbDarkening);
+
+/// Area of the lens where the unit solar disc and the occluder disc overlap.
+/// Exact closed form, written to stay accurate when one disc is 1e7 times the other.
+double discOverlapArea(double occluderRadius, double separation);
+
+/// Fraction of a uniform solar disc left visible (1 - overlap / pi), accurate also
+/// when the visible part is tiny.
+double visibleFractionUniform(double occluderRadius, double separation);
+
+struct QuadratureResult {
+  double value = 0.0;       ///< the visible fraction
+  double errorEstimate = 0.0;
+  int levels = 0;            ///< tanh-sinh refinement levels used (0: closed form)
+};
+
+/// Fraction of the limb-darkened solar disc (Eq. 1) left visible. The occluded part is
+/// integrated over rings of the solar disc (tanh-sinh quadrature, which is exact at the
+/// square-root end points); the smaller of the visible and the hidden flux is integrated,
+/// so both a grazing contact and a nearly total eclipse keep their relative accuracy.
+QuadratureResult visibleFractionLimbDarkened(double occluderRadius, double separation,
+    double limbDarkening = kDefaultLimbDarkening, double relativeTolerance = 1e-10);
+
+} // namespace umbra::eclipse

@@ -1,0 +1,126 @@
+#include "ShadowMapping.hpp"
+#include "SolarDisc.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+using namespace umbra::eclipse;
+
+namespace {
+constexpr double kAu = 149597870700.0;
+
+struct NamedSystem {
+  std::string name;
+  SunOccluderSystem system;
+};
+
+// From the smallest occluder to the largest distance: Phobos at Mars, Moon and Earth at
+// 1 au, Mars, Jupiter at its distance, and a Phobos-sized rock at Jupiter's distance.
+std::vector<NamedSystem> systems() {
+  return {{"Phobos", {kSunRadiusM, 11.08e3, 1.523679 * kAu}},
+          {"Moon", {kSunRadiusM, 1737.4e3, kAu}},
+          {"Earth", {kSunRadiusM, 6371.0084e3, kAu}},
+          {"Mars", {kSunRadiusM, 3389.5e3, 1.523679 * kAu}},
+          {"Jupiter", {kSunRadiusM, 69911e3, 5.2038 * kAu}},
+          {"rock at Jupiter", {kSunRadiusM, 11.08e3, 5.2038 * kAu}}};
+}
+
+// u reachable from behind the occluder, estimated independently (small angles): at the
+// occluder's surface phi_occ = pi/2, phi_sun = R_sun / d; far away phi_occ/phi_sun ->
+// R_occ / R_sun.
+bool clearlyReachable(double u, const SunOccluderSystem& s) {
+  const double phiSun = s.sunRadiusM / s.sunOccluderDistanceM;
+  const double uSurface = phiSun / (1.5707963267948966 + phiSun);
+  const double uInfinity = s.sunRadiusM / (s.sunRadiusM + s.occluderRadiusM);
+  return u > 1.01 * uSurface && u < uInfinity - 1e-4 * (1.0 - uInfinity);
+}
+} // namespace
+
+TEST(ShadowMapping, AngleBetweenIsAccurateForTinyAngles) {
+  for (double a : {1e-12, 1e-7, 1e-3, 1.0, 3.0}) {
+    EXPECT_NEAR(angleBetweenRad({1, 0, 0}, {std::cos(a), std::sin(a), 0}), a, 1e-15 + 1e-13 * a);
+  }
+}
+
+TEST(ShadowMapping, Equation4OnTheAxisBehindTheMoon) {
+  // A point on the axis 384 400 km behind Earth.
+  const double d = kAu, x = 384400e3, rOcc = 6371e3;
+  const ShadowAngles a = shadowAngles({x, 0, 0}, {-d, 0, 0}, kSunRadiusM, {0, 0, 0}, rOcc);
+  EXPECT_NEAR(a.sunAngularRadiusRad, std::asin(kSunRadiusM / (d + x)), 1e-15);
+  EXPECT_NEAR(a.occluderAngularRadiusRad, std::asin(rOcc / x), 1e-15);
+  EXPECT_EQ(a.separationRad, 0.0);
+  const LutCoords c = lutCoords(a);
+  EXPECT_NEAR(c.u, 1.0 / (a.occluderAngularRadiusRad / a.sunAngularRadiusRad + 1.0), 1e-15);
+  EXPECT_EQ(c.v, 0.0);
+  const NormalisedDiscs n = normalisedDiscs(c);
+  EXPECT_NEAR(n.occluderRadius, a.occluderAngularRadiusRad / a.sunAngularRadiusRad, 1e-12);
+}
+
+TEST(ShadowMapping, InverseRoundTripAtTheExtremes) {
+  for (const auto& [name, sys] : systems()) {
+    for (double u : {1e-6, 0.01, 0.5, 0.99, 1.0 - 1e-6}) {
+      for (double v : {0.0, 0.5, 1.0}) {
+        SCOPED_TRACE(name + " u=" + std::to_string(u) + " v=" + std::to_string(v));
+        const InverseMapping m = inverseLutCoords({u, v}, sys);
+        // never NaN, always a point in front of the occluder's surface
+        ASSERT_TRUE(std::isfinite(m.occluderDistanceM) && std::isfinite(m.sunDistanceM));
+        ASSERT_TRUE(std::isfinite(m.reached.u) && std::isfinite(m.reached.v));
+        EXPECT_GE(m.occluderDistanceM, sys.occluderRadiusM);
+        EXPECT_TRUE(m.converged) << m.iterations << " iterations";
+        EXPECT_LT(m.iterations, 200);
+        EXPECT_NEAR(m.reached.v, v, 1e-9 * (v > 0.0 ? v : 1.0));
+        if (clearlyReachable(u, sys)) {
+          EXPECT_FALSE(m.clamped);
+          EXPECT_NEAR(m.reached.u, u, 1e-9 * u);
+        } else if (m.clamped) {
+          // the nearest reachable u: closer to the requested one than any other point's
+          const InverseMapping inner = inverseLutCoords({0.5 * (m.reached.u + 0.5), v}, sys);
+          EXPECT_FALSE(inner.clamped);
+        }
+      }
+    }
+  }
+}
+
+TEST(ShadowMapping, InverseConvergesInFewIterationsAwayFromTheLimits) {
+  // The paper reports at most four iterations "to a sufficient precision"; to 1e-12 the
+  // plain Eq. 5-6 iteration needs more where it contracts slowly (u -> 1).
+  const SunOccluderSystem earth{kSunRadiusM, 6371e3, kAu};
+  for (double u : {0.003, 0.05, 0.2, 0.5}) {
+    const InverseMapping coarse = inverseLutCoords({u, 0.5}, earth, 1e-6);
+    EXPECT_TRUE(coarse.converged);
+    EXPECT_LE(coarse.iterations, 4) << "u=" << u;
+  }
+  for (double u : {0.003, 0.05, 0.2, 0.5, 0.8, 0.9, 0.99}) {
+    const InverseMapping fine = inverseLutCoords({u, 0.5}, earth, 1e-12);
+    EXPECT_TRUE(fine.converged);
+    EXPECT_LE(fine.iterations, 15) << "u=" << u;
+  }
+}
+
+TEST(ShadowMapping, UmbraConeSurfaceIsWhereTheDiscsTouchInside) {
+  for (const auto& [name, sys] : systems()) {
+    const ShadowConeRadii r = shadowConeRadii(sys, 0.25 * shadowConeRadii(sys, 0).umbraLengthM);
+    const double x = 0.25 * r.umbraLengthM;
+    const ShadowAngles onUmbra = shadowAngles({x, r.umbraRadiusM, 0}, {-sys.sunOccluderDistanceM, 0, 0},
+                                              sys.sunRadiusM, {0, 0, 0}, sys.occluderRadiusM);
+    EXPECT_NEAR(onUmbra.separationRad, onUmbra.occluderAngularRadiusRad - onUmbra.sunAngularRadiusRad,
+                1e-9 * onUmbra.sunAngularRadiusRad) << name;
+    const ShadowAngles onPenumbra = shadowAngles({x, r.penumbraRadiusM, 0}, {-sys.sunOccluderDistanceM, 0, 0},
+                                                 sys.sunRadiusM, {0, 0, 0}, sys.occluderRadiusM);
+    EXPECT_NEAR(onPenumbra.separationRad, onPenumbra.occluderAngularRadiusRad + onPenumbra.sunAngularRadiusRad,
+                1e-9 * onPenumbra.sunAngularRadiusRad) << name;
+  }
+}
+
+TEST(ShadowMapping, EarthShadowAtTheMoonMatchesTheClassicalFigures) {
+  // Small-angle textbook values: umbra R_E - x (R_S - R_E)/d, penumbra R_E + x (R_S + R_E)/d
+  const SunOccluderSystem earth{kSunRadiusM, 6371e3, kAu};
+  const ShadowConeRadii r = shadowConeRadii(earth, 384400e3);
+  EXPECT_NEAR(r.umbraRadiusM, 6371e3 - 384400e3 * (kSunRadiusM - 6371e3) / kAu, 2e3);
+  EXPECT_NEAR(r.penumbraRadiusM, 6371e3 + 384400e3 * (kSunRadiusM + 6371e3) / kAu, 2e3);
+  EXPECT_NEAR(r.umbraLengthM, 1.384e9, 0.01e9);  // ~1.38 million km
+}
