@@ -1,0 +1,125 @@
+#include "scene/Ephemeris.hpp"
+
+#include "scene/Units.hpp"
+
+#include <erfa.h>
+#include <erfam.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace umbra::scene {
+
+namespace {
+
+constexpr double kJ2000 = 2451545.0;
+constexpr double kDaysPerCentury = 36525.0;
+
+glm::dvec3 auToM(const double p[3]) { return glm::dvec3(p[0], p[1], p[2]) * kAuM; }
+
+/// ERFA's row-major r[row][col] as a glm matrix (glm is column-major: m[col][row]).
+glm::dmat3 fromErfa(const double r[3][3]) {
+  glm::dmat3 m;
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col) m[col][row] = r[row][col];
+  return m;
+}
+
+/// Rotation of the frame about z by angle (ERFA's eraRz convention), as a glm matrix.
+glm::dmat3 frameRotationZ(double angleRad) {
+  double r[3][3];
+  eraIr(r);
+  eraRz(angleRad, r);
+  return fromErfa(r);
+}
+
+glm::dmat3 frameRotationX(double angleRad) {
+  double r[3][3];
+  eraIr(r);
+  eraRx(angleRad, r);
+  return fromErfa(r);
+}
+
+/// Days and Julian centuries since J2000, TT standing in for TDB (< 2 ms apart).
+void daysSinceJ2000(UtcTime time, double& days, double& centuries) {
+  double tt1 = 0.0, tt2 = 0.0;
+  toTt(time, tt1, tt2);
+  days = (tt1 - kJ2000) + tt2;
+  centuries = days / kDaysPerCentury;
+}
+
+glm::dvec3 earthHeliocentricM(double tt1, double tt2) {
+  double pvh[2][3], pvb[2][3];
+  eraEpv00(tt1, tt2, pvh, pvb); // status +1: outside 1900-2100, still usable
+  return auToM(pvh[0]);
+}
+
+[[noreturn]] void throwNoEphemeris(const std::string& body) {
+  throw std::invalid_argument("no ephemeris for '" + body +
+                              "': give its position explicitly in metres");
+}
+
+} // namespace
+
+bool hasEphemeris(const std::string& body) {
+  return body == "Sun" || body == "Earth" || body == "Moon" || body == "Mars";
+}
+
+glm::dvec3 heliocentricPositionM(const std::string& body, UtcTime time) {
+  if (!hasEphemeris(body)) throwNoEphemeris(body);
+  if (body == "Sun") return glm::dvec3(0.0);
+  double tt1 = 0.0, tt2 = 0.0; // ERFA wants TDB; TT is within 2 ms of it
+  toTt(time, tt1, tt2);
+  if (body == "Earth") return earthHeliocentricM(tt1, tt2);
+  if (body == "Moon") {
+    double pv[2][3];
+    eraMoon98(tt1, tt2, pv); // geocentric, GCRS-aligned
+    return earthHeliocentricM(tt1, tt2) + auToM(pv[0]);
+  }
+  double pv[2][3];
+  if (eraPlan94(tt1, tt2, 4, pv) < 0) // heliocentric, J2000 equatorial
+    throw std::invalid_argument("Mars ephemeris failed at this date");
+  return auToM(pv[0]);
+}
+
+bool hasRotationModel(const std::string& body) { return hasEphemeris(body); }
+
+glm::dmat3 iauBodyFixedToInertial(double alpha0Deg, double delta0Deg, double wDeg) {
+  // ICRS -> body-fixed is Rz(W) Rx(90 deg - delta0) Rz(90 deg + alpha0) (frame
+  // rotations); its transpose takes body-fixed vectors to ICRS.
+  const double deg = ERFA_DD2R;
+  const glm::dmat3 inertialToBody = frameRotationZ(wDeg * deg) *
+                                    frameRotationX((90.0 - delta0Deg) * deg) *
+                                    frameRotationZ((90.0 + alpha0Deg) * deg);
+  return glm::transpose(inertialToBody);
+}
+
+glm::dmat3 bodyFixedToInertial(const std::string& body, UtcTime time) {
+  if (body == "Earth") {
+    // IAU 2006/2000A; polar motion set to zero and UT1 = UTC (errors <= 0.9 s of
+    // rotation, i.e. <= 0.004 deg).
+    double tt1 = 0.0, tt2 = 0.0;
+    toTt(time, tt1, tt2);
+    double rc2t[3][3];
+    eraC2t06a(tt1, tt2, time.jd1, time.jd2, 0.0, 0.0, rc2t);
+    return glm::transpose(fromErfa(rc2t)); // rc2t is celestial-to-terrestrial
+  }
+  // IAU WGCCRE 2015 models (Archinal et al. 2018), simplified: only the constant and
+  // linear terms of alpha0, delta0 and W are kept; the periodic terms (the Moon's
+  // E1..E13 series, Mars's nutation-precession series) are omitted. For Mars that costs
+  // well under 0.01 deg. For the Moon the 18.6-year E1 terms dominate: the pole can be
+  // off by up to ~1.5 deg and the prime meridian by a few degrees, so lunar body-fixed
+  // coordinates (observer on the Moon, terrain) are approximate until they are added.
+  double d = 0.0, t = 0.0;
+  daysSinceJ2000(time, d, t);
+  if (body == "Sun") return iauBodyFixedToInertial(286.13, 63.87, 84.176 + 14.1844000 * d);
+  if (body == "Moon")
+    return iauBodyFixedToInertial(269.9949, 66.5392, 38.3213 + 13.17635815 * d);
+  if (body == "Mars")
+    return iauBodyFixedToInertial(317.68143 - 0.1061 * t, 52.88650 - 0.0609 * t,
+                                  176.630 + 350.89198226 * d);
+  throw std::invalid_argument("no rotation model for '" + body +
+                              "': body-fixed coordinates are not available");
+}
+
+} // namespace umbra::scene

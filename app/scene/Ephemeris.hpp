@@ -1,0 +1,32 @@
+#pragma once
+// Body positions and orientations from ERFA and the IAU WGCCRE rotation models.
+//
+// Frame: heliocentric (origin at the centre of the Sun), axes aligned with ICRS/GCRS
+// (equatorial J2000), metres.
+#include "scene/Time.hpp"
+
+#include <glm/glm.hpp>
+
+#include <string>
+
+namespace umbra::scene {
+
+/// True for the bodies heliocentricPositionM knows: Sun, Earth, Moon, Mars.
+bool hasEphemeris(const std::string& body);
+
+/// Heliocentric position in metres: Sun (zero), Earth (eraEpv00), Moon (Earth +
+/// eraMoon98), Mars (eraPlan94). Throws std::invalid_argument for other bodies.
+glm::dvec3 heliocentricPositionM(const std::string& body, UtcTime time);
+
+/// True for the bodies bodyFixedToInertial knows: Sun, Earth, Moon, Mars.
+bool hasRotationModel(const std::string& body);
+
+/// Rotation from the body-fixed frame (z = north pole, x = prime meridian) to the
+/// ICRS-aligned frame. Throws std::invalid_argument for bodies without a model.
+glm::dmat3 bodyFixedToInertial(const std::string& body, UtcTime time);
+
+/// Rotation from the body-fixed frame to ICRS for an IAU pole (alpha0, delta0) and
+/// prime meridian angle W, all in degrees.
+glm::dmat3 iauBodyFixedToInertial(double alpha0Deg, double delta0Deg, double wDeg);
+
+} // namespace umbra::scene

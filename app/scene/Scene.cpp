@@ -1,0 +1,131 @@
+#include "scene/Scene.hpp"
+
+#include "SceneDetail.hpp"
+#include "scene/Ephemeris.hpp"
+
+#include <GeographicLib/Geocentric.hpp>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace umbra::scene {
+
+namespace detail {
+
+void fail(const std::string& file, const std::string& field, const std::string& message) {
+  throw SceneError(field.empty() ? file + ": " + message
+                                 : file + ": " + field + ": " + message);
+}
+
+namespace {
+
+/// True when a and b (non-zero) are within about 0.06 deg of parallel.
+bool nearlyParallel(const glm::dvec3& a, const glm::dvec3& b) {
+  return glm::length(glm::cross(glm::normalize(a), glm::normalize(b))) < 1e-3;
+}
+
+const Body& findBody(const Scene& scene, const std::string& name, const std::string& field) {
+  const Body* body = scene.find(name);
+  if (body == nullptr) fail(scene.path, field, "unknown body '" + name + "'");
+  return *body;
+}
+
+/// The camera's up: the file's, else the observer body's north pole, else ICRS +z;
+/// when that is parallel to the view direction, the first ICRS axis that is not.
+/// Returned orthogonal to the view direction and normalized.
+glm::dvec3 chooseUp(const Scene& scene, const glm::dvec3& viewDir) {
+  glm::dvec3 up(0.0, 0.0, 1.0);
+  if (scene.camera.requestedUp) {
+    up = *scene.camera.requestedUp;
+  } else if (scene.camera.observer) {
+    const Body& body = findBody(scene, scene.camera.observer->body, "camera.observer.body");
+    up = bodyFixedToInertial(body.preset, scene.time) * glm::dvec3(0.0, 0.0, 1.0);
+  }
+  const glm::dvec3 fallbacks[] = {up, {0.0, 0.0, 1.0}, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}};
+  for (const glm::dvec3& candidate : fallbacks) {
+    if (nearlyParallel(candidate, viewDir)) continue;
+    const glm::dvec3 dir = glm::normalize(viewDir);
+    return glm::normalize(candidate - glm::dot(candidate, dir) * dir);
+  }
+  return {0.0, 0.0, 1.0}; // unreachable: three axes cannot all be parallel to dir
+}
+
+} // namespace
+
+void resolve(Scene& scene) {
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    Body& body = scene.bodies[i];
+    if (!body.positionFromEphemeris) continue;
+    try {
+      body.positionM = heliocentricPositionM(body.preset, scene.time);
+    } catch (const std::invalid_argument& e) {
+      fail(scene.path, "bodies[" + std::to_string(i) + "].position", e.what());
+    }
+  }
+
+  Camera& camera = scene.camera;
+  if (camera.observer) {
+    const Body& body = findBody(scene, camera.observer->body, "camera.observer.body");
+    try {
+      camera.positionM = observerPositionM(body, *camera.observer, scene.time);
+    } catch (const std::exception& e) {
+      fail(scene.path, "camera.observer.body", e.what());
+    }
+  }
+  if (!camera.targetBody.empty())
+    camera.targetM = findBody(scene, camera.targetBody, "camera.target").positionM;
+
+  const glm::dvec3 viewDir = camera.targetM - camera.positionM;
+  if (!(glm::length(viewDir) > 0.0))
+    fail(scene.path, "camera.target", "the target is at the camera position");
+  camera.up = chooseUp(scene, viewDir);
+}
+
+} // namespace detail
+
+const Body& Scene::sun() const {
+  for (const Body& body : bodies)
+    if (body.isSun()) return body;
+  throw SceneError(path + ": bodies: no Sun");
+}
+
+const Body* Scene::find(const std::string& bodyName) const {
+  for (const Body& body : bodies)
+    if (body.name == bodyName) return &body;
+  return nullptr;
+}
+
+glm::dvec3 observerPositionM(const Body& body, const Observer& observer, UtcTime time) {
+  const double flattening =
+      (body.equatorialRadiusM - body.polarRadiusM) / body.equatorialRadiusM;
+  const GeographicLib::Geocentric ellipsoid(body.equatorialRadiusM, flattening);
+  glm::dvec3 local;
+  ellipsoid.Forward(observer.latDeg, observer.lonDeg, observer.altM, local.x, local.y,
+                    local.z);
+  return body.positionM + bodyFixedToInertial(body.preset, time) * local;
+}
+
+void setTime(Scene& scene, UtcTime time) {
+  scene.time = time;
+  scene.hasTime = true;
+  detail::resolve(scene);
+}
+
+Scene loadScene(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr)
+    throw SceneError(path + ": cannot open file: " + std::strerror(errno));
+  std::string text;
+  char buffer[65536];
+  std::size_t count = 0;
+  while ((count = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, count);
+  const bool readError = std::ferror(file) != 0;
+  const int readErrno = errno;
+  std::fclose(file);
+  if (readError) throw SceneError(path + ": cannot read file: " + std::strerror(readErrno));
+  return parseScene(text, path);
+}
+
+} // namespace umbra::scene

@@ -1,0 +1,87 @@
+#pragma once
+// Scenes: the bodies, the camera and the render settings of a JSON scene file
+// (format: docs/scene-format.md), with positions resolved at the scene time.
+#include "scene/Time.hpp"
+
+#include <glm/glm.hpp>
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace umbra::scene {
+
+/// A scene file problem: "<file>: <field path>: <what was expected>".
+class SceneError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Body {
+  std::string name;              ///< unique in the scene
+  std::string preset;            ///< canonical preset name ("Moon"), or "" for none
+  double radiusM = 0.0;          ///< mean radius
+  double equatorialRadiusM = 0.0;
+  double polarRadiusM = 0.0;
+  glm::dvec3 positionM{0.0};     ///< heliocentric, ICRS axes
+  bool positionFromEphemeris = false;
+  bool hasAtmosphere = false;
+  double albedo = 0.0;           ///< geometric albedo
+  glm::dvec3 color{1.0};         ///< linear RGB display tint in [0, 1]
+
+  bool isSun() const { return preset == "Sun"; }
+};
+
+/// A point on a body's reference ellipsoid: geodetic latitude, east longitude and
+/// height above the ellipsoid.
+struct Observer {
+  std::string body;
+  double latDeg = 0.0;
+  double lonDeg = 0.0;
+  double altM = 0.0;
+};
+
+struct Camera {
+  std::optional<Observer> observer; ///< when set, positionM follows the body's rotation
+  glm::dvec3 positionM{0.0};        ///< heliocentric, ICRS axes
+  std::string targetBody;           ///< "" when the target is a fixed point
+  glm::dvec3 targetM{0.0};          ///< heliocentric, ICRS axes
+  glm::dvec3 up{0.0, 0.0, 1.0};     ///< unit, orthogonal to the view direction
+  std::optional<glm::dvec3> requestedUp; ///< the file's "up"; empty: the default
+  double fovDeg = 45.0;             ///< vertical field of view
+};
+
+struct Scene {
+  std::string path;     ///< the file it came from (for messages)
+  std::string name;
+  UtcTime time;
+  bool hasTime = false; ///< false: the file gave no time (no ephemeris was needed)
+  std::vector<Body> bodies;
+  Camera camera;
+  double exposureEv = 0.0;
+  int width = 960;
+  int height = 720;
+  int shadowLutSize = 256;
+
+  /// The body with preset Sun (a valid scene has exactly one).
+  const Body& sun() const;
+  /// The body with this exact name, or nullptr.
+  const Body* find(const std::string& name) const;
+};
+
+/// Reads, validates and resolves a scene file. Throws SceneError.
+Scene loadScene(const std::string& path);
+
+/// Validates and resolves scene JSON text; messages name pathForMessages.
+/// Throws SceneError.
+Scene parseScene(const std::string& jsonText, const std::string& pathForMessages);
+
+/// Moves the scene to another time: recomputes the ephemeris positions, the observer
+/// camera, a body target and the default up direction. Throws SceneError.
+void setTime(Scene& scene, UtcTime time);
+
+/// Heliocentric position (metres, ICRS axes) of an observer on a scene body.
+glm::dvec3 observerPositionM(const Body& body, const Observer& observer, UtcTime time);
+
+} // namespace umbra::scene

@@ -1,0 +1,371 @@
+// parseScene: JSON text -> validated Scene (format: docs/scene-format.md).
+#include "scene/Scene.hpp"
+
+#include "SceneDetail.hpp"
+#include "scene/Bodies.hpp"
+#include "scene/Ephemeris.hpp"
+#include "scene/Units.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <initializer_list>
+
+namespace umbra::scene {
+
+namespace {
+
+using json = nlohmann::json;
+
+/// "got <value>" text for messages, shortened.
+std::string got(const json& value) {
+  std::string text = value.dump();
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return "got " + text;
+}
+
+std::string index(const std::string& field, std::size_t i) {
+  return field + "[" + std::to_string(i) + "]";
+}
+
+/// Reads typed values out of the JSON tree; every failure names the file and field.
+class Reader {
+public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& field, const std::string& message) const {
+    detail::fail(file_, field, message);
+  }
+
+  void object(const json& value, const std::string& field,
+              std::initializer_list<const char*> keys) const {
+    if (!value.is_object()) fail(field, "expected an object, " + got(value));
+    for (const auto& item : value.items()) {
+      bool known = false;
+      std::string list;
+      for (const char* key : keys) {
+        known = known || item.key() == key;
+        list += (list.empty() ? "" : ", ") + std::string(key);
+      }
+      if (!known)
+        fail(field.empty() ? item.key() : field + "." + item.key(),
+             "unknown key (expected one of: " + list + ")");
+    }
+  }
+
+  std::string string(const json& value, const std::string& field) const {
+    if (!value.is_string() || value.get<std::string>().empty())
+      fail(field, "expected a non-empty string, " + got(value));
+    return value.get<std::string>();
+  }
+
+  bool boolean(const json& value, const std::string& field) const {
+    if (!value.is_boolean()) fail(field, "expected true or false, " + got(value));
+    return value.get<bool>();
+  }
+
+  /// A finite number in [lo, hi] (open at the ends that say so).
+  double number(const json& value, const std::string& field, double lo, double hi,
+                const std::string& expected) const {
+    if (!value.is_number()) fail(field, "expected " + expected + ", " + got(value));
+    const double x = value.get<double>();
+    if (!std::isfinite(x) || x < lo || x > hi)
+      fail(field, "expected " + expected + ", " + got(value));
+    return x;
+  }
+
+  int integer(const json& value, const std::string& field, int lo, int hi) const {
+    const std::string expected =
+        "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    const double x = number(value, field, lo, hi, expected);
+    if (x != std::floor(x)) fail(field, "expected " + expected + ", " + got(value));
+    return static_cast<int>(x);
+  }
+
+  /// A number (metres) or a length string such as "10km".
+  double length(const json& value, const std::string& field, const std::string& expected) const {
+    double metres = 0.0;
+    if (value.is_number()) {
+      metres = value.get<double>();
+    } else if (value.is_string()) {
+      try {
+        metres = parseLengthM(value.get<std::string>());
+      } catch (const std::invalid_argument& e) {
+        fail(field, e.what());
+      }
+    } else {
+      fail(field, "expected " + expected + ", " + got(value));
+    }
+    if (!std::isfinite(metres)) fail(field, "expected " + expected + ", " + got(value));
+    return metres;
+  }
+
+  double positiveLength(const json& value, const std::string& field) const {
+    const double metres = length(value, field, "a positive length");
+    if (!(metres > 0.0)) fail(field, "expected a positive length, " + got(value));
+    return metres;
+  }
+
+  /// [x, y, z]: numbers in metres or length strings.
+  glm::dvec3 vector(const json& value, const std::string& field) const {
+    if (!value.is_array() || value.size() != 3)
+      fail(field, "expected [x, y, z] in metres, " + got(value));
+    glm::dvec3 v;
+    for (std::size_t i = 0; i < 3; ++i)
+      v[static_cast<int>(i)] = length(value[i], index(field, i), "a length in metres");
+    return v;
+  }
+
+  glm::dvec3 color(const json& value, const std::string& field) const {
+    if (!value.is_array() || value.size() != 3)
+      fail(field, "expected [r, g, b] with components in [0, 1], " + got(value));
+    glm::dvec3 rgb;
+    for (std::size_t i = 0; i < 3; ++i)
+      rgb[static_cast<int>(i)] = number(value[i], index(field, i), 0.0, 1.0, "a number in [0, 1]");
+    return rgb;
+  }
+
+private:
+  std::string file_;
+};
+
+json parseJson(const std::string& text, const std::string& file) {
+  try {
+    return json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    // byte is the 1-based index of the last character read.
+    const std::size_t end = std::min<std::size_t>(e.byte, text.size());
+    std::size_t line = 1, column = 0;
+    for (std::size_t i = 0; i + 1 < end; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        column = 0;
+      } else {
+        ++column;
+      }
+    }
+    ++column;
+    std::string reason = e.what();
+    const std::size_t at = reason.find("parse error");
+    const std::size_t colon = at == std::string::npos ? at : reason.find(": ", at);
+    if (colon != std::string::npos) reason = reason.substr(colon + 2);
+    throw SceneError(file + ": invalid JSON at line " + std::to_string(line) + ", column " +
+                     std::to_string(column) + ": " + reason);
+  }
+}
+
+Body parseBody(const Reader& in, const json& value, const std::string& field) {
+  in.object(value, field,
+            {"preset", "name", "radius", "equatorialRadius", "polarRadius", "position",
+             "atmosphere", "albedo", "color"});
+  Body body;
+  const BodyPreset* preset = nullptr;
+  if (value.contains("preset")) {
+    const std::string name = in.string(value["preset"], field + ".preset");
+    preset = findPreset(name);
+    if (preset == nullptr)
+      in.fail(field + ".preset",
+              "unknown body '" + name + "' (known: " + presetNameList() + ")");
+    body.preset = preset->name;
+    body.name = preset->name;
+    body.radiusM = preset->meanRadiusM;
+    body.equatorialRadiusM = preset->equatorialRadiusM;
+    body.polarRadiusM = preset->polarRadiusM;
+    body.hasAtmosphere = preset->hasAtmosphere;
+    body.albedo = preset->geometricAlbedo;
+    body.color = glm::dvec3(preset->color[0], preset->color[1], preset->color[2]);
+  } else {
+    for (const char* key : {"name", "radius", "position"})
+      if (!value.contains(key))
+        in.fail(field + "." + key, "required for a body without a preset");
+  }
+
+  if (value.contains("name")) body.name = in.string(value["name"], field + ".name");
+  const bool hasEquatorial = value.contains("equatorialRadius");
+  const bool hasPolar = value.contains("polarRadius");
+  if (value.contains("radius")) {
+    body.radiusM = in.positiveLength(value["radius"], field + ".radius");
+    body.equatorialRadiusM = body.polarRadiusM = body.radiusM;
+  }
+  if (hasEquatorial)
+    body.equatorialRadiusM = in.positiveLength(value["equatorialRadius"], field + ".equatorialRadius");
+  if (hasPolar) body.polarRadiusM = in.positiveLength(value["polarRadius"], field + ".polarRadius");
+  if ((hasEquatorial || hasPolar) && !value.contains("radius"))
+    body.radiusM = (2.0 * body.equatorialRadiusM + body.polarRadiusM) / 3.0;
+
+  if (!value.contains("position") || value["position"] == "ephemeris") {
+    if (preset == nullptr)
+      in.fail(field + ".position", "no ephemeris for a body without a preset: give its "
+                                   "position explicitly in metres");
+    if (!hasEphemeris(preset->name))
+      in.fail(field + ".position", "no ephemeris for '" + preset->name +
+                                       "': give its position explicitly in metres");
+    body.positionFromEphemeris = true;
+  } else if (value["position"].is_array()) {
+    body.positionM = in.vector(value["position"], field + ".position");
+  } else {
+    in.fail(field + ".position",
+            "expected [x, y, z] in metres or \"ephemeris\", " + got(value["position"]));
+  }
+
+  if (value.contains("atmosphere"))
+    body.hasAtmosphere = in.boolean(value["atmosphere"], field + ".atmosphere");
+  if (value.contains("albedo"))
+    body.albedo = in.number(value["albedo"], field + ".albedo", 0.0, 1.0, "a number in [0, 1]");
+  if (value.contains("color")) body.color = in.color(value["color"], field + ".color");
+  return body;
+}
+
+void parseBodies(const Reader& in, const json& root, Scene& scene) {
+  if (!root.contains("bodies")) in.fail("bodies", "required (a list of bodies with one Sun)");
+  const json& list = root["bodies"];
+  if (!list.is_array() || list.empty())
+    in.fail("bodies", "expected a non-empty list of bodies, " + got(list));
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string field = index("bodies", i);
+    Body body = parseBody(in, list[i], field);
+    for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
+      if (scene.bodies[j].name == body.name)
+        in.fail(field + ".name", "duplicate name '" + body.name + "' (also " +
+                                     index("bodies", j) + ")");
+      if (scene.bodies[j].isSun() && body.isSun())
+        in.fail(field + ".preset", "a second Sun (" + index("bodies", j) +
+                                       " is the Sun); a scene has exactly one");
+    }
+    scene.bodies.push_back(body);
+  }
+  const bool hasSun = std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                                  [](const Body& b) { return b.isSun(); });
+  if (!hasSun) in.fail("bodies", "no Sun: add {\"preset\": \"Sun\"}");
+}
+
+std::string bodyNameList(const Scene& scene) {
+  std::string list;
+  for (const Body& body : scene.bodies) list += (list.empty() ? "" : ", ") + body.name;
+  return list;
+}
+
+const Body& sceneBody(const Reader& in, const Scene& scene, const json& value,
+                      const std::string& field) {
+  const std::string name = in.string(value, field);
+  const Body* body = scene.find(name);
+  if (body == nullptr)
+    in.fail(field, "unknown body '" + name + "' (scene bodies: " + bodyNameList(scene) + ")");
+  return *body;
+}
+
+Observer parseObserver(const Reader& in, const json& value, const Scene& scene) {
+  const std::string field = "camera.observer";
+  in.object(value, field, {"body", "latDeg", "lonDeg", "altM"});
+  for (const char* key : {"body", "latDeg", "lonDeg"})
+    if (!value.contains(key)) in.fail(field + "." + key, "required");
+  Observer observer;
+  const Body& body = sceneBody(in, scene, value["body"], field + ".body");
+  if (!hasRotationModel(body.preset))
+    in.fail(field + ".body", "no rotation model for '" + body.name +
+                                 "' (observers can stand on Sun, Earth, Moon, Mars)");
+  observer.body = body.name;
+  observer.latDeg =
+      in.number(value["latDeg"], field + ".latDeg", -90.0, 90.0, "a latitude in [-90, 90] degrees");
+  observer.lonDeg = in.number(value["lonDeg"], field + ".lonDeg", -HUGE_VAL, HUGE_VAL,
+                              "a longitude in degrees");
+  if (value.contains("altM"))
+    observer.altM = in.number(value["altM"], field + ".altM", -1e4, HUGE_VAL,
+                              "an altitude >= -10000 metres");
+  return observer;
+}
+
+void parseCamera(const Reader& in, const json& root, Scene& scene) {
+  if (!root.contains("camera"))
+    in.fail("camera", "required (an object with position or observer, and target)");
+  const json& value = root["camera"];
+  in.object(value, "camera", {"position", "observer", "target", "up", "fovDeg"});
+  Camera& camera = scene.camera;
+
+  const bool hasPosition = value.contains("position");
+  if (hasPosition == value.contains("observer"))
+    in.fail("camera", "expected either 'position' [x, y, z] or 'observer' "
+                      "{body, latDeg, lonDeg, altM}");
+  if (hasPosition) camera.positionM = in.vector(value["position"], "camera.position");
+  else camera.observer = parseObserver(in, value["observer"], scene);
+
+  if (!value.contains("target"))
+    in.fail("camera.target", "required (a body name or [x, y, z] in metres)");
+  const json& target = value["target"];
+  if (target.is_array()) camera.targetM = in.vector(target, "camera.target");
+  else if (target.is_string()) camera.targetBody = sceneBody(in, scene, target, "camera.target").name;
+  else in.fail("camera.target", "expected a body name or [x, y, z] in metres, " + got(target));
+
+  if (value.contains("up")) {
+    const glm::dvec3 up = in.vector(value["up"], "camera.up");
+    if (!(glm::length(up) > 0.0)) in.fail("camera.up", "expected a non-zero vector");
+    camera.requestedUp = up;
+  }
+  if (value.contains("fovDeg")) {
+    camera.fovDeg = in.number(value["fovDeg"], "camera.fovDeg", 0.0, 180.0,
+                              "a vertical field of view in (0, 180) degrees");
+    if (camera.fovDeg <= 0.0 || camera.fovDeg >= 180.0)
+      in.fail("camera.fovDeg",
+              "expected a vertical field of view in (0, 180) degrees, " + got(value["fovDeg"]));
+  }
+}
+
+/// The scene needs a time when a position depends on it.
+void checkTime(const Reader& in, const Scene& scene) {
+  if (scene.hasTime) return;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+    if (scene.bodies[i].positionFromEphemeris && !scene.bodies[i].isSun()) // Sun: origin
+      in.fail("time", "required: " + index("bodies", i) + " ('" + scene.bodies[i].name +
+                          "') takes its position from the ephemeris");
+  if (scene.camera.observer)
+    in.fail("time", "required: the camera observer stands on a rotating body");
+}
+
+} // namespace
+
+Scene parseScene(const std::string& jsonText, const std::string& pathForMessages) {
+  const Reader in(pathForMessages);
+  const json root = parseJson(jsonText, pathForMessages);
+  if (!root.is_object()) in.fail("", "expected a JSON object at the top level, " + got(root));
+  in.object(root, "", {"name", "time", "bodies", "camera", "exposure", "image", "shadow"});
+
+  Scene scene;
+  scene.path = pathForMessages;
+  scene.name = root.contains("name") ? in.string(root["name"], "name")
+                                     : std::filesystem::path(pathForMessages).stem().string();
+  if (root.contains("time")) {
+    try {
+      scene.time = parseUtc(in.string(root["time"], "time"));
+    } catch (const std::invalid_argument& e) {
+      in.fail("time", e.what());
+    }
+    scene.hasTime = true;
+  }
+  parseBodies(in, root, scene);
+  parseCamera(in, root, scene);
+  checkTime(in, scene);
+
+  if (root.contains("exposure"))
+    scene.exposureEv =
+        in.number(root["exposure"], "exposure", -HUGE_VAL, HUGE_VAL, "a number (EV)");
+  if (root.contains("image")) {
+    const json& image = root["image"];
+    in.object(image, "image", {"width", "height"});
+    if (image.contains("width")) scene.width = in.integer(image["width"], "image.width", 16, 16384);
+    if (image.contains("height"))
+      scene.height = in.integer(image["height"], "image.height", 16, 16384);
+  }
+  if (root.contains("shadow")) {
+    const json& shadow = root["shadow"];
+    in.object(shadow, "shadow", {"lutSize"});
+    if (shadow.contains("lutSize"))
+      scene.shadowLutSize = in.integer(shadow["lutSize"], "shadow.lutSize", 8, 4096);
+  }
+
+  detail::resolve(scene);
+  return scene;
+}
+
+} // namespace umbra::scene

@@ -1,0 +1,141 @@
+#include "scene/Ephemeris.hpp"
+#include "scene/Units.hpp"
+
+#include <erfa.h>
+#include <erfam.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+using namespace umbra::scene;
+
+namespace {
+
+constexpr double kDeg = ERFA_DD2R;
+
+double angleDeg(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)) / kDeg;
+}
+
+glm::dvec3 unitFromRaDec(double raDeg, double decDeg) {
+  return {std::cos(decDeg * kDeg) * std::cos(raDeg * kDeg),
+          std::cos(decDeg * kDeg) * std::sin(raDeg * kDeg), std::sin(decDeg * kDeg)};
+}
+
+void expectRotation(const glm::dmat3& m) {
+  const glm::dmat3 identity = glm::transpose(m) * m;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(identity[i][j], i == j ? 1.0 : 0.0, 1e-12);
+  EXPECT_NEAR(glm::determinant(m), 1.0, 1e-12);
+}
+
+} // namespace
+
+TEST(Ephemeris, SunIsTheOrigin) {
+  EXPECT_EQ(heliocentricPositionM("Sun", parseUtc("2015-09-28T02:47Z")), glm::dvec3(0.0));
+}
+
+TEST(Ephemeris, EarthSunDistanceOn2015September28) {
+  const UtcTime t = parseUtc("2015-09-28T00:00Z");
+  const double au = glm::length(heliocentricPositionM("Earth", t)) / kAuM;
+  // Independent rough value: the Astronomical Almanac's low-precision Sun formula,
+  // r = 1.00014 - 0.01671 cos g - 0.00014 cos 2g, g = 357.529 + 0.98560028 n (n days
+  // from J2000): 1.00224 au on that date.
+  const double n = (t.jd1 - 2451545.0) + t.jd2;
+  const double g = (357.529 + 0.98560028 * n) * kDeg;
+  const double almanacAu = 1.00014 - 0.01671 * std::cos(g) - 0.00014 * std::cos(2.0 * g);
+  EXPECT_NEAR(au, almanacAu, 1e-4);
+  EXPECT_NEAR(au, 1.0027, 1e-3);
+}
+
+TEST(Ephemeris, SupermoonPerigeeAtTheEclipseMaximum) {
+  // 2015-09-28 02:47 UTC: greatest eclipse; perigee (356 877 km) came about an hour earlier.
+  const UtcTime t = parseUtc("2015-09-28T02:47Z");
+  const glm::dvec3 earth = heliocentricPositionM("Earth", t);
+  const glm::dvec3 moon = heliocentricPositionM("Moon", t);
+  EXPECT_NEAR(glm::length(moon - earth) / 1e3, 356900.0, 1000.0);
+  // The Moon is in Earth's shadow: almost exactly opposite the Sun (gamma = -0.33).
+  EXPECT_LT(angleDeg(moon - earth, earth), 0.5);
+}
+
+TEST(Ephemeris, MarsStaysBetweenPerihelionAndAphelion) {
+  for (const char* when : {"2015-09-28T00:00Z", "2018-07-31T00:00Z", "2030-01-01T00:00Z"}) {
+    const double au = glm::length(heliocentricPositionM("Mars", parseUtc(when))) / kAuM;
+    EXPECT_GT(au, 1.3814) << when;
+    EXPECT_LT(au, 1.6660) << when;
+  }
+}
+
+TEST(Ephemeris, OnlyFourBodiesHaveAnEphemeris) {
+  EXPECT_TRUE(hasEphemeris("Earth"));
+  EXPECT_FALSE(hasEphemeris("Phobos"));
+  try {
+    heliocentricPositionM("Phobos", parseUtc("2015-09-28T00:00Z"));
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "no ephemeris for 'Phobos': give its position explicitly in metres");
+  }
+  EXPECT_THROW(bodyFixedToInertial("Deimos", parseUtc("2015-09-28T00:00Z")),
+               std::invalid_argument);
+}
+
+TEST(Ephemeris, RotationsAreProperRotations) {
+  const UtcTime t = parseUtc("2015-09-28T01:45Z");
+  for (const char* body : {"Sun", "Earth", "Moon", "Mars"}) {
+    SCOPED_TRACE(body);
+    expectRotation(bodyFixedToInertial(body, t));
+  }
+}
+
+TEST(Ephemeris, GreenwichPointsAtMeanSiderealTime) {
+  // The point lat 0, lon 0 lies at right ascension GMST in the mean equator and equinox
+  // of date (nutation moves it by < 0.001 deg there). Independent path: eraGmst06 and the
+  // bias-precession matrix eraPmat06.
+  for (const char* when : {"2015-09-28T01:45Z", "2000-01-01T12:00Z", "2024-04-08T18:17Z"}) {
+    SCOPED_TRACE(when);
+    const UtcTime t = parseUtc(when);
+    const glm::dvec3 greenwich = bodyFixedToInertial("Earth", t) * glm::dvec3(1.0, 0.0, 0.0);
+    double tt1 = 0.0, tt2 = 0.0;
+    toTt(t, tt1, tt2);
+    double rbp[3][3];
+    eraPmat06(tt1, tt2, rbp);
+    double v[3] = {greenwich.x, greenwich.y, greenwich.z}, ofDate[3];
+    eraRxp(rbp, v, ofDate);
+    const double raDeg = std::atan2(ofDate[1], ofDate[0]) / kDeg;
+    const double gmstDeg = eraGmst06(t.jd1, t.jd2, tt1, tt2) / kDeg;
+    EXPECT_NEAR(std::remainder(raDeg - gmstDeg, 360.0), 0.0, 0.01);
+    EXPECT_NEAR(std::asin(ofDate[2]) / kDeg, 0.0, 0.01);
+  }
+}
+
+TEST(Ephemeris, EarthPoleIsNearIcrsZ) {
+  // Precession moves the pole about 0.0056 deg per year from the J2000 pole.
+  const glm::dvec3 pole =
+      bodyFixedToInertial("Earth", parseUtc("2015-09-28T01:45Z")) * glm::dvec3(0, 0, 1);
+  EXPECT_NEAR(angleDeg(pole, {0, 0, 1}), 15.74 * 0.0056, 0.01);
+}
+
+TEST(Ephemeris, IauPoleAndPrimeMeridian) {
+  const glm::dmat3 m = iauBodyFixedToInertial(269.9949, 66.5392, 0.0);
+  EXPECT_LT(angleDeg(m * glm::dvec3(0, 0, 1), unitFromRaDec(269.9949, 66.5392)), 1e-12);
+  // W = 0: the prime meridian passes through the node Q of the body's equator on the
+  // ICRS equator, at right ascension alpha0 + 90 deg.
+  EXPECT_LT(angleDeg(m * glm::dvec3(1, 0, 0), unitFromRaDec(269.9949 + 90.0, 0.0)), 1e-12);
+  // W grows eastwards: at W = 90 the +y axis is where +x was.
+  const glm::dmat3 m90 = iauBodyFixedToInertial(269.9949, 66.5392, 90.0);
+  EXPECT_LT(angleDeg(m90 * glm::dvec3(0, -1, 0), unitFromRaDec(269.9949 + 90.0, 0.0)), 1e-12);
+}
+
+TEST(Ephemeris, MoonFacesEarthWithinLibration) {
+  // The sub-Earth point on the Moon stays within the libration range (|lat| < 7 deg,
+  // |lon| < 8 deg), give or take the omitted periodic terms.
+  for (const char* when : {"2015-09-28T02:47Z", "2020-06-01T00:00Z", "2024-01-15T00:00Z"}) {
+    SCOPED_TRACE(when);
+    const UtcTime t = parseUtc(when);
+    const glm::dvec3 toEarth = heliocentricPositionM("Earth", t) - heliocentricPositionM("Moon", t);
+    const glm::dvec3 local = glm::transpose(bodyFixedToInertial("Moon", t)) * glm::normalize(toEarth);
+    EXPECT_LT(std::abs(std::asin(local.z) / kDeg), 9.0);
+    EXPECT_LT(std::abs(std::atan2(local.y, local.x) / kDeg), 10.0);
+  }
+}

@@ -1,0 +1,277 @@
+#include "scene/Ephemeris.hpp"
+#include "scene/Scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+using namespace umbra::scene;
+
+namespace {
+
+const char* const kFile = "examples/x.json";
+
+/// The SceneError message for this JSON text (fails the test when it parses).
+std::string errorFor(const std::string& text) {
+  try {
+    parseScene(text, kFile);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no SceneError for: " << text;
+  return "";
+}
+
+/// A scene that needs no time: a Sun, a rock, a camera at a fixed point.
+std::string fixedScene(const std::string& bodies, const std::string& extra = "") {
+  return R"({"bodies": [)" + bodies +
+         R"(], "camera": {"position": [1e11, 0, 1e6], "target": [1e11, 0, 0]})" + extra + "}";
+}
+
+const std::string kSunAndRock =
+    R"({"preset": "Sun"}, {"name": "Rock", "radius": "10km", "position": [1e11, 0, 0]})";
+
+} // namespace
+
+// ---- one test per error case ------------------------------------------------------------
+
+TEST(SceneErrors, MalformedJson) {
+  const std::string message = errorFor("{\n  \"bodies\": [\n    {\"preset\" \"Sun\"}\n  ]\n}\n");
+  EXPECT_EQ(message.rfind("examples/x.json: invalid JSON at line 3, column 19: ", 0), 0u)
+      << message;
+  EXPECT_NE(message.find("syntax error"), std::string::npos) << message;
+}
+
+TEST(SceneValidation, JsonErrorPositionsMatchNlohmann) {
+  EXPECT_EQ(errorFor(""), "examples/x.json: invalid JSON at line 1, column 1: syntax error "
+                          "while parsing value - unexpected end of input; expected '[', '{', "
+                          "or a literal");
+  EXPECT_EQ(errorFor("{\"a\":1,\n}"),
+            "examples/x.json: invalid JSON at line 2, column 1: syntax error while parsing "
+            "object key - unexpected '}'; expected string literal");
+  EXPECT_EQ(errorFor("{\"a\":1}\n\n x").rfind("examples/x.json: invalid JSON at line 3, "
+                                              "column 2: syntax error", 0),
+            0u);
+}
+
+TEST(SceneErrors, UnknownPreset) {
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "Pluto"})")),
+            "examples/x.json: bodies[1].preset: unknown body 'Pluto' "
+            "(known: Sun, Earth, Moon, Mars, Phobos, Deimos)");
+}
+
+TEST(SceneErrors, NegativeRadius) {
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"name": "Moonlet", "radius": "1km",
+                                   "position": [0, 0, 1]},
+                                   {"name": "Rock", "radius": -5, "position": [0, 0, 1]})")),
+            "examples/x.json: bodies[2].radius: expected a positive length, got -5");
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"},
+                                   {"name": "Rock", "radius": "-5 km", "position": [0, 0, 1]})")),
+            "examples/x.json: bodies[1].radius: expected a positive length, got \"-5 km\"");
+}
+
+TEST(SceneErrors, MissingFile) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "umbra-no-such-scene.json").string();
+  try {
+    loadScene(path);
+    FAIL() << "no exception";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": cannot open file: No such file or directory");
+  }
+}
+
+TEST(SceneErrors, UnknownTopLevelKey) {
+  EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "exposre": -5)")),
+            "examples/x.json: exposre: unknown key (expected one of: name, time, bodies, "
+            "camera, exposure, image, shadow)");
+}
+
+TEST(SceneErrors, TwoSuns) {
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "sun", "name": "Sun2"})")),
+            "examples/x.json: bodies[1].preset: a second Sun (bodies[0] is the Sun); "
+            "a scene has exactly one");
+}
+
+TEST(SceneErrors, ObserverLatitudeOutOfRange) {
+  const std::string text = R"({"time": "2015-09-28T01:45Z",
+    "bodies": [{"preset": "Sun"}, {"preset": "Earth"}, {"preset": "Moon"}],
+    "camera": {"observer": {"body": "Earth", "latDeg": 91, "lonDeg": 0}, "target": "Moon"}})";
+  EXPECT_EQ(errorFor(text), "examples/x.json: camera.observer.latDeg: expected a latitude in "
+                            "[-90, 90] degrees, got 91");
+}
+
+// ---- more validation --------------------------------------------------------------------
+
+TEST(SceneValidation, MoreMessagesNameTheField) {
+  EXPECT_EQ(errorFor("[1, 2]"),
+            "examples/x.json: expected a JSON object at the top level, got [1,2]");
+  EXPECT_EQ(errorFor(R"({"camera": {}})"),
+            "examples/x.json: bodies: required (a list of bodies with one Sun)");
+  EXPECT_EQ(errorFor(fixedScene(R"({"name": "Rock", "radius": 1, "position": [0, 0, 1]})")),
+            "examples/x.json: bodies: no Sun: add {\"preset\": \"Sun\"}");
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"name": "Rock", "radius": 1})")),
+            "examples/x.json: bodies[1].position: required for a body without a preset");
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun", "position": [0, 0, 0]}, {"preset": "Phobos"})")),
+            "examples/x.json: bodies[1].position: no ephemeris for 'Phobos': give its "
+            "position explicitly in metres");
+  EXPECT_EQ(errorFor(fixedScene(kSunAndRock + R"(, {"name": "Rock", "radius": 1, "position": [0, 0, 1]})")),
+            "examples/x.json: bodies[2].name: duplicate name 'Rock' (also bodies[1])");
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"},
+                                   {"name": "Rock", "radius": "12 parsec", "position": [0, 0, 1]})")),
+            "examples/x.json: bodies[1].radius: invalid length '12 parsec': expected a number "
+            "with unit m, km or au");
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"},
+                                   {"name": "Rock", "radius": 1, "position": [0, "x", 1]})")),
+            "examples/x.json: bodies[1].position[1]: invalid length 'x': expected a number "
+            "with unit m, km or au");
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "Moon", "albdo": 0.1})")),
+            "examples/x.json: bodies[1].albdo: unknown key (expected one of: preset, name, "
+            "radius, equatorialRadius, polarRadius, position, atmosphere, albedo, color)");
+  EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "image": {"width": 8})")),
+            "examples/x.json: image.width: expected an integer in [16, 16384], got 8");
+  EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "shadow": {"lutSize": 256.5})")),
+            "examples/x.json: shadow.lutSize: expected an integer in [8, 4096], got 256.5");
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "Earth"})")),
+            "examples/x.json: time: required: bodies[1] ('Earth') takes its position from the "
+            "ephemeris");
+  EXPECT_EQ(errorFor(R"({"time": "2015-09-28T25:00Z", "bodies": [{"preset": "Sun"}]})"),
+            "examples/x.json: time: invalid UTC time '2015-09-28T25:00Z': hour out of range");
+}
+
+TEST(SceneValidation, CameraMessages) {
+  const std::string head = R"({"time": "2015-09-28T01:45Z",
+    "bodies": [{"preset": "Sun"}, {"preset": "Earth"}, {"preset": "Moon"},
+               {"preset": "Phobos", "position": [2e11, 0, 0]}], "camera": )";
+  EXPECT_EQ(errorFor(head + R"({"target": "Moon"}})"),
+            "examples/x.json: camera: expected either 'position' [x, y, z] or 'observer' "
+            "{body, latDeg, lonDeg, altM}");
+  EXPECT_EQ(errorFor(head + R"({"position": [0, 0, 0], "target": "Pluto"}})"),
+            "examples/x.json: camera.target: unknown body 'Pluto' (scene bodies: Sun, Earth, "
+            "Moon, Phobos)");
+  EXPECT_EQ(errorFor(head + R"({"position": [1, 0, 0], "target": [1, 0, 0]}})"),
+            "examples/x.json: camera.target: the target is at the camera position");
+  EXPECT_EQ(errorFor(head + R"({"position": [1, 0, 0], "target": "Moon", "fovDeg": 180}})"),
+            "examples/x.json: camera.fovDeg: expected a vertical field of view in (0, 180) "
+            "degrees, got 180");
+  EXPECT_EQ(errorFor(head + R"({"observer": {"body": "Phobos", "latDeg": 0, "lonDeg": 0},
+                                "target": "Moon"}})"),
+            "examples/x.json: camera.observer.body: no rotation model for 'Phobos' (observers "
+            "can stand on Sun, Earth, Moon, Mars)");
+  EXPECT_EQ(errorFor(head + R"({"observer": {"body": "Earth", "latDeg": 0, "lonDeg": 0,
+                                "altM": -20000}, "target": "Moon"}})"),
+            "examples/x.json: camera.observer.altM: expected an altitude >= -10000 metres, "
+            "got -20000");
+  EXPECT_EQ(errorFor(head + R"({"observer": {"body": "Earth", "latDeg": 0, "lonDeg": 0},
+                                "target": "Moon", "zoom": 2}})"),
+            "examples/x.json: camera.zoom: unknown key (expected one of: position, observer, "
+            "target, up, fovDeg)");
+}
+
+// ---- valid scenes -----------------------------------------------------------------------
+
+TEST(Scene, DefaultsAndOverrides) {
+  const Scene scene = parseScene(
+      fixedScene(R"({"preset": "Sun"},
+                    {"preset": "Moon", "name": "Luna", "radius": "1000 km", "albedo": 0.2,
+                     "position": ["1 au", 0, "-2km"], "atmosphere": true, "color": [1, 0, 0]},
+                    {"name": "Rock", "radius": 10, "position": [1e11, 0, 0]})"),
+      "scenes/my-scene.json");
+  EXPECT_EQ(scene.name, "my-scene");
+  EXPECT_FALSE(scene.hasTime);
+  EXPECT_EQ(scene.sun().name, "Sun");
+  EXPECT_EQ(scene.sun().positionM, glm::dvec3(0.0));
+  const Body* luna = scene.find("Luna");
+  ASSERT_NE(luna, nullptr);
+  EXPECT_EQ(luna->preset, "Moon");
+  EXPECT_EQ(luna->radiusM, 1e6);
+  EXPECT_EQ(luna->equatorialRadiusM, 1e6);
+  EXPECT_EQ(luna->polarRadiusM, 1e6);
+  EXPECT_EQ(luna->albedo, 0.2);
+  EXPECT_TRUE(luna->hasAtmosphere);
+  EXPECT_FALSE(luna->positionFromEphemeris);
+  EXPECT_EQ(luna->positionM, glm::dvec3(149597870700.0, 0.0, -2000.0));
+  EXPECT_EQ(luna->color, glm::dvec3(1, 0, 0));
+  EXPECT_EQ(scene.find("Moon"), nullptr);
+  const Body* rock = scene.find("Rock");
+  ASSERT_NE(rock, nullptr);
+  EXPECT_EQ(rock->preset, "");
+  EXPECT_FALSE(rock->isSun());
+  EXPECT_EQ(scene.exposureEv, 0.0);
+  EXPECT_EQ(scene.width, 960);
+  EXPECT_EQ(scene.height, 720);
+  EXPECT_EQ(scene.shadowLutSize, 256);
+  EXPECT_EQ(scene.camera.fovDeg, 45.0);
+  EXPECT_FALSE(scene.camera.observer);
+  // The camera looks along -z, so the default up (+z) falls back to +x.
+  EXPECT_NEAR(glm::length(scene.camera.up - glm::dvec3(1, 0, 0)), 0.0, 1e-12);
+}
+
+TEST(Scene, UpIsOrthogonalizedAgainstTheViewDirection) {
+  const Scene scene = parseScene(
+      R"({"bodies": [{"preset": "Sun"}],
+          "camera": {"position": [1e11, 0, 0], "target": "Sun", "up": [1, 0, 1]}})",
+      kFile);
+  EXPECT_NEAR(glm::length(scene.camera.up - glm::dvec3(0, 0, 1)), 0.0, 1e-12);
+}
+
+TEST(Scene, FullSceneLoadsAndSetTimeMovesTheMoon) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "umbra-scene-test-full.json").string();
+  {
+    std::ofstream out(path);
+    out << R"({
+      // comments are allowed
+      "name": "Total lunar eclipse of 2015-09-28",
+      "time": "2015-09-28T01:45:00Z",
+      "bodies": [
+        {"preset": "Sun"},
+        {"preset": "Earth"},
+        {"preset": "Moon", "albedo": 0.12},
+        {"name": "Rock", "radius": "10km", "position": [1.0e11, 0, 0], "albedo": 0.1}
+      ],
+      "camera": {"observer": {"body": "Earth", "latDeg": -10.0, "lonDeg": -30.0, "altM": 0},
+                 "target": "Moon", "fovDeg": 0.8},
+      "exposure": -5.0,
+      "image": {"width": 1280, "height": 720},
+      "shadow": {"lutSize": 128}
+    })";
+  }
+  Scene scene = loadScene(path);
+  std::remove(path.c_str());
+
+  EXPECT_EQ(scene.path, path);
+  EXPECT_EQ(scene.name, "Total lunar eclipse of 2015-09-28");
+  EXPECT_TRUE(scene.hasTime);
+  EXPECT_EQ(formatUtc(scene.time), "2015-09-28T01:45:00Z");
+  ASSERT_EQ(scene.bodies.size(), 4u);
+  EXPECT_EQ(scene.exposureEv, -5.0);
+  EXPECT_EQ(scene.width, 1280);
+  EXPECT_EQ(scene.shadowLutSize, 128);
+  EXPECT_EQ(scene.camera.fovDeg, 0.8);
+  EXPECT_EQ(scene.camera.targetBody, "Moon");
+
+  const Body& earth = *scene.find("Earth");
+  const Body& moon = *scene.find("Moon");
+  EXPECT_TRUE(moon.positionFromEphemeris);
+  EXPECT_EQ(moon.positionM, heliocentricPositionM("Moon", scene.time));
+  EXPECT_EQ(scene.camera.targetM, moon.positionM);
+  const double cameraAltitudeM = glm::length(scene.camera.positionM - earth.positionM);
+  EXPECT_NEAR(cameraAltitudeM, 6378e3, 25e3);
+  EXPECT_NEAR(glm::dot(scene.camera.up, glm::normalize(moon.positionM - scene.camera.positionM)),
+              0.0, 1e-12);
+
+  const glm::dvec3 moonBefore = moon.positionM;
+  const glm::dvec3 cameraBefore = scene.camera.positionM;
+  setTime(scene, addSeconds(scene.time, 3600.0));
+  EXPECT_EQ(formatUtc(scene.time), "2015-09-28T02:45:00Z");
+  const Body& moonAfter = *scene.find("Moon");
+  // Heliocentric speed ~30 km/s: about 1.07e8 m in an hour.
+  EXPECT_NEAR(glm::length(moonAfter.positionM - moonBefore), 1.07e8, 0.05e8);
+  EXPECT_EQ(scene.camera.targetM, moonAfter.positionM);
+  EXPECT_NE(scene.camera.positionM, cameraBefore);
+  EXPECT_EQ(scene.find("Rock")->positionM, glm::dvec3(1e11, 0, 0));
+}
