@@ -1,0 +1,45 @@
+#pragma once
+// The `umbra` command line: one function per subcommand registers its options on the
+// CLI11 app and returns the action to run once the command line has been parsed.
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace umbra::cli {
+
+/// What a subcommand runs; returns the process exit code.
+using Action = std::function<int()>;
+
+/// Bad input found while running a command (the message is printed as one line).
+struct CommandError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Options shared by the commands that build tables.
+struct CacheOptions {
+  std::string directory;  ///< empty: $UMBRA_CACHE_DIR, $XDG_CACHE_HOME/umbra or ~/.cache/umbra
+  bool disabled = false;
+  void addTo(CLI::App* command);
+};
+
+void addRenderCommand(CLI::App& app, Action& action);
+void addPrecomputeCommand(CLI::App& app, Action& action);
+void addProfileCommand(CLI::App& app, Action& action);
+void addInspectCommand(CLI::App& app, Action& action);
+
+/// Progress for long work on stderr: a live percentage on a terminal, quiet otherwise.
+class ProgressLine {
+public:
+  explicit ProgressLine(std::string what);
+  ~ProgressLine();
+  void update(double fraction);
+
+private:
+  std::string what;
+  int lastPercent = -1;
+  bool terminal;
+};
+
+} // namespace umbra::cli

@@ -1,0 +1,99 @@
+// umbra profile shadow --occluder BODY --distance 384400km [--samples N] [--exact] --csv FILE [--plot FILE]
+#include "Commands.hpp"
+#include "OutputFile.hpp"
+#include "ProfileExport.hpp"
+#include "ShadowCommon.hpp"
+#include "ShadowMapping.hpp"
+#include "vtkEclipseShadowLutSource.h"
+#include "vtkShadowProfileFilter.h"
+
+#include <vtkNew.h>
+#include <vtkTable.h>
+
+#include <iostream>
+#include <memory>
+
+namespace umbra::cli {
+
+void addProfileCommand(CLI::App& app, Action& action) {
+  CLI::App* profile = app.add_subcommand("profile", "Cross-sections of shadows, as CSV and plots");
+  profile->require_subcommand(1);
+  CLI::App* shadow = profile->add_subcommand(
+      "shadow", "The shadow of an occluder across its axis, at a distance behind it (I/I_sun per channel)");
+
+  struct Options {
+    std::string occluder, distance, sunDistance, occluderRadius, maxOffset, csv, plot;
+    int samples = 1001, size = 256;
+    bool noAtmosphere = false, exact = false;
+    double limbDarkening = 0.6;
+    CacheOptions cache;
+  };
+  auto o = std::make_shared<Options>();
+  shadow->add_option("--occluder", o->occluder, "Occluding body: Earth, Moon, Mars, Phobos, Deimos")->required();
+  shadow->add_option("--distance", o->distance,
+                     "Distance of the cross-section behind the occluder's centre, along the shadow axis "
+                     "(units m, km, au; e.g. 384400km)")->required();
+  shadow->add_option("--sun-distance", o->sunDistance, "Sun-occluder distance (default: the body's mean distance)");
+  shadow->add_option("--occluder-radius", o->occluderRadius, "Occluder radius (default: the body's mean radius)");
+  shadow->add_option("--max-offset", o->maxOffset, "Largest offset from the axis (default: 1.25 x the penumbra's radius)");
+  shadow->add_option("--samples", o->samples, "Samples across the profile")->capture_default_str()->check(CLI::Range(2, 1000000));
+  shadow->add_option("--size", o->size, "Texels along u and v of the shadow LuT")->capture_default_str()->check(CLI::Range(8, 4096));
+  shadow->add_option("--limb-darkening", o->limbDarkening, "Linear limb-darkening coefficient of the Sun (Eq. 1)")
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  shadow->add_flag("--no-atmosphere", o->noAtmosphere, "Treat the occluder as airless (the only model so far)");
+  shadow->add_flag("--exact", o->exact, "Compute every sample directly instead of through the LuT");
+  shadow->add_option("--csv", o->csv, "CSV file to write (offset_km,r,g,b,luminance)")->required();
+  shadow->add_option("--plot", o->plot, "Plot to write: FILE.png (needs an X display) or FILE.svg");
+  o->cache.addTo(shadow);
+
+  shadow->callback([&action, o] {
+    action = [o] {
+      output::checkWritable(o->csv, {".csv"});
+      if (!o->plot.empty()) output::checkWritable(o->plot, {".png", ".svg"});
+      const OccluderChoice occ = chooseOccluder(o->occluder, o->occluderRadius, o->sunDistance);
+      const double distanceM = lengthOption("--distance", o->distance);
+      if (!(distanceM > 0.0)) throw CommandError("--distance: expected a positive length, got " + o->distance);
+      double maxOffsetM = 0.0;
+      if (!o->maxOffset.empty()) {
+        maxOffsetM = lengthOption("--max-offset", o->maxOffset);
+        if (!(maxOffsetM > 0.0)) throw CommandError("--max-offset: expected a positive length, got " + o->maxOffset);
+      }
+      if (occ.hasAtmosphere && !o->noAtmosphere)
+        std::cerr << "note: " << occ.name << "'s atmosphere is not modelled yet; this is the shadow of an airless "
+                  << occ.name << " (--no-atmosphere silences this note)\n";
+
+      vtkNew<vtkShadowProfileFilter> filter;
+      vtkSmartPointer<vtkEclipseShadowLutSource> lut;  // exact mode needs none
+      if (!o->exact) {
+        lut = updateShadowLut(occ, o->size, o->limbDarkening, o->cache);
+        filter->SetInputConnection(lut->GetOutputPort());
+      }
+      filter->SetSunRadiusM(eclipse::kSunRadiusM);
+      filter->SetOccluderRadiusM(occ.radiusM);
+      filter->SetSunOccluderDistanceM(occ.sunDistanceM);
+      filter->SetReceiverDistanceM(distanceM);
+      filter->SetMaxOffsetM(maxOffsetM);
+      filter->SetSamples(o->samples);
+      filter->SetExact(o->exact);
+      filter->SetLimbDarkening(o->limbDarkening);
+      filter->Update();
+      vtkTable* table = filter->GetOutput();
+      if (table->GetNumberOfRows() != o->samples) throw CommandError("the shadow profile could not be computed");
+
+      plot::writeProfileCsv(table, o->csv);
+      std::cout << "wrote " << o->csv << "\n";
+      if (!o->plot.empty()) {
+        plot::writeProfilePlot(table, o->plot,
+                               occ.name + "'s shadow at " + o->distance + (o->exact ? " (exact)" : ""));
+        std::cout << "wrote " << o->plot << "\n";
+      }
+      const eclipse::ShadowConeRadii r = eclipse::shadowConeRadii(
+          {eclipse::kSunRadiusM, occ.radiusM, occ.sunDistanceM}, distanceM);
+      std::cout << "geometric radii at " << o->distance << ": umbra " << r.umbraRadiusM / 1e3 << " km, penumbra "
+                << r.penumbraRadiusM / 1e3 << " km\n";
+      return 0;
+    };
+  });
+}
+
+} // namespace umbra::cli

@@ -1,0 +1,66 @@
+#include "ShadowCommon.hpp"
+
+#include "scene/Bodies.hpp"
+#include "scene/Units.hpp"
+#include "vtkEclipseShadowLutSource.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+
+#include <iostream>
+
+namespace umbra::cli {
+
+double lengthOption(const std::string& option, const std::string& text) {
+  try {
+    return scene::parseLengthM(text);
+  } catch (const std::exception& e) {
+    throw CommandError(option + ": " + e.what());
+  }
+}
+
+OccluderChoice chooseOccluder(const std::string& name, const std::string& radius, const std::string& sunDistance) {
+  const scene::BodyPreset* preset = scene::findPreset(name);
+  if (!preset) throw CommandError("--occluder: unknown body '" + name + "' (known: " + scene::presetNameList() + ")");
+  if (preset->name == "Sun") throw CommandError("--occluder: the Sun cannot occlude itself");
+  OccluderChoice c{preset->name, preset->meanRadiusM, scene::meanDistanceFromSunM(*preset), preset->hasAtmosphere};
+  if (!radius.empty()) c.radiusM = lengthOption("--occluder-radius", radius);
+  if (!sunDistance.empty()) c.sunDistanceM = lengthOption("--sun-distance", sunDistance);
+  if (!(c.radiusM > 0.0)) throw CommandError("--occluder-radius: expected a positive length, got " + radius);
+  if (!(c.sunDistanceM > 0.0)) throw CommandError("--sun-distance: expected a positive length, got " + sunDistance);
+  return c;
+}
+
+vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(const OccluderChoice& occluder, int size,
+                                                           double limbDarkening, const CacheOptions& cache) {
+  auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
+  source->SetWidth(size);
+  source->SetHeight(size);
+  source->SetLimbDarkening(limbDarkening);
+  source->SetOccluderName(occluder.name);
+  source->SetOccluderRadiusM(occluder.radiusM);
+  source->SetSunOccluderDistanceM(occluder.sunDistanceM);
+  source->SetCacheDirectory(cache.directory);
+  source->SetUseCache(!cache.disabled);
+
+  ProgressLine progress("shadow LuT " + std::to_string(size) + "x" + std::to_string(size));
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&progress);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
+    static_cast<ProgressLine*>(client)->update(*static_cast<double*>(data));
+  });
+  source->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  source->Update();
+  if (source->GetOutput()->GetNumberOfPoints() == 0) throw CommandError("the shadow LuT could not be computed");
+  if (source->GetLastUpdateWasCacheHit())
+    std::cerr << "cache hit: " << source->GetCachePath() << "\n";
+  else if (!cache.disabled && source->GetCacheWarning().empty())
+    std::cerr << "cached: " << source->GetCachePath() << "\n";
+  if (!source->GetCacheWarning().empty())
+    std::cerr << "umbra: warning: could not cache the table: " << source->GetCacheWarning() << "\n";
+  return source;
+}
+
+} // namespace umbra::cli

@@ -1,0 +1,32 @@
+#pragma once
+// What the `precompute shadow` and `profile shadow` commands share: choosing the
+// occluder and building (or loading from the cache) its shadow LuT.
+#include "Commands.hpp"
+
+#include <vtkSmartPointer.h>
+
+#include <string>
+
+class vtkEclipseShadowLutSource;
+
+namespace umbra::cli {
+
+struct OccluderChoice {
+  std::string name;             ///< canonical preset name
+  double radiusM = 0.0;
+  double sunDistanceM = 0.0;    ///< mean distance from the Sun (a moon: its planet's)
+  bool hasAtmosphere = false;
+};
+
+/// The preset called `name`; throws CommandError listing the known bodies otherwise, or
+/// when it is the Sun. `radius` / `sunDistance` (length strings, may be empty) override.
+OccluderChoice chooseOccluder(const std::string& name, const std::string& radius, const std::string& sunDistance);
+
+/// Parse a length option ("384400km"); throws CommandError naming the option.
+double lengthOption(const std::string& option, const std::string& text);
+
+/// Build the LuT through the filter, with progress on stderr and cache reporting.
+vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(const OccluderChoice& occluder, int size,
+                                                           double limbDarkening, const CacheOptions& cache);
+
+} // namespace umbra::cli

@@ -1,0 +1,27 @@
+// umbra: physically based eclipse shadows, from the command line.
+#include "Commands.hpp"
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+  CLI::App app{"umbra: physically based visualization of eclipses, atmospheres and terrain shadows.\n"
+               "Run 'umbra COMMAND --help' for the options of a command."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "umbra 0.1.0");
+  umbra::cli::Action action;
+  umbra::cli::addRenderCommand(app, action);
+  umbra::cli::addPrecomputeCommand(app, action);
+  umbra::cli::addProfileCommand(app, action);
+  umbra::cli::addInspectCommand(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    return action();
+  } catch (const std::exception& e) {
+    std::cerr << "umbra: error: " << e.what() << std::endl;
+    return 1;
+  }
+}

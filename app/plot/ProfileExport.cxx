@@ -1,0 +1,166 @@
+#include "ProfileExport.hpp"
+
+#include "OutputFile.hpp"
+
+#include <vtkAxis.h>
+#include <vtkChartLegend.h>
+#include <vtkChartXY.h>
+#include <vtkContextScene.h>
+#include <vtkContextView.h>
+#include <vtkDoubleArray.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPen.h>
+#include <vtkPlot.h>
+#include <vtkRenderWindow.h>
+#include <vtkTable.h>
+#include <vtkTextProperty.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace umbra::plot {
+namespace {
+
+struct Line {
+  const char* column;
+  const char* label;
+  unsigned char r, g, b;
+};
+const Line kLines[] = {{"r", "red", 220, 50, 47},
+                       {"g", "green", 60, 160, 60},
+                       {"b", "blue", 40, 100, 220},
+                       {"luminance", "luminance", 30, 30, 30}};
+
+vtkDoubleArray* column(vtkTable* t, const char* name) {
+  auto* c = vtkDoubleArray::SafeDownCast(t->GetColumnByName(name));
+  if (!c) throw std::runtime_error(std::string("shadow profile has no column '") + name + "'");
+  return c;
+}
+
+void writeSvg(vtkTable* t, const std::string& path, const std::string& title) {
+  const double W = 800, H = 500, left = 70, right = 20, top = 40, bottom = 60;
+  auto* x = column(t, "offset_km");
+  const vtkIdType n = x->GetNumberOfTuples();
+  const double xMax = std::max(x->GetValue(n - 1), 1e-12);
+  const auto px = [&](double v) { return left + (W - left - right) * v / xMax; };
+  const auto py = [&](double v) { return H - bottom - (H - top - bottom) * std::clamp(v, 0.0, 1.05) / 1.05; };
+
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
+    << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
+    << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    << "<text x=\"" << W / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << title << "</text>\n";
+  for (int k = 0; k <= 5; ++k) {  // axes and ticks
+    const double xv = xMax * k / 5, yv = 0.2 * k;
+    s << "<line x1=\"" << px(xv) << "\" y1=\"" << py(0) << "\" x2=\"" << px(xv) << "\" y2=\"" << py(1.05)
+      << "\" stroke=\"#ddd\"/>\n<text x=\"" << px(xv) << "\" y=\"" << py(0) + 18 << "\" text-anchor=\"middle\">"
+      << std::lround(xv) << "</text>\n";
+    s << "<line x1=\"" << px(0) << "\" y1=\"" << py(yv) << "\" x2=\"" << px(xMax) << "\" y2=\"" << py(yv)
+      << "\" stroke=\"#ddd\"/>\n<text x=\"" << px(0) - 8 << "\" y=\"" << py(yv) + 4 << "\" text-anchor=\"end\">"
+      << yv << "</text>\n";
+  }
+  s << "<text x=\"" << W / 2 << "\" y=\"" << H - 15 << "\" text-anchor=\"middle\">offset from the shadow axis [km]</text>\n"
+    << "<text transform=\"translate(18," << H / 2 << ") rotate(-90)\" text-anchor=\"middle\">I / I_sun</text>\n";
+  int legend = 0;
+  for (const Line& line : kLines) {
+    auto* y = column(t, line.column);
+    char colour[8];
+    std::snprintf(colour, sizeof colour, "#%02x%02x%02x", line.r, line.g, line.b);
+    s << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\" points=\"";
+    for (vtkIdType i = 0; i < n; ++i) s << px(x->GetValue(i)) << "," << py(y->GetValue(i)) << " ";
+    s << "\"/>\n<text x=\"" << left + 10 << "\" y=\"" << top + 16 * (++legend) << "\" fill=\"" << colour << "\">"
+      << line.label << "</text>\n";
+  }
+  s << "</svg>\n";
+
+  output::OutputFile out(path);
+  {
+    std::ofstream f(out.tempPath());
+    f << s.str();
+    if (!f.flush()) throw std::runtime_error(path + ": cannot write");
+  }
+  out.commit();
+}
+
+void writePng(vtkTable* t, const std::string& path, const std::string& title) {
+  if (!std::getenv("DISPLAY"))
+    throw std::runtime_error(path + ": PNG plots need an X display (run under xvfb-run -a) - or write .svg");
+  vtkNew<vtkContextView> view;
+  view->GetRenderWindow()->SetOffScreenRendering(1);
+  view->GetRenderWindow()->SetSize(800, 500);
+  view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+  vtkNew<vtkChartXY> chart;
+  chart->SetTitle(title);
+  chart->GetTitleProperties()->SetFontSize(16);
+  view->GetScene()->AddItem(chart);
+  addProfileLines(chart, t);
+  view->GetRenderWindow()->Render();
+
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(view->GetRenderWindow());
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  output::OutputFile out(path);
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(out.tempPath().c_str());
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->Write();
+  if (writer->GetErrorCode() != 0) throw std::runtime_error(path + ": cannot write PNG");
+  out.commit();
+}
+
+} // namespace
+
+void addProfileLines(vtkChartXY* chart, vtkTable* t) {
+  column(t, "offset_km");
+  for (const Line& line : kLines) {
+    column(t, line.column);
+    vtkPlot* plot = chart->AddPlot(vtkChart::LINE);
+    plot->SetInputData(t, "offset_km", line.column);
+    plot->SetColor(line.r, line.g, line.b, 255);
+    plot->SetWidth(line.column == std::string("luminance") ? 2.5f : 1.5f);
+    plot->SetLabel(line.label);
+  }
+  chart->SetShowLegend(true);
+  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("offset from the shadow axis [km]");
+  chart->GetAxis(vtkAxis::LEFT)->SetTitle("I / I_sun");
+  chart->GetAxis(vtkAxis::LEFT)->SetRange(0.0, 1.05);
+  chart->GetAxis(vtkAxis::LEFT)->SetBehavior(vtkAxis::FIXED);
+}
+
+void writeProfileCsv(vtkTable* t, const std::string& path) {
+  vtkDoubleArray* cols[5];
+  const char* names[5] = {"offset_km", "r", "g", "b", "luminance"};
+  for (int c = 0; c < 5; ++c) cols[c] = column(t, names[c]);
+  output::OutputFile out(path);
+  {
+    std::ofstream f(out.tempPath());
+    f << kProfileCsvHeader << "\n";
+    char buf[64];
+    for (vtkIdType i = 0; i < cols[0]->GetNumberOfTuples(); ++i) {
+      for (int c = 0; c < 5; ++c) {
+        std::snprintf(buf, sizeof buf, c == 0 ? "%.6f" : ",%.10g", cols[c]->GetValue(i));
+        f << buf;
+      }
+      f << "\n";
+    }
+    if (!f.flush()) throw std::runtime_error(path + ": cannot write");
+  }
+  out.commit();
+}
+
+void writeProfilePlot(vtkTable* t, const std::string& path, const std::string& title) {
+  const std::string ext = output::extensionOf(path);
+  if (ext == ".svg") return writeSvg(t, path, title);
+  if (ext == ".png") return writePng(t, path, title);
+  throw std::runtime_error(path + ": unsupported plot type (expected .png or .svg)");
+}
+
+} // namespace umbra::plot

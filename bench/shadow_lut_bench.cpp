@@ -1,0 +1,85 @@
+// Speed against accuracy of the airless eclipse-shadow LuT (issue: foundation).
+// For each size, the build time (best of --repeats runs) and the error of the bilinearly
+// sampled LuT against a 1024x1024 reference LuT and against the exact shadow function.
+// Prints a Markdown table for docs/accuracy-vs-speed.md.
+//
+//   build/bench/umbra-bench-shadow-lut [--sizes 64,128,256,512] [--reference 1024] [--repeats 3]
+#include "ShadowLut.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+using namespace umbra::eclipse;
+
+namespace {
+double seconds(const std::chrono::steady_clock::time_point& t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+} // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Build time and error of the airless shadow LuT at several sizes"};
+  std::vector<int> sizes{64, 128, 256, 512};
+  int referenceSize = 1024, repeats = 3, exactSamples = 20000;
+  app.add_option("--sizes", sizes, "LuT sizes to measure")->delimiter(',');
+  app.add_option("--reference", referenceSize, "Size of the reference LuT")->capture_default_str();
+  app.add_option("--repeats", repeats, "Builds per size (the fastest counts)")->capture_default_str();
+  app.add_option("--exact-samples", exactSamples, "Random (u, v) points compared with the exact function")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  auto t0 = std::chrono::steady_clock::now();
+  const ShadowLut reference = buildAirlessShadowLut({referenceSize, referenceSize});
+  const double referenceTime = seconds(t0);
+
+  // Random points over the LuT for the comparison with the exact function.
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<LutCoords> points(exactSamples);
+  std::vector<double> exact(exactSamples);
+  for (auto& p : points) p = {uniform(rng), uniform(rng)};
+#pragma omp parallel for
+  for (int k = 0; k < exactSamples; ++k) exact[k] = airlessShadow(points[k]);
+
+  std::printf("threads: %d; reference %dx%d built in %.3f s\n\n", omp_get_max_threads(), referenceSize,
+              referenceSize, referenceTime);
+  std::printf("| size | build time [s] | max error vs %d² | mean error vs %d² | max error vs exact | mean error vs exact |\n",
+              referenceSize, referenceSize);
+  std::printf("|---:|---:|---:|---:|---:|---:|\n");
+  for (int n : sizes) {
+    double best = 1e300;
+    ShadowLut lut;
+    for (int r = 0; r < repeats; ++r) {
+      t0 = std::chrono::steady_clock::now();
+      lut = buildAirlessShadowLut({n, n});
+      best = std::min(best, seconds(t0));
+    }
+    // Against the reference: both sampled at the reference's texel centres.
+    double maxRef = 0.0, sumRef = 0.0;
+#pragma omp parallel for reduction(max : maxRef) reduction(+ : sumRef)
+    for (int j = 0; j < referenceSize; ++j) {
+      for (int i = 0; i < referenceSize; ++i) {
+        const LutCoords c{(i + 0.5) / referenceSize, (j + 0.5) / referenceSize};
+        const double e = std::abs(lut.sample(c).r - reference.texel(i, j).r);
+        maxRef = std::max(maxRef, e);
+        sumRef += e;
+      }
+    }
+    double maxExact = 0.0, sumExact = 0.0;
+    for (int k = 0; k < exactSamples; ++k) {
+      const double e = std::abs(lut.sample(points[k]).r - exact[k]);
+      maxExact = std::max(maxExact, e);
+      sumExact += e;
+    }
+    std::printf("| %d | %.4f | %.2e | %.2e | %.2e | %.2e |\n", n, best, maxRef,
+                sumRef / (double(referenceSize) * referenceSize), maxExact, sumExact / exactSamples);
+  }
+  return 0;
+}

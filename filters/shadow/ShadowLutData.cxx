@@ -1,0 +1,109 @@
+#include "ShadowLutData.h"
+
+#include "umbra/tables/Table.h"
+
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkStringArray.h>
+
+#include <sstream>
+#include <stdexcept>
+
+namespace umbra::filters {
+namespace {
+std::string number(double x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << x;
+  return s.str();
+}
+constexpr const char* kFieldKeys = "umbra_parameter_keys";
+constexpr const char* kFieldValues = "umbra_parameter_values";
+} // namespace
+
+std::map<std::string, std::string> airlessLutParameters(const eclipse::ShadowLutParams& p) {
+  return {{"kind", kAirlessShadowLutKind},
+          {"model", "limb-darkened Sun (Eq. 1), spherical airless occluder; v1"},
+          {"width", std::to_string(p.width)},
+          {"height", std::to_string(p.height)},
+          {"limbDarkening", number(p.limbDarkening)},
+          {"relativeTolerance", number(p.relativeTolerance)},
+          {"values", "I/I_sun at texel centres u=(i+0.5)/width, v=(j+0.5)/height (Eq. 4)"}};
+}
+
+tables::Table toTable(const eclipse::ShadowLut& lut, const std::map<std::string, std::string>& parameters) {
+  tables::Table t;
+  t.width = lut.width;
+  t.height = lut.height;
+  t.channels = {"R", "G", "B"};
+  t.data = lut.rgb;
+  t.parameters = parameters;
+  return t;
+}
+
+eclipse::ShadowLut fromTable(const tables::Table& t, const std::string& origin) {
+  if (t.channels != std::vector<std::string>{"R", "G", "B"})
+    throw std::runtime_error(origin + ": a shadow LuT needs channels R, G, B");
+  if (t.width < 2 || t.height < 2)
+    throw std::runtime_error(origin + ": a shadow LuT needs at least 2x2 texels");
+  eclipse::ShadowLut lut;
+  lut.width = t.width;
+  lut.height = t.height;
+  lut.rgb = t.data;
+  return lut;
+}
+
+vtkSmartPointer<vtkImageData> toImageData(const eclipse::ShadowLut& lut) {
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(lut.width, lut.height, 1);
+  image->SetSpacing(1.0 / lut.width, 1.0 / lut.height, 1.0);
+  image->SetOrigin(0.5 / lut.width, 0.5 / lut.height, 0.0);
+  auto values = vtkSmartPointer<vtkFloatArray>::New();
+  values->SetName(kShadowLutArrayName);
+  values->SetNumberOfComponents(3);
+  values->SetNumberOfTuples(static_cast<vtkIdType>(lut.width) * lut.height);
+  std::copy(lut.rgb.begin(), lut.rgb.end(), values->GetPointer(0));
+  image->GetPointData()->SetScalars(values);
+  return image;
+}
+
+eclipse::ShadowLut fromImageData(vtkImageData* image) {
+  if (!image) throw std::runtime_error("shadow LuT: no image");
+  int dims[3];
+  image->GetDimensions(dims);
+  auto* values = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+  if (dims[2] != 1 || dims[0] < 2 || dims[1] < 2 || !values || values->GetNumberOfComponents() != 3)
+    throw std::runtime_error("shadow LuT: expected a 2D image of float RGB point scalars");
+  eclipse::ShadowLut lut;
+  lut.width = dims[0];
+  lut.height = dims[1];
+  lut.rgb.assign(values->GetPointer(0), values->GetPointer(0) + 3 * static_cast<std::size_t>(dims[0]) * dims[1]);
+  return lut;
+}
+
+void setFieldParameters(vtkImageData* image, const std::map<std::string, std::string>& parameters) {
+  auto keys = vtkSmartPointer<vtkStringArray>::New();
+  auto values = vtkSmartPointer<vtkStringArray>::New();
+  keys->SetName(kFieldKeys);
+  values->SetName(kFieldValues);
+  for (const auto& [k, v] : parameters) {
+    keys->InsertNextValue(k);
+    values->InsertNextValue(v);
+  }
+  image->GetFieldData()->AddArray(keys);
+  image->GetFieldData()->AddArray(values);
+}
+
+std::map<std::string, std::string> fieldParameters(vtkImageData* image) {
+  std::map<std::string, std::string> out;
+  auto* keys = vtkStringArray::SafeDownCast(image->GetFieldData()->GetAbstractArray(kFieldKeys));
+  auto* values = vtkStringArray::SafeDownCast(image->GetFieldData()->GetAbstractArray(kFieldValues));
+  if (!keys || !values) return out;
+  for (vtkIdType i = 0; i < keys->GetNumberOfValues() && i < values->GetNumberOfValues(); ++i)
+    out[keys->GetValue(i)] = values->GetValue(i);
+  return out;
+}
+
+} // namespace umbra::filters

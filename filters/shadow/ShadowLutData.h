@@ -1,0 +1,40 @@
+#pragma once
+// Conversions of the airless shadow LuT between its three forms: the physics library's
+// ShadowLut, the EXR table file (umbra::tables::Table) and VTK's vtkImageData. The
+// parameters that define a LuT are listed here once, for the cache key and the header.
+#include "ShadowLut.hpp"
+
+#include <vtkSmartPointer.h>
+
+#include <map>
+#include <string>
+
+class vtkImageData;
+namespace umbra::tables { struct Table; }
+
+namespace umbra::filters {
+
+/// Name of the point-data array that holds I / I_sun.
+inline constexpr const char* kShadowLutArrayName = "I_over_Isun";
+/// `kind` of the airless shadow LuT in the table cache and the EXR header.
+inline constexpr const char* kAirlessShadowLutKind = "eclipse-shadow-airless";
+
+/// Every parameter that changes an airless LuT's values, as written to its EXR header and
+/// hashed for the cache. Bodies are not among them: Eq. 4 makes the airless LuT the same
+/// for every Sun and occluder.
+std::map<std::string, std::string> airlessLutParameters(const eclipse::ShadowLutParams& params);
+
+tables::Table toTable(const eclipse::ShadowLut& lut, const std::map<std::string, std::string>& parameters);
+/// Throws std::runtime_error naming `origin` if the table is not an RGB LuT.
+eclipse::ShadowLut fromTable(const tables::Table& table, const std::string& origin);
+
+/// Image with point coordinates (u, v) = texel centres and float RGB point scalars.
+vtkSmartPointer<vtkImageData> toImageData(const eclipse::ShadowLut& lut);
+/// Throws std::runtime_error if the image is not a 2D float RGB LuT.
+eclipse::ShadowLut fromImageData(vtkImageData* image);
+
+/// Parameters carried in an image's field data (string key/value pairs).
+void setFieldParameters(vtkImageData* image, const std::map<std::string, std::string>& parameters);
+std::map<std::string, std::string> fieldParameters(vtkImageData* image);
+
+} // namespace umbra::filters
