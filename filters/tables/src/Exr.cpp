@@ -1,0 +1,392 @@
+#include "umbra/tables/Exr.h"
+
+#include "ExrInternal.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <set>
+#include <system_error>
+
+#include <Iex.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIO.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+#include <ImfStringVectorAttribute.h>
+#include <ImfVersion.h>
+
+namespace fs = std::filesystem;
+
+namespace umbra::tables {
+namespace {
+
+std::string errorText(int err) { return std::error_code(err, std::generic_category()).message(); }
+
+// OpenEXR's messages may span lines; ours are one line.
+std::string oneLine(std::string s) {
+  for (char& ch : s) {
+    if (ch == '\n' || ch == '\r') ch = ' ';
+  }
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+// OpenEXR's messages often begin 'Cannot read image file "<path>". '; the path is already
+// at the start of ours.
+std::string withoutFileName(std::string message, const std::string& path) {
+  const std::string marker = "\"" + path + "\". ";
+  const size_t at = message.find(marker);
+  if (at != std::string::npos) message.erase(0, at + marker.size());
+  return message;
+}
+
+// Closes a file descriptor unless released.
+class Fd {
+public:
+  explicit Fd(int fd) : fd_(fd) {}
+  ~Fd() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  int get() const { return fd_; }
+  // Closes now and returns 0 or the errno of close().
+  int close() {
+    int err = 0;
+    if (fd_ >= 0 && ::close(fd_) != 0) err = errno;
+    fd_ = -1;
+    return err;
+  }
+
+private:
+  int fd_;
+};
+
+// An OpenEXR output stream on a file descriptor. Remembers the first error (errno), because
+// OpenEXR's OutputFile destructor writes the line-offset table and swallows exceptions.
+class FdOStream final : public Imf::OStream {
+public:
+  FdOStream(int fd, const std::string& name) : Imf::OStream(name.c_str()), fd_(fd) {}
+  void write(const char c[], int n) override {
+    if (error_ != 0) throw Iex::IoExc(errorText(error_));
+    size_t done = 0;
+    const size_t total = n > 0 ? static_cast<size_t>(n) : 0;
+    while (done < total) {
+      const ssize_t r =
+          ::pwrite(fd_, c + done, total - done, static_cast<off_t>(pos_ + done));
+      if (r < 0 && errno == EINTR) continue;
+      if (r <= 0) {
+        error_ = r < 0 ? errno : EIO;
+        throw Iex::IoExc(errorText(error_));
+      }
+      done += static_cast<size_t>(r);
+    }
+    pos_ += total;
+  }
+  uint64_t tellp() override { return pos_; }
+  void seekp(uint64_t pos) override { pos_ = pos; }
+  int error() const { return error_; }
+
+private:
+  int fd_;
+  uint64_t pos_ = 0;
+  int error_ = 0;
+};
+
+// An OpenEXR input stream on a file descriptor of known size.
+class FdIStream final : public Imf::IStream {
+public:
+  FdIStream(int fd, const std::string& name, uint64_t size)
+      : Imf::IStream(name.c_str()), fd_(fd), size_(size) {}
+  bool read(char c[], int n) override {
+    const uint64_t total = n > 0 ? static_cast<uint64_t>(n) : 0;
+    if (pos_ > size_ || total > size_ - pos_) {
+      throw Iex::InputExc("early end of file: " + std::to_string(total) +
+                          " bytes requested at offset " + std::to_string(pos_) + " of " +
+                          std::to_string(size_));
+    }
+    size_t done = 0;
+    while (done < total) {
+      const ssize_t r = ::pread(fd_, c + done, total - done, static_cast<off_t>(pos_ + done));
+      if (r < 0 && errno == EINTR) continue;
+      if (r < 0) throw Iex::InputExc(errorText(errno));
+      if (r == 0) throw Iex::InputExc("early end of file");
+      done += static_cast<size_t>(r);
+    }
+    pos_ += total;
+    return pos_ < size_;
+  }
+  uint64_t tellg() override { return pos_; }
+  void seekg(uint64_t pos) override { pos_ = pos; }
+
+private:
+  int fd_;
+  uint64_t size_;
+  uint64_t pos_ = 0;
+};
+
+std::string randomSuffix() {
+  static thread_local std::mt19937_64 engine = [] {
+    std::seed_seq seed{
+        static_cast<unsigned>(std::random_device{}()),
+        static_cast<unsigned>(::getpid()),
+        static_cast<unsigned>(std::chrono::steady_clock::now().time_since_epoch().count())};
+    return std::mt19937_64(seed);
+  }();
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(engine()));
+  return text;
+}
+
+void validateParameters(const std::map<std::string, std::string>& parameters,
+                        const std::string& path) {
+  // Attribute names are at most 255 characters in OpenEXR (longer ones are truncated).
+  const size_t maxKey = 255 - std::char_traits<char>::length(kParameterPrefix);
+  for (const auto& entry : parameters) {
+    const std::string& key = entry.first;
+    if (key.empty()) throw TableError(path, "invalid table: empty parameter name");
+    if (key.find('\0') != std::string::npos) {
+      throw TableError(path, "invalid table: parameter name contains a NUL character");
+    }
+    if (key.size() > maxKey) {
+      throw TableError(path, "invalid table: parameter name longer than " +
+                                 std::to_string(maxKey) + " characters: '" +
+                                 key.substr(0, 40) + "...'");
+    }
+  }
+}
+
+// Throws TableError unless the directory that will hold path exists.
+void checkDirectory(const std::string& path) {
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  std::error_code ec;
+  const fs::file_status st = fs::status(dir, ec);
+  if (st.type() == fs::file_type::not_found) {
+    throw TableError(path, "cannot write: directory '" + dir.string() + "' does not exist");
+  }
+  if (ec) throw TableError(path, "cannot write: " + ec.message());
+  if (st.type() != fs::file_type::directory) {
+    throw TableError(path, "cannot write: '" + dir.string() + "' is not a directory");
+  }
+}
+
+void syncDirectoryOf(const std::string& path) {
+  fs::path dir = fs::path(path).parent_path();
+  if (dir.empty()) dir = ".";
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    (void)::fsync(fd);  // best effort: durability of the rename
+    ::close(fd);
+  }
+}
+
+}  // namespace
+
+void writeExr(const std::string& path, const Table& table) {
+  detail::writeExr(path, table, table.parameters);
+}
+
+namespace detail {
+
+void writeExr(const std::string& path, const Table& table,
+              const std::map<std::string, std::string>& parameters) {
+  validateTable(table, path);
+  validateParameters(parameters, path);
+  checkDirectory(path);
+
+  // Create the temporary next to path so that the rename is atomic.
+  std::string tmp;
+  int rawFd = -1;
+  int openErr = 0;
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + randomSuffix();
+    rawFd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (rawFd >= 0) break;
+    openErr = errno;
+    if (openErr != EEXIST) break;
+  }
+  if (rawFd < 0) throw TableError(path, "cannot write: " + errorText(openErr));
+  Fd fd(rawFd);
+
+  std::string failure;
+  try {
+    const size_t nc = table.channels.size();
+    Imf::Header header(table.width, table.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    header.lineOrder() = Imf::INCREASING_Y;
+    for (const std::string& name : table.channels) {
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    }
+    header.insert(kChannelOrderAttribute, Imf::StringVectorAttribute(table.channels));
+    for (const auto& [key, value] : parameters) {
+      header.insert(kParameterPrefix + key, Imf::StringAttribute(value));
+    }
+
+    FdOStream out(fd.get(), path);
+    {
+      Imf::OutputFile file(out, header);
+      Imf::FrameBuffer frame;
+      // The data window starts at (0, 0): pixel (x, y) of channel c is data[(y*w + x)*nc + c].
+      char* base = reinterpret_cast<char*>(const_cast<float*>(table.data.data()));
+      for (size_t c = 0; c < nc; ++c) {
+        frame.insert(table.channels[c],
+                     Imf::Slice(Imf::FLOAT, base + c * sizeof(float), nc * sizeof(float),
+                                nc * sizeof(float) * static_cast<size_t>(table.width)));
+      }
+      file.setFrameBuffer(frame);
+      file.writePixels(table.height);
+    }  // the destructor writes the line-offset table
+    if (out.error() != 0) {
+      failure = errorText(out.error());
+    } else if (::fsync(fd.get()) != 0) {
+      failure = errorText(errno);
+    } else if (const int err = fd.close(); err != 0) {
+      failure = errorText(err);
+    } else if (::rename(tmp.c_str(), path.c_str()) != 0) {
+      failure = errorText(errno);
+    }
+  } catch (const std::exception& e) {
+    failure = oneLine(withoutFileName(e.what(), path));
+    if (failure.empty()) failure = "unknown error";
+  } catch (...) {
+    failure = "unknown error";
+  }
+  if (!failure.empty()) {
+    fd.close();
+    ::unlink(tmp.c_str());
+    throw TableError(path, "cannot write: " + failure);
+  }
+  syncDirectoryOf(path);
+}
+
+}  // namespace detail
+
+Table readExr(const std::string& path, const std::vector<std::string>& requiredChannels) {
+  const int rawFd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (rawFd < 0) throw TableError(path, "cannot open: " + errorText(errno));
+  Fd fd(rawFd);
+  struct stat st {};
+  if (::fstat(fd.get(), &st) != 0) throw TableError(path, "cannot open: " + errorText(errno));
+  if (S_ISDIR(st.st_mode)) throw TableError(path, "cannot open: " + errorText(EISDIR));
+  if (!S_ISREG(st.st_mode)) throw TableError(path, "cannot open: not a regular file");
+  const uint64_t size = static_cast<uint64_t>(st.st_size);
+
+  char magic[4] = {0, 0, 0, 0};
+  if (size < 4 || ::pread(fd.get(), magic, 4, 0) != 4 || !Imf::isImfMagic(magic)) {
+    throw TableError(path, "not an OpenEXR file");
+  }
+
+  try {
+    FdIStream in(fd.get(), path, size);
+    Imf::InputFile file(in);
+    const Imf::Header& header = file.header();
+    const Imath::Box2i dw = header.dataWindow();
+    const int64_t width = static_cast<int64_t>(dw.max.x) - dw.min.x + 1;
+    const int64_t height = static_cast<int64_t>(dw.max.y) - dw.min.y + 1;
+    if (width <= 0 || height <= 0 || width > INT32_MAX || height > INT32_MAX) {
+      throw TableError(path, "corrupt OpenEXR file: invalid data window");
+    }
+
+    // Channels as stored: OpenEXR keeps them sorted by name; the writer records the table's
+    // order in kChannelOrderAttribute.
+    const Imf::ChannelList& list = header.channels();
+    std::vector<std::string> stored;
+    for (auto it = list.begin(); it != list.end(); ++it) stored.emplace_back(it.name());
+    if (const auto* order =
+            header.findTypedAttribute<Imf::StringVectorAttribute>(kChannelOrderAttribute)) {
+      const std::vector<std::string>& names = order->value();
+      const std::set<std::string> a(names.begin(), names.end()), b(stored.begin(), stored.end());
+      if (names.size() == stored.size() && a == b) stored = names;
+    }
+    if (stored.empty()) throw TableError(path, "corrupt OpenEXR file: no channels");
+
+    const std::vector<std::string>& wanted = requiredChannels.empty() ? stored : requiredChannels;
+    std::vector<std::string> missing;
+    std::set<std::string> seen;
+    for (const std::string& name : wanted) {
+      if (!seen.insert(name).second) {
+        throw TableError(path, "channel '" + name + "' requested twice");
+      }
+      const Imf::Channel* channel = list.findChannel(name);
+      if (channel == nullptr) {
+        missing.push_back(name);
+        continue;
+      }
+      if (channel->type != Imf::FLOAT) {
+        const char* type = channel->type == Imf::HALF ? "HALF" : channel->type == Imf::UINT
+                                                                     ? "UINT"
+                                                                     : "of an unknown type";
+        throw TableError(path, "channel '" + name + "' is " + type + ", expected FLOAT");
+      }
+      if (channel->xSampling != 1 || channel->ySampling != 1) {
+        throw TableError(path, "channel '" + name + "' is subsampled");
+      }
+    }
+    if (!missing.empty()) {
+      std::string text = missing.size() == 1 ? "missing channel " : "missing channels ";
+      for (size_t i = 0; i < missing.size(); ++i) {
+        text += (i ? ", '" : "'") + missing[i] + "'";
+      }
+      text += " (has: ";
+      for (size_t i = 0; i < stored.size(); ++i) text += (i ? ", " : "") + stored[i];
+      throw TableError(path, text + ")");
+    }
+
+    if (!file.isComplete()) {
+      throw TableError(path, "truncated or incomplete OpenEXR file (scanlines are missing)");
+    }
+    const uint64_t count = static_cast<uint64_t>(width) * static_cast<uint64_t>(height) *
+                           static_cast<uint64_t>(wanted.size());
+    if (count > (uint64_t{1} << 31)) {
+      throw TableError(path, "table too large: " + std::to_string(width) + " x " +
+                                 std::to_string(height) + " x " +
+                                 std::to_string(wanted.size()));
+    }
+
+    Table table;
+    table.width = static_cast<int>(width);
+    table.height = static_cast<int>(height);
+    table.channels = wanted;
+    table.data.assign(static_cast<size_t>(count), 0.0f);
+    const size_t nc = wanted.size();
+    Imf::FrameBuffer frame;
+    for (size_t c = 0; c < nc; ++c) {
+      frame.insert(wanted[c], Imf::Slice::Make(Imf::FLOAT, table.data.data() + c, dw,
+                                               nc * sizeof(float),
+                                               nc * sizeof(float) * static_cast<size_t>(width)));
+    }
+    file.setFrameBuffer(frame);
+    file.readPixels(dw.min.y, dw.max.y);
+
+    const std::string prefix = kParameterPrefix;
+    for (auto it = header.begin(); it != header.end(); ++it) {
+      const std::string name = it.name();
+      if (name.compare(0, prefix.size(), prefix) != 0) continue;
+      if (const auto* value = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) {
+        table.parameters[name.substr(prefix.size())] = value->value();
+      }
+    }
+    return table;
+  } catch (const TableError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw TableError(path, "out of memory reading the table");
+  } catch (const std::exception& e) {
+    throw TableError(path, "corrupt or truncated OpenEXR file: " +
+                                 oneLine(withoutFileName(e.what(), path)));
+  }
+}
+
+}  // namespace umbra::tables

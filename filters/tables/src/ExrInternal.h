@@ -1,0 +1,16 @@
+#pragma once
+// Internal to umbra_tables.
+
+#include <map>
+#include <string>
+
+#include "umbra/tables/Table.h"
+
+namespace umbra::tables::detail {
+
+// writeExr with the header parameters given separately (table.parameters is ignored), so
+// that TableCache::store need not copy the table.
+void writeExr(const std::string& path, const Table& table,
+              const std::map<std::string, std::string>& parameters);
+
+}  // namespace umbra::tables::detail
