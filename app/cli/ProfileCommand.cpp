@@ -4,9 +4,11 @@
 #include "ProfileExport.hpp"
 #include "ShadowCommon.hpp"
 #include "ShadowMapping.hpp"
+#include "SolarDisc.hpp"
 #include "vtkEclipseShadowLutSource.h"
 #include "vtkShadowProfileFilter.h"
 
+#include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkTable.h>
 
@@ -22,7 +24,7 @@ void addProfileCommand(CLI::App& app, Action& action) {
       "shadow", "The shadow of an occluder across its axis, at a distance behind it (I/I_sun per channel)");
 
   struct Options {
-    std::string occluder, distance, sunDistance, occluderRadius, maxOffset, csv, plot;
+    std::string occluder, distance, sunDistance, occluderRadius, maxOffset, csv, plot, lut;
     int samples = 1001, size = 256;
     bool noAtmosphere = false, exact = false;
     double limbDarkening = 0.6;
@@ -41,6 +43,8 @@ void addProfileCommand(CLI::App& app, Action& action) {
   shadow->add_option("--limb-darkening", o->limbDarkening, "Linear limb-darkening coefficient of the Sun (Eq. 1)")
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   shadow->add_flag("--no-atmosphere", o->noAtmosphere, "Treat the occluder as airless (the only model so far)");
+  shadow->add_option("--lut", o->lut, "Read the shadow LuT from this EXR (from 'umbra precompute shadow') instead of building it")
+      ->check(CLI::ExistingFile);
   shadow->add_flag("--exact", o->exact, "Compute every sample directly instead of through the LuT");
   shadow->add_option("--csv", o->csv, "CSV file to write (offset_km,r,g,b,luminance)")->required();
   shadow->add_option("--plot", o->plot, "Plot to write: FILE.png (needs an X display) or FILE.svg");
@@ -64,7 +68,9 @@ void addProfileCommand(CLI::App& app, Action& action) {
 
       vtkNew<vtkShadowProfileFilter> filter;
       vtkSmartPointer<vtkEclipseShadowLutSource> lut;  // exact mode needs none
-      if (!o->exact) {
+      if (!o->lut.empty() && !o->exact) {
+        filter->SetInputData(readShadowLut(o->lut));
+      } else if (!o->exact) {
         lut = updateShadowLut(occ, o->size, o->limbDarkening, o->cache);
         filter->SetInputConnection(lut->GetOutputPort());
       }

@@ -1,6 +1,8 @@
 #include "ShadowCommon.hpp"
 
+#include "ShadowLutData.h"
 #include "scene/Bodies.hpp"
+#include "umbra/tables/Exr.h"
 #include "scene/Units.hpp"
 #include "vtkEclipseShadowLutSource.h"
 
@@ -39,10 +41,10 @@ vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(const OccluderChoice&
   source->SetWidth(size);
   source->SetHeight(size);
   source->SetLimbDarkening(limbDarkening);
-  source->SetOccluderName(occluder.name);
+  source->SetOccluderName(occluder.name.c_str());
   source->SetOccluderRadiusM(occluder.radiusM);
   source->SetSunOccluderDistanceM(occluder.sunDistanceM);
-  source->SetCacheDirectory(cache.directory);
+  source->SetCacheDirectory(cache.directory.c_str());
   source->SetUseCache(!cache.disabled);
 
   ProgressLine progress("shadow LuT " + std::to_string(size) + "x" + std::to_string(size));
@@ -61,6 +63,16 @@ vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(const OccluderChoice&
   if (!source->GetCacheWarning().empty())
     std::cerr << "umbra: warning: could not cache the table: " << source->GetCacheWarning() << "\n";
   return source;
+}
+
+vtkSmartPointer<vtkImageData> readShadowLut(const std::string& path) {
+  const tables::Table table = tables::readExr(path, {"R", "G", "B"});
+  const auto kind = table.parameters.find("kind");
+  if (kind == table.parameters.end() || kind->second != filters::kAirlessShadowLutKind)
+    throw CommandError(path + ": not a shadow LuT (its header has no kind=" + filters::kAirlessShadowLutKind + ")");
+  auto image = filters::toImageData(filters::fromTable(table, path));
+  filters::setFieldParameters(image, table.parameters);
+  return image;
 }
 
 } // namespace umbra::cli

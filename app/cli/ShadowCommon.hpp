@@ -8,6 +8,7 @@
 #include <string>
 
 class vtkEclipseShadowLutSource;
+class vtkImageData;
 
 namespace umbra::cli {
 
@@ -28,5 +29,8 @@ double lengthOption(const std::string& option, const std::string& text);
 /// Build the LuT through the filter, with progress on stderr and cache reporting.
 vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(const OccluderChoice& occluder, int size,
                                                            double limbDarkening, const CacheOptions& cache);
+
+/// A shadow LuT written by `umbra precompute shadow`; throws naming the file if it is not one.
+vtkSmartPointer<vtkImageData> readShadowLut(const std::string& path);
 
 } // namespace umbra::cli

@@ -8,6 +8,10 @@ int main(int argc, char** argv) {
                "Run 'umbra COMMAND --help' for the options of a command."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "umbra 0.1.0");
+  // Parse errors read like every other error: one line on stderr.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "umbra: error: " + std::string(e.what()) + " (see --help)\n";
+  });
   umbra::cli::Action action;
   umbra::cli::addRenderCommand(app, action);
   umbra::cli::addPrecomputeCommand(app, action);

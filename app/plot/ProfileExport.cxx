@@ -13,6 +13,7 @@
 #include <vtkPen.h>
 #include <vtkPlot.h>
 #include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
 #include <vtkWindowToImageFilter.h>

@@ -8,20 +8,21 @@
 #include <vtkPointData.h>
 #include <vtkStringArray.h>
 
-#include <sstream>
+#include <charconv>
 #include <stdexcept>
 
 namespace umbra::filters {
 namespace {
-std::string number(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
+std::string number(double x) {  // shortest text that reads back as the same double
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
 }
 constexpr const char* kFieldKeys = "umbra_parameter_keys";
 constexpr const char* kFieldValues = "umbra_parameter_values";
 } // namespace
+
+std::string formatNumber(double x) { return number(x); }
 
 std::map<std::string, std::string> airlessLutParameters(const eclipse::ShadowLutParams& p) {
   return {{"kind", kAirlessShadowLutKind},

@@ -19,6 +19,9 @@ inline constexpr const char* kShadowLutArrayName = "I_over_Isun";
 /// `kind` of the airless shadow LuT in the table cache and the EXR header.
 inline constexpr const char* kAirlessShadowLutKind = "eclipse-shadow-airless";
 
+/// Shortest decimal text that reads back as the same double (for headers and keys).
+std::string formatNumber(double x);
+
 /// Every parameter that changes an airless LuT's values, as written to its EXR header and
 /// hashed for the cache. Bodies are not among them: Eq. 4 makes the airless LuT the same
 /// for every Sun and occluder.

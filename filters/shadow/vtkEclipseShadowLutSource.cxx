@@ -9,7 +9,6 @@
 #include <vtkObjectFactory.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
-#include <sstream>
 
 vtkStandardNewMacro(vtkEclipseShadowLutSource);
 
@@ -80,17 +79,10 @@ int vtkEclipseShadowLutSource::RequestData(vtkInformation*, vtkInformationVector
 
   output->ShallowCopy(filters::toImageData(lut));
   auto fieldParameters = parameters;
-  std::ostringstream s;
-  s.precision(17);
-  const auto put = [&](const char* key, double value) {
-    s.str("");
-    s << value;
-    fieldParameters[key] = s.str();
-  };
   fieldParameters["occluder"] = this->OccluderName;
-  put("occluderRadiusM", this->OccluderRadiusM);
-  put("sunRadiusM", this->SunRadiusM);
-  put("sunOccluderDistanceM", this->SunOccluderDistanceM);
+  fieldParameters["occluderRadiusM"] = filters::formatNumber(this->OccluderRadiusM);
+  fieldParameters["sunRadiusM"] = filters::formatNumber(this->SunRadiusM);
+  fieldParameters["sunOccluderDistanceM"] = filters::formatNumber(this->SunOccluderDistanceM);
   filters::setFieldParameters(output, fieldParameters);
   this->UpdateProgress(1.0);
   return 1;

@@ -1,0 +1,117 @@
+// Bad input to the umbra CLI: a clear one-line message, a non-zero exit, no output file
+// (not even a temporary one). One test per case.
+#include "CliRunner.hpp"
+
+#include "umbra/tables/Exr.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+using namespace umbra::test;
+
+namespace {
+
+// Runs umbra expecting failure; checks the message and that `dir` gained no file.
+void expectFailure(const TempDir& dir, const std::vector<std::string>& args, const std::string& message) {
+  const int filesBefore = dir.fileCount();
+  const RunResult r = run(UMBRA_EXE, args, {"UMBRA_CACHE_DIR=" + dir.path.string() + "/cache"});
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find(message), std::string::npos) << "stderr: " << r.err;
+  EXPECT_EQ(r.err.find("umbra: error:"), 0u) << "stderr: " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line expected: " << r.err;
+  EXPECT_EQ(dir.fileCount(), filesBefore) << "an output or temporary file was left";
+}
+
+std::vector<std::string> profileArgs(const TempDir& dir, std::vector<std::string> extra) {
+  std::vector<std::string> a{"profile", "shadow", "--no-atmosphere", "--distance", "384400km", "--csv", dir / "p.csv"};
+  a.insert(a.end(), extra.begin(), extra.end());
+  return a;
+}
+
+void writeLut(const TempDir& dir, const std::string& name) {
+  ASSERT_EQ(run(UMBRA_EXE, {"precompute", "shadow", "--occluder", "Earth", "--size", "32", "--no-cache", "--output",
+                            dir / name}).exitCode, 0);
+}
+
+} // namespace
+
+TEST(BadInput, UnknownBody) {
+  TempDir dir;
+  expectFailure(dir, profileArgs(dir, {"--occluder", "Pluto"}), "unknown body 'Pluto' (known: Sun, Earth, Moon");
+}
+
+TEST(BadInput, SunAsOccluder) {
+  TempDir dir;
+  expectFailure(dir, {"precompute", "shadow", "--occluder", "sun", "--output", dir / "x.exr"}, "the Sun cannot occlude");
+}
+
+TEST(BadInput, NegativeRadius) {
+  TempDir dir;
+  expectFailure(dir, profileArgs(dir, {"--occluder", "Earth", "--occluder-radius", "-5km"}),
+                "--occluder-radius: expected a positive length, got -5km");
+}
+
+TEST(BadInput, BadLengthUnit) {
+  TempDir dir;
+  expectFailure(dir, {"profile", "shadow", "--occluder", "Earth", "--distance", "3 parsec", "--csv", dir / "p.csv"},
+                "--distance: invalid length '3 parsec'");
+}
+
+TEST(BadInput, MissingOption) {
+  TempDir dir;
+  expectFailure(dir, {"profile", "shadow", "--occluder", "Earth", "--csv", dir / "p.csv"}, "--distance is required");
+}
+
+TEST(BadInput, MissingTableFile) {
+  TempDir dir;
+  expectFailure(dir, {"inspect", dir / "missing.exr"}, "missing.exr: cannot open: No such file or directory");
+}
+
+TEST(BadInput, UnwritableOutputDirectory) {
+  TempDir dir;
+  expectFailure(dir, {"precompute", "shadow", "--occluder", "Earth", "--output", dir / "no/such/dir/lut.exr"},
+                "does not exist");
+}
+
+TEST(BadInput, OutputIsADirectory) {
+  TempDir dir;
+  std::filesystem::create_directory(dir.path / "taken.csv");
+  expectFailure(dir, {"profile", "shadow", "--occluder", "Earth", "--distance", "1e9", "--csv", dir / "taken.csv"},
+                "taken.csv: is a directory");
+}
+
+TEST(BadInput, WrongOutputType) {
+  TempDir dir;
+  expectFailure(dir, {"precompute", "shadow", "--occluder", "Earth", "--output", dir / "lut.png"},
+                "lut.png: unsupported file type (expected .exr)");
+}
+
+TEST(BadInput, TruncatedLut) {
+  TempDir dir;
+  writeLut(dir, "lut.exr");
+  std::filesystem::resize_file(dir.path / "lut.exr", std::filesystem::file_size(dir.path / "lut.exr") / 2);
+  expectFailure(dir, profileArgs(dir, {"--occluder", "Earth", "--lut", dir / "lut.exr"}), "lut.exr: ");
+  expectFailure(dir, {"inspect", dir / "lut.exr"}, "lut.exr: ");
+}
+
+TEST(BadInput, LutWithWrongChannels) {
+  TempDir dir;
+  umbra::tables::Table t;
+  t.width = t.height = 4;
+  t.channels = {"Y"};
+  t.data.assign(16, 0.5f);
+  t.parameters = {{"kind", "eclipse-shadow-airless"}};
+  umbra::tables::writeExr(dir / "y.exr", t);
+  expectFailure(dir, profileArgs(dir, {"--occluder", "Earth", "--lut", dir / "y.exr"}), "missing channels 'R', 'G', 'B' (has: Y)");
+}
+
+TEST(BadInput, RgbExrThatIsNotAShadowLut) {
+  TempDir dir;
+  umbra::tables::Table t;
+  t.width = t.height = 4;
+  t.channels = {"R", "G", "B"};
+  t.data.assign(48, 0.5f);
+  umbra::tables::writeExr(dir / "photo.exr", t);
+  expectFailure(dir, profileArgs(dir, {"--occluder", "Earth", "--lut", dir / "photo.exr"}), "photo.exr: not a shadow LuT");
+}
