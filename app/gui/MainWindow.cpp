@@ -1,0 +1,250 @@
+#include "MainWindow.hpp"
+
+#include "OutputFile.hpp"
+#include "ProfilePanel.hpp"
+#include "SceneView.hpp"
+#include "scene/Time.hpp"
+
+#include <QAction>
+#include <QApplication>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFontDatabase>
+#include <QHBoxLayout>
+#include <QImage>
+#include <QKeySequence>
+#include <QLabel>
+#include <QMenu>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QPixmap>
+#include <QSlider>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QVBoxLayout>
+#include <QVTKOpenGLNativeWidget.h>
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace umbra::gui {
+namespace {
+
+constexpr int kSliderHalfRangeMin = 6 * 60;  // +-6 h in 1-minute steps
+
+QString qs(const std::string& s) { return QString::fromStdString(s); }
+
+QString km(double m) { return QString::number(m / 1e3, 'f', 0) + " km"; }
+
+} // namespace
+
+MainWindow::MainWindow() {
+  this->setWindowTitle("umbra-gui");
+
+  // File menu
+  QMenu* file = this->menuBar()->addMenu("&File");
+  QAction* open = file->addAction("&Open scene...");
+  open->setShortcut(QKeySequence::Open);
+  connect(open, &QAction::triggered, this, [this] { this->openSceneDialog(); });
+  QAction* shot = file->addAction("&Save screenshot...");
+  shot->setShortcut(QKeySequence::Save);
+  connect(shot, &QAction::triggered, this, [this] { this->saveScreenshotDialog(); });
+  file->addSeparator();
+  QAction* quit = file->addAction("&Quit");
+  quit->setShortcut(QKeySequence::Quit);
+  connect(quit, &QAction::triggered, this, [this] { this->close(); });
+
+  // The two views side by side
+  auto* splitter = new QSplitter(Qt::Horizontal);
+  this->viewWidget = new QVTKOpenGLNativeWidget;
+  this->viewWidget->setMinimumSize(200, 200);
+  this->plotWidget = new QVTKOpenGLNativeWidget;
+  this->plotWidget->setMinimumSize(200, 200);
+  splitter->addWidget(this->viewWidget);
+  splitter->addWidget(this->plotWidget);
+  splitter->setStretchFactor(0, 1);
+  splitter->setStretchFactor(1, 1);
+  splitter->setChildrenCollapsible(false);
+  this->view = std::make_unique<SceneView>(this->viewWidget);
+  this->plot = std::make_unique<ProfilePanel>(this->plotWidget);
+
+  // Time and exposure
+  this->slider = new QSlider(Qt::Horizontal);
+  this->slider->setRange(-kSliderHalfRangeMin, kSliderHalfRangeMin);
+  this->slider->setSingleStep(1);
+  this->slider->setPageStep(30);
+  this->slider->setTickInterval(60);
+  this->slider->setTickPosition(QSlider::TicksBelow);
+  this->slider->setEnabled(false);
+  this->slider->setToolTip("Scene time: +-6 h around the scene's time, in 1-minute steps");
+  connect(this->slider, &QSlider::valueChanged, this, [this](int v) { this->sliderMoved(v); });
+  this->timeLabel = new QLabel("no scene");
+  this->timeLabel->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
+  this->timeLabel->setMinimumWidth(this->timeLabel->fontMetrics().horizontalAdvance("2015-09-28T01:45:00Z (+0h00m)") + 8);
+  this->exposure = new QDoubleSpinBox;
+  this->exposure->setRange(-40.0, 40.0);
+  this->exposure->setSingleStep(0.5);
+  this->exposure->setDecimals(1);
+  this->exposure->setSuffix(" EV");
+  this->exposure->setToolTip("Exposure of the 3D view in stops");
+  connect(this->exposure, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this](double ev) {
+    this->view->setExposureEV(ev);
+    this->view->render();
+  });
+
+  auto* controls = new QHBoxLayout;
+  controls->addWidget(new QLabel("Time (UTC)"));
+  controls->addWidget(this->slider, 1);
+  controls->addWidget(this->timeLabel);
+  controls->addSpacing(16);
+  controls->addWidget(new QLabel("Exposure"));
+  controls->addWidget(this->exposure);
+
+  auto* central = new QWidget;
+  auto* layout = new QVBoxLayout(central);
+  layout->addWidget(splitter, 1);
+  layout->addLayout(controls);
+  this->setCentralWidget(central);
+
+  this->statusLabel = new QLabel("Open a scene (File > Open scene...)");
+  this->statusBar()->addWidget(this->statusLabel, 1);
+  this->resize(1200, 720);
+}
+
+MainWindow::~MainWindow() = default;
+
+void MainWindow::loadScene(const std::string& path, std::optional<scene::UtcTime> time) {
+  scene::Scene s = scene::loadScene(path);
+  const scene::UtcTime fileTime = s.time;  // centres the slider
+  if (time) {
+    if (!s.hasTime) throw scene::SceneError(path + ": time: the scene has no time to change (no ephemeris bodies)");
+    scene::setTime(s, *time);
+  }
+  const ReceiverShadow g = receiverShadow(s);
+  vtkImageData* lut = this->plot->prepareLut(s.shadowLutSize, g);  // cached by parameter hash
+
+  // Loaded: from here on the new scene is shown.
+  this->current = std::move(s);
+  this->sliderCentre = fileTime;
+  this->setWindowTitle(qs(this->current->name) + " - umbra-gui");
+  {
+    const QSignalBlocker block(this->exposure);
+    this->exposure->setValue(this->current->exposureEv);
+  }
+  this->view->setExposureEV(this->current->exposureEv);
+  this->view->setScene(*this->current, lut);
+  this->slider->setEnabled(this->current->hasTime);
+  if (this->current->hasTime) {
+    this->showTime(this->current->time);
+  } else {
+    const QSignalBlocker block(this->slider);
+    this->slider->setValue(0);
+    this->refresh();
+  }
+}
+
+void MainWindow::showTime(scene::UtcTime time) {
+  if (!this->current || !this->current->hasTime) return;
+  const double minutes = scene::secondsBetween(this->sliderCentre, time) / 60.0;
+  const bool onSlider = std::abs(minutes) <= kSliderHalfRangeMin && std::abs(minutes - std::round(minutes)) < 1e-6;
+  if (!onSlider) this->sliderCentre = time;
+  scene::setTime(*this->current, time);
+  {
+    const QSignalBlocker block(this->slider);
+    this->slider->setValue(onSlider ? static_cast<int>(std::lround(minutes)) : 0);
+  }
+  this->refresh();
+}
+
+void MainWindow::sliderMoved(int minutes) {
+  if (!this->current || !this->current->hasTime) return;
+  try {
+    scene::setTime(*this->current, scene::addSeconds(this->sliderCentre, 60.0 * minutes));
+    this->refresh();
+  } catch (const std::exception& e) {
+    this->setStatus(QString("error: ") + e.what());
+  }
+}
+
+void MainWindow::refresh() {
+  if (!this->current) return;
+  const scene::Scene& s = *this->current;
+  this->shadow = receiverShadow(s);
+  this->view->setScene(s, this->plot->prepareLut(s.shadowLutSize, this->shadow));
+  this->shadowFactor = this->plot->update(this->shadow);
+  this->view->render();
+
+  if (s.hasTime) {
+    const int v = this->slider->value();
+    const QString sign = v < 0 ? "-" : "+";
+    this->timeLabel->setText(qs(scene::formatUtc(s.time)) + QString(" (%1%2h%3m)")
+                                                             .arg(sign)
+                                                             .arg(std::abs(v) / 60)
+                                                             .arg(std::abs(v) % 60, 2, 10, QChar('0')));
+  } else {
+    this->timeLabel->setText("no time (fixed positions)");
+  }
+
+  QString text = qs(s.name) + " | " + (s.hasTime ? qs(scene::formatUtc(s.time)) : QString("no time"));
+  if (this->shadow.valid) {
+    text += " | " + qs(this->shadow.receiver) + " " + km(this->shadow.offsetM) + " from " + qs(this->shadow.occluder) +
+            "'s shadow axis | shadow factor " + QString::number(this->shadowFactor, 'f', 4);
+  } else {
+    text += " | " + qs(this->shadow.why) + " | shadow factor 1";
+  }
+  this->setStatus(text);
+}
+
+void MainWindow::setStatus(const QString& text) { this->statusLabel->setText(text); }
+
+QString MainWindow::statusText() const { return this->statusLabel->text(); }
+
+void MainWindow::renderViews() {
+  this->view->render();
+  this->plot->render();
+}
+
+QRect MainWindow::viewRect() const {
+  return QRect(this->viewWidget->mapTo(this, QPoint(0, 0)), this->viewWidget->size());
+}
+
+QRect MainWindow::plotRect() const {
+  return QRect(this->plotWidget->mapTo(this, QPoint(0, 0)), this->plotWidget->size());
+}
+
+QSize MainWindow::saveScreenshot(const std::string& path) {
+  output::checkWritable(path, {".png"});
+  this->renderViews();
+  const QImage image = this->grab().toImage();  // includes the QOpenGLWidgets' content
+  if (image.isNull()) throw std::runtime_error(path + ": could not grab the window");
+  output::OutputFile out(path);
+  if (!image.save(qs(out.tempPath()), "PNG")) throw std::runtime_error(path + ": cannot write PNG");
+  out.commit();
+  return image.size();
+}
+
+void MainWindow::openSceneDialog() {
+  const QString path = QFileDialog::getOpenFileName(this, "Open scene", QString(), "Scene files (*.json);;All files (*)");
+  if (path.isEmpty()) return;
+  try {
+    this->loadScene(path.toStdString());
+  } catch (const std::exception& e) {
+    QMessageBox::critical(this, "Cannot open scene", e.what());
+  }
+}
+
+void MainWindow::saveScreenshotDialog() {
+  QString path = QFileDialog::getSaveFileName(this, "Save screenshot", "umbra-gui.png", "PNG images (*.png)");
+  if (path.isEmpty()) return;
+  if (QFileInfo(path).suffix().isEmpty()) path += ".png";
+  try {
+    this->saveScreenshot(path.toStdString());
+    this->statusBar()->showMessage("wrote " + path, 4000);
+  } catch (const std::exception& e) {
+    QMessageBox::critical(this, "Cannot save screenshot", e.what());
+  }
+}
+
+} // namespace umbra::gui

@@ -1,0 +1,76 @@
+#pragma once
+// umbra-gui's main window: the 3D view of a scene (left), the cross-section of the shadow
+// the camera's target lies in (right), a time slider (+-6 h around the scene time, 1-minute
+// steps) and an exposure control (below), and a status bar with the receiver's place in
+// the shadow.
+#include "ReceiverShadow.hpp"
+#include "scene/Scene.hpp"
+
+#include <QMainWindow>
+#include <QRect>
+#include <QString>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+class QDoubleSpinBox;
+class QLabel;
+class QSlider;
+class QVTKOpenGLNativeWidget;
+
+namespace umbra::gui {
+
+class ProfilePanel;
+class SceneView;
+
+class MainWindow : public QMainWindow {
+public:
+  MainWindow();
+  ~MainWindow() override;
+
+  /// Loads a scene file and shows it at `time` (default: the file's time). Throws
+  /// std::exception (scene::SceneError naming the file and field, std::runtime_error)
+  /// and keeps the scene shown before when it fails.
+  void loadScene(const std::string& path, std::optional<scene::UtcTime> time = std::nullopt);
+  /// Moves the loaded scene to `time` (the slider follows; it is re-centred on `time`
+  /// when that lies outside its range). Throws like loadScene.
+  void showTime(scene::UtcTime time);
+  /// Renders both views now.
+  void renderViews();
+
+  /// Writes the window (with the OpenGL views) as a PNG, atomically. Returns the image
+  /// size. Throws std::runtime_error naming the path.
+  QSize saveScreenshot(const std::string& path);
+
+  /// The status bar's text: scene, time, the receiver's offset from the shadow axis and
+  /// the shadow factor at its centre.
+  QString statusText() const;
+  /// Where the 3D view and the plot panel lie in the window (window coordinates).
+  QRect viewRect() const;
+  QRect plotRect() const;
+
+private:
+  void openSceneDialog();
+  void saveScreenshotDialog();
+  void sliderMoved(int minutes);
+  void refresh();  // the current scene: 3D view, profile, labels, status
+  void setStatus(const QString& text);
+
+  QVTKOpenGLNativeWidget* viewWidget = nullptr;
+  QVTKOpenGLNativeWidget* plotWidget = nullptr;
+  QSlider* slider = nullptr;
+  QLabel* timeLabel = nullptr;
+  QDoubleSpinBox* exposure = nullptr;
+  QLabel* statusLabel = nullptr;
+
+  std::unique_ptr<SceneView> view;
+  std::unique_ptr<ProfilePanel> plot;
+
+  std::optional<scene::Scene> current;
+  scene::UtcTime sliderCentre;  // the time at slider value 0
+  ReceiverShadow shadow;
+  double shadowFactor = 1.0;
+};
+
+} // namespace umbra::gui

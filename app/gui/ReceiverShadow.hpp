@@ -1,0 +1,38 @@
+#pragma once
+// Where the camera's target lies in the shadow of another body: the GUI's plot panel
+// shows the cross-section of that body's shadow at the target's distance. Plain C++
+// (no Qt, no VTK).
+#include "scene/Scene.hpp"
+
+#include <string>
+
+namespace umbra::gui {
+
+struct ReceiverShadow {
+  /// A receiver (the camera's target body) and an occluder (a body between it and the
+  /// Sun) were found; otherwise `why` says what is missing.
+  bool valid = false;
+  std::string why;
+
+  std::string receiver;          ///< the camera's target body
+  std::string occluder;          ///< the body whose shadow is closest to the receiver's centre
+  double receiverRadiusM = 0.0;
+  double occluderRadiusM = 0.0;
+  double sunRadiusM = 0.0;
+  double sunOccluderDistanceM = 0.0;
+  /// Distance of the receiver's centre behind the occluder's centre, along the axis from
+  /// the Sun through the occluder (positive behind it).
+  double receiverDistanceM = 0.0;
+  /// Distance of the receiver's centre from that axis.
+  double offsetM = 0.0;
+  /// Geometric umbra (negative: antumbra) and penumbra radii at receiverDistanceM.
+  double umbraRadiusM = 0.0;
+  double penumbraRadiusM = 0.0;
+};
+
+/// The receiver is the camera's target body (not the Sun). The occluder is, among the
+/// other bodies lying between the Sun and the receiver, the one whose shadow axis passes
+/// closest to the receiver's centre in units of the penumbra (smallest v of Eq. 4).
+ReceiverShadow receiverShadow(const scene::Scene& scene);
+
+} // namespace umbra::gui

@@ -1,0 +1,34 @@
+#pragma once
+// The 3D view: a scene's bodies seen from its camera, drawn into a Qt VTK widget's render
+// window. The glue between umbra::scene and the render library lives here and nowhere
+// else in the GUI, so that the GUI follows the render library with small changes.
+#include "scene/Scene.hpp"
+
+#include <memory>
+
+class QVTKOpenGLNativeWidget;
+class vtkImageData;
+class vtkRenderer;
+
+namespace umbra::gui {
+
+class SceneView {
+public:
+  explicit SceneView(QVTKOpenGLNativeWidget* widget);
+  ~SceneView();
+  SceneView(const SceneView&) = delete;
+  SceneView& operator=(const SceneView&) = delete;
+
+  /// Shows the scene (bodies, camera, exposure). Call again after the time changed. The
+  /// shadow LuT is the table the render library samples (not recomputed here).
+  void setScene(const scene::Scene& scene, vtkImageData* shadowLut);
+  void setExposureEV(double ev);
+  void render();
+  vtkRenderer* renderer() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+};
+
+} // namespace umbra::gui

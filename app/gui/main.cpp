@@ -1,0 +1,147 @@
+// umbra-gui [SCENE.json] [--time ISO] [--screenshot FILE.png] [--quit-after-screenshot]
+//
+// The desktop GUI: a scene's bodies in 3D, a time slider that moves them, and the
+// cross-section of the shadow the camera's target lies in. With --screenshot it saves
+// the window once it is shown (batch mode: errors are one line on stderr and exit 1).
+#include "MainWindow.hpp"
+#include "OutputFile.hpp"
+#include "scene/Time.hpp"
+
+#include <QApplication>
+#include <QCommandLineOption>
+#include <QCommandLineParser>
+#include <QElapsedTimer>
+#include <QMessageBox>
+#include <QSurfaceFormat>
+#include <QTimer>
+#include <QVTKOpenGLNativeWidget.h>
+#include <QWindow>
+
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <optional>
+#include <string>
+
+namespace {
+
+bool hasDisplay() {
+  const char* platform = std::getenv("QT_QPA_PLATFORM");
+  if (platform && *platform) return true;  // the user chose one
+  const char* x = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  return (x && *x) || (wayland && *wayland);
+}
+
+bool asksForHelp(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    for (const char* flag : {"-h", "--help", "-?", "--help-all", "-v", "--version"})
+      if (std::strcmp(argv[i], flag) == 0) return true;
+  return false;
+}
+
+// Qt's harmless note on headless machines (xvfb-run sets no XDG_RUNTIME_DIR) would make
+// a batch error two lines; every other message goes to Qt's default handler.
+QtMessageHandler defaultHandler = nullptr;
+void messageHandler(QtMsgType type, const QMessageLogContext& context, const QString& message) {
+  if (type == QtWarningMsg && message.startsWith("QStandardPaths: XDG_RUNTIME_DIR not set")) return;
+  if (defaultHandler) defaultHandler(type, context, message);
+}
+
+int fail(const std::string& message) {
+  std::cerr << "umbra-gui: " << message << "\n";
+  return 1;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  if (!hasDisplay()) {
+    if (!asksForHelp(argc, argv))
+      return fail("no display: set DISPLAY, or run under xvfb-run -a");
+    qputenv("QT_QPA_PLATFORM", "minimal");  // --help and --version need no window
+  }
+  defaultHandler = qInstallMessageHandler(messageHandler);
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  QApplication::setApplicationName("umbra-gui");
+  QApplication::setApplicationVersion("0.1.0");
+
+  QCommandLineParser parser;
+  parser.setApplicationDescription(
+      "umbra's desktop GUI: a scene's bodies in 3D, a time slider (+-6 h) that moves them, and the "
+      "cross-section of the shadow that the camera's target lies in.");
+  parser.addHelpOption();
+  parser.addVersionOption();
+  parser.addPositionalArgument("scene", "Scene file to open (JSON, see docs/scene-format.md).", "[SCENE.json]");
+  const QCommandLineOption timeOption("time", "Show the scene at this UTC time (ISO 8601, e.g. 2015-09-28T02:47:00Z).",
+                                      "ISO");
+  const QCommandLineOption screenshotOption(
+      "screenshot", "Once the window is shown, save it as this PNG (batch mode: errors exit 1) and print the status.",
+      "FILE.png");
+  const QCommandLineOption quitOption("quit-after-screenshot", "Exit (0) once the screenshot is written.");
+  parser.addOption(timeOption);
+  parser.addOption(screenshotOption);
+  parser.addOption(quitOption);
+  parser.process(app);
+
+  const QStringList positional = parser.positionalArguments();
+  const bool batch = parser.isSet(screenshotOption);
+  const std::string screenshot = parser.value(screenshotOption).toStdString();
+  if (positional.size() > 1) return fail("expected at most one scene file, got " + std::to_string(positional.size()));
+  if (parser.isSet(quitOption) && !batch) return fail("--quit-after-screenshot needs --screenshot FILE.png");
+
+  umbra::gui::MainWindow window;
+  std::string error;  // interactive mode: shown once the window is up
+  try {
+    if (batch) umbra::output::checkWritable(screenshot, {".png"});
+    std::optional<umbra::scene::UtcTime> time;
+    if (parser.isSet(timeOption)) {
+      try {
+        time = umbra::scene::parseUtc(parser.value(timeOption).toStdString());
+      } catch (const std::exception& e) {
+        throw std::runtime_error(std::string("--time: ") + e.what());
+      }
+    }
+    if (!positional.isEmpty()) window.loadScene(positional.first().toStdString(), time);
+    else if (time) throw std::runtime_error("--time needs a scene file");
+  } catch (const std::exception& e) {
+    if (batch) return fail(e.what());
+    error = e.what();
+  }
+
+  window.show();
+  if (!error.empty())
+    QTimer::singleShot(0, &window, [&window, error] { QMessageBox::critical(&window, "umbra-gui", QString::fromStdString(error)); });
+
+  if (batch) {
+    // Wait until the window is exposed (mapped by the X server), then grab it.
+    auto* poll = new QTimer(&window);
+    auto* clock = new QElapsedTimer;
+    clock->start();
+    const bool quit = parser.isSet(quitOption);
+    QObject::connect(poll, &QTimer::timeout, &window, [&window, poll, clock, screenshot, quit] {
+      const bool exposed = window.windowHandle() && window.windowHandle()->isExposed();
+      if (!exposed && clock->elapsed() < 10000) return;
+      poll->stop();
+      delete clock;
+      int code = 0;
+      try {
+        if (!exposed) throw std::runtime_error("the window was never shown on the display");
+        const QSize size = window.saveScreenshot(screenshot);
+        const QRect v = window.viewRect(), p = window.plotRect();
+        std::cout << "window: " << size.width() << "x" << size.height() << "\n"
+                  << "view3d: " << v.x() << " " << v.y() << " " << v.width() << " " << v.height() << "\n"
+                  << "plot: " << p.x() << " " << p.y() << " " << p.width() << " " << p.height() << "\n"
+                  << "status: " << window.statusText().toStdString() << "\n"
+                  << "wrote " << screenshot << std::endl;
+      } catch (const std::exception& e) {
+        std::cerr << "umbra-gui: " << e.what() << std::endl;
+        code = 1;
+      }
+      if (quit || code != 0) QApplication::exit(code);
+    });
+    poll->start(100);
+  }
+  return app.exec();
+}

@@ -1,0 +1,75 @@
+// Which body shadows the camera's target, and where the target lies in that shadow.
+#include "ReceiverShadow.hpp"
+#include "scene/Time.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+using namespace umbra;
+
+namespace {
+
+const std::string kExample = std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/lunar-eclipse-2015-09-28.json";
+constexpr double kAuM = 149597870700.0;
+
+scene::Scene fixedScene(const std::string& target, const std::string& moonY) {
+  return scene::parseScene(R"({
+    "bodies": [
+      {"preset": "Sun", "position": [0, 0, 0]},
+      {"preset": "Earth", "position": [)" + std::to_string(kAuM) + R"(, 0, 0]},
+      {"preset": "Moon", "position": [)" + std::to_string(kAuM + 384400e3) + ", " + moonY + R"(, 0]}
+    ],
+    "camera": {"position": [)" + std::to_string(kAuM) + R"(, 0, 7000e3], "target": ")" + target + R"("}
+  })", "fixed.json");
+}
+
+} // namespace
+
+TEST(ReceiverShadow, FixedGeometry) {
+  const gui::ReceiverShadow r = gui::receiverShadow(fixedScene("Moon", "3000e3"));
+  ASSERT_TRUE(r.valid) << r.why;
+  EXPECT_EQ(r.receiver, "Moon");
+  EXPECT_EQ(r.occluder, "Earth");
+  EXPECT_NEAR(r.receiverDistanceM, 384400e3, 1e-3);
+  EXPECT_NEAR(r.offsetM, 3000e3, 1e-3);
+  EXPECT_NEAR(r.sunOccluderDistanceM, kAuM, 1e-3);
+  EXPECT_DOUBLE_EQ(r.receiverRadiusM, 1737.4e3);
+  // Earth's umbra at the Moon's mean distance: ~4600 km; penumbra ~8100 km.
+  EXPECT_GT(r.umbraRadiusM, 4400e3);
+  EXPECT_LT(r.umbraRadiusM, 4800e3);
+  EXPECT_GT(r.penumbraRadiusM, 7900e3);
+  EXPECT_LT(r.penumbraRadiusM, 8300e3);
+}
+
+TEST(ReceiverShadow, NothingToShadow) {
+  // The Moon on the Sun's side of the Earth: no body lies between it and the Sun.
+  scene::Scene s = fixedScene("Moon", "0");
+  s.bodies[2].positionM.x = kAuM - 384400e3;
+  const gui::ReceiverShadow r = gui::receiverShadow(s);
+  EXPECT_FALSE(r.valid);
+  EXPECT_NE(r.why.find("no body lies between the Sun and Moon"), std::string::npos) << r.why;
+
+  const gui::ReceiverShadow sun = gui::receiverShadow(fixedScene("Sun", "0"));
+  EXPECT_FALSE(sun.valid);
+  EXPECT_FALSE(sun.why.empty());
+}
+
+TEST(ReceiverShadow, ExampleSceneDuringAndAfterTheEclipse) {
+  scene::Scene s = scene::loadScene(kExample);
+  gui::ReceiverShadow r = gui::receiverShadow(s);
+  ASSERT_TRUE(r.valid) << r.why;
+  EXPECT_EQ(r.receiver, "Moon");
+  EXPECT_EQ(r.occluder, "Earth");
+  EXPECT_GT(r.receiverDistanceM, 350000e3);  // perigee ("supermoon") eclipse
+  EXPECT_LT(r.receiverDistanceM, 365000e3);
+  // 01:45 UTC, partial phase: the Moon straddles the umbra's edge.
+  EXPECT_LT(r.offsetM - r.receiverRadiusM, r.umbraRadiusM);
+  EXPECT_GT(r.offsetM + r.receiverRadiusM, r.umbraRadiusM);
+
+  // 05:30 UTC, after the last penumbral contact (05:22 UTC): the Moon is out of the penumbra.
+  scene::setTime(s, scene::parseUtc("2015-09-28T05:30:00Z"));
+  r = gui::receiverShadow(s);
+  ASSERT_TRUE(r.valid) << r.why;
+  EXPECT_GT(r.offsetM - r.receiverRadiusM, r.penumbraRadiusM);
+}
