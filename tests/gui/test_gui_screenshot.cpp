@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -72,6 +73,14 @@ int countNear(const QImage& img, const QRect& r, int red, int green, int blue, i
       if (std::abs(qRed(c) - red) <= tol && std::abs(qGreen(c) - green) <= tol && std::abs(qBlue(c) - blue) <= tol) ++n;
     }
   return n;
+}
+
+/// Fraction of the 3D view's pixels clearly brighter than the black sky.
+[[maybe_unused]] double litFraction(const Shot& s) {
+  long lit = 0;
+  for (int y = s.view.top(); y <= s.view.bottom(); ++y)
+    for (int x = s.view.left(); x <= s.view.right(); ++x) lit += luma(s.image.pixel(x, y)) > 40.0;
+  return double(lit) / (double(s.view.width()) * s.view.height());
 }
 
 void expectWindowLooksRight(const Shot& s) {
@@ -140,6 +149,17 @@ TEST(GuiScreenshot, TimeMovesTheMoonOutOfTheShadow) {
   std::smatch m;
   ASSERT_TRUE(std::regex_search(s.status, m, std::regex("Moon ([0-9]+) km from")));
   EXPECT_GT(std::stod(m[1]), 9800.0);
+
+#if UMBRA_GUI_HAS_RENDER
+  // The 3D view follows: at 01:45 the umbra covers more than half of the Moon's disc, at
+  // 05:30 the whole disc (~50 % of the view) is lit.
+  const Shot partial = screenshot(dir, "partial.png");
+  ASSERT_EQ(partial.run.exitCode, 0) << partial.run.err;
+  const double before = litFraction(partial), after = litFraction(s);
+  std::cout << "lit part of the 3D view: 01:45 " << before << ", 05:30 " << after << "\n";
+  EXPECT_GT(after, 0.35) << "05:30: the full Moon";
+  EXPECT_LT(before, 0.7 * after) << "01:45: part of the Moon in the umbra (lit " << before << " vs " << after << ")";
+#endif
 }
 
 TEST(GuiScreenshot, BadSceneIsOneLineAndExitOne) {
