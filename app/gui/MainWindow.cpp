@@ -122,19 +122,38 @@ void MainWindow::loadScene(const std::string& path, std::optional<scene::UtcTime
     if (!s.hasTime) throw scene::SceneError(path + ": time: the scene has no time to change (no ephemeris bodies)");
     scene::setTime(s, *time);
   }
-  const ReceiverShadow g = receiverShadow(s);
-  vtkImageData* lut = this->plot->prepareLut(s.shadowLutSize, g);  // cached by parameter hash
+  this->plot->prepareLut(s.shadowLutSize, receiverShadow(s));  // from the table cache when it is there
 
-  // Loaded: from here on the new scene is shown.
+  // From here on the new scene is shown; if the view refuses it, the previous one comes back.
+  std::optional<scene::Scene> previous = std::move(this->current);
+  const scene::UtcTime previousCentre = this->sliderCentre;
+  const double previousExposure = this->exposure->value();
   this->current = std::move(s);
   this->sliderCentre = fileTime;
+  try {
+    this->showCurrent(this->current->exposureEv);
+  } catch (const std::exception& e) {
+    this->current = std::move(previous);
+    this->sliderCentre = previousCentre;
+    if (this->current) {
+      try {
+        this->showCurrent(previousExposure);
+      } catch (...) {
+        this->current.reset();
+      }
+    }
+    const std::string what = e.what();
+    throw std::runtime_error(what.rfind(path, 0) == 0 ? what : path + ": " + what);
+  }
+}
+
+void MainWindow::showCurrent(double exposureEv) {
   this->setWindowTitle(qs(this->current->name) + " - umbra-gui");
   {
     const QSignalBlocker block(this->exposure);
-    this->exposure->setValue(this->current->exposureEv);
+    this->exposure->setValue(exposureEv);
   }
-  this->view->setExposureEV(this->current->exposureEv);
-  this->view->setScene(*this->current, lut);
+  this->view->setExposureEV(exposureEv);
   this->slider->setEnabled(this->current->hasTime);
   if (this->current->hasTime) {
     this->showTime(this->current->time);

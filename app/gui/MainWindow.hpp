@@ -54,6 +54,7 @@ private:
   void openSceneDialog();
   void saveScreenshotDialog();
   void sliderMoved(int minutes);
+  void showCurrent(double exposureEv);  // a newly loaded scene: controls, then refresh
   void refresh();  // the current scene: 3D view, profile, labels, status
   void setStatus(const QString& text);
 

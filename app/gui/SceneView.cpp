@@ -2,6 +2,7 @@
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkRenderWindowInteractor.h>
 #include <vtkNew.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
@@ -69,6 +70,8 @@ SceneView::SceneView(QVTKOpenGLNativeWidget* widget) : impl(std::make_unique<Imp
   impl->widget = widget;
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   widget->setRenderWindow(window);
+  // The view is the scene's camera (a physical observer): no mouse camera moves.
+  widget->interactor()->SetInteractorStyle(nullptr);
   impl->bodies = std::make_unique<render::BodyView>(std::max(1, widget->width()), std::max(1, widget->height()), true);
   impl->renderer = impl->bodies->GetRenderer();
   impl->bodies->GetRenderWindow()->RemoveRenderer(impl->renderer);
@@ -114,6 +117,7 @@ SceneView::SceneView(QVTKOpenGLNativeWidget* widget) : impl(std::make_unique<Imp
   impl->widget = widget;
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   widget->setRenderWindow(window);
+  widget->interactor()->SetInteractorStyle(nullptr);  // the view is the scene's camera
   impl->renderer = vtkSmartPointer<vtkRenderer>::New();
   impl->renderer->AutomaticLightCreationOff();
   impl->sunLight = vtkSmartPointer<vtkLight>::New();
