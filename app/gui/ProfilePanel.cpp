@@ -84,6 +84,7 @@ ProfilePanel::ProfilePanel(QVTKOpenGLNativeWidget* w) : widget(w) {
   this->chart = vtkSmartPointer<vtkChartXY>::New();
   this->chart->GetTitleProperties()->SetFontSize(14);
   this->chart->SetTitle("no shadow to show");
+  this->chart->SetRenderEmpty(true);  // the title says why when no plot is shown
   this->view->GetScene()->AddItem(this->chart);
 
   this->filter = vtkSmartPointer<vtkShadowProfileFilter>::New();
