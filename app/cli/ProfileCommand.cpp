@@ -71,7 +71,7 @@ void addProfileCommand(CLI::App& app, Action& action) {
       if (!o->lut.empty() && !o->exact) {
         filter->SetInputData(readShadowLut(o->lut));
       } else if (!o->exact) {
-        lut = updateShadowLut(occ, o->size, o->limbDarkening, o->cache);
+        lut = updateShadowLut(o->size, o->limbDarkening, o->cache, &occ);
         filter->SetInputConnection(lut->GetOutputPort());
       }
       filter->SetSunRadiusM(eclipse::kSunRadiusM);
