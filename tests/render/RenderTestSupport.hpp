@@ -2,7 +2,7 @@
 // Shared scenes and helpers of the rendering tests.
 #include "BodyView.h"
 #include "ShadowLut.hpp"
-#include "ShadowLutImage.h"
+#include "ShadowLutData.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -32,7 +32,7 @@ inline const eclipse::ShadowLut& testLut() {
   static const eclipse::ShadowLut lut = eclipse::buildAirlessShadowLut({64, 64});
   return lut;
 }
-inline vtkSmartPointer<vtkImageData> testLutImage() { return shadowLutToImageData(testLut()); }
+inline vtkSmartPointer<vtkImageData> testLutImage() { return umbra::filters::toImageData(testLut()); }
 
 /// The view ray through the centre of pixel (i, j), j counted from the top row, as
 /// vtkCamera builds it (right = view x up, vertical field of view).
