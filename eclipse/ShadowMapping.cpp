@@ -156,7 +156,8 @@ ShadowConeRadii shadowConeRadii(const SunOccluderSystem& s, double x) {
   const double tanP = sinP / std::sqrt(1.0 - sinP * sinP);
   ShadowConeRadii r;
   r.umbraLengthM = s.occluderRadiusM / sinU;
-  r.umbraRadiusM = (r.umbraLengthM - x) * tanU;
+  r.umbraRadiusM = std::max(0.0, (r.umbraLengthM - x) * tanU);
+  r.antumbraRadiusM = std::max(0.0, (x - r.umbraLengthM) * tanU);
   r.penumbraRadiusM = (s.occluderRadiusM / sinP + x) * tanP;
   return r;
 }

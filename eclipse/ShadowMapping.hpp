@@ -76,7 +76,8 @@ InverseMapping inverseLutCoords(const LutCoords& coords, const SunOccluderSystem
 /// Radii of the shadow cones at distance `distanceBehindM` behind the occluder's centre,
 /// along the axis pointing away from the Sun, from the tangent cones of the two spheres.
 struct ShadowConeRadii {
-  double umbraRadiusM = 0.0;     ///< negative beyond the umbra's tip: then -radius is the antumbra's
+  double umbraRadiusM = 0.0;     ///< 0 beyond the umbra's tip
+  double antumbraRadiusM = 0.0;  ///< 0 before the umbra's tip
   double penumbraRadiusM = 0.0;
   double umbraLengthM = 0.0;     ///< from the occluder's centre to the umbra's tip
 };

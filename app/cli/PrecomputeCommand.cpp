@@ -38,7 +38,7 @@ void addPrecomputeCommand(CLI::App& app, Action& action) {
     action = [o] {
       output::checkWritable(o->output, {".exr"});
       const OccluderChoice occ = chooseOccluder(o->occluder, "", "");
-      auto source = updateShadowLut(occ, o->size, o->limbDarkening, o->cache);
+      auto source = updateShadowLut(o->size, o->limbDarkening, o->cache, &occ);
       vtkImageData* image = source->GetOutput();
       tables::writeExr(o->output, filters::toTable(filters::fromImageData(image), filters::fieldParameters(image)));
       std::cout << "wrote " << o->output << " (" << o->size << "x" << o->size << " shadow LuT of " << occ.name

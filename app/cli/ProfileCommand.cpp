@@ -71,7 +71,7 @@ void addProfileCommand(CLI::App& app, Action& action) {
       if (!o->lut.empty() && !o->exact) {
         filter->SetInputData(readShadowLut(o->lut));
       } else if (!o->exact) {
-        lut = updateShadowLut(occ, o->size, o->limbDarkening, o->cache);
+        lut = updateShadowLut(o->size, o->limbDarkening, o->cache, &occ);
         filter->SetInputConnection(lut->GetOutputPort());
       }
       filter->SetSunRadiusM(eclipse::kSunRadiusM);
@@ -95,8 +95,10 @@ void addProfileCommand(CLI::App& app, Action& action) {
       }
       const eclipse::ShadowConeRadii r = eclipse::shadowConeRadii(
           {eclipse::kSunRadiusM, occ.radiusM, occ.sunDistanceM}, distanceM);
-      std::cout << "geometric radii at " << o->distance << ": umbra " << r.umbraRadiusM / 1e3 << " km, penumbra "
-                << r.penumbraRadiusM / 1e3 << " km\n";
+      std::cout << "geometric radii at " << o->distance << ": "
+                << (r.antumbraRadiusM > 0.0 ? "antumbra " + std::to_string(r.antumbraRadiusM / 1e3)
+                                            : "umbra " + std::to_string(r.umbraRadiusM / 1e3))
+                << " km, penumbra " << r.penumbraRadiusM / 1e3 << " km\n";
       return 0;
     };
   });

@@ -1,7 +1,98 @@
-// umbra render SCENE [--time ISO8601] [--size WxH] --output FILE.png|FILE.exr
-// (filled in when the render pass lands)
+// umbra render SCENE [--time ISO8601] [--size WxH] [--exposure EV] --output FILE.png|FILE.exr
+#include "BodyView.h"
 #include "Commands.hpp"
+#include "OutputFile.hpp"
+#include "SceneInputs.h"
+#include "ShadowCommon.hpp"
+#include "SolarDisc.hpp"
+#include "vtkEclipseShadowLutSource.h"
+
+#include "scene/Scene.hpp"
+#include "scene/Time.hpp"
+#include "umbra/tables/Exr.h"
+
+#include <vtkImageData.h>
+
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <regex>
 
 namespace umbra::cli {
-void addRenderCommand(CLI::App&, Action&) {}
+namespace {
+
+void parseSize(const std::string& text, int& width, int& height) {
+  std::smatch m;
+  if (!std::regex_match(text, m, std::regex(R"((\d{1,5})x(\d{1,5}))")))
+    throw CommandError("--size: expected WIDTHxHEIGHT (e.g. 1280x720), got '" + text + "'");
+  width = std::stoi(m[1]);
+  height = std::stoi(m[2]);
+  if (width < 16 || height < 16 || width > 16384 || height > 16384)
+    throw CommandError("--size: width and height must be within 16..16384, got '" + text + "'");
+}
+
+} // namespace
+
+void addRenderCommand(CLI::App& app, Action& action) {
+  CLI::App* render = app.add_subcommand(
+      "render", "Render a scene offscreen: PNG (tone-mapped) or EXR (linear radiance, W m^-2 sr^-1). Needs an X "
+                "display: run under xvfb-run -a on a headless machine");
+  struct Options {
+    std::string scene, time, size, output;
+    std::optional<double> exposure;
+    CacheOptions cache;
+  };
+  auto o = std::make_shared<Options>();
+  render->add_option("SCENE", o->scene, "Scene file (JSON, see docs/scene-format.md)")->required();
+  render->add_option("--time", o->time, "UTC time, ISO 8601 (default: the scene's)");
+  render->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default: the scene's)");
+  render->add_option("--exposure", o->exposure, "Exposure in EV (default: the scene's)");
+  render->add_option("--output,-o", o->output, "Image to write: FILE.png or FILE.exr")->required();
+  o->cache.addTo(render);
+
+  render->callback([&action, o] {
+    action = [o] {
+      output::checkWritable(o->output, {".png", ".exr"});
+      scene::Scene s = scene::loadScene(o->scene);
+      if (!o->time.empty()) {
+        try {
+          scene::setTime(s, scene::parseUtc(o->time));
+        } catch (const std::invalid_argument& e) {
+          throw CommandError(std::string("--time: ") + e.what());
+        }
+      }
+      if (!o->size.empty()) parseSize(o->size, s.width, s.height);
+      if (o->exposure) s.exposureEv = *o->exposure;
+      if (!std::getenv("DISPLAY")) throw CommandError("rendering needs an X display: run under xvfb-run -a");
+
+      const render::SceneInputs in = render::sceneInputs(s);
+      auto lut = updateShadowLut(s.shadowLutSize, eclipse::kDefaultLimbDarkening, o->cache);
+
+      render::BodyView view(s.width, s.height, /*offscreen=*/true);
+      view.SetBodies(in.sun, in.bodies, lut->GetOutput());
+      view.SetCamera(in.camera);
+      view.SetExposureEV(s.exposureEv);
+      view.Render();
+
+      if (output::extensionOf(o->output) == ".exr") {
+        tables::Table t;
+        t.channels = {"R", "G", "B"};
+        view.ReadHdr(t.data, t.width, t.height);
+        t.parameters = {{"kind", "radiance-image"},
+                        {"units", "W m^-2 sr^-1 (linear, per channel)"},
+                        {"scene", o->scene},
+                        {"time", scene::formatUtc(s.time)},
+                        {"exposureEV", std::to_string(s.exposureEv)}};
+        tables::writeExr(o->output, t);
+      } else {
+        view.WritePng(o->output);
+      }
+      std::cout << "wrote " << o->output << " (" << s.width << "x" << s.height << ", " << s.name
+                << (s.hasTime ? ", " + scene::formatUtc(s.time) : std::string()) << ")\n";
+      return 0;
+    };
+  });
+}
+
 } // namespace umbra::cli

@@ -35,15 +35,17 @@ OccluderChoice chooseOccluder(const std::string& name, const std::string& radius
   return c;
 }
 
-vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(const OccluderChoice& occluder, int size,
-                                                           double limbDarkening, const CacheOptions& cache) {
+vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limbDarkening, const CacheOptions& cache,
+                                                           const OccluderChoice* occluder) {
   auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
   source->SetWidth(size);
   source->SetHeight(size);
   source->SetLimbDarkening(limbDarkening);
-  source->SetOccluderName(occluder.name.c_str());
-  source->SetOccluderRadiusM(occluder.radiusM);
-  source->SetSunOccluderDistanceM(occluder.sunDistanceM);
+  if (occluder) {
+    source->SetOccluderName(occluder->name.c_str());
+    source->SetOccluderRadiusM(occluder->radiusM);
+    source->SetSunOccluderDistanceM(occluder->sunDistanceM);
+  }
   source->SetCacheDirectory(cache.directory.c_str());
   source->SetUseCache(!cache.disabled);
 

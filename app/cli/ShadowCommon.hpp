@@ -26,9 +26,11 @@ OccluderChoice chooseOccluder(const std::string& name, const std::string& radius
 /// Parse a length option ("384400km"); throws CommandError naming the option.
 double lengthOption(const std::string& option, const std::string& text);
 
-/// Build the LuT through the filter, with progress on stderr and cache reporting.
-vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(const OccluderChoice& occluder, int size,
-                                                           double limbDarkening, const CacheOptions& cache);
+/// Build the LuT through the filter, with progress on stderr and cache reporting. The
+/// occluder, if given, is recorded in the LuT's parameters (an airless LuT's values do
+/// not depend on it).
+vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limbDarkening, const CacheOptions& cache,
+                                                           const OccluderChoice* occluder = nullptr);
 
 /// A shadow LuT written by `umbra precompute shadow`; throws naming the file if it is not one.
 vtkSmartPointer<vtkImageData> readShadowLut(const std::string& path);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 using namespace umbra::test;
 
@@ -114,4 +115,51 @@ TEST(BadInput, RgbExrThatIsNotAShadowLut) {
   t.data.assign(48, 0.5f);
   umbra::tables::writeExr(dir / "photo.exr", t);
   expectFailure(dir, profileArgs(dir, {"--occluder", "Earth", "--lut", dir / "photo.exr"}), "photo.exr: not a shadow LuT");
+}
+
+namespace {
+std::string writeScene(const TempDir& dir, const std::string& name, const std::string& json) {
+  std::ofstream(dir.path / name) << json;
+  return dir / name;
+}
+const char* kSceneHead = R"({"name": "t", "time": "2015-09-28T01:45:00Z", "bodies": [{"preset": "Sun"}, )";
+const char* kSceneTail = R"(], "camera": {"position": [1.5e11, 0, 0], "target": [0, 0, 0], "fovDeg": 1}})";
+} // namespace
+
+TEST(BadInput, MalformedSceneJson) {
+  TempDir dir;
+  const std::string scene = writeScene(dir, "bad.json", "{\"bodies\": [\n  {\"preset\": \"Sun\"},\n  oops\n]}");
+  expectFailure(dir, {"render", scene, "--output", dir / "x.png"}, "bad.json: invalid JSON at line 3, column");
+}
+
+TEST(BadInput, UnknownBodyInScene) {
+  TempDir dir;
+  const std::string scene = writeScene(dir, "pluto.json", std::string(kSceneHead) + R"({"preset": "Pluto"})" + kSceneTail);
+  expectFailure(dir, {"render", scene, "--output", dir / "x.png"}, "pluto.json: bodies[1].preset: unknown body 'Pluto'");
+}
+
+TEST(BadInput, NegativeRadiusInScene) {
+  TempDir dir;
+  const std::string scene = writeScene(dir, "neg.json", std::string(kSceneHead) +
+      R"({"name": "Rock", "radius": -5, "position": [1.5e11, 1e9, 0]})" + kSceneTail);
+  expectFailure(dir, {"render", scene, "--output", dir / "x.png"}, "neg.json: bodies[1].radius: expected a positive length");
+}
+
+TEST(BadInput, MissingSceneFile) {
+  TempDir dir;
+  expectFailure(dir, {"render", dir / "nowhere.json", "--output", dir / "x.png"},
+                "nowhere.json: cannot open file: No such file or directory");
+}
+
+TEST(BadInput, UnwritableRenderOutput) {
+  TempDir dir;
+  expectFailure(dir, {"render", UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28.json", "--output",
+                      dir / "missing-dir/x.png"}, "does not exist");
+}
+
+TEST(BadInput, BadRenderSizeAndTime) {
+  TempDir dir;
+  const std::string scene = UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28.json";
+  expectFailure(dir, {"render", scene, "--size", "12x", "--output", dir / "x.png"}, "--size: expected WIDTHxHEIGHT");
+  expectFailure(dir, {"render", scene, "--time", "yesterday", "--output", dir / "x.png"}, "--time: ");
 }

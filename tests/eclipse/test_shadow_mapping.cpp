@@ -116,6 +116,21 @@ TEST(ShadowMapping, UmbraConeSurfaceIsWhereTheDiscsTouchInside) {
   }
 }
 
+TEST(ShadowMapping, AntumbraBeyondTheUmbrasTipIsWhereTheSunRingsTheOccluder) {
+  // The Moon's shadow on Earth at the Moon's mean distance: the umbra ends ~374 000 km
+  // behind the Moon, short of Earth's surface, so an annular eclipse is seen there.
+  const SunOccluderSystem moon{kSunRadiusM, 1737.4e3, kAu};
+  const double x = 384400e3 - 6371e3;
+  const ShadowConeRadii r = shadowConeRadii(moon, x);
+  EXPECT_NEAR(r.umbraLengthM, 374e6, 2e6);
+  EXPECT_EQ(r.umbraRadiusM, 0.0);
+  ASSERT_GT(r.antumbraRadiusM, 0.0);
+  // On the antumbra's edge the occluder just fits inside the solar disc.
+  const ShadowAngles a = shadowAngles({x, r.antumbraRadiusM, 0}, {-kAu, 0, 0}, kSunRadiusM, {0, 0, 0}, 1737.4e3);
+  EXPECT_NEAR(a.separationRad, a.sunAngularRadiusRad - a.occluderAngularRadiusRad, 1e-9 * a.sunAngularRadiusRad);
+  EXPECT_EQ(shadowConeRadii(moon, 0.5 * r.umbraLengthM).antumbraRadiusM, 0.0);
+}
+
 TEST(ShadowMapping, EarthShadowAtTheMoonMatchesTheClassicalFigures) {
   // Small-angle textbook values: umbra R_E - x (R_S - R_E)/d, penumbra R_E + x (R_S + R_E)/d
   const SunOccluderSystem earth{kSunRadiusM, 6371e3, kAu};

@@ -1,0 +1,324 @@
+#include "EclipseShading.h"
+
+#include "EclipseShadowGlsl.hpp"
+#include "RenderGlsl.hpp"
+
+#include <vtkActor.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkOpenGLPolyDataMapper.h>
+#include <vtkOpenGLVertexBufferObject.h>
+#include <vtkPointData.h>
+#include <vtkProperty.h>
+#include <vtkShaderProgram.h>
+#include <vtkShaderProperty.h>
+#include <vtkSmartPointer.h>
+#include <vtkTexture.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace umbra::render {
+namespace {
+
+constexpr const char* kLutSamplerName = "umbraShadowLut";
+constexpr const char* kLutSamplerDecl = "uniform sampler2D umbraShadowLut;";
+
+bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// VTK substitutes its //VTK:: tags anywhere in a shader, comments included.
+const char* checkedGlsl(const char* name, const char* src) {
+  if (std::string(src).find("//VTK::") != std::string::npos) {
+    throw std::logic_error(std::string(name) + " contains a //VTK:: tag; VTK would substitute it");
+  }
+  return src;
+}
+
+// eclipse/glsl/EclipseShadow.glsl declares the LuT sampler; VTK declares the samplers of
+// a property's textures itself, so the receiver's shader takes the file without it.
+std::string eclipseGlslWithoutSampler() {
+  std::string src = checkedGlsl("eclipse/glsl/EclipseShadow.glsl", eclipse::kEclipseShadowGlsl);
+  const auto at = src.find(kLutSamplerDecl);
+  if (at == std::string::npos) {
+    throw std::logic_error("eclipse/glsl/EclipseShadow.glsl no longer declares 'uniform sampler2D umbraShadowLut;'");
+  }
+  src.replace(at, std::string(kLutSamplerDecl).size(), "// (umbraShadowLut is declared by VTK)");
+  return src;
+}
+
+// Tags of VTK 9.1's vtkPolyDataVS/FS.glsl templates that the receiver's code goes to.
+struct Replacement {
+  bool vertex;
+  const char* tag;
+};
+constexpr Replacement kVsDec{true, "//VTK::Camera::Dec"};        // replaced (declares the matrices)
+constexpr Replacement kVsImpl{true, "//VTK::CustomEnd::Impl"};   // kept
+constexpr Replacement kFsDec{false, "//VTK::Edges::Dec"};        // kept, after TMap::Dec and the output
+constexpr Replacement kFsImpl{false, "//VTK::TCoord::Impl"};     // kept, after VTK's lighting
+
+} // namespace
+
+void validateBody(const SphereBody& b) {
+  const std::string who = "body '" + b.name + "'";
+  if (!finite(b.centreM)) throw std::invalid_argument(who + " has a non-finite centre");
+  if (!(std::isfinite(b.radiusM) && b.radiusM > 0.0)) {
+    throw std::invalid_argument(who + " needs a finite radius > 0 (got " + std::to_string(b.radiusM) + ")");
+  }
+  if (!finite(b.albedoRgb) || b.albedoRgb.r < 0 || b.albedoRgb.g < 0 || b.albedoRgb.b < 0) {
+    throw std::invalid_argument(who + " needs a finite albedo >= 0");
+  }
+}
+
+struct Receiver {
+  vtkSmartPointer<vtkActor> actor;
+  vtkSmartPointer<vtkOpenGLPolyDataMapper> mapper;
+  SphereBody body;
+  unsigned long observerTag = 0;
+};
+
+struct EclipseShading::Impl {
+  vtkSmartPointer<vtkTexture> lutTexture;
+  SunLight sun;
+  std::vector<SphereBody> occluders;
+  std::vector<std::unique_ptr<Receiver>> receivers;
+  glm::dvec3 origin{0.0};
+
+  std::vector<const SphereBody*> occludersOf(const SphereBody& receiver) const {
+    std::vector<const SphereBody*> out;
+    for (const SphereBody& o : occluders) {
+      const bool self = receiver.name.empty()
+                            ? (o.centreM == receiver.centreM && o.radiusM == receiver.radiusM)
+                            : o.name == receiver.name;
+      if (!self) out.push_back(&o);
+    }
+    return out;
+  }
+
+  void checkOccluderCount(const SphereBody& receiver, std::size_t count) const {
+    if (count > static_cast<std::size_t>(kMaxOccluders)) {
+      throw std::invalid_argument("receiver '" + receiver.name + "' has " + std::to_string(count) +
+                                  " occluders; at most " + std::to_string(kMaxOccluders) + " are supported");
+    }
+  }
+
+  void place(Receiver& r) const {
+    const glm::dvec3 p = r.body.centreM - origin;
+    r.actor->SetPosition(p.x, p.y, p.z);
+  }
+
+  // Called by the mapper (UpdateShaderEvent) with its program bound, every draw.
+  void setUniforms(const Receiver& r, vtkShaderProgram& program) const {
+    const SphereBody& b = r.body;
+    const glm::dvec3 sunRel = sun.positionM - b.centreM;
+    const float sunPos[3] = {float(sunRel.x), float(sunRel.y), float(sunRel.z)};
+    const float albedo[3] = {float(b.albedoRgb.r), float(b.albedoRgb.g), float(b.albedoRgb.b)};
+    program.SetUniformf("umbraBodyRadius", float(b.radiusM));
+    program.SetUniform3f("umbraAlbedo", albedo);
+    program.SetUniform3f("umbraSunPos", sunPos);
+    program.SetUniformf("umbraSunRadius", float(sun.radiusM));
+    program.SetUniformf("umbraSunIrradiance", float(sun.irradianceAt1AuWm2));
+    float occ[kMaxOccluders][4] = {};
+    int n = 0;
+    for (const SphereBody* o : occludersOf(b)) {
+      if (n == kMaxOccluders) break;  // checked when set; never silently reached
+      const glm::dvec3 rel = o->centreM - b.centreM;
+      occ[n][0] = float(rel.x);
+      occ[n][1] = float(rel.y);
+      occ[n][2] = float(rel.z);
+      occ[n][3] = float(o->radiusM);
+      ++n;
+    }
+    program.SetUniformi("umbraOccluderCount", n);
+    program.SetUniform4fv("umbraOccluders", kMaxOccluders, occ);
+  }
+
+  void detach(Receiver& r) const {
+    if (r.mapper) r.mapper->RemoveObserver(r.observerTag);
+    vtkShaderProperty* sp = r.actor->GetShaderProperty();
+    for (const Replacement& rep : {kVsDec, kVsImpl}) sp->ClearVertexShaderReplacement(rep.tag, true);
+    for (const Replacement& rep : {kFsDec, kFsImpl}) sp->ClearFragmentShaderReplacement(rep.tag, true);
+    r.actor->GetProperty()->RemoveTexture(kLutSamplerName);
+  }
+};
+
+namespace {
+class ReceiverUniformsCommand : public vtkCommand {
+ public:
+  static ReceiverUniformsCommand* New() { return new ReceiverUniformsCommand; }
+  void Execute(vtkObject*, unsigned long, void* callData) override {
+    auto* program = static_cast<vtkShaderProgram*>(callData);
+    if (program && owner && receiver) owner->setUniforms(*receiver, *program);
+  }
+  const EclipseShading::Impl* owner = nullptr;
+  const Receiver* receiver = nullptr;
+};
+} // namespace
+
+EclipseShading::EclipseShading() : impl_(std::make_unique<Impl>()) {}
+
+EclipseShading::~EclipseShading() { ClearReceivers(); }
+
+void EclipseShading::SetShadowLut(vtkImageData* lut) {
+  if (!lut) throw std::invalid_argument("shadow LuT image is null");
+  int dims[3];
+  lut->GetDimensions(dims);
+  if (dims[0] < 2 || dims[1] < 2 || dims[2] != 1) {
+    throw std::invalid_argument("shadow LuT must be a 2D image of at least 2x2 texels (got " +
+                                std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
+                                std::to_string(dims[2]) + ")");
+  }
+  vtkDataArray* scalars = lut->GetPointData()->GetScalars();
+  if (!scalars || scalars->GetDataType() != VTK_FLOAT || scalars->GetNumberOfComponents() != 3) {
+    throw std::invalid_argument("shadow LuT needs float RGB point scalars (3 components)");
+  }
+  const vtkIdType n = scalars->GetNumberOfTuples();
+  if (n != static_cast<vtkIdType>(dims[0]) * dims[1]) {
+    throw std::invalid_argument("shadow LuT has " + std::to_string(n) + " texels for " +
+                                std::to_string(dims[0]) + "x" + std::to_string(dims[1]));
+  }
+  for (vtkIdType i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(scalars->GetComponent(i, c))) {
+        throw std::invalid_argument("shadow LuT has a non-finite value at texel " + std::to_string(i));
+      }
+    }
+  }
+  auto copy = vtkSmartPointer<vtkImageData>::New();
+  copy->DeepCopy(lut);
+  copy->SetOrigin(0.0, 0.0, 0.0);
+  copy->SetSpacing(1.0, 1.0, 1.0);
+  if (!impl_->lutTexture) {
+    auto tex = vtkSmartPointer<vtkTexture>::New();
+    tex->SetColorModeToDirectScalars();  // float values as they are: no lookup table
+    tex->InterpolateOn();                // GL_LINEAR
+    tex->MipmapOff();
+    tex->SetWrap(vtkTexture::ClampToEdge);
+    tex->UseSRGBColorSpaceOff();
+    impl_->lutTexture = tex;
+  }
+  impl_->lutTexture->SetInputData(copy);
+  for (auto& r : impl_->receivers) r->actor->GetProperty()->SetTexture(kLutSamplerName, impl_->lutTexture);
+}
+
+bool EclipseShading::HasShadowLut() const { return impl_->lutTexture != nullptr; }
+
+vtkTexture* EclipseShading::GetShadowLutTexture() const { return impl_->lutTexture; }
+
+void validateSun(const SunLight& sun) {
+  if (!finite(sun.positionM)) throw std::invalid_argument("Sun position is not finite");
+  if (!(std::isfinite(sun.radiusM) && sun.radiusM > 0.0)) throw std::invalid_argument("Sun radius must be > 0");
+  if (!(std::isfinite(sun.irradianceAt1AuWm2) && sun.irradianceAt1AuWm2 >= 0.0)) {
+    throw std::invalid_argument("Sun irradiance at 1 au must be finite and >= 0");
+  }
+}
+
+void EclipseShading::SetSun(const SunLight& sun) {
+  validateSun(sun);
+  impl_->sun = sun;
+}
+
+void EclipseShading::SetOccluders(const std::vector<SphereBody>& occluders) {
+  for (const SphereBody& o : occluders) validateBody(o);
+  std::vector<SphereBody> previous = std::move(impl_->occluders);
+  impl_->occluders = occluders;
+  try {
+    for (const auto& r : impl_->receivers) impl_->checkOccluderCount(r->body, impl_->occludersOf(r->body).size());
+  } catch (...) {
+    impl_->occluders = std::move(previous);
+    throw;
+  }
+}
+
+void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const glm::dvec3& originM) {
+  if (!actor) throw std::invalid_argument("receiver actor is null");
+  validateBody(body);
+  if (!finite(originM)) throw std::invalid_argument("origin is not finite");
+  if (!impl_->lutTexture) throw std::invalid_argument("set the shadow LuT before making receiver '" + body.name + "'");
+  auto* mapper = vtkOpenGLPolyDataMapper::SafeDownCast(actor->GetMapper());
+  if (!mapper) {
+    throw std::invalid_argument("receiver '" + body.name + "' needs a vtkOpenGLPolyDataMapper");
+  }
+  impl_->checkOccluderCount(body, impl_->occludersOf(body).size());
+  const std::string vsDec = checkedGlsl("ReceiverVertex.glsl", glsl::kReceiverVertex);
+  const std::string fsDec = eclipseGlslWithoutSampler() + "\n" +
+                            checkedGlsl("ReceiverFragment.glsl", glsl::kReceiverFragment) + "\n" + kFsDec.tag;
+
+  Receiver* receiver = nullptr;
+  for (auto& r : impl_->receivers) {
+    if (r->actor == actor) receiver = r.get();
+    else if (r->mapper == mapper) {
+      throw std::invalid_argument("receiver '" + body.name + "' shares its mapper with receiver '" + r->body.name + "'");
+    }
+  }
+  if (receiver && receiver->mapper != mapper) {  // mapper swapped since: start over
+    impl_->detach(*receiver);
+    receiver->observerTag = 0;
+  }
+  const bool fresh = !receiver || receiver->observerTag == 0;
+  if (!receiver) {
+    impl_->receivers.push_back(std::make_unique<Receiver>());
+    receiver = impl_->receivers.back().get();
+    receiver->actor = actor;
+  }
+  receiver->mapper = mapper;
+  receiver->body = body;
+
+  // The actor only translates: model coordinates stay body-centred with world axes.
+  actor->SetOrientation(0.0, 0.0, 0.0);
+  actor->SetScale(1.0);
+  actor->SetOrigin(0.0, 0.0, 0.0);
+  actor->SetUserMatrix(nullptr);
+  actor->SetUserTransform(nullptr);
+  SetOrigin(originM);  // one origin for all receivers
+  // vertexMC must be the plain model coordinate in the shader.
+  mapper->SetVBOShiftScaleMethod(vtkOpenGLVertexBufferObject::DISABLE_SHIFT_SCALE);
+  mapper->ScalarVisibilityOff();
+  vtkProperty* prop = actor->GetProperty();
+  prop->BackfaceCullingOn();  // a convex mesh: no self-overlap, depth only orders bodies
+  prop->SetTexture(kLutSamplerName, impl_->lutTexture);
+
+  if (fresh) {
+    vtkShaderProperty* sp = actor->GetShaderProperty();
+    sp->AddVertexShaderReplacement(kVsDec.tag, true, vsDec, false);
+    sp->AddVertexShaderReplacement(kVsImpl.tag, true,
+                                   std::string("  umbraReceiverVertex(vertexMC);\n") + kVsImpl.tag, false);
+    sp->AddFragmentShaderReplacement(kFsDec.tag, true, fsDec, false);
+    sp->AddFragmentShaderReplacement(kFsImpl.tag, true, std::string("  umbraReceiverShade();\n") + kFsImpl.tag,
+                                     false);
+    vtkNew<ReceiverUniformsCommand> cmd;
+    cmd->owner = impl_.get();
+    cmd->receiver = receiver;
+    receiver->observerTag = mapper->AddObserver(vtkCommand::UpdateShaderEvent, cmd);
+  }
+  actor->Modified();
+}
+
+void EclipseShading::RemoveReceiver(vtkActor* actor) {
+  auto& rs = impl_->receivers;
+  auto it = std::find_if(rs.begin(), rs.end(), [&](const auto& r) { return r->actor == actor; });
+  if (it == rs.end()) return;
+  impl_->detach(**it);
+  rs.erase(it);
+}
+
+void EclipseShading::ClearReceivers() {
+  for (auto& r : impl_->receivers) impl_->detach(*r);
+  impl_->receivers.clear();
+}
+
+int EclipseShading::GetNumberOfReceivers() const { return static_cast<int>(impl_->receivers.size()); }
+
+void EclipseShading::SetOrigin(const glm::dvec3& originM) {
+  if (!finite(originM)) throw std::invalid_argument("origin is not finite");
+  impl_->origin = originM;
+  for (auto& r : impl_->receivers) impl_->place(*r);
+}
+
+const glm::dvec3& EclipseShading::GetOrigin() const { return impl_->origin; }
+
+} // namespace umbra::render

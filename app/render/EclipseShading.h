@@ -1,0 +1,102 @@
+#pragma once
+// Eclipse shading of sphere receivers drawn as vtkActors: Lambertian reflection of the
+// eclipsed Sun, as linear radiance (W m^-2 sr^-1) for vtkUmbraRenderPass's HDR buffer.
+//
+//   radiance = albedo / pi * E_sun * max(0, n . l) * prod_occluders umbraEclipseFactor(...)
+//   E_sun    = irradianceAt1Au * (1 au / distance to the Sun)^2
+//
+// per fragment (app/render/glsl/ReceiverFragment.glsl, with the shadow lookup of
+// eclipse/glsl/EclipseShadow.glsl); the shadow itself comes from the LuT (never
+// recomputed here). n is the analytic sphere normal at the point where the view ray
+// through the fragment meets the true sphere (the mesh is only a proxy).
+//
+// Coordinates. Positions are in metres in any inertial frame, double precision on the
+// CPU. Two conventions keep float precision on the GPU at any distance:
+//  * camera-relative actors: the application picks an origin (usually the camera
+//    position) and each receiver's actor is placed at (centre - origin), so VTK's float
+//    matrices never hold 1e8..1e11 m offsets between camera and body;
+//  * body-centred shading: every uniform of a receiver (Sun, occluders) is its position
+//    relative to that receiver's centre, computed in double and only then rounded to
+//    float. The receiver's mesh is centred on the body with the world's axes.
+// So the origin only moves the actors (SetOrigin); it never changes the shading.
+//
+// The receiver's actor must use a vtkOpenGLPolyDataMapper whose input is a sphere of the
+// body's radius centred on (0, 0, 0) with the world's axes (vtkSphereSource), inscribed
+// (vertices on the sphere). EclipseShading owns that actor's position/orientation/scale,
+// its back-face culling, its "umbraShadowLut" texture and its shader replacements.
+#include <glm/vec3.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkActor;
+class vtkImageData;
+class vtkTexture;
+
+namespace umbra::render {
+
+struct SunLight {
+  glm::dvec3 positionM{0.0};
+  double radiusM = 6.957e8;
+  double irradianceAt1AuWm2 = 1361.0;
+};
+
+struct SphereBody {
+  std::string name;  ///< identifies the body; a receiver is never its own occluder
+  glm::dvec3 centreM{0.0};
+  double radiusM = 0.0;
+  glm::dvec3 albedoRgb{0.12};  ///< linear RGB (Lambertian / normal albedo)
+};
+
+class EclipseShading {
+ public:
+  static constexpr int kMaxOccluders = 4;  ///< per receiver, after leaving itself out
+  static constexpr double kAuM = 1.495978707e11;
+
+  EclipseShading();
+  ~EclipseShading();
+  EclipseShading(const EclipseShading&) = delete;
+  EclipseShading& operator=(const EclipseShading&) = delete;
+
+  /// The eclipse shadow LuT: 2D image W x H x 1 (W, H >= 2), point scalars float RGB
+  /// (3 components), texel (i, j) = value at u = (i + .5) / W, v = (j + .5) / H
+  /// (see filters/shadow/ShadowLutData.h). Bound as an RGB32F texture, linear, clamp-to-edge, no
+  /// mipmaps, no colour mapping. A copy is kept. Throws std::invalid_argument.
+  void SetShadowLut(vtkImageData* lut);
+  bool HasShadowLut() const;
+  /// The texture every receiver samples as "umbraShadowLut" (nullptr before SetShadowLut).
+  vtkTexture* GetShadowLutTexture() const;
+
+  /// The Sun (the light). Throws std::invalid_argument on non-finite / non-positive values.
+  void SetSun(const SunLight& sun);
+  /// Bodies that cast shadows. Each receiver uses all of them except the one with its own
+  /// name, at most kMaxOccluders (checked at MakeReceiver / SetOccluders).
+  void SetOccluders(const std::vector<SphereBody>& occluders);
+
+  /// Turn `actor` into a receiver of `body`, placed at body.centreM - originM. Throws
+  /// std::invalid_argument (bad body, no LuT yet, mapper not an OpenGL poly-data
+  /// mapper, too many occluders). Calling it again for the same actor updates the body.
+  void MakeReceiver(vtkActor* actor, const SphereBody& body, const glm::dvec3& originM);
+  /// Stop shading `actor` (its shader replacements, texture and observer are removed).
+  void RemoveReceiver(vtkActor* actor);
+  void ClearReceivers();
+  int GetNumberOfReceivers() const;
+
+  /// Move every receiver's actor to (centre - originM), e.g. after the camera moved.
+  void SetOrigin(const glm::dvec3& originM);
+  const glm::dvec3& GetOrigin() const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Validates a body (finite centre, radius > 0, finite albedo >= 0); throws
+/// std::invalid_argument naming the body.
+void validateBody(const SphereBody& body);
+/// Validates the Sun (finite position, radius > 0, irradiance >= 0); throws std::invalid_argument.
+void validateSun(const SunLight& sun);
+
+} // namespace umbra::render

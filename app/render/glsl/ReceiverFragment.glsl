@@ -1,0 +1,63 @@
+// Fragment stage of an eclipse receiver (EclipseShading): Lambertian reflection of the
+// eclipsed Sun by a sphere, written as linear radiance (W m^-2 sr^-1) into the HDR
+// buffer. Needs eclipse/glsl/EclipseShadow.glsl (umbraEclipseFactor) before it.
+//
+// All positions are relative to the receiver's centre (computed in double on the CPU,
+// handed over as floats), so the angles keep float precision at any distance.
+
+in vec3 umbraPosMC;
+flat in vec3 umbraEyeMC;
+flat in vec3 umbraViewDirMC;
+flat in int umbraParallel;
+
+uniform float umbraBodyRadius;     // m
+uniform vec3 umbraAlbedo;          // linear RGB
+uniform vec3 umbraSunPos;          // m, relative to the body's centre
+uniform float umbraSunRadius;      // m
+uniform float umbraSunIrradiance;  // W m^-2 at 1 au
+uniform int umbraOccluderCount;    // 0..4
+uniform vec4 umbraOccluders[4];    // xyz: centre relative to the body's centre (m), w: radius (m)
+
+const float umbraAuM = 1.495978707e11;
+const float umbraInvPi = 0.31830988618;
+// Logarithmic depth for perspective views: 1 mm .. 1e13 m over [0, 1], so that bodies
+// 1 m and 1e11 m away keep their order with any near/far planes.
+const float umbraLogDepthMinM = 1.0e-3;
+const float umbraLogDepthOctaves = 53.150849518;  // log2(1e13 / 1e-3)
+
+// The point of the sphere (centre 0, radius r) seen through this fragment: the view ray
+// through the rasterised facet point, intersected with the true sphere. The mesh is
+// inscribed in the sphere, so the facet point is inside it and the ray always hits.
+vec3 umbraSphereHit(vec3 facet, vec3 dir, float r) {
+  float b = dot(facet, dir);
+  float c = (length(facet) - r) * (length(facet) + r);  // <= 0 inside the sphere
+  float disc = max(b * b - c, 0.0);
+  return facet + (-b - sqrt(disc)) * dir;
+}
+
+void umbraReceiverShade() {
+  vec3 dir = umbraParallel == 1 ? umbraViewDirMC : normalize(umbraPosMC - umbraEyeMC);
+  vec3 p = umbraSphereHit(umbraPosMC, dir, umbraBodyRadius);
+  vec3 n = normalize(p);
+  vec3 toSun = umbraSunPos - p;
+  float dSun = length(toSun);
+  float cosi = max(dot(n, toSun / dSun), 0.0);
+  float dAu = dSun / umbraAuM;
+  float eSun = umbraSunIrradiance / (dAu * dAu);
+
+  vec3 shadow = vec3(1.0);
+  for (int i = 0; i < 4; ++i) {
+    if (i >= umbraOccluderCount) break;
+    shadow *= umbraEclipseFactor(p, umbraSunPos, umbraSunRadius, umbraOccluders[i].xyz,
+                                 umbraOccluders[i].w);
+  }
+  vec3 radiance = umbraAlbedo * (umbraInvPi * eSun * cosi) * shadow;
+  fragOutput0 = vec4(radiance, 1.0);
+
+  if (umbraParallel == 1) {
+    gl_FragDepth = gl_FragCoord.z;
+  } else {
+    float dist = max(length(p - umbraEyeMC), umbraLogDepthMinM);
+    gl_FragDepth = clamp(log2(dist / umbraLogDepthMinM) / umbraLogDepthOctaves, 0.0, 1.0);
+  }
+}

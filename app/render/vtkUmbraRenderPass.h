@@ -1,0 +1,76 @@
+#pragma once
+// vtkUmbraRenderPass: renders its delegate into a floating-point (RGBA32F) framebuffer
+// and tone-maps that HDR frame onto the current framebuffer.
+//
+// The HDR frame holds linear radiance in W m^-2 sr^-1 (what EclipseShading writes). The
+// display transform (glsl/ToneMap.glsl) is
+//     display = sRGB( curve( radiance * 2^ExposureEV ) )
+// with curve = clamp to [0, 1] (Linear) or x / (1 + x) per channel (Reinhard, default),
+// and sRGB the exact IEC 61966-2-1 encoding. The last HDR frame stays readable with
+// ReadHdrPixels (EXR output, tests).
+//
+// Usage: renderer->SetPass(pass). The default delegate is a vtkRenderStepsPass (which is
+// itself a vtkCameraPass around the usual lights/opaque/translucent/volume/overlay
+// sequence); SetDelegatePass replaces it.
+//
+// Limitations: the renderer's viewport should start at the window's lower-left corner
+// (as for vtkToneMappingPass, VTK's camera pass positions the delegate's viewport at the
+// renderer's origin).
+#include <vtkImageProcessingPass.h>
+#include <vtkSmartPointer.h>
+#include <vtkWeakPointer.h>
+
+#include <memory>
+#include <vector>
+
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLQuadHelper;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+
+class vtkUmbraRenderPass : public vtkImageProcessingPass {
+ public:
+  static vtkUmbraRenderPass* New();
+  vtkTypeMacro(vtkUmbraRenderPass, vtkImageProcessingPass)
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  void Render(const vtkRenderState* s) override;
+  void ReleaseGraphicsResources(vtkWindow* w) override;
+
+  enum ToneMappingType { Linear = 0, Reinhard = 1 };
+
+  /// Exposure in stops: the HDR value is multiplied by 2^ExposureEV before the curve.
+  vtkSetClampMacro(ExposureEV, double, -120.0, 120.0);
+  vtkGetMacro(ExposureEV, double);
+
+  /// Tone curve, Linear (clamp) or Reinhard (default).
+  vtkSetClampMacro(ToneMapping, int, Linear, Reinhard);
+  vtkGetMacro(ToneMapping, int);
+
+  /// The float colour buffer of the last frame, RGBA, 4 floats per pixel, row 0 = bottom
+  /// row (as in GL). False (and empty) when nothing has been rendered since the last
+  /// ReleaseGraphicsResources, or the window is gone.
+  bool ReadHdrPixels(std::vector<float>& rgba, int& width, int& height);
+
+ protected:
+  vtkUmbraRenderPass();
+  ~vtkUmbraRenderPass() override;
+
+  double ExposureEV = 0.0;
+  int ToneMapping = Reinhard;
+
+  vtkSmartPointer<vtkOpenGLFramebufferObject> FrameBufferObject;
+  vtkSmartPointer<vtkTextureObject> ColorTexture;
+  vtkSmartPointer<vtkTextureObject> DepthTexture;
+  std::unique_ptr<vtkOpenGLQuadHelper> QuadHelper;
+
+  vtkWeakPointer<vtkOpenGLRenderWindow> LastWindow;
+  int HdrWidth = 0;
+  int HdrHeight = 0;
+  bool HdrValid = false;
+
+ private:
+  bool PrepareBuffers(vtkOpenGLRenderWindow* renWin, int width, int height);
+  vtkUmbraRenderPass(const vtkUmbraRenderPass&) = delete;
+  void operator=(const vtkUmbraRenderPass&) = delete;
+};
