@@ -199,8 +199,8 @@ double ProfilePanel::update(const ReceiverShadow& g) {
   vtkAxis* bottom = this->chart->GetAxis(vtkAxis::BOTTOM);
   bottom->SetRange(0.0, xMax);
   bottom->SetBehavior(vtkAxis::FIXED);
-  this->chart->SetTitle(g.occluder + "'s shadow at " + km(g.receiverDistanceM) + (g.umbraRadiusM >= 0.0 ? " (umbra " : " (antumbra ") +
-                        km(std::abs(g.umbraRadiusM)) + ", penumbra " + km(g.penumbraRadiusM) + ")");
+  this->chart->SetTitle(g.occluder + "'s shadow at " + km(g.receiverDistanceM) + (g.antumbraRadiusM > 0.0 ? " (antumbra " : " (umbra ") +
+                        km(std::max(g.umbraRadiusM, g.antumbraRadiusM)) + ", penumbra " + km(g.penumbraRadiusM) + ")");
   this->render();
   return factor;
 }

@@ -53,6 +53,7 @@ ReceiverShadow receiverShadow(const scene::Scene& scene) {
   const auto cones = eclipse::shadowConeRadii({r.sunRadiusM, r.occluderRadiusM, r.sunOccluderDistanceM},
                                               r.receiverDistanceM);
   r.umbraRadiusM = cones.umbraRadiusM;
+  r.antumbraRadiusM = cones.antumbraRadiusM;
   r.penumbraRadiusM = cones.penumbraRadiusM;
   r.valid = true;
   return r;

@@ -25,8 +25,9 @@ struct ReceiverShadow {
   double receiverDistanceM = 0.0;
   /// Distance of the receiver's centre from that axis.
   double offsetM = 0.0;
-  /// Geometric umbra (negative: antumbra) and penumbra radii at receiverDistanceM.
+  /// Geometric umbra, antumbra (one of the two is 0) and penumbra radii at receiverDistanceM.
   double umbraRadiusM = 0.0;
+  double antumbraRadiusM = 0.0;
   double penumbraRadiusM = 0.0;
 };
 

@@ -47,12 +47,7 @@ SceneView::~SceneView() {
 vtkRenderer* SceneView::renderer() const { return impl->renderer; }
 
 void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
-  render::SceneInputs in = render::sceneInputs(s);
-  // An observer standing below a body's mean radius (e.g. near the Earth's poles) would be
-  // inside its sphere: shrink that sphere to just below the camera, so that it still
-  // shadows the others.
-  for (render::SphereBody& b : in.bodies)
-    b.radiusM = std::min(b.radiusM, glm::length(in.camera.positionM - b.centreM) * (1.0 - 1e-4));
+  const render::SceneInputs in = render::sceneInputs(s);
   impl->bodies->GetRenderWindow()->SetSize(std::max(1, impl->widget->width()), std::max(1, impl->widget->height()));
   impl->bodies->SetBodies(in.sun, in.bodies, shadowLut);
   impl->bodies->SetCamera(in.camera);

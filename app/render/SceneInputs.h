@@ -18,6 +18,8 @@ struct SceneInputs {
 
 /// The scene at its current time. A body's Lambertian albedo is 3/2 of its geometric
 /// albedo (exact for a Lambertian sphere), tinted by its display colour at equal luminance.
+/// A body whose sphere would enclose the camera (an observer near a pole, below the mean
+/// radius) is shrunk to just below the camera.
 SceneInputs sceneInputs(const scene::Scene& scene);
 
 } // namespace umbra::render
