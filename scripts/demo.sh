@@ -2,7 +2,8 @@
 # The main job: installs the dependencies, builds umbra, then
 #   1. renders the 2015-09-28 lunar eclipse scene offscreen to a PNG,
 #   2. writes Earth's eclipse-shadow lookup table as EXR,
-#   3. writes the cross-section of Earth's shadow at the Moon's distance as CSV and PNG.
+#   3. writes the cross-section of Earth's shadow at the Moon's distance in that scene
+#      (356 849 km, the eclipse's perigee) as CSV and PNG.
 # Output goes to out/ (or the folder given as the first argument).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,12 +18,12 @@ echo "== rendering $scene"
 xvfb-run -a -s "-screen 0 1280x1024x24" "$umbra" render "$scene" --output "$out/lunar-eclipse-2015-09-28.png"
 echo "== Earth's shadow lookup table"
 "$umbra" precompute shadow --occluder Earth --output "$out/earth-shadow-lut.exr"
-echo "== Earth's shadow at the Moon's mean distance"
-xvfb-run -a -s "-screen 0 1280x1024x24" "$umbra" profile shadow --occluder Earth --distance 384400km --no-atmosphere \
-  --csv "$out/earth-shadow-384400km.csv" --plot "$out/earth-shadow-384400km.png"
+echo "== Earth's shadow at the Moon's distance"
+xvfb-run -a -s "-screen 0 1280x1024x24" "$umbra" profile shadow --scene "$scene" --no-atmosphere \
+  --csv "$out/earth-shadow-at-moon.csv" --plot "$out/earth-shadow-at-moon.png"
 
 echo
 echo "Files written:"
-for f in lunar-eclipse-2015-09-28.png earth-shadow-lut.exr earth-shadow-384400km.csv earth-shadow-384400km.png; do
+for f in lunar-eclipse-2015-09-28.png earth-shadow-lut.exr earth-shadow-at-moon.csv earth-shadow-at-moon.png; do
   echo "  $(cd "$out" && pwd)/$f"
 done

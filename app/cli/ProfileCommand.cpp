@@ -1,4 +1,5 @@
-// umbra profile shadow --occluder BODY --distance 384400km [--samples N] [--exact] --csv FILE [--plot FILE]
+// umbra profile shadow (--occluder BODY --distance 384400km | --scene FILE [--time T]) [--samples N] [--exact]
+//                      --csv FILE [--plot FILE]
 #include "Commands.hpp"
 #include "OutputFile.hpp"
 #include "ProfileExport.hpp"
@@ -12,6 +13,8 @@
 #include <vtkNew.h>
 #include <vtkTable.h>
 
+#include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 
@@ -24,22 +27,28 @@ void addProfileCommand(CLI::App& app, Action& action) {
       "shadow", "The shadow of an occluder across its axis, at a distance behind it (I/I_sun per channel)");
 
   struct Options {
-    std::string occluder, distance, sunDistance, occluderRadius, maxOffset, csv, plot, lut;
+    std::string occluder, distance, sunDistance, occluderRadius, maxOffset, csv, plot, lut, scene, time;
     int samples = 1001, size = 256;
     bool noAtmosphere = false, exact = false;
     double limbDarkening = 0.6;
     CacheOptions cache;
   };
   auto o = std::make_shared<Options>();
-  shadow->add_option("--occluder", o->occluder, "Occluding body: Earth, Moon, Mars, Phobos, Deimos")->required();
-  shadow->add_option("--distance", o->distance,
-                     "Distance of the cross-section behind the occluder's centre, along the shadow axis "
-                     "(units m, km, au; e.g. 384400km)")->required();
+  CLI::Option* occluder = shadow->add_option("--occluder", o->occluder, "Occluding body: Earth, Moon, Mars, Phobos, Deimos");
+  CLI::Option* distance = shadow->add_option(
+      "--distance", o->distance,
+      "Distance of the cross-section behind the occluder's centre, along the shadow axis (units m, km, au; e.g. 384400km)");
+  CLI::Option* scene = shadow->add_option(
+      "--scene", o->scene,
+      "Take the bodies from a scene file instead: the receiver is the camera's target, the occluder the body "
+      "whose shadow it is in, the distance the receiver's");
+  shadow->add_option("--time", o->time, "With --scene: UTC time, ISO 8601 (default: the scene's)")->needs(scene);
+  scene->excludes(occluder)->excludes(distance);
   shadow->add_option("--sun-distance", o->sunDistance, "Sun-occluder distance (default: the body's mean distance)");
   shadow->add_option("--occluder-radius", o->occluderRadius, "Occluder radius (default: the body's mean radius)");
   shadow->add_option("--max-offset", o->maxOffset, "Largest offset from the axis (default: 1.25 x the penumbra's radius)");
   shadow->add_option("--samples", o->samples, "Samples across the profile")->capture_default_str()->check(CLI::Range(2, 1000000));
-  shadow->add_option("--size", o->size, "Texels along u and v of the shadow LuT")->capture_default_str()->check(CLI::Range(8, 4096));
+  CLI::Option* size = shadow->add_option("--size", o->size, "Texels along u and v of the shadow LuT (with --scene: the scene's)")->capture_default_str()->check(CLI::Range(8, 4096));
   shadow->add_option("--limb-darkening", o->limbDarkening, "Linear limb-darkening coefficient of the Sun (Eq. 1)")
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   shadow->add_flag("--no-atmosphere", o->noAtmosphere, "Treat the occluder as airless (the only model so far)");
@@ -50,13 +59,30 @@ void addProfileCommand(CLI::App& app, Action& action) {
   shadow->add_option("--plot", o->plot, "Plot to write: FILE.png (needs an X display) or FILE.svg");
   o->cache.addTo(shadow);
 
-  shadow->callback([&action, o] {
-    action = [o] {
+  shadow->callback([&action, o, size] {
+    const bool sizeGiven = size->count() > 0;
+    action = [o, sizeGiven] {
       output::checkWritable(o->csv, {".csv"});
       if (!o->plot.empty()) output::checkWritable(o->plot, {".png", ".svg"});
-      const OccluderChoice occ = chooseOccluder(o->occluder, o->occluderRadius, o->sunDistance);
-      const double distanceM = lengthOption("--distance", o->distance);
-      if (!(distanceM > 0.0)) throw CommandError("--distance: expected a positive length, got " + o->distance);
+      OccluderChoice occ;
+      double distanceM = 0.0, sunRadiusM = eclipse::kSunRadiusM;
+      std::string where = o->distance;
+      if (!o->scene.empty()) {
+        const SceneShadow ss = sceneShadow(o->scene, o->time);
+        occ = ss.occluder;
+        distanceM = ss.geometry.receiverDistanceM;
+        sunRadiusM = ss.geometry.sunRadiusM;
+        if (!sizeGiven) o->size = ss.lutSize;
+        where = std::to_string(std::lround(distanceM / 1e3)) + " km";
+        std::cout << ss.geometry.receiver << " is " << std::lround(distanceM / 1e3) << " km behind " << occ.name
+                  << " and " << std::lround(ss.geometry.offsetM / 1e3) << " km from its shadow axis\n";
+      } else {
+        if (o->occluder.empty() || o->distance.empty())
+          throw CommandError("give --occluder and --distance, or --scene");
+        occ = chooseOccluder(o->occluder, o->occluderRadius, o->sunDistance);
+        distanceM = lengthOption("--distance", o->distance);
+        if (!(distanceM > 0.0)) throw CommandError("--distance: expected a positive length, got " + o->distance);
+      }
       double maxOffsetM = 0.0;
       if (!o->maxOffset.empty()) {
         maxOffsetM = lengthOption("--max-offset", o->maxOffset);
@@ -74,7 +100,7 @@ void addProfileCommand(CLI::App& app, Action& action) {
         lut = updateShadowLut(o->size, o->limbDarkening, o->cache, &occ);
         filter->SetInputConnection(lut->GetOutputPort());
       }
-      filter->SetSunRadiusM(eclipse::kSunRadiusM);
+      filter->SetSunRadiusM(sunRadiusM);
       filter->SetOccluderRadiusM(occ.radiusM);
       filter->SetSunOccluderDistanceM(occ.sunDistanceM);
       filter->SetReceiverDistanceM(distanceM);
@@ -89,15 +115,13 @@ void addProfileCommand(CLI::App& app, Action& action) {
       plot::writeProfileCsv(table, o->csv);
       std::cout << "wrote " << o->csv << "\n";
       if (!o->plot.empty()) {
-        plot::writeProfilePlot(table, o->plot,
-                               occ.name + "'s shadow at " + o->distance + (o->exact ? " (exact)" : ""));
+        plot::writeProfilePlot(table, o->plot, occ.name + "'s shadow at " + where + (o->exact ? " (exact)" : ""));
         std::cout << "wrote " << o->plot << "\n";
       }
-      const eclipse::ShadowConeRadii r = eclipse::shadowConeRadii(
-          {eclipse::kSunRadiusM, occ.radiusM, occ.sunDistanceM}, distanceM);
-      std::cout << "geometric radii at " << o->distance << ": "
-                << (r.antumbraRadiusM > 0.0 ? "antumbra " + std::to_string(r.antumbraRadiusM / 1e3)
-                                            : "umbra " + std::to_string(r.umbraRadiusM / 1e3))
+      const eclipse::ShadowConeRadii r =
+          eclipse::shadowConeRadii({sunRadiusM, occ.radiusM, occ.sunDistanceM}, distanceM);
+      std::cout << std::fixed << std::setprecision(1) << "geometric radii at " << where << ": "
+                << (r.antumbraRadiusM > 0.0 ? "antumbra " : "umbra ") << std::max(r.umbraRadiusM, r.antumbraRadiusM) / 1e3
                 << " km, penumbra " << r.penumbraRadiusM / 1e3 << " km\n";
       return 0;
     };

@@ -3,6 +3,8 @@
 #include "ShadowLutData.h"
 #include "scene/Bodies.hpp"
 #include "umbra/tables/Exr.h"
+#include "scene/Scene.hpp"
+#include "scene/Time.hpp"
 #include "scene/Units.hpp"
 #include "vtkEclipseShadowLutSource.h"
 
@@ -21,6 +23,24 @@ double lengthOption(const std::string& option, const std::string& text) {
   } catch (const std::exception& e) {
     throw CommandError(option + ": " + e.what());
   }
+}
+
+SceneShadow sceneShadow(const std::string& scenePath, const std::string& time) {
+  scene::Scene s = scene::loadScene(scenePath);
+  if (!time.empty()) {
+    try {
+      scene::setTime(s, scene::parseUtc(time));
+    } catch (const std::invalid_argument& e) {
+      throw CommandError(std::string("--time: ") + e.what());
+    }
+  }
+  SceneShadow out;
+  out.geometry = scene::receiverShadow(s);
+  if (!out.geometry.valid) throw CommandError(scenePath + ": " + out.geometry.why);
+  const scene::Body& occ = *s.find(out.geometry.occluder);
+  out.occluder = {occ.name, occ.radiusM, out.geometry.sunOccluderDistanceM, occ.hasAtmosphere};
+  out.lutSize = s.shadowLutSize;
+  return out;
 }
 
 OccluderChoice chooseOccluder(const std::string& name, const std::string& radius, const std::string& sunDistance) {

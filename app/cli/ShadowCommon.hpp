@@ -2,6 +2,7 @@
 // What the `precompute shadow` and `profile shadow` commands share: choosing the
 // occluder and building (or loading from the cache) its shadow LuT.
 #include "Commands.hpp"
+#include "scene/ReceiverShadow.hpp"
 
 #include <vtkSmartPointer.h>
 
@@ -22,6 +23,15 @@ struct OccluderChoice {
 /// The preset called `name`; throws CommandError listing the known bodies otherwise, or
 /// when it is the Sun. `radius` / `sunDistance` (length strings, may be empty) override.
 OccluderChoice chooseOccluder(const std::string& name, const std::string& radius, const std::string& sunDistance);
+
+/// The shadow that the camera's target of a scene file is in (at --time, if not empty);
+/// throws naming the file when there is none.
+struct SceneShadow {
+  OccluderChoice occluder;
+  scene::ReceiverShadow geometry;
+  int lutSize = 256;  ///< the scene's shadow.lutSize
+};
+SceneShadow sceneShadow(const std::string& scenePath, const std::string& time);
 
 /// Parse a length option ("384400km"); throws CommandError naming the option.
 double lengthOption(const std::string& option, const std::string& text);

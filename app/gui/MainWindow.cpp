@@ -122,7 +122,7 @@ void MainWindow::loadScene(const std::string& path, std::optional<scene::UtcTime
     if (!s.hasTime) throw scene::SceneError(path + ": time: the scene has no time to change (no ephemeris bodies)");
     scene::setTime(s, *time);
   }
-  this->plot->prepareLut(s.shadowLutSize, receiverShadow(s));  // from the table cache when it is there
+  this->plot->prepareLut(s.shadowLutSize, scene::receiverShadow(s));  // from the table cache when it is there
 
   // From here on the new scene is shown; if the view refuses it, the previous one comes back.
   std::optional<scene::Scene> previous = std::move(this->current);
@@ -190,7 +190,7 @@ void MainWindow::sliderMoved(int minutes) {
 void MainWindow::refresh() {
   if (!this->current) return;
   const scene::Scene& s = *this->current;
-  this->shadow = receiverShadow(s);
+  this->shadow = scene::receiverShadow(s);
   this->view->setScene(s, this->plot->prepareLut(s.shadowLutSize, this->shadow));
   this->shadowFactor = this->plot->update(this->shadow);
   this->view->render();

@@ -3,7 +3,7 @@
 // the camera's target lies in (right), a time slider (+-6 h around the scene time, 1-minute
 // steps) and an exposure control (below), and a status bar with the receiver's place in
 // the shadow.
-#include "ReceiverShadow.hpp"
+#include "scene/ReceiverShadow.hpp"
 #include "scene/Scene.hpp"
 
 #include <QMainWindow>
@@ -70,7 +70,7 @@ private:
 
   std::optional<scene::Scene> current;
   scene::UtcTime sliderCentre;  // the time at slider value 0
-  ReceiverShadow shadow;
+  scene::ReceiverShadow shadow;
   double shadowFactor = 1.0;
 };
 

@@ -100,7 +100,7 @@ ProfilePanel::~ProfilePanel() = default;
 
 vtkTable* ProfilePanel::profile() const { return this->table; }
 
-vtkImageData* ProfilePanel::prepareLut(int size, const ReceiverShadow& g) {
+vtkImageData* ProfilePanel::prepareLut(int size, const scene::ReceiverShadow& g) {
   if (!this->lutSource || size != this->lutSize) {
     auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
     source->SetWidth(size);
@@ -122,7 +122,7 @@ vtkImageData* ProfilePanel::prepareLut(int size, const ReceiverShadow& g) {
   return this->lutSource->GetOutput();
 }
 
-double ProfilePanel::update(const ReceiverShadow& g) {
+double ProfilePanel::update(const scene::ReceiverShadow& g) {
   const bool show = g.valid && this->lutSource;
   if (!show) {
     this->chart->SetTitle(g.why.empty() ? "no shadow to show" : g.why);

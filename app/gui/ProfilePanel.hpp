@@ -6,7 +6,7 @@
 //
 // The LuT source is built once per LuT size (from the table cache when it is there); a
 // change of time only changes the profile filter's parameters.
-#include "ReceiverShadow.hpp"
+#include "scene/ReceiverShadow.hpp"
 
 #include <vtkSmartPointer.h>
 
@@ -34,11 +34,11 @@ public:
   /// The shadow LuT of this size for this occluder (the airless LuT is the same for every
   /// occluder; the bodies only travel in its field data). Builds or reads it from the cache
   /// when the size changed. Throws std::runtime_error when it cannot be computed.
-  vtkImageData* prepareLut(int size, const ReceiverShadow& geometry);
+  vtkImageData* prepareLut(int size, const scene::ReceiverShadow& geometry);
 
   /// Recomputes the profile for this geometry and redraws. Returns the shadow factor
   /// (luminance, I / I_sun) at the receiver's centre; 1 when there is no valid geometry.
-  double update(const ReceiverShadow& geometry);
+  double update(const scene::ReceiverShadow& geometry);
 
   /// Re-renders the chart.
   void render();

@@ -61,7 +61,7 @@ TEST(BadInput, BadLengthUnit) {
 
 TEST(BadInput, MissingOption) {
   TempDir dir;
-  expectFailure(dir, {"profile", "shadow", "--occluder", "Earth", "--csv", dir / "p.csv"}, "--distance is required");
+  expectFailure(dir, {"profile", "shadow", "--occluder", "Earth", "--csv", dir / "p.csv"}, "give --occluder and --distance, or --scene");
 }
 
 TEST(BadInput, MissingTableFile) {
@@ -162,4 +162,11 @@ TEST(BadInput, BadRenderSizeAndTime) {
   const std::string scene = UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28.json";
   expectFailure(dir, {"render", scene, "--size", "12x", "--output", dir / "x.png"}, "--size: expected WIDTHxHEIGHT");
   expectFailure(dir, {"render", scene, "--time", "yesterday", "--output", dir / "x.png"}, "--time: ");
+}
+
+TEST(BadInput, ProfileNeedsABodyOrAScene) {
+  TempDir dir;
+  expectFailure(dir, {"profile", "shadow", "--csv", dir / "p.csv"}, "give --occluder and --distance, or --scene");
+  expectFailure(dir, {"profile", "shadow", "--occluder", "Earth", "--scene", UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28.json",
+                      "--csv", dir / "p.csv"}, "excludes");
 }

@@ -125,3 +125,29 @@ TEST(ProfileCli, LutFromPrecomputeGivesTheSameProfileAsTheCache) {
   EXPECT_NE(ra.err.find("cache hit"), std::string::npos) << ra.err;  // precompute filled the cache
   EXPECT_EQ(readAll(dir / "a.csv"), readAll(dir / "b.csv"));
 }
+
+TEST(ProfileCli, SceneGivesTheOccluderAndTheReceiversDistance) {
+  TempDir dir;
+  const RunResult r = run(UMBRA_EXE, {"profile", "shadow", "--scene",
+                                      UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28.json",
+                                      "--no-atmosphere", "--samples", "4001", "--csv", dir / "p.csv"},
+                          {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  // The 2015-09-28 eclipse happened at perigee: the Moon ~356 850 km behind Earth, during
+  // the partial phase its centre inside the umbra.
+  EXPECT_NE(r.out.find("Moon is 3568"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("km behind Earth"), std::string::npos) << r.out;
+  const std::size_t at = r.out.find("umbra ");
+  ASSERT_NE(at, std::string::npos);
+  const double umbraKm = std::stod(r.out.substr(at + 6));
+  EXPECT_NEAR(crossing(readCsv(dir / "p.csv"), 1e-4), umbraKm, 0.01 * umbraKm);
+  // After the eclipse the scene's Moon is outside the shadow, and --time moves it there.
+  const RunResult later = run(UMBRA_EXE, {"profile", "shadow", "--scene",
+                                          UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28.json",
+                                          "--time", "2015-09-28T05:30:00Z", "--no-atmosphere", "--csv", dir / "q.csv"},
+                              {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  ASSERT_EQ(later.exitCode, 0) << later.err;
+  const std::size_t from = later.out.find(" and ");
+  ASSERT_NE(from, std::string::npos);
+  EXPECT_GT(std::stod(later.out.substr(from + 5)), 9000.0) << later.out;  // km from the axis
+}

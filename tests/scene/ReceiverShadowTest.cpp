@@ -1,5 +1,5 @@
 // Which body shadows the camera's target, and where the target lies in that shadow.
-#include "ReceiverShadow.hpp"
+#include "scene/ReceiverShadow.hpp"
 #include "scene/Time.hpp"
 
 #include <gtest/gtest.h>
@@ -27,7 +27,7 @@ scene::Scene fixedScene(const std::string& target, const std::string& moonY) {
 } // namespace
 
 TEST(ReceiverShadow, FixedGeometry) {
-  const gui::ReceiverShadow r = gui::receiverShadow(fixedScene("Moon", "3000e3"));
+  const scene::ReceiverShadow r = scene::receiverShadow(fixedScene("Moon", "3000e3"));
   ASSERT_TRUE(r.valid) << r.why;
   EXPECT_EQ(r.receiver, "Moon");
   EXPECT_EQ(r.occluder, "Earth");
@@ -46,18 +46,18 @@ TEST(ReceiverShadow, NothingToShadow) {
   // The Moon on the Sun's side of the Earth: no body lies between it and the Sun.
   scene::Scene s = fixedScene("Moon", "0");
   s.bodies[2].positionM.x = kAuM - 384400e3;
-  const gui::ReceiverShadow r = gui::receiverShadow(s);
+  const scene::ReceiverShadow r = scene::receiverShadow(s);
   EXPECT_FALSE(r.valid);
   EXPECT_NE(r.why.find("no body lies between the Sun and Moon"), std::string::npos) << r.why;
 
-  const gui::ReceiverShadow sun = gui::receiverShadow(fixedScene("Sun", "0"));
+  const scene::ReceiverShadow sun = scene::receiverShadow(fixedScene("Sun", "0"));
   EXPECT_FALSE(sun.valid);
   EXPECT_FALSE(sun.why.empty());
 }
 
 TEST(ReceiverShadow, ExampleSceneDuringAndAfterTheEclipse) {
   scene::Scene s = scene::loadScene(kExample);
-  gui::ReceiverShadow r = gui::receiverShadow(s);
+  scene::ReceiverShadow r = scene::receiverShadow(s);
   ASSERT_TRUE(r.valid) << r.why;
   EXPECT_EQ(r.receiver, "Moon");
   EXPECT_EQ(r.occluder, "Earth");
@@ -69,7 +69,7 @@ TEST(ReceiverShadow, ExampleSceneDuringAndAfterTheEclipse) {
 
   // 05:30 UTC, after the last penumbral contact (05:22 UTC): the Moon is out of the penumbra.
   scene::setTime(s, scene::parseUtc("2015-09-28T05:30:00Z"));
-  r = gui::receiverShadow(s);
+  r = scene::receiverShadow(s);
   ASSERT_TRUE(r.valid) << r.why;
   EXPECT_GT(r.offsetM - r.receiverRadiusM, r.penumbraRadiusM);
 }

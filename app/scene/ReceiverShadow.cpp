@@ -1,4 +1,4 @@
-#include "ReceiverShadow.hpp"
+#include "scene/ReceiverShadow.hpp"
 
 #include "ShadowMapping.hpp"
 
@@ -6,19 +6,19 @@
 
 #include <limits>
 
-namespace umbra::gui {
+namespace umbra::scene {
 
-ReceiverShadow receiverShadow(const scene::Scene& scene) {
+ReceiverShadow receiverShadow(const Scene& scene) {
   ReceiverShadow r;
-  const scene::Body* receiver = scene.camera.targetBody.empty() ? nullptr : scene.find(scene.camera.targetBody);
+  const Body* receiver = scene.camera.targetBody.empty() ? nullptr : scene.find(scene.camera.targetBody);
   if (!receiver || receiver->isSun()) {
     r.why = "the camera's target is not a body that can be shadowed";
     return r;
   }
-  const scene::Body& sun = scene.sun();
-  const scene::Body* occluder = nullptr;
+  const Body& sun = scene.sun();
+  const Body* occluder = nullptr;
   double bestV = std::numeric_limits<double>::infinity();
-  for (const scene::Body& body : scene.bodies) {
+  for (const Body& body : scene.bodies) {
     if (&body == receiver || body.isSun()) continue;
     if (!eclipse::occluderInFront(receiver->positionM, sun.positionM, body.positionM)) continue;
     // behind the body as seen from the Sun
@@ -59,4 +59,4 @@ ReceiverShadow receiverShadow(const scene::Scene& scene) {
   return r;
 }
 
-} // namespace umbra::gui
+} // namespace umbra::scene

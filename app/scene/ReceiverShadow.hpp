@@ -1,12 +1,12 @@
 #pragma once
-// Where the camera's target lies in the shadow of another body: the GUI's plot panel
-// shows the cross-section of that body's shadow at the target's distance. Plain C++
-// (no Qt, no VTK).
+// Where the camera's target lies in the shadow of another body: the GUI's plot panel and
+// `umbra profile shadow --scene` show the cross-section of that body's shadow at the
+// target's distance. Plain C++ (no Qt, no VTK).
 #include "scene/Scene.hpp"
 
 #include <string>
 
-namespace umbra::gui {
+namespace umbra::scene {
 
 struct ReceiverShadow {
   /// A receiver (the camera's target body) and an occluder (a body between it and the
@@ -36,4 +36,4 @@ struct ReceiverShadow {
 /// closest to the receiver's centre in units of the penumbra (smallest v of Eq. 4).
 ReceiverShadow receiverShadow(const scene::Scene& scene);
 
-} // namespace umbra::gui
+} // namespace umbra::scene
