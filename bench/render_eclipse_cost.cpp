@@ -1,0 +1,70 @@
+// Frame time of the eclipse shadow in a receiver's shader (DESIGN.md: "eclipse shadow in
+// the Moon's shader", paper Table 1: +8 %). Renders the 2015-09-28 scene's Moon filling a
+// Full-HD frame, once with Earth present as an occluder (one LuT lookup per fragment)
+// and once without any occluder, interleaved, and prints the median frame times.
+// Needs an X display (xvfb-run -a); on llvmpipe the fragment work runs on the CPU.
+//
+//   xvfb-run -a build/bench/umbra-bench-render-eclipse [--frames 40] [--size 1920x1080]
+#include "BodyView.h"
+#include "SceneInputs.h"
+#include "ShadowLut.hpp"
+#include "ShadowLutData.h"
+#include "scene/Scene.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <vtkImageData.h>
+#include <vtkRenderWindow.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+using namespace umbra;
+
+int main(int argc, char** argv) {
+  CLI::App app{"Frame time with and without the eclipse shadow lookup"};
+  int frames = 40, width = 1920, height = 1080;
+  std::string scenePath = UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28.json";
+  app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
+  app.add_option("--width", width)->capture_default_str();
+  app.add_option("--height", height)->capture_default_str();
+  app.add_option("--scene", scenePath)->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  const scene::Scene s = scene::loadScene(scenePath);
+  const render::SceneInputs in = render::sceneInputs(s);
+  const auto lut = filters::toImageData(eclipse::buildAirlessShadowLut({256, 256}));
+  std::vector<render::SphereBody> moonOnly;
+  for (const auto& b : in.bodies)
+    if (b.name == s.camera.targetBody) moonOnly.push_back(b);
+
+  render::BodyView withShadow(width, height, true), without(width, height, true);
+  withShadow.SetBodies(in.sun, in.bodies, lut);
+  without.SetBodies(in.sun, moonOnly, lut);
+  for (render::BodyView* v : {&withShadow, &without}) {
+    v->SetCamera(in.camera);
+    v->SetExposureEV(s.exposureEv);
+    v->Render();  // warm up: shader compilation
+  }
+  std::vector<double> times[2];
+  for (int f = 0; f < frames; ++f) {
+    for (int k = 0; k < 2; ++k) {
+      render::BodyView& v = k == 0 ? withShadow : without;
+      const auto t0 = std::chrono::steady_clock::now();
+      v.Render();
+      v.GetRenderWindow()->WaitForCompletion();
+      times[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+  }
+  double median[2];
+  for (int k = 0; k < 2; ++k) {
+    std::sort(times[k].begin(), times[k].end());
+    median[k] = times[k][times[k].size() / 2];
+  }
+  std::printf("| frame | with the eclipse shadow [ms] | without [ms] | cost |\n|---|---:|---:|---:|\n");
+  std::printf("| %dx%d, %d frames, median | %.2f | %.2f | %+.1f %% |\n", width, height, frames, median[0], median[1],
+              100.0 * (median[0] / median[1] - 1.0));
+  return 0;
+}
