@@ -52,7 +52,6 @@ struct SphereBody {
 class EclipseShading {
  public:
   static constexpr int kMaxOccluders = 4;  ///< per receiver, after leaving itself out
-  static constexpr double kAuM = 1.495978707e11;
 
   EclipseShading();
   ~EclipseShading();

@@ -2,6 +2,8 @@
 
 #include "scene/Units.hpp"
 
+#include "SolarDisc.hpp"  // kSunRadiusM
+
 #include <cctype>
 
 namespace umbra::scene {
@@ -15,7 +17,7 @@ constexpr double kKm = 1000.0;
 // eclipse literature. Distances are mean orbital distances (semi-major axes).
 // Phobos and Deimos are triaxial; their mean radius stands for all three here.
 const std::array<BodyPreset, 6> kPresets = {{
-    {"Sun", 696342 * kKm, 696342 * kKm, 696342 * kKm, "", 0.0, false, 0.0,
+    {"Sun", eclipse::kSunRadiusM, eclipse::kSunRadiusM, eclipse::kSunRadiusM, "", 0.0, false, 0.0,
      {1.0, 1.0, 1.0}},
     {"Earth", 6378.1366 * kKm, 6356.7519 * kKm, 6371.0084 * kKm, "Sun", kAuM, true,
      0.367, {0.30, 0.45, 0.70}},

@@ -6,6 +6,8 @@
 //
 // The bodies (Sun and occluder) are carried into the output's field data for the filters
 // downstream; they do not change the airless table's values and are not part of its key.
+#include "SolarDisc.hpp"
+
 #include <vtkImageAlgorithm.h>
 
 #include <string>
@@ -68,7 +70,7 @@ private:
   double RelativeTolerance = 1e-10;
   std::string OccluderName;
   double OccluderRadiusM = 6371.0084e3;
-  double SunRadiusM = 696342e3;
+  double SunRadiusM = umbra::eclipse::kSunRadiusM;
   double SunOccluderDistanceM = 149597870700.0;
   std::string CacheDirectory;
   bool UseCache = true;
