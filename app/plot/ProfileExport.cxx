@@ -45,6 +45,20 @@ vtkDoubleArray* column(vtkTable* t, const char* name) {
   return c;
 }
 
+std::string xmlEscaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
 void writeSvg(vtkTable* t, const std::string& path, const std::string& title) {
   const double W = 800, H = 500, left = 70, right = 20, top = 40, bottom = 60;
   auto* x = column(t, "offset_km");
@@ -57,7 +71,7 @@ void writeSvg(vtkTable* t, const std::string& path, const std::string& title) {
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
     << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
     << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-    << "<text x=\"" << W / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << title << "</text>\n";
+    << "<text x=\"" << W / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << xmlEscaped(title) << "</text>\n";
   for (int k = 0; k <= 5; ++k) {  // axes and ticks
     const double xv = xMax * k / 5, yv = 0.2 * k;
     s << "<line x1=\"" << px(xv) << "\" y1=\"" << py(0) << "\" x2=\"" << px(xv) << "\" y2=\"" << py(1.05)
