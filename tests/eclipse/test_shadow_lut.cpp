@@ -78,3 +78,40 @@ TEST(ShadowLut, FluxRemovedFromTheCrossSectionEqualsWhatTheOccluderIntercepts) {
   const double expected = 3.14159265358979 * 6371e3 * 6371e3 * std::pow((kAu + x) / kAu, 2);
   EXPECT_NEAR(sum, expected, 2e-4 * expected);
 }
+
+TEST(ShadowLut, StableAtTheExtremes) {
+  const glm::dvec3 sun(-kAu, 0, 0);
+  const Occluder earth{{0, 0, 0}, 6371e3};
+  // 1 m above the ground at midnight and at noon
+  EXPECT_EQ(eclipseFactor({6371e3 + 1.0, 0, 0}, sun, kSunRadiusM, earth, nullptr).r, 0.0);
+  EXPECT_EQ(eclipseFactor({-6371e3 - 1.0, 0, 0}, sun, kSunRadiusM, earth, nullptr).r, 1.0);
+  // 1 m above the ground on the terminator: the Sun's centre sits on the horizontal, and
+  // the horizon dips acos(R / (R + 1 m)) = 5.6e-4 rad = 0.12 solar radii below it, so a
+  // little more than half of the (limb-darkened) disc shows.
+  const double half = eclipseFactor({0, 6371e3 + 1.0, 0}, sun, kSunRadiusM, earth, nullptr).r;
+  EXPECT_GT(half, 0.5);
+  EXPECT_LT(half, 0.5 + 2.0 * 0.12 / 3.14159 * 1.25);  // strip of width 0.12 at the centre's luminance
+
+  // 1e11 m behind Earth on the axis: the Sun's centre covered by a disc of
+  // phi_occ / phi_sun ~ R_occ / R_sun (1 + d / x) -> transit depth R^2 L(0)
+  const glm::dvec3 far(1e11, 0, 0);
+  const double ratio = std::asin(6371e3 / 1e11) / std::asin(kSunRadiusM / (kAu + 1e11));
+  const double depth = 1.0 - eclipseFactor(far, sun, kSunRadiusM, earth, nullptr).r;
+  EXPECT_NEAR(depth, ratio * ratio * limbDarkenedLuminance(0.0, kDefaultLimbDarkening), 1e-3 * depth);
+
+  // An occluder of angular radius 1e-7 rad in front of the Sun's centre
+  const Occluder pebble{{-1e8, 0, 0}, 10.0};
+  const double tiny = 1.0 - eclipseFactor({0, 0, 0}, sun, kSunRadiusM, pebble, nullptr).r;
+  const double r = std::asin(10.0 / 1e8) / std::asin(kSunRadiusM / kAu);
+  EXPECT_NEAR(tiny, r * r * limbDarkenedLuminance(0.0, kDefaultLimbDarkening), 1e-3 * tiny);
+  EXPECT_GT(tiny, 0.0);
+
+  // Through the LuT, the same points give finite values in [0, 1]
+  const ShadowLut lut = buildAirlessShadowLut({64, 64});
+  for (const glm::dvec3& p : {glm::dvec3(6371e3 + 1.0, 0, 0), glm::dvec3(0, 6371e3 + 1.0, 0), far}) {
+    const double f = eclipseFactor(p, sun, kSunRadiusM, earth, &lut).r;
+    EXPECT_TRUE(std::isfinite(f));
+    EXPECT_GE(f, 0.0);
+    EXPECT_LE(f, 1.0);
+  }
+}
