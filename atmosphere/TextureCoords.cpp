@@ -1,0 +1,97 @@
+#include "TextureCoords.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace umbra::atmosphere {
+
+double safeSqrt(double a) { return std::sqrt(std::max(0.0, a)); }
+
+double clampCosine(double mu) { return std::clamp(mu, -1.0, 1.0); }
+
+double distanceToTopBoundaryM(double topRadiusM, double r, double mu) {
+  // disc = r^2 (mu^2 - 1) + top^2, written without cancellation for r <= top.
+  const double t = topRadiusM;
+  const double outside = (t - r) * (t + r);  // top^2 - r^2
+  const double disc = std::max(0.0, outside + r * r * mu * mu);
+  if (mu < 0.0) return std::max(0.0, -r * mu + std::sqrt(disc));
+  const double denominator = r * mu + std::sqrt(disc);
+  if (outside <= 0.0 || denominator <= 0.0) return 0.0;  // at (or above) the top, upwards
+  return outside / denominator;                          // = -r mu + sqrt(disc)
+}
+
+double distanceToBottomBoundaryM(double bottomRadiusM, double r, double mu) {
+  const double b = bottomRadiusM;
+  const double above = (r - b) * (r + b);  // r^2 - bottom^2
+  const double disc = std::max(0.0, r * r * mu * mu - above);
+  const double denominator = -r * mu + std::sqrt(disc);
+  if (denominator <= 0.0) return 0.0;
+  return std::max(0.0, above / denominator);  // = -r mu - sqrt(disc)
+}
+
+bool rayIntersectsGround(double bottomRadiusM, double r, double mu) {
+  const double b = bottomRadiusM;
+  return mu < 0.0 && r * r * mu * mu - (r - b) * (r + b) >= 0.0;
+}
+
+double horizonCosine(double bottomRadiusM, double r) {
+  const double b = bottomRadiusM;
+  return r <= b ? 0.0 : -safeSqrt((r - b) * (r + b)) / r;
+}
+
+double textureCoordFromUnitRange(double x, int textureSize) {
+  const double n = static_cast<double>(textureSize);
+  return 0.5 / n + x * (1.0 - 1.0 / n);
+}
+
+double unitRangeFromTextureCoord(double u, int textureSize) {
+  const double n = static_cast<double>(textureSize);
+  return (u - 0.5 / n) / (1.0 - 1.0 / n);
+}
+
+TransmittanceCoords transmittanceCoordsFromRMu(const ShellRadii& shell, double radiusM, double mu) {
+  const double b = shell.bottomRadiusM, t = shell.topRadiusM;
+  const double r = std::clamp(radiusM, b, t);
+  mu = clampCosine(mu);
+  const double H = std::sqrt((t - b) * (t + b));
+  const double rho = safeSqrt((r - b) * (r + b));
+  const double d = distanceToTopBoundaryM(t, r, mu);
+  const double dMin = t - r, dMax = rho + H;
+  const double xMu = std::clamp((d - dMin) / (dMax - dMin), 0.0, 1.0);
+  return {xMu, std::clamp(rho / H, 0.0, 1.0)};
+}
+
+RadiusMu rMuFromTransmittanceCoords(const ShellRadii& shell, const TransmittanceCoords& c) {
+  const double b = shell.bottomRadiusM, t = shell.topRadiusM;
+  const double xMu = std::clamp(c.xMu, 0.0, 1.0), xR = std::clamp(c.xR, 0.0, 1.0);
+  const double H = std::sqrt((t - b) * (t + b));
+  const double rho = H * xR;
+  const double r = std::min(t, std::sqrt(rho * rho + b * b));
+  if (xMu <= 0.0) return {r, 1.0};
+  if (xMu >= 1.0) return {r, -rho / r};  // the horizon, exactly (0 on the ground)
+  const double outside = H * H * (1.0 - xR) * (1.0 + xR);  // top^2 - r^2 = H^2 - rho^2
+  const double dMin = outside / (t + r), dMax = rho + H;
+  const double d = (1.0 - xMu) * dMin + xMu * dMax;
+  if (d <= 0.0) return {r, 1.0};
+  return {r, clampCosine((outside - d * d) / (2.0 * r * d))};
+}
+
+TransmittanceCoords transmittanceUvFromRMu(const ShellRadii& shell, double radiusM, double mu,
+                                           int width, int height) {
+  const TransmittanceCoords x = transmittanceCoordsFromRMu(shell, radiusM, mu);
+  return {textureCoordFromUnitRange(x.xMu, width), textureCoordFromUnitRange(x.xR, height)};
+}
+
+RadiusMu rMuFromTransmittanceUv(const ShellRadii& shell, const TransmittanceCoords& uv, int width,
+                                int height) {
+  return rMuFromTransmittanceCoords(
+      shell, {unitRangeFromTextureCoord(uv.xMu, width), unitRangeFromTextureCoord(uv.xR, height)});
+}
+
+RadiusMu rMuAtTexel(const ShellRadii& shell, int x, int y, int width, int height) {
+  const double xMu = width > 1 ? static_cast<double>(x) / (width - 1) : 0.0;
+  const double xR = height > 1 ? static_cast<double>(y) / (height - 1) : 0.0;
+  return rMuFromTransmittanceCoords(shell, {xMu, xR});
+}
+
+} // namespace umbra::atmosphere

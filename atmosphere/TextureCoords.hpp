@@ -1,0 +1,70 @@
+#pragma once
+// The transmittance-texture parametrisation of Bruneton's precomputed atmospheric
+// scattering (2017 implementation, after [Bru16]); the eclipse paper (section 4.1, Eq. 2)
+// stores the refraction table in the same space:
+//   H = sqrt(r_top^2 - r_bottom^2), rho = sqrt(r^2 - r_bottom^2),
+//   d = distance to the top boundary along (r, mu), d_min = r_top - r, d_max = rho + H,
+//   x_mu = (d - d_min) / (d_max - d_min),  x_r = rho / H.
+// x_mu = 0 is the zenith, x_mu = 1 the geometric horizon (mu = -rho / r); x_r = 0 the
+// ground, x_r = 1 the top. Rays below the horizon are not in this space. Texture
+// coordinates put the texel centres on x = 0 and x = 1 (GetTextureCoordFromUnitRange).
+// All lengths in metres; mu is the cosine of the view-zenith angle.
+
+namespace umbra::atmosphere {
+
+/// The radii that bound an atmosphere.
+struct ShellRadii {
+  double bottomRadiusM = 0.0;  ///< the ground
+  double topRadiusM = 0.0;     ///< the end of the atmosphere
+};
+
+/// sqrt(max(0, a)).
+double safeSqrt(double a);
+/// mu clamped to [-1, 1].
+double clampCosine(double mu);
+
+/// Distance from radius r along mu to the sphere of radius `topRadiusM` (r <= top), the
+/// far intersection; stable for mu near +-1 and for r near the top.
+double distanceToTopBoundaryM(double topRadiusM, double radiusM, double mu);
+/// Distance from radius r along mu to the ground sphere (near intersection); only
+/// meaningful where rayIntersectsGround().
+double distanceToBottomBoundaryM(double bottomRadiusM, double radiusM, double mu);
+/// True when the straight ray (r, mu) hits the ground sphere: mu < 0 and below the horizon.
+bool rayIntersectsGround(double bottomRadiusM, double radiusM, double mu);
+/// Cosine of the geometric horizon seen from radius r: -sqrt(1 - (bottom / r)^2).
+double horizonCosine(double bottomRadiusM, double radiusM);
+
+/// Bruneton's GetTextureCoordFromUnitRange: x in [0, 1] to a texture coordinate whose
+/// texel centres lie at x = 0 and x = 1.
+double textureCoordFromUnitRange(double x, int textureSize);
+/// Bruneton's GetUnitRangeFromTextureCoord (inverse of the above).
+double unitRangeFromTextureCoord(double u, int textureSize);
+
+/// Unit-range coordinates of Eq. 2 (before the texel-centre mapping).
+struct TransmittanceCoords {
+  double xMu = 0.0;
+  double xR = 0.0;
+};
+struct RadiusMu {
+  double radiusM = 0.0;
+  double mu = 0.0;
+};
+
+/// Eq. 2 for bottom <= r <= top and mu at or above the horizon (r is clamped to the
+/// shell, x_mu to [0, 1]). At r = top every upward ray has x_mu = 0.
+TransmittanceCoords transmittanceCoordsFromRMu(const ShellRadii& shell, double radiusM, double mu);
+/// Inverse of Eq. 2; x_mu = 1 gives exactly the horizon, x_mu = 0 exactly the zenith.
+RadiusMu rMuFromTransmittanceCoords(const ShellRadii& shell, const TransmittanceCoords& coords);
+
+/// As above with texture coordinates (texel centres at the unit-range ends):
+/// Bruneton's GetTransmittanceTextureUvFromRMu / GetRMuFromTransmittanceTextureUv.
+TransmittanceCoords transmittanceUvFromRMu(const ShellRadii& shell, double radiusM, double mu,
+                                           int width, int height);
+RadiusMu rMuFromTransmittanceUv(const ShellRadii& shell, const TransmittanceCoords& uv, int width,
+                                int height);
+
+/// The (r, mu) at the centre of texel (x, y) of a width x height table in this space:
+/// x_mu = x / (width - 1), x_r = y / (height - 1).
+RadiusMu rMuAtTexel(const ShellRadii& shell, int x, int y, int width, int height);
+
+} // namespace umbra::atmosphere
