@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   umbra::cli::addPrecomputeCommand(app, action);
   umbra::cli::addProfileCommand(app, action);
   umbra::cli::addInspectCommand(app, action);
+  umbra::cli::addAtmosphereCommand(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
