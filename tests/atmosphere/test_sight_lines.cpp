@@ -54,3 +54,11 @@ TEST(SightLines, RaysBelowTheHorizonFromTheGroundAreBlocked) {
   EXPECT_GT(grazing.contactAltitudeM, 0.0);
   EXPECT_LT(grazing.contactAltitudeM, 10e3);
 }
+
+TEST(SightLines, RedAndBlueBendByLessThanTwoHundredthsOfADegreeMore) {
+  const Atmosphere earth = loadAtmosphere("earth", kRgb);
+  const double red = traceRay(refractiveMedium(earth, 680.0), earth.bottomRadiusM, 0.0).deviationRad;
+  const double blue = traceRay(refractiveMedium(earth, 440.0), earth.bottomRadiusM, 0.0).deviationRad;
+  EXPECT_GT(blue, red);  // normal dispersion: n - 1 grows towards the blue
+  EXPECT_LT((blue - red) / kDeg, 0.02);
+}

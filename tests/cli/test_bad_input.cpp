@@ -170,3 +170,23 @@ TEST(BadInput, ProfileNeedsABodyOrAScene) {
   expectFailure(dir, {"profile", "shadow", "--occluder", "Earth", "--scene", UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28.json",
                       "--csv", dir / "p.csv"}, "excludes");
 }
+
+TEST(BadInput, UnknownAtmospherePreset) {
+  TempDir dir;
+  expectFailure(dir, {"atmosphere", "refraction", "--preset", "pluto", "--csv", dir / "r.csv"},
+                "unknown atmosphere preset 'pluto' (known: earth, earth-2015-calbuco, mars)");
+}
+
+TEST(BadInput, BadZenithRange) {
+  TempDir dir;
+  expectFailure(dir, {"atmosphere", "refraction", "--preset", "earth", "--zenith-deg", "90:0:1", "--csv", dir / "r.csv"},
+                "--zenith-deg: expected 0 <= FROM <= TO <= 180");
+  expectFailure(dir, {"atmosphere", "refraction", "--preset", "earth", "--zenith-deg", "0-90", "--csv", dir / "r.csv"},
+                "--zenith-deg: expected FROM:TO:STEP");
+}
+
+TEST(BadInput, MalformedAtmosphereFile) {
+  TempDir dir;
+  std::ofstream(dir.path / "bad.json") << "{\"name\": \"x\",\n \"bottomRadius\": }";
+  expectFailure(dir, {"atmosphere", "refraction", "--config", dir / "bad.json", "--csv", dir / "r.csv"}, "bad.json: ");
+}
