@@ -6,7 +6,6 @@
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkPointData.h>
-#include <vtkStringArray.h>
 
 #include <charconv>
 #include <stdexcept>
@@ -18,8 +17,6 @@ std::string number(double x) {  // shortest text that reads back as the same dou
   const auto r = std::to_chars(buf, buf + sizeof buf, x);
   return std::string(buf, r.ptr);
 }
-constexpr const char* kFieldKeys = "umbra_parameter_keys";
-constexpr const char* kFieldValues = "umbra_parameter_values";
 } // namespace
 
 std::string formatNumber(double x) { return number(x); }
@@ -82,29 +79,6 @@ eclipse::ShadowLut fromImageData(vtkImageData* image) {
   lut.height = dims[1];
   lut.rgb.assign(values->GetPointer(0), values->GetPointer(0) + 3 * static_cast<std::size_t>(dims[0]) * dims[1]);
   return lut;
-}
-
-void setFieldParameters(vtkImageData* image, const std::map<std::string, std::string>& parameters) {
-  auto keys = vtkSmartPointer<vtkStringArray>::New();
-  auto values = vtkSmartPointer<vtkStringArray>::New();
-  keys->SetName(kFieldKeys);
-  values->SetName(kFieldValues);
-  for (const auto& [k, v] : parameters) {
-    keys->InsertNextValue(k);
-    values->InsertNextValue(v);
-  }
-  image->GetFieldData()->AddArray(keys);
-  image->GetFieldData()->AddArray(values);
-}
-
-std::map<std::string, std::string> fieldParameters(vtkImageData* image) {
-  std::map<std::string, std::string> out;
-  auto* keys = vtkStringArray::SafeDownCast(image->GetFieldData()->GetAbstractArray(kFieldKeys));
-  auto* values = vtkStringArray::SafeDownCast(image->GetFieldData()->GetAbstractArray(kFieldValues));
-  if (!keys || !values) return out;
-  for (vtkIdType i = 0; i < keys->GetNumberOfValues() && i < values->GetNumberOfValues(); ++i)
-    out[keys->GetValue(i)] = values->GetValue(i);
-  return out;
 }
 
 } // namespace umbra::filters

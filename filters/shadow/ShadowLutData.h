@@ -2,6 +2,7 @@
 // Conversions of the airless shadow LuT between its three forms: the physics library's
 // ShadowLut, the EXR table file (umbra::tables::Table) and VTK's vtkImageData. The
 // parameters that define a LuT are listed here once, for the cache key and the header.
+#include "FieldParameters.h"
 #include "ShadowLut.hpp"
 
 #include <vtkSmartPointer.h>
@@ -36,8 +37,5 @@ vtkSmartPointer<vtkImageData> toImageData(const eclipse::ShadowLut& lut);
 /// Throws std::runtime_error if the image is not a 2D float RGB LuT.
 eclipse::ShadowLut fromImageData(vtkImageData* image);
 
-/// Parameters carried in an image's field data (string key/value pairs).
-void setFieldParameters(vtkImageData* image, const std::map<std::string, std::string>& parameters);
-std::map<std::string, std::string> fieldParameters(vtkImageData* image);
 
 } // namespace umbra::filters
