@@ -1,0 +1,678 @@
+// Atmosphere: the model's sums, and loadAtmosphere: JSON -> validated Atmosphere
+// (format: docs/atmosphere-format.md).
+#include "Atmosphere.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <initializer_list>
+#include <sstream>
+
+#ifndef UMBRA_ATMOSPHERE_PRESET_DIR
+#define UMBRA_ATMOSPHERE_PRESET_DIR "atmosphere/presets"
+#endif
+
+namespace umbra::atmosphere {
+
+namespace fs = std::filesystem;
+
+// ---- the model --------------------------------------------------------------------------
+
+double Atmosphere::refractivity(double altitudeM, double wavelengthNm) const {
+  double rho = 1.0;
+  if (!refractivityFollows.empty()) {
+    const Component* c = find(refractivityFollows);
+    rho = c ? c->density.at(altitudeM) : 0.0;
+  }
+  return seaLevelRefractivity * dispersionRatio(dispersion, wavelengthNm, refractivityReferenceWavelengthNm) *
+         rho;
+}
+
+std::vector<double> Atmosphere::scatteringPerM(double altitudeM) const {
+  std::vector<double> sum(wavelengthsNm.size(), 0.0);
+  for (const Component& c : components) {
+    const double rho = c.density.at(altitudeM);
+    if (rho == 0.0) continue;
+    for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += rho * c.scatteringPerM[i];
+  }
+  return sum;
+}
+
+std::vector<double> Atmosphere::absorptionPerM(double altitudeM) const {
+  std::vector<double> sum(wavelengthsNm.size(), 0.0);
+  for (const Component& c : components) {
+    const double rho = c.density.at(altitudeM);
+    if (rho == 0.0) continue;
+    for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += rho * c.absorptionPerM[i];
+  }
+  return sum;
+}
+
+std::vector<double> Atmosphere::extinctionPerM(double altitudeM) const {
+  std::vector<double> sum(wavelengthsNm.size(), 0.0);
+  for (const Component& c : components) {
+    const double rho = c.density.at(altitudeM);
+    if (rho == 0.0) continue;
+    for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += rho * c.extinctionPerM(i);
+  }
+  return sum;
+}
+
+std::vector<double> Atmosphere::verticalOpticalDepth(const Component& c, double fromAltitudeM,
+                                                     double toAltitudeM) const {
+  const double column = c.density.integral(fromAltitudeM, toAltitudeM);
+  std::vector<double> tau(wavelengthsNm.size());
+  for (std::size_t i = 0; i < tau.size(); ++i) tau[i] = column * c.extinctionPerM(i);
+  return tau;
+}
+
+std::vector<double> Atmosphere::verticalOpticalDepth(double fromAltitudeM, double toAltitudeM) const {
+  std::vector<double> sum(wavelengthsNm.size(), 0.0);
+  for (const Component& c : components) {
+    const std::vector<double> tau = verticalOpticalDepth(c, fromAltitudeM, toAltitudeM);
+    for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += tau[i];
+  }
+  return sum;
+}
+
+const Component* Atmosphere::find(const std::string& componentName) const {
+  for (const Component& c : components)
+    if (c.name == componentName) return &c;
+  return nullptr;
+}
+
+const Component& Atmosphere::component(const std::string& componentName) const {
+  const Component* c = find(componentName);
+  if (c == nullptr) throw std::out_of_range(name + ": no component '" + componentName + "'");
+  return *c;
+}
+
+std::string Atmosphere::validate() const {
+  if (!std::isfinite(bottomRadiusM) || !(bottomRadiusM > 0.0)) return "bottomRadiusM: expected a positive radius";
+  if (!std::isfinite(topRadiusM) || !(topRadiusM > bottomRadiusM))
+    return "topRadiusM: expected a radius greater than bottomRadiusM";
+  if (groundAlbedo.size() != wavelengthsNm.size()) return "groundAlbedo: expected one value per wavelength";
+  for (double a : groundAlbedo)
+    if (!std::isfinite(a) || a < 0.0 || a > 1.0) return "groundAlbedo: expected values in [0, 1]";
+  if (!std::isfinite(seaLevelRefractivity) || seaLevelRefractivity < 0.0)
+    return "refraction.seaLevelRefractivity: expected a finite number >= 0";
+  for (const Component& c : components) {
+    const std::string problem = c.validate(wavelengthsNm.size());
+    if (!problem.empty()) return "components." + c.name + "." + problem;
+  }
+  return {};
+}
+
+// ---- presets ----------------------------------------------------------------------------
+
+std::string presetDirectory() {
+  if (const char* dir = std::getenv("UMBRA_ATMOSPHERE_PRESET_DIR"); dir != nullptr && *dir != '\0')
+    return dir;
+  return UMBRA_ATMOSPHERE_PRESET_DIR;
+}
+
+std::vector<std::string> presetNames() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(presetDirectory(), ec))
+    if (entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// ---- loading ----------------------------------------------------------------------------
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+std::string number(double x) {
+  std::ostringstream out;
+  out.precision(10);
+  out << x;
+  return out.str();
+}
+
+std::string got(const json& value) {
+  std::string text = value.dump();
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return "got " + text;
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string list;
+  for (const std::string& s : items) list += (list.empty() ? "" : ", ") + s;
+  return list;
+}
+
+bool looksLikePath(const std::string& s) {
+  return s.find('/') != std::string::npos ||
+         (s.size() > 5 && s.compare(s.size() - 5, 5, ".json") == 0);
+}
+
+/// Reads typed values out of the JSON tree; every failure names the file and the field.
+class Reader {
+public:
+  Reader(std::string file, const std::vector<double>& wavelengthsNm)
+      : file_(std::move(file)), wavelengths_(wavelengthsNm) {}
+
+  const std::vector<double>& wavelengths() const { return wavelengths_; }
+
+  [[noreturn]] void fail(const std::string& field, const std::string& message) const {
+    throw AtmosphereError(file_ + ": " + (field.empty() ? "" : field + ": ") + message);
+  }
+
+  /// Fails on a key that is not listed.
+  void object(const json& value, const std::string& field, std::initializer_list<const char*> keys) const {
+    if (!value.is_object()) fail(field, "expected an object, " + got(value));
+    for (const auto& item : value.items()) {
+      bool known = false;
+      std::string list;
+      for (const char* key : keys) {
+        known = known || item.key() == key;
+        list += (list.empty() ? "" : ", ") + std::string(key);
+      }
+      if (!known)
+        fail(field.empty() ? item.key() : field + "." + item.key(),
+             "unknown key (expected one of: " + list + ")");
+    }
+  }
+
+  const json& require(const json& object, const char* key, const std::string& field) const {
+    if (!object.contains(key)) fail(field, std::string("missing required key '") + key + "'");
+    return object[key];
+  }
+
+  static std::string join(const std::string& field, const std::string& key) {
+    return field.empty() ? key : field + "." + key;
+  }
+
+  std::string string(const json& value, const std::string& field) const {
+    if (!value.is_string() || value.get<std::string>().empty())
+      fail(field, "expected a non-empty string, " + got(value));
+    return value.get<std::string>();
+  }
+
+  /// A finite number that passes `ok`; `expected` says what passes.
+  double number(const json& value, const std::string& field, const std::string& expected,
+                const std::function<bool(double)>& ok) const {
+    if (!value.is_number()) fail(field, "expected " + expected + ", " + got(value));
+    const double x = value.get<double>();
+    if (!std::isfinite(x) || !ok(x)) fail(field, "expected " + expected + ", " + got(value));
+    return x;
+  }
+
+  double positive(const json& value, const std::string& field, const std::string& what) const {
+    return number(value, field, "a positive " + what, [](double x) { return x > 0.0; });
+  }
+
+  std::vector<double> numbers(const json& value, const std::string& field) const {
+    if (!value.is_array()) fail(field, "expected an array of numbers, " + got(value));
+    std::vector<double> out;
+    for (std::size_t i = 0; i < value.size(); ++i)
+      out.push_back(number(value[i], field + "[" + std::to_string(i) + "]", "a finite number",
+                           [](double) { return true; }));
+    return out;
+  }
+
+  /// A number (the same at every wavelength) or {"wavelengthsNm": [...], "values": [...]}
+  /// (linear in between, the end values beyond), evaluated at the load's wavelengths; each
+  /// value must pass `ok`.
+  std::vector<double> spectrum(const json& value, const std::string& field, const std::string& expected,
+                               const std::function<bool(double)>& ok) const {
+    if (value.is_number()) {
+      const double x = number(value, field, expected, ok);
+      return std::vector<double>(wavelengths_.size(), x);
+    }
+    if (!value.is_object())
+      fail(field, "expected " + expected + " or {\"wavelengthsNm\": [...], \"values\": [...]}, " + got(value));
+    object(value, field, {"wavelengthsNm", "values"});
+    WavelengthTable table;
+    table.wavelengthsNm = numbers(require(value, "wavelengthsNm", field), field + ".wavelengthsNm");
+    table.values = numbers(require(value, "values", field), field + ".values");
+    const std::string problem = table.validate(/*allowNegative=*/true);
+    if (!problem.empty()) failWithKey(field, problem);
+    for (std::size_t i = 0; i < table.values.size(); ++i)
+      if (!ok(table.values[i]))
+        fail(field + ".values[" + std::to_string(i) + "]",
+             "expected " + expected + ", got " + atmosphere::number(table.values[i]));
+    return table.at(wavelengths_);
+  }
+
+  /// "key: message" (from a validate()) -> fail(field.key, message).
+  [[noreturn]] void failWithKey(const std::string& field, const std::string& problem) const {
+    const std::size_t colon = problem.find(": ");
+    if (colon == std::string::npos) fail(field, problem);
+    fail(join(field, problem.substr(0, colon)), problem.substr(colon + 2));
+  }
+
+private:
+  std::string file_;
+  std::vector<double> wavelengths_;
+};
+
+json parseJson(const std::string& text, const std::string& file) {
+  try {
+    return json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    // byte is the 1-based index of the last character read.
+    const std::size_t end = std::min<std::size_t>(e.byte, text.size());
+    std::size_t line = 1, column = 0;
+    for (std::size_t i = 0; i + 1 < end; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        column = 0;
+      } else {
+        ++column;
+      }
+    }
+    ++column;
+    std::string reason = e.what();
+    const std::size_t at = reason.find("parse error");
+    const std::size_t colon = at == std::string::npos ? at : reason.find(": ", at);
+    if (colon != std::string::npos) reason = reason.substr(colon + 2);
+    throw AtmosphereError(file + ": invalid JSON at line " + std::to_string(line) + ", column " +
+                          std::to_string(column) + ": " + reason);
+  }
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw AtmosphereError(path + ": cannot open file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string unknownPresetMessage(const std::string& name) {
+  return "unknown atmosphere preset '" + name + "' (known: " + join(presetNames()) + ")";
+}
+
+/// The document with "extends" resolved: the base (a preset name or a path relative to
+/// `directory`) merge-patched (RFC 7386) with the rest of this one.
+json resolveExtends(json doc, const std::string& file, const std::string& directory, int depth) {
+  if (!doc.is_object() || !doc.contains("extends")) return doc;
+  const Reader in(file, {});
+  if (depth > 8) in.fail("extends", "expected at most 8 levels of 'extends' (a cycle?)");
+  const std::string base = in.string(doc["extends"], "extends");
+  std::string basePath;
+  if (looksLikePath(base)) {
+    basePath = fs::path(base).is_absolute() ? base : (fs::path(directory) / base).string();
+  } else {
+    basePath = (fs::path(presetDirectory()) / (base + ".json")).string();
+    if (!fs::exists(basePath)) in.fail("extends", unknownPresetMessage(base));
+  }
+  if (!fs::exists(basePath)) in.fail("extends", "no such file '" + basePath + "'");
+  json merged = resolveExtends(parseJson(readFile(basePath), basePath), basePath,
+                               fs::path(basePath).parent_path().string(), depth + 1);
+  doc.erase("extends");
+  merged.merge_patch(doc);
+  return merged;
+}
+
+// ---- parts of the document --------------------------------------------------------------
+
+DensityProfile parseProfile(const Reader& in, const json& value, const std::string& field) {
+  if (!value.is_object()) in.fail(field, "expected an object, " + got(value));
+  const std::string type = in.string(in.require(value, "type", field), field + ".type");
+  auto finite = [&](const char* key) {
+    return in.number(in.require(value, key, field), Reader::join(field, key), "a finite number in metres",
+                     [](double) { return true; });
+  };
+  DensityProfile p;
+  if (type == "exponential" || type == "double-exponential") {
+    in.object(value, field, {"type", "scaleHeightM"});
+    p.kind = type == "exponential" ? DensityProfile::Kind::Exponential : DensityProfile::Kind::DoubleExponential;
+    p.scaleHeightM = finite("scaleHeightM");
+  } else if (type == "tent") {
+    in.object(value, field, {"type", "centreM", "halfWidthM"});
+    p.kind = DensityProfile::Kind::Tent;
+    p.centreM = finite("centreM");
+    p.halfWidthM = finite("halfWidthM");
+  } else if (type == "tabulated") {
+    in.object(value, field, {"type", "altitudesM", "values"});
+    p.kind = DensityProfile::Kind::Tabulated;
+    p.altitudesM = in.numbers(in.require(value, "altitudesM", field), field + ".altitudesM");
+    p.values = in.numbers(in.require(value, "values", field), field + ".values");
+  } else {
+    in.fail(field + ".type",
+            "expected one of: exponential, double-exponential, tent, tabulated, " + got(value["type"]));
+  }
+  const std::string problem = p.validate();
+  if (!problem.empty()) in.failWithKey(field, problem);
+  return p;
+}
+
+std::vector<PhaseFunction> parsePhase(const Reader& in, const json& value, const std::string& field) {
+  if (!value.is_object()) in.fail(field, "expected an object, " + got(value));
+  const std::string type = in.string(in.require(value, "type", field), field + ".type");
+  const std::size_t n = in.wavelengths().size();
+  const auto inOpen = [](double g) { return g > -1.0 && g < 1.0; };
+  const auto unit = [](double a) { return a >= 0.0 && a <= 1.0; };
+  auto g = [&](const char* key) {
+    return in.spectrum(in.require(value, key, field), Reader::join(field, key), "a number in (-1, 1)", inOpen);
+  };
+  std::vector<PhaseFunction> phases;
+  if (type == "isotropic" || type == "rayleigh" || type == "penndorf") {
+    in.object(value, field, {"type"});
+    const PhaseFunction p = type == "isotropic" ? PhaseFunction::isotropic()
+                            : type == "rayleigh" ? PhaseFunction::rayleigh()
+                                                 : PhaseFunction::penndorf();
+    phases.assign(n, p);
+  } else if (type == "henyey-greenstein" || type == "cornette-shanks") {
+    in.object(value, field, {"type", "g"});
+    for (double gi : g("g"))
+      phases.push_back(type == "henyey-greenstein" ? PhaseFunction::henyeyGreenstein(gi)
+                                                   : PhaseFunction::cornetteShanks(gi));
+  } else if (type == "double-henyey-greenstein") {
+    in.object(value, field, {"type", "g1", "g2", "alpha"});
+    const std::vector<double> g1 = g("g1"), g2 = g("g2");
+    const std::vector<double> alpha =
+        in.spectrum(in.require(value, "alpha", field), field + ".alpha", "a number in [0, 1]", unit);
+    for (std::size_t i = 0; i < n; ++i) phases.push_back(PhaseFunction::doubleHenyeyGreenstein(g1[i], g2[i], alpha[i]));
+  } else if (type == "tabulated") {
+    in.object(value, field, {"type", "cosTheta", "anglesDeg", "values", "wavelengthsNm"});
+    const bool byAngle = value.contains("anglesDeg");
+    if (byAngle == value.contains("cosTheta")) in.fail(field, "expected exactly one of 'cosTheta' and 'anglesDeg'");
+    const std::string axisKey = byAngle ? "anglesDeg" : "cosTheta";
+    const std::vector<double> axis = in.numbers(value[axisKey], field + "." + axisKey);
+    const json& values = in.require(value, "values", field);
+    auto make = [&](const std::vector<double>& v, const std::string& valuesField) {
+      try {
+        return byAngle ? PhaseFunction::tabulatedDegrees(axis, v) : PhaseFunction::tabulated(axis, v);
+      } catch (const std::invalid_argument& e) {
+        in.fail(valuesField, e.what());
+      }
+    };
+    if (!value.contains("wavelengthsNm")) {
+      phases.assign(n, make(in.numbers(values, field + ".values"), field));
+    } else {
+      // one table per wavelength; between them the normalised tables are mixed linearly
+      const std::vector<double> lambdas = in.numbers(value["wavelengthsNm"], field + ".wavelengthsNm");
+      if (!values.is_array() || values.size() != lambdas.size())
+        in.fail(field + ".values", "expected one array of values per wavelength (" +
+                                       std::to_string(lambdas.size()) + "), " + got(values));
+      std::vector<PhaseFunction> tables;
+      for (std::size_t j = 0; j < lambdas.size(); ++j) {
+        const std::string fj = field + ".values[" + std::to_string(j) + "]";
+        if (!(lambdas[j] > 0.0) || (j > 0 && !(lambdas[j] > lambdas[j - 1])))
+          in.fail(field + ".wavelengthsNm[" + std::to_string(j) + "]",
+                  "expected strictly increasing positive wavelengths, got " + number(lambdas[j]));
+        tables.push_back(make(in.numbers(values[j], fj), fj));
+      }
+      for (double lambda : in.wavelengths()) {
+        WavelengthTable weight;
+        weight.wavelengthsNm = lambdas;
+        std::vector<double> mixed(tables.front().values().size(), 0.0);
+        for (std::size_t j = 0; j < tables.size(); ++j) {
+          weight.values.assign(lambdas.size(), 0.0);
+          weight.values[j] = 1.0;
+          const double w = weight.at(lambda);
+          for (std::size_t k = 0; k < mixed.size(); ++k) mixed[k] += w * tables[j].values()[k];
+        }
+        phases.push_back(PhaseFunction::tabulated(tables.front().cosThetaSamples(), mixed));
+      }
+    }
+  } else {
+    in.fail(field + ".type",
+            "expected one of: isotropic, rayleigh, penndorf, henyey-greenstein, double-henyey-greenstein, "
+            "cornette-shanks, tabulated, " +
+                got(value["type"]));
+  }
+  return phases;
+}
+
+struct Optics {
+  std::vector<double> scattering, absorption;
+  bool defaultRayleighPhase = false;
+};
+
+/// The refractive-index part of a "rayleigh" model: n - 1 per wavelength and the number
+/// density it holds at.
+std::pair<std::vector<double>, double> parseRefractiveIndex(const Reader& in, const json& value,
+                                                            const std::string& field) {
+  const auto positiveN = [](double x) { return x > 0.0; };
+  if (!value.is_object()) in.fail(field, "expected an object, " + got(value));
+  std::vector<double> refractivity;
+  double atN = kStandardNumberDensityPerM3;
+  if (value.contains("formula")) {
+    in.object(value, field, {"formula", "atNumberDensityPerM3"});
+    const std::string formula = in.string(value["formula"], field + ".formula");
+    double lo = 0.0, hi = 0.0;
+    std::function<double(double)> f;
+    if (formula == "peck-reeder-1972") {
+      lo = 230.0, hi = 1690.0, f = airRefractivityPeckReeder;
+    } else if (formula == "bideau-mehu-1973-co2") {
+      lo = 180.0, hi = 1700.0, f = co2RefractivityBideauMehu;
+    } else {
+      in.fail(field + ".formula", "expected one of: peck-reeder-1972, bideau-mehu-1973-co2, " +
+                                      got(value["formula"]));
+    }
+    for (double lambda : in.wavelengths()) {
+      if (lambda < lo || lambda > hi)
+        in.fail(field + ".formula", "wavelength " + number(lambda) + " nm is outside the formula's range (" +
+                                        number(lo) + "-" + number(hi) + " nm)");
+      refractivity.push_back(f(lambda));
+    }
+    if (value.contains("atNumberDensityPerM3"))
+      atN = in.positive(value["atNumberDensityPerM3"], field + ".atNumberDensityPerM3", "number density in 1/m^3");
+  } else {
+    in.object(value, field, {"refractivity", "atNumberDensityPerM3"});
+    refractivity = in.spectrum(in.require(value, "refractivity", field), field + ".refractivity",
+                               "n - 1, a positive number below 1", [](double r) { return r > 0.0 && r < 1.0; });
+    atN = in.number(in.require(value, "atNumberDensityPerM3", field), field + ".atNumberDensityPerM3",
+                    "a positive number density in 1/m^3", positiveN);
+  }
+  return {refractivity, atN};
+}
+
+Optics parseOptics(const Reader& in, const json& value, const std::string& field) {
+  if (!value.is_object()) in.fail(field, "expected an object, " + got(value));
+  const std::string model = in.string(in.require(value, "model", field), field + ".model");
+  const std::vector<double>& lambdas = in.wavelengths();
+  const std::size_t n = lambdas.size();
+  const auto nonNegative = [](double x) { return x >= 0.0; };
+  const auto positive = [](double x) { return x > 0.0; };
+  const std::string coefficient = "a coefficient >= 0 in 1/m";
+  auto key = [&](const char* k) { return Reader::join(field, k); };
+  auto density = [&](const char* k) {
+    return in.number(in.require(value, k, field), key(k), "a positive number density in 1/m^3", positive);
+  };
+  auto optionalSpectrum = [&](const char* k) {
+    return value.contains(k) ? in.spectrum(value[k], key(k), coefficient, nonNegative) : std::vector<double>(n, 0.0);
+  };
+  auto vanDeHulst = [&](const json& v, const std::string& f) {
+    const double turbidity = in.number(in.require(v, "turbidity", f), Reader::join(f, "turbidity"),
+                                       "a turbidity >= 1", [](double t) { return t >= 1.0; });
+    const double nu = in.number(in.require(v, "jungeExponent", f), Reader::join(f, "jungeExponent"),
+                                "a Junge exponent in [2, 6]", [](double x) { return x >= 2.0 && x <= 6.0; });
+    const std::vector<double> K = in.spectrum(in.require(v, "K", f), Reader::join(f, "K"), "a number >= 0", nonNegative);
+    std::vector<double> beta(n);
+    for (std::size_t i = 0; i < n; ++i) beta[i] = vanDeHulstScatteringPerM(turbidity, nu, K[i], lambdas[i]);
+    return beta;
+  };
+
+  Optics o;
+  if (model == "rayleigh") {
+    in.object(value, field, {"model", "refractiveIndex", "numberDensityPerM3", "depolarisation"});
+    const auto [refractivity, atN] = parseRefractiveIndex(in, in.require(value, "refractiveIndex", field), key("refractiveIndex"));
+    const double N = density("numberDensityPerM3");
+    const double delta = in.number(in.require(value, "depolarisation", field), key("depolarisation"),
+                                   "a depolarisation factor in [0, 0.5]", [](double d) { return d >= 0.0 && d <= 0.5; });
+    for (std::size_t i = 0; i < n; ++i)
+      o.scattering.push_back(rayleighCrossSectionM2(refractivity[i], atN, lambdas[i], delta) * N);
+    o.absorption.assign(n, 0.0);
+    o.defaultRayleighPhase = true;
+  } else if (model == "absorber") {
+    in.object(value, field, {"model", "numberDensityPerM3", "crossSectionM2"});
+    const double N = density("numberDensityPerM3");
+    const std::vector<double> sigma =
+        in.spectrum(in.require(value, "crossSectionM2", field), key("crossSectionM2"), "a cross-section >= 0 in m^2", nonNegative);
+    o.scattering.assign(n, 0.0);
+    for (double s : sigma) o.absorption.push_back(N * s);
+  } else if (model == "coefficients") {
+    in.object(value, field, {"model", "scatteringPerM", "absorptionPerM"});
+    o.scattering = in.spectrum(in.require(value, "scatteringPerM", field), key("scatteringPerM"), coefficient, nonNegative);
+    o.absorption = optionalSpectrum("absorptionPerM");
+  } else if (model == "van-de-hulst") {
+    in.object(value, field, {"model", "turbidity", "jungeExponent", "K", "absorptionPerM"});
+    o.scattering = vanDeHulst(value, field);
+    o.absorption = optionalSpectrum("absorptionPerM");
+  } else if (model == "anomalous-diffraction") {
+    in.object(value, field, {"model", "radiusM", "numberDensityPerM3", "refractiveIndexReal", "refractiveIndexImag",
+                             "vanDeHulst"});
+    const double r = in.number(in.require(value, "radiusM", field), key("radiusM"),
+                               "a particle radius in (0, 0.01] m", [](double x) { return x > 0.0 && x <= 0.01; });
+    const double N = density("numberDensityPerM3");
+    const std::vector<double> m = in.spectrum(in.require(value, "refractiveIndexReal", field), key("refractiveIndexReal"),
+                                              "a real refractive index > 1", [](double x) { return x > 1.0; });
+    const std::vector<double> k =
+        in.spectrum(in.require(value, "refractiveIndexImag", field), key("refractiveIndexImag"),
+                    "an imaginary refractive index >= 0", nonNegative);
+    std::vector<double> extinction(n);
+    for (std::size_t i = 0; i < n; ++i)
+      extinction[i] = anomalousDiffractionExtinctionPerM(r, m[i], k[i], N, lambdas[i]);
+    if (value.contains("vanDeHulst")) {
+      // Costa's combination: scattering from Eq. 17, extinction from Eq. 20.
+      const std::string f = key("vanDeHulst");
+      in.object(value["vanDeHulst"], f, {"turbidity", "jungeExponent", "K"});
+      o.scattering = vanDeHulst(value["vanDeHulst"], f);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (o.scattering[i] > extinction[i] * (1.0 + 1e-12))
+          in.fail(f, "at " + number(lambdas[i]) + " nm the Eq. 17 scattering " + number(o.scattering[i]) +
+                         " 1/m exceeds the Eq. 20 extinction " + number(extinction[i]) + " 1/m");
+        o.absorption.push_back(std::max(0.0, extinction[i] - o.scattering[i]));
+      }
+    } else {
+      constexpr double kPi = 3.14159265358979323846;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double absorption = kPi * r * r * anomalousDiffractionAbsorptionEfficiency(r, k[i], lambdas[i]) * N;
+        o.absorption.push_back(std::min(absorption, extinction[i]));
+        o.scattering.push_back(extinction[i] - o.absorption.back());
+      }
+    }
+  } else {
+    in.fail(key("model"), "expected one of: rayleigh, absorber, coefficients, van-de-hulst, anomalous-diffraction, " +
+                              got(value["model"]));
+  }
+  return o;
+}
+
+Component parseComponent(const Reader& in, const std::string& name, const json& value, const std::string& field) {
+  in.object(value, field, {"description", "density", "densityScale", "optics", "phase"});
+  Component c;
+  c.name = name;
+  c.density = parseProfile(in, in.require(value, "density", field), field + ".density");
+  const double scale = value.contains("densityScale")
+                           ? in.positive(value["densityScale"], field + ".densityScale", "factor")
+                           : 1.0;
+  Optics o = parseOptics(in, in.require(value, "optics", field), field + ".optics");
+  for (double& b : o.scattering) b *= scale;
+  for (double& b : o.absorption) b *= scale;
+  c.scatteringPerM = std::move(o.scattering);
+  c.absorptionPerM = std::move(o.absorption);
+  if (value.contains("phase")) {
+    c.phases = parsePhase(in, value["phase"], field + ".phase");
+  } else if (o.defaultRayleighPhase) {
+    c.phases.assign(in.wavelengths().size(), PhaseFunction::rayleigh());
+  } else if (c.scatters()) {
+    in.fail(field, "missing required key 'phase' (the component scatters)");
+  } else {
+    c.phases.assign(in.wavelengths().size(), PhaseFunction::isotropic());
+  }
+  const std::string problem = c.validate(in.wavelengths().size());
+  if (!problem.empty()) in.failWithKey(field, problem);
+  return c;
+}
+
+Atmosphere build(const Reader& in, const json& doc, const std::string& defaultName) {
+  in.object(doc, "",
+            {"name", "description", "bottomRadiusM", "topRadiusM", "groundAlbedo", "refraction", "components"});
+  Atmosphere a;
+  a.wavelengthsNm = in.wavelengths();
+  a.name = doc.contains("name") ? in.string(doc["name"], "name") : defaultName;
+  if (doc.contains("description")) in.string(doc["description"], "description");
+  a.bottomRadiusM = in.positive(in.require(doc, "bottomRadiusM", ""), "bottomRadiusM", "radius in metres");
+  const json& top = in.require(doc, "topRadiusM", "");
+  a.topRadiusM = in.positive(top, "topRadiusM", "radius in metres");
+  if (!(a.topRadiusM > a.bottomRadiusM))
+    in.fail("topRadiusM", "expected a radius greater than bottomRadiusM (" + number(a.bottomRadiusM) + "), " + got(top));
+  a.groundAlbedo = doc.contains("groundAlbedo")
+                       ? in.spectrum(doc["groundAlbedo"], "groundAlbedo", "an albedo in [0, 1]",
+                                     [](double x) { return x >= 0.0 && x <= 1.0; })
+                       : std::vector<double>(a.wavelengthsNm.size(), 0.1);
+
+  const json& components = in.require(doc, "components", "");
+  if (!components.is_object() || components.empty())
+    in.fail("components", "expected a non-empty object of named components, " + got(components));
+  for (const auto& item : components.items()) {
+    if (item.key().empty()) in.fail("components", "expected non-empty component names");
+    a.components.push_back(parseComponent(in, item.key(), item.value(), "components." + item.key()));
+  }
+
+  a.refractivityFollows.clear();
+  if (doc.contains("refraction")) {
+    const json& r = doc["refraction"];
+    in.object(r, "refraction", {"seaLevelRefractivity", "referenceWavelengthNm", "dispersion", "followsComponent"});
+    a.seaLevelRefractivity = in.number(in.require(r, "seaLevelRefractivity", "refraction"), "refraction.seaLevelRefractivity",
+                                       "n - 1, a number in [0, 1)", [](double x) { return x >= 0.0 && x < 1.0; });
+    if (r.contains("referenceWavelengthNm"))
+      a.refractivityReferenceWavelengthNm =
+          in.positive(r["referenceWavelengthNm"], "refraction.referenceWavelengthNm", "wavelength in nm");
+    if (r.contains("dispersion")) {
+      const std::string d = in.string(r["dispersion"], "refraction.dispersion");
+      if (d == "none") a.dispersion = Dispersion::None;
+      else if (d == "peck-reeder-1972") a.dispersion = Dispersion::PeckReeder1972Air;
+      else if (d == "bideau-mehu-1973-co2") a.dispersion = Dispersion::BideauMehu1973CO2;
+      else in.fail("refraction.dispersion", "expected one of: none, peck-reeder-1972, bideau-mehu-1973-co2, " + got(r["dispersion"]));
+    }
+    a.refractivityFollows = r.contains("followsComponent") ? in.string(r["followsComponent"], "refraction.followsComponent")
+                                                           : std::string("molecules");
+    if (a.find(a.refractivityFollows) == nullptr) {
+      std::vector<std::string> names;
+      for (const Component& c : a.components) names.push_back(c.name);
+      in.fail("refraction.followsComponent",
+              "expected the name of a component (" + join(names) + "), got '" + a.refractivityFollows + "'");
+    }
+  }
+  const std::string problem = a.validate();
+  if (!problem.empty()) in.failWithKey("", problem);
+  return a;
+}
+
+void checkWavelengths(const std::vector<double>& wavelengthsNm, const std::string& file) {
+  if (wavelengthsNm.empty()) throw AtmosphereError(file + ": wavelengthsNm: expected at least one wavelength");
+  for (std::size_t i = 0; i < wavelengthsNm.size(); ++i)
+    if (!std::isfinite(wavelengthsNm[i]) || !(wavelengthsNm[i] > 0.0))
+      throw AtmosphereError(file + ": wavelengthsNm[" + std::to_string(i) + "]: expected a positive wavelength in nm, got " +
+                            number(wavelengthsNm[i]));
+}
+
+}  // namespace
+
+Atmosphere parseAtmosphere(const std::string& jsonText, const std::string& sourceName,
+                           const std::vector<double>& wavelengthsNm, const std::string& baseDirectory) {
+  checkWavelengths(wavelengthsNm, sourceName);
+  const json doc = resolveExtends(parseJson(jsonText, sourceName), sourceName, baseDirectory, 0);
+  const Reader in(sourceName, wavelengthsNm);
+  Atmosphere a = build(in, doc, fs::path(sourceName).stem().string());
+  a.source = sourceName;
+  return a;
+}
+
+Atmosphere loadAtmosphere(const std::string& presetNameOrPath, const std::vector<double>& wavelengthsNm) {
+  std::string path = presetNameOrPath;
+  if (!looksLikePath(presetNameOrPath)) {
+    path = (fs::path(presetDirectory()) / (presetNameOrPath + ".json")).string();
+    if (presetNameOrPath.empty() || !fs::exists(path))
+      throw AtmosphereError(unknownPresetMessage(presetNameOrPath));
+  }
+  return parseAtmosphere(readFile(path), path, wavelengthsNm, fs::path(path).parent_path().string());
+}
+
+}  // namespace umbra::atmosphere

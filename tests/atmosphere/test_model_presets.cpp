@@ -1,0 +1,101 @@
+// The shipped presets: they load for 3 and 15 wavelengths, their sums, refractivity and
+// the 2015 Calbuco variant's aerosol optical depth.
+#include "Atmosphere.hpp"
+#include "ModelTestSupport.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace umbra::atmosphere;
+
+TEST(ModelPresets, TheThreePresetsAreListed) {
+  const std::vector<std::string> names = presetNames();
+  for (const char* name : {"earth", "mars", "earth-2015-calbuco"})
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+}
+
+TEST(ModelPresets, EveryPresetLoadsWithFiniteNonNegativeCoefficients) {
+  for (const std::string& name : presetNames()) {
+    for (const auto& wl : {umbra::test::threeWavelengthsNm(), umbra::test::fifteenWavelengthsNm()}) {
+      const Atmosphere a = loadAtmosphere(name, wl);
+      EXPECT_EQ(a.validate(), "") << name;
+      EXPECT_EQ(a.wavelengthsNm, wl);
+      EXPECT_GT(a.topRadiusM, a.bottomRadiusM);
+      ASSERT_FALSE(a.components.empty());
+      for (const Component& c : a.components) {
+        ASSERT_EQ(c.scatteringPerM.size(), wl.size()) << name << " " << c.name;
+        ASSERT_EQ(c.absorptionPerM.size(), wl.size());
+        ASSERT_EQ(c.phases.size(), wl.size());
+        for (std::size_t i = 0; i < wl.size(); ++i) {
+          EXPECT_TRUE(std::isfinite(c.scatteringPerM[i]) && c.scatteringPerM[i] >= 0.0) << name << " " << c.name;
+          EXPECT_TRUE(std::isfinite(c.absorptionPerM[i]) && c.absorptionPerM[i] >= 0.0) << name << " " << c.name;
+        }
+      }
+      for (double h : {0.0, 1000.0, 25000.0, a.thicknessM()})
+        for (double beta : a.extinctionPerM(h)) EXPECT_TRUE(std::isfinite(beta) && beta >= 0.0) << name;
+      for (double tau : a.verticalOpticalDepth(0.0, a.thicknessM())) EXPECT_TRUE(std::isfinite(tau) && tau > 0.0);
+    }
+  }
+}
+
+TEST(ModelPresets, ExtinctionIsTheSumOfTheComponentsScaledByTheirProfiles) {
+  const Atmosphere earth = loadAtmosphere("earth", umbra::test::threeWavelengthsNm());
+  for (double h : {0.0, 3000.0, 25000.0, 70000.0}) {
+    const std::vector<double> total = earth.extinctionPerM(h), sca = earth.scatteringPerM(h),
+                              abs = earth.absorptionPerM(h);
+    for (std::size_t i = 0; i < 3; ++i) {
+      double expected = 0.0;
+      for (const Component& c : earth.components) expected += c.density.at(h) * c.extinctionPerM(i);
+      EXPECT_NEAR(total[i], expected, 1e-15 * expected);
+      EXPECT_NEAR(sca[i] + abs[i], total[i], 1e-15 * expected);
+    }
+  }
+  // at the ground, 550 nm: air 1.148e-5 + aerosols 4.44e-6 + a trace of ozone (0 at h = 0)
+  EXPECT_NEAR(earth.extinctionPerM(0.0)[1], 11.483e-6 + 4.44e-6, 0.005e-6);
+}
+
+TEST(ModelPresets, RefractivityFollowsTheMolecularDensityWithDispersion) {
+  const Atmosphere earth = loadAtmosphere("earth", umbra::test::threeWavelengthsNm());
+  EXPECT_NEAR(earth.refractivity(0.0, 550.0), 2.77e-4, 1e-18);  // eclipse paper: n = 1.000277
+  EXPECT_NEAR(earth.refractivity(8000.0, 550.0), 2.77e-4 / std::exp(1.0), 1e-18);
+  EXPECT_NEAR(earth.refractivity(0.0, 440.0) / earth.refractivity(0.0, 680.0),
+              airRefractivityPeckReeder(440.0) / airRefractivityPeckReeder(680.0), 1e-14);
+  const Atmosphere mars = loadAtmosphere("mars", umbra::test::threeWavelengthsNm());
+  EXPECT_NEAR(mars.refractivity(0.0, 550.0), 3.38e-6, 1e-20);  // eclipse paper, section 2.3
+  EXPECT_NEAR(mars.refractivity(16000.0, 550.0), 3.38e-6 * std::exp(-2.0), 1e-20);
+  EXPECT_GT(mars.refractivity(0.0, 440.0), mars.refractivity(0.0, 680.0));
+}
+
+TEST(ModelPresets, CalbucoAerosolOpticalDepthIsFiveTimesEarths) {
+  const auto wl = umbra::test::fifteenWavelengthsNm();
+  const Atmosphere earth = loadAtmosphere("earth", wl);
+  const Atmosphere calbuco = loadAtmosphere("earth-2015-calbuco", wl);
+  const double L = earth.thicknessM();
+  ASSERT_EQ(L, calbuco.thicknessM());
+  const std::vector<double> tauEarth = earth.verticalOpticalDepth(earth.component("aerosols"), 0.0, L);
+  const std::vector<double> tauCalbuco = calbuco.verticalOpticalDepth(calbuco.component("aerosols"), 0.0, L);
+  // density x 2 and H 1200 -> 3000 m: tau = 2 beta 3000 (1 - e^{-L/3000}) vs beta 1200 (1 - e^{-L/1200})
+  const double ratio = 2.0 * 3000.0 * -std::expm1(-L / 3000.0) / (1200.0 * -std::expm1(-L / 1200.0));
+  EXPECT_NEAR(ratio, 5.0, 1e-12);
+  for (std::size_t i = 0; i < wl.size(); ++i) {
+    EXPECT_NEAR(tauEarth[i], 4.44e-6 * 1200.0 * -std::expm1(-L / 1200.0), 1e-15);  // 5.328e-3
+    EXPECT_NEAR(tauCalbuco[i] / tauEarth[i], ratio, 1e-12);
+  }
+  EXPECT_NEAR(tauCalbuco[0], 0.02664, 1e-6);
+  // everything else is Earth's
+  EXPECT_EQ(calbuco.name, "earth-2015-calbuco");
+  EXPECT_EQ(calbuco.components.size(), earth.components.size());
+  EXPECT_EQ(calbuco.component("molecules").scatteringPerM, earth.component("molecules").scatteringPerM);
+  EXPECT_EQ(calbuco.component("ozone").absorptionPerM, earth.component("ozone").absorptionPerM);
+  EXPECT_EQ(calbuco.component("aerosols").density.scaleHeightM, 3000.0);
+  EXPECT_DOUBLE_EQ(calbuco.component("aerosols").scatteringPerM[3], 2.0 * 3.996e-6);
+  EXPECT_EQ(calbuco.seaLevelRefractivity, earth.seaLevelRefractivity);
+}
+
+TEST(ModelPresets, LoadsFromAPathToo) {
+  const Atmosphere viaPath = loadAtmosphere(presetDirectory() + "/mars.json", {550.0});
+  EXPECT_EQ(viaPath.name, "mars");
+  EXPECT_EQ(viaPath.component("dust").scatteringPerM, loadAtmosphere("mars", {550.0}).component("dust").scatteringPerM);
+}
