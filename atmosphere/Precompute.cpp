@@ -11,12 +11,18 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace umbra::atmosphere {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+
+/// Bruneton's GetTextureCoordFromUnitRange, inline for the lookups' hot path.
+inline double texCoord(double x, int n) { return (0.5 + x * (n - 1.0)) / n; }
 
 double smoothstep(double e0, double e1, double x) {
   if (!(e1 > e0)) return x < e0 ? 0.0 : 1.0;
@@ -82,7 +88,7 @@ struct ScatterGeometry {
 
   double uR(double r) const {
     const double rho = safeSqrt((r - b) * (r + b));
-    return textureCoordFromUnitRange(std::clamp(rho / H, 0.0, 1.0), R);
+    return texCoord(std::clamp(rho / H, 0.0, 1.0), R);
   }
   double uMu(double r, double mu, bool ground) const {
     r = std::clamp(r, b, t);
@@ -91,17 +97,20 @@ struct ScatterGeometry {
       const double d = distanceToBottomBoundaryM(b, r, mu);
       const double dMin = r - b, dMax = rho;
       const double x = dMax <= dMin ? 0.0 : std::clamp((d - dMin) / (dMax - dMin), 0.0, 1.0);
-      return 0.5 - 0.5 * textureCoordFromUnitRange(x, MU / 2);
+      return 0.5 - 0.5 * texCoord(x, MU / 2);
     }
     const double d = distanceToTopBoundaryM(t, r, mu);
     const double dMin = t - r, dMax = rho + H;
     const double x = std::clamp((d - dMin) / (dMax - dMin), 0.0, 1.0);
-    return 0.5 + 0.5 * textureCoordFromUnitRange(x, MU / 2);
+    return 0.5 + 0.5 * texCoord(x, MU / 2);
   }
   double uMuS(double muS) const {
-    const double d = distanceToTopBoundaryM(t, b, clampCosine(muS));
+    // distance from the ground to the top along mu_s (inline: the hot path of the lookups)
+    muS = clampCosine(muS);
+    const double root = std::sqrt(b * b * muS * muS + H * H);
+    const double d = muS > 0.0 ? H * H / (b * muS + root) : root - b * muS;
     const double a = (d - (t - b)) / (H - (t - b));
-    return textureCoordFromUnitRange(std::max(1.0 - a / A, 0.0) / (1.0 + a), MUS);
+    return texCoord(std::max(1.0 - a / A, 0.0) / (1.0 + a), MUS);
   }
   static double uNu(double nu) { return 0.5 * (clampCosine(nu) + 1.0); }
 
@@ -172,7 +181,9 @@ inline SNuCell sNuCell(const ScatterGeometry& g, double muS, double nu) {
   int is, in;
   double ws, wn;
   texelLerp(g.uMuS(muS), g.MUS, 0, g.MUS - 1, is, ws);
-  const double fn = std::clamp(ScatterGeometry::uNu(nu) * (g.NU - 1), 0.0, static_cast<double>(g.NU - 1));
+  double fn = std::clamp(ScatterGeometry::uNu(nu) * (g.NU - 1), 0.0, static_cast<double>(g.NU - 1));
+  const double nearest = std::round(fn);
+  if (std::abs(fn - nearest) < 1e-12) fn = nearest;  // on a slice: one slice to read
   in = std::min(static_cast<int>(std::floor(fn)), g.NU - 2);
   wn = fn - in;
   SNuCell c;
@@ -196,7 +207,11 @@ inline void accumulate4(const Table3D& T, const RMuCell& a, const SNuCell& s, do
       const double* p10 = row + static_cast<std::size_t>(s.x10) * nc;
       const double* p11 = row + static_cast<std::size_t>(s.x11) * nc;
       const double w00 = wzy * s.w00, w01 = wzy * s.w01, w10 = wzy * s.w10, w11 = wzy * s.w11;
-      for (int l = 0; l < nc; ++l) out[l] += w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l];
+      if (s.w10 == 0.0 && s.w11 == 0.0) {
+        for (int l = 0; l < nc; ++l) out[l] += w00 * p00[l] + w01 * p01[l];
+      } else {
+        for (int l = 0; l < nc; ++l) out[l] += w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l];
+      }
     }
   }
 }
@@ -228,6 +243,27 @@ inline double sunVisibility(double b, double alpha, double r, double muS) {
   const double sinH = b / r;
   const double cosH = -std::sqrt(std::max(0.0, 1.0 - sinH * sinH));
   return smoothstep(-sinH * alpha, sinH * alpha, muS - cosH);
+}
+
+/// p_j = A (1 + B c_j^2) / (1 + g^2 - 2 g c_j)^{3/2} for j < n: the density's inner loop
+/// (SSE2 where available: the compiler does not vectorise sqrt under -fmath-errno).
+void lobeValues(double A, double B, double g, const double* c, double* p, int n) {
+  const double g2 = 1.0 + g * g, twoG = 2.0 * g;
+  int j = 0;
+#if defined(__SSE2__)
+  const __m128d Av = _mm_set1_pd(A), Bv = _mm_set1_pd(B), g2v = _mm_set1_pd(g2), twoGv = _mm_set1_pd(twoG),
+                one = _mm_set1_pd(1.0);
+  for (; j + 2 <= n; j += 2) {
+    const __m128d cc = _mm_loadu_pd(c + j);
+    const __m128d d = _mm_sub_pd(g2v, _mm_mul_pd(twoGv, cc));
+    const __m128d num = _mm_mul_pd(Av, _mm_add_pd(one, _mm_mul_pd(Bv, _mm_mul_pd(cc, cc))));
+    _mm_storeu_pd(p + j, _mm_div_pd(num, _mm_mul_pd(d, _mm_sqrt_pd(d))));
+  }
+#endif
+  for (; j < n; ++j) {
+    const double d = g2 - twoG * c[j];
+    p[j] = A * (1.0 + B * c[j] * c[j]) / (d * std::sqrt(d));
+  }
 }
 
 // ---- paths ---------------------------------------------------------------------------------
@@ -944,13 +980,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
           for (std::size_t li = 0; li < m.lobes.size(); ++li) {
             const Lobe& lobe = m.lobes[li];
             if (lobe.table.empty()) {
-              const double A = lobe.A, B = lobe.B, gg = lobe.g, g2 = 1.0 + gg * gg, g2n = 2.0 * gg;
-#pragma omp simd
-              for (int j = 0; j < nDir; ++j) {
-                const double c = cj[j];
-                const double d = g2 - g2n * c;
-                pj[j] = A * (1.0 + B * c * c) / (d * std::sqrt(d));
-              }
+              lobeValues(lobe.A, lobe.B, lobe.g, cj.data(), pj.data(), nDir);
             } else {
               for (int j = 0; j < nDir; ++j) pj[j] = Model::evalLobe(lobe, cj[j]);
             }
@@ -1016,25 +1046,32 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       std::vector<RMuCell> cells(N + 1);
       for (int k = 0; k <= N; ++k)
         cells[k] = rMuCell(g, s.r[k], s.mu[k], rayIntersectsGround(b, s.r[k], s.mu[k]));
-      std::vector<double> acc(nl), Jv(nl);
+      // Samples outer, texels inner: the four (r, mu) rows of a sample stay in cache
+      // while the row's (mu_s, nu) texels sweep them.
+      std::vector<double> sxA(W), muSA(W), acc(static_cast<std::size_t>(W) * nl, 0.0), Jv(nl);
       for (int x = 0; x < W; ++x) {
         const ScatteringPoint p = g.texel(x, y, z);
-        const double sx = sunX(p);
-        std::fill(acc.begin(), acc.end(), 0.0);
-        if (s.ds > 0.0) {
-          for (int k = 0; k <= N; ++k) {
-            const double w = s.ds * ((k == 0 || k == N) ? 0.5 : 1.0);
-            const double muS = clampCosine(s.xr[k] * sx + s.yr[k] * p.muS);
-            const double nu = clampCosine(s.tx[k] * sx + s.ty[k] * p.muS);
-            std::fill(Jv.begin(), Jv.end(), 0.0);
-            accumulate4(density, cells[k], sNuCell(g, muS, nu), 1.0, Jv.data());
-            const double* T = &s.T[static_cast<std::size_t>(k) * nl];
-            for (int l = 0; l < nl; ++l) acc[l] += w * T[l] * Jv[l];
-          }
+        sxA[x] = sunX(p), muSA[x] = p.muS;
+      }
+      for (int k = 0; k <= N && s.ds > 0.0; ++k) {
+        const double w = s.ds * ((k == 0 || k == N) ? 0.5 : 1.0);
+        const double* T = &s.T[static_cast<std::size_t>(k) * nl];
+        const RMuCell& cell = cells[k];
+        const double xr = s.xr[k], yr = s.yr[k], tx = s.tx[k], ty = s.ty[k];
+        for (int x = 0; x < W; ++x) {
+          const double muS = clampCosine(xr * sxA[x] + yr * muSA[x]);
+          const double nu = clampCosine(tx * sxA[x] + ty * muSA[x]);
+          std::fill(Jv.begin(), Jv.end(), 0.0);
+          accumulate4(density, cell, sNuCell(g, muS, nu), 1.0, Jv.data());
+          double* a = &acc[static_cast<std::size_t>(x) * nl];
+          for (int l = 0; l < nl; ++l) a[l] += w * T[l] * Jv[l];
         }
-        std::copy_n(acc.data(), nl, delta.at(x, y, z));
+      }
+      for (int x = 0; x < W; ++x) {
+        const double* a = &acc[static_cast<std::size_t>(x) * nl];
+        std::copy_n(a, nl, delta.at(x, y, z));
         double* sum = out.multiple.at(x, y, z);
-        for (int l = 0; l < nl; ++l) sum[l] += acc[l];
+        for (int l = 0; l < nl; ++l) sum[l] += a[l];
       }
     });
     out.orderMean.push_back(meanOf([&](int x, int y, int z, double* v) { std::copy_n(delta.at(x, y, z), nl, v); }));
