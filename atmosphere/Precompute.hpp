@@ -1,0 +1,200 @@
+#pragma once
+// The precomputation of E. Bruneton, "Precomputed Atmospheric Scattering: a New
+// Implementation" (2017), written from its equations for any number of components and
+// wavelengths, in double precision on the CPU (OpenMP over texels), with optional
+// refraction (eclipse paper, section 4.1: transmittance and scattering follow the rays
+// traced by traceRay, Refraction.hpp). All tables are per unit solar irradiance
+// (multiply by E_sun(lambda) to get radiance / irradiance).
+//
+//   transmittance  T(r, mu) to the top of the atmosphere, 2D, the parametrisation of
+//                  TextureCoords.hpp (Bruneton's GetTransmittanceTextureUvFromRMu);
+//                  Simpson's rule along the (straight or refracted) ray.
+//   direct irr.    E_0(r, mu_s) = T(r, mu_s) <cos> (ComputeDirectIrradiance; the average
+//                  cosine over the solar disc near the horizon). Not in `irradiance`.
+//   single         S_c(r, mu, mu_s, nu) = beta_s,c int_0^d T(x, x_i) T_sun(x_i) rho_c(x_i) dx,
+//                  one table per scattering component, without its phase function
+//                  (ComputeSingleScattering, trapezoidal rule, the sun's transmittance
+//                  with the smoothstep over the solar disc at the horizon).
+//   density        J_k(r, mu, mu_s, nu) = sum_c beta_s,c rho_c(r) int_4pi P_c(w.v) L_{k-1}(w) dw,
+//                  L_{k-1} the order k-1 radiance plus, for directions towards the ground,
+//                  the ground's albedo / pi E_{k-2} attenuated to the point
+//                  (ComputeScatteringDensity; midpoint rule on sphereSamples x
+//                  2 sphereSamples directions). Computed per (r, mu_s) slice: the incoming
+//                  radiance is looked up once per direction and shared by the slice's
+//                  (mu, nu) texels; polynomial phases (isotropic, Rayleigh, Penndorf) use the
+//                  exact second moments of the incoming radiance, the others a vectorised
+//                  sum over directions with closed-form lobes.
+//   indirect irr.  E_k(r, mu_s) = int_2pi L_k(w) w_z dw (ComputeIndirectIrradiance).
+//   multiple       L_k(r, mu, mu_s, nu) = int_0^d T(x, x_i) J_k(x_i) dx
+//                  (ComputeMultipleScattering), summed over orders k >= 2.
+// The 4D scattering tables use Bruneton's (r, mu, mu_s, nu) <-> (u_r, u_mu, u_mu_s, u_nu)
+// mapping with the ground / non-ground halves of u_mu, stored as 3D tables of
+// (NU * MU_S) x MU x R texels; lookups interpolate linearly in all four coordinates
+// (nu between slices, mu_s within its own slice, mu within the ray's half).
+//
+// Refraction: rays from (r, mu) are traced with traceRay (RK4, refractionStepM) and the
+// path is interpolated between the steps (cubic Hermite in position); transmittance and
+// scattering integrals run along it with the same quadratures as the straight rays (so a
+// vertical ray gives the same values). The transmittance table uses each wavelength's
+// refractivity (dispersion); the scattering tables use the paths of the reference
+// wavelength; the sun's direction is the geometric one at every point and the ground term
+// of the density uses straight rays (the simplifications of the eclipse paper, 4.1).
+// Transmittance rays bent into the ground continue through it (constant n, the ground's
+// extinction), as in the deviation table: the table stays continuous and near 0 there.
+#include "Atmosphere.hpp"
+#include "TextureCoords.hpp"
+
+#include <cstddef>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace umbra::atmosphere {
+
+struct PrecomputeOptions {
+  int transmittanceWidth = 256;   ///< x_mu
+  int transmittanceHeight = 64;   ///< x_r
+  int scatteringR = 32;
+  int scatteringMu = 128;         ///< even: half for rays that hit the ground
+  int scatteringMuS = 32;
+  int scatteringNu = 8;
+  int irradianceWidth = 64;       ///< mu_s
+  int irradianceHeight = 16;      ///< r
+  int orders = 4;                 ///< scattering orders (1: single only)
+  int transmittanceSamples = 500;     ///< Simpson intervals per transmittance ray (even)
+  int singleScatteringSamples = 50;   ///< trapezoid intervals per view ray
+  int multipleScatteringSamples = 50; ///< trapezoid intervals per view ray
+  int opticalDepthSubsamples = 4;     ///< Simpson intervals between two view-ray samples (even)
+  int sphereSamples = 16;         ///< density: n polar x 2n azimuthal directions (Bruneton: 16)
+  int irradianceSamples = 32;     ///< indirect irradiance: n/2 polar x 2n azimuthal (Bruneton: 32)
+  double muSMin = -0.20791169081775931;  ///< cos(102 deg): the lowest sun in the tables
+  double sunAngularRadiusRad = 0.004675;
+  bool refraction = false;
+  double refractionStepM = 10e3;  ///< RK4 step of the traced rays
+  int threads = 0;                ///< OpenMP threads (0: the default)
+  /// Wavelengths computed together (0: all). The working tables are this many channels
+  /// wide; the final tables hold all wavelengths.
+  int wavelengthBatch = 0;
+
+  /// Empty when usable, else what is wrong.
+  std::string validate() const;
+};
+
+/// A 2D table, `channels` values (one per wavelength) per texel, row by row.
+struct Table2D {
+  int width = 0, height = 0, channels = 0;
+  std::vector<double> values;
+
+  void resize(int w, int h, int c) {
+    width = w, height = h, channels = c;
+    values.assign(static_cast<std::size_t>(w) * h * c, 0.0);
+  }
+  std::size_t offset(int x, int y) const {
+    return (static_cast<std::size_t>(y) * width + x) * channels;
+  }
+  const double* at(int x, int y) const { return values.data() + offset(x, y); }
+  double* at(int x, int y) { return values.data() + offset(x, y); }
+};
+
+/// A 3D table (width = NU * MU_S, height = MU, depth = R for the scattering tables).
+struct Table3D {
+  int width = 0, height = 0, depth = 0, channels = 0;
+  std::vector<double> values;
+
+  void resize(int w, int h, int d, int c) {
+    width = w, height = h, depth = d, channels = c;
+    values.assign(static_cast<std::size_t>(w) * h * d * c, 0.0);
+  }
+  std::size_t offset(int x, int y, int z) const {
+    return ((static_cast<std::size_t>(z) * height + y) * width + x) * channels;
+  }
+  const double* at(int x, int y, int z) const { return values.data() + offset(x, y, z); }
+  double* at(int x, int y, int z) { return values.data() + offset(x, y, z); }
+};
+
+struct StageTiming {
+  std::string stage;
+  double seconds = 0.0;
+};
+
+struct AtmosphereTables {
+  PrecomputeOptions options;
+  double bottomRadiusM = 0.0;
+  double topRadiusM = 0.0;
+  std::vector<double> wavelengthsNm;
+
+  Table2D transmittance;  ///< T to the top, (x_mu, x_r)
+  /// Names of the components that scatter, in the atmosphere's order; one single-scattering
+  /// table each (without the phase function).
+  std::vector<std::string> scatteringComponents;
+  std::vector<Table3D> singleScattering;
+  Table3D multipleScattering;  ///< orders 2..N, phase functions included
+  Table2D directIrradiance;    ///< E_0 (mu_s, r)
+  Table2D irradiance;          ///< indirect, orders 1..N-1 (mu_s, r), as Bruneton's
+
+  /// Per order k = 1..N (index k - 1), per wavelength: the mean over the scattering
+  /// texels of the order's radiance L_k (phases included).
+  std::vector<std::vector<double>> orderMeanRadiance;
+  std::vector<StageTiming> timings;  ///< seconds per stage (summed over orders/batches)
+
+  ShellRadii shell() const { return {bottomRadiusM, topRadiusM}; }
+  std::size_t wavelengthCount() const { return wavelengthsNm.size(); }
+  std::size_t bytes() const;  ///< memory held by the tables
+};
+
+/// Thrown when the progress callback returns false.
+class PrecomputeCancelled : public std::runtime_error {
+public:
+  PrecomputeCancelled() : std::runtime_error("precomputation cancelled") {}
+};
+
+/// `progress(fraction, stage)` is called from the calling thread between chunks of work;
+/// returning false cancels (PrecomputeCancelled). Throws std::invalid_argument for invalid
+/// options or an invalid atmosphere.
+using PrecomputeProgress = std::function<bool(double fraction, const std::string& stage)>;
+AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOptions& options = {},
+                            const PrecomputeProgress& progress = {});
+
+// ---- the 4D parametrisation (Bruneton 2017, GetScatteringTextureUvwzFromRMuMuSNu) -------
+
+struct ScatteringTableSize {
+  int r = 32, mu = 128, muS = 32, nu = 8;
+};
+struct ScatteringCoords {
+  double uNu = 0.0, uMuS = 0.0, uMu = 0.0, uR = 0.0;  ///< texture coordinates in [0, 1]
+};
+struct ScatteringPoint {
+  double r = 0.0, mu = 0.0, muS = 0.0, nu = 0.0;
+  bool rayIntersectsGround = false;
+};
+ScatteringCoords scatteringCoordsFromRMuMuSNu(const ShellRadii& shell, const ScatteringTableSize& size,
+                                              double muSMin, double r, double mu, double muS, double nu,
+                                              bool rayIntersectsGround);
+ScatteringPoint rMuMuSNuFromScatteringCoords(const ShellRadii& shell, const ScatteringTableSize& size,
+                                             double muSMin, const ScatteringCoords& coords);
+/// The configuration at the centre of texel (x, y, z) (x = nu index * MU_S + mu_s index), nu
+/// clamped to the range the other three allow.
+ScatteringPoint scatteringTexelPoint(const ShellRadii& shell, const ScatteringTableSize& size,
+                                     double muSMin, int x, int y, int z);
+
+// ---- lookups (all per unit solar irradiance, one value per wavelength) -------------------
+
+/// T from (r, mu) to the top (mu at or above the horizon; below it the horizon's value).
+std::vector<double> transmittanceToTop(const AtmosphereTables& tables, double r, double mu);
+/// The same into out[0..channels).
+void transmittanceToTop(const AtmosphereTables& tables, double r, double mu, double* out);
+/// Quadrilinear lookup in a scattering table.
+std::vector<double> lookupScattering(const AtmosphereTables& tables, const Table3D& table, double r,
+                                     double mu, double muS, double nu, bool rayIntersectsGround);
+/// Single (each component's table times its phase at nu) plus multiple scattering, times
+/// solarIrradiance (per wavelength; empty: 1). Straight-ray ground test for the half.
+std::vector<double> skyRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r,
+                                double mu, double muS, double nu,
+                                const std::vector<double>& solarIrradiance = {});
+/// Bilinear lookups in the irradiance tables (indirect, and direct).
+std::vector<double> indirectIrradiance(const AtmosphereTables& tables, double r, double muS);
+std::vector<double> directIrradiance(const AtmosphereTables& tables, double r, double muS);
+
+}  // namespace umbra::atmosphere

@@ -1,0 +1,484 @@
+// Bruneton 2017 precomputation (Precompute.hpp): closed-form and brute-force checks of
+// transmittance, single and multiple scattering, the 4D parametrisation, robustness at
+// the boundaries, and refraction. Small tables keep the suite fast.
+#include "ModelTestSupport.hpp"
+#include "Precompute.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace umbra::atmosphere {
+namespace {
+
+using umbra::test::kPi;
+
+PrecomputeOptions smallOptions() {
+  PrecomputeOptions o;
+  o.transmittanceWidth = 64;
+  o.transmittanceHeight = 16;
+  o.scatteringR = 8;
+  o.scatteringMu = 32;
+  o.scatteringMuS = 8;
+  o.scatteringNu = 4;
+  o.irradianceWidth = 16;
+  o.irradianceHeight = 4;
+  o.sphereSamples = 8;
+  o.irradianceSamples = 16;
+  o.singleScatteringSamples = 30;
+  o.multipleScatteringSamples = 30;
+  return o;
+}
+
+Component makeComponent(const std::string& name, DensityProfile density, double scattering, double absorption,
+                        PhaseFunction phase, std::size_t nl) {
+  Component c;
+  c.name = name;
+  c.density = density;
+  c.scatteringPerM.assign(nl, scattering);
+  c.absorptionPerM.assign(nl, absorption);
+  c.phases.assign(nl, phase);
+  return c;
+}
+
+Atmosphere shellAtmosphere(std::vector<Component> components, double albedo = 0.0, std::size_t nl = 1) {
+  Atmosphere a;
+  a.name = "test";
+  a.bottomRadiusM = 6360e3;
+  a.topRadiusM = 6420e3;
+  for (std::size_t i = 0; i < nl; ++i) a.wavelengthsNm.push_back(550.0 + 50.0 * i);
+  a.groundAlbedo.assign(nl, albedo);
+  a.components = std::move(components);
+  a.refractivityFollows.clear();
+  return a;
+}
+
+/// Independent optical depth along a straight ray, Gauss-Kronrod per component.
+std::vector<double> opticalDepth(const Atmosphere& a, double r, double mu, double d) {
+  std::vector<double> tau(a.wavelengthsNm.size(), 0.0);
+  for (const Component& c : a.components) {
+    const auto rho = [&](double s) {
+      const double h = std::sqrt(s * s + 2.0 * r * mu * s + r * r) - a.bottomRadiusM;
+      return c.density.at(std::clamp(h, 0.0, a.topRadiusM - a.bottomRadiusM));
+    };
+    // split at the lowest point to help the quadrature
+    const double sLow = std::clamp(-r * mu, 0.0, d);
+    double col = 0.0;
+    if (sLow > 0.0) col += umbra::test::integrate(rho, 0.0, sLow);
+    if (d > sLow) col += umbra::test::integrate(rho, sLow, d);
+    for (std::size_t l = 0; l < tau.size(); ++l) tau[l] += col * c.extinctionPerM(l);
+  }
+  return tau;
+}
+
+bool allFiniteNonNegative(const std::vector<double>& v, std::string& where, const std::string& name) {
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v[i]) || v[i] < 0.0) {
+      where = name + "[" + std::to_string(i) + "] = " + std::to_string(v[i]);
+      return false;
+    }
+  return true;
+}
+
+void expectTablesSane(const AtmosphereTables& t) {
+  std::string where;
+  EXPECT_TRUE(allFiniteNonNegative(t.transmittance.values, where, "transmittance")) << where;
+  EXPECT_TRUE(allFiniteNonNegative(t.directIrradiance.values, where, "directIrradiance")) << where;
+  EXPECT_TRUE(allFiniteNonNegative(t.irradiance.values, where, "irradiance")) << where;
+  EXPECT_TRUE(allFiniteNonNegative(t.multipleScattering.values, where, "multiple")) << where;
+  for (const Table3D& s : t.singleScattering) EXPECT_TRUE(allFiniteNonNegative(s.values, where, "single")) << where;
+  for (double v : t.transmittance.values) EXPECT_LE(v, 1.0);
+}
+
+// ---- the parametrisation ----------------------------------------------------------------------
+
+TEST(Precompute, ScatteringCoordsRoundTripAtTexelCentres) {
+  const ShellRadii shell{6360e3, 6420e3};
+  const ScatteringTableSize size{32, 128, 32, 8};
+  const double muSMin = std::cos(102.0 * kPi / 180.0);
+  int checked = 0;
+  for (int z = 0; z < size.r; z += 3)
+    for (int y = 0; y < size.mu; y += 5)
+      for (int i = 0; i < size.muS; i += 3) {
+        const ScatteringPoint p = scatteringTexelPoint(shell, size, muSMin, i, y, z);
+        const ScatteringCoords c =
+            scatteringCoordsFromRMuMuSNu(shell, size, muSMin, p.r, p.mu, p.muS, p.nu, p.rayIntersectsGround);
+        EXPECT_NEAR(c.uR, (z + 0.5) / size.r, 1e-9);
+        // On the ground (z = 0) every ground ray has d = d_min = d_max: one point.
+        if (z > 0 || y >= size.mu / 2) {
+          EXPECT_NEAR(c.uMu, (y + 0.5) / size.mu, 1e-7) << "y " << y << " z " << z;
+        }
+        EXPECT_NEAR(c.uMuS, (i + 0.5) / size.muS, 1e-9);
+        EXPECT_EQ(p.rayIntersectsGround, y < size.mu / 2);
+        ++checked;
+      }
+  EXPECT_GT(checked, 1000);
+  // The ends: zenith, horizon, lowest and highest sun.
+  const ScatteringPoint top = scatteringTexelPoint(shell, size, muSMin, size.muS - 1, size.mu / 2, 5);
+  EXPECT_DOUBLE_EQ(top.mu, 1.0);
+  EXPECT_DOUBLE_EQ(top.muS, 1.0);
+  const ScatteringPoint low = scatteringTexelPoint(shell, size, muSMin, 0, size.mu - 1, 5);
+  EXPECT_NEAR(low.mu, horizonCosine(shell.bottomRadiusM, low.r), 1e-12);
+  EXPECT_NEAR(low.muS, muSMin, 1e-12);
+}
+
+// ---- transmittance ---------------------------------------------------------------------------
+
+TEST(Precompute, VerticalTransmittanceIsExpOfVerticalOpticalDepth) {
+  const Atmosphere earth = loadAtmosphere("earth", {680.0, 550.0, 440.0});
+  PrecomputeOptions o = smallOptions();
+  o.transmittanceWidth = 256;
+  o.transmittanceHeight = 64;
+  o.orders = 1;
+  const AtmosphereTables t = precompute(earth, o);
+  const double b = earth.bottomRadiusM, top = earth.topRadiusM;
+  double worstTexel = 0.0, worstLookup = 0.0;
+  for (int y = 0; y < o.transmittanceHeight; ++y) {
+    const RadiusMu rm = rMuAtTexel(t.shell(), 0, y, o.transmittanceWidth, o.transmittanceHeight);
+    ASSERT_DOUBLE_EQ(rm.mu, 1.0);
+    const std::vector<double> tau = earth.verticalOpticalDepth(rm.radiusM - b, top - b);
+    for (int l = 0; l < 3; ++l)
+      worstTexel = std::max(worstTexel, std::abs(t.transmittance.at(0, y)[l] / std::exp(-tau[l]) - 1.0));
+  }
+  for (double h = 0.0; h <= 100e3; h += 1234.5) {  // between rows: the table's resolution
+    const std::vector<double> T = transmittanceToTop(t, b + h, 1.0);
+    const std::vector<double> tau = earth.verticalOpticalDepth(h, top - b);
+    for (int l = 0; l < 3; ++l) worstLookup = std::max(worstLookup, std::abs(T[l] / std::exp(-tau[l]) - 1.0));
+  }
+  std::printf("vertical transmittance: worst relative error %.3g at texels, %.3g by lookup\n", worstTexel, worstLookup);
+  EXPECT_LT(worstTexel, 1e-7);
+  EXPECT_LT(worstLookup, 1e-4);
+}
+
+TEST(Precompute, HorizontalTransmittanceMatchesHighSampleIntegral) {
+  DensityProfile air = DensityProfile::exponential(8000.0);
+  const Atmosphere a = shellAtmosphere({makeComponent("air", air, 1.2e-5, 1e-6, PhaseFunction::rayleigh(), 1)});
+  PrecomputeOptions o = smallOptions();
+  o.transmittanceWidth = 256;
+  o.transmittanceHeight = 64;
+  o.orders = 1;
+  const AtmosphereTables t = precompute(a, o);
+  double worst = 0.0;
+  for (int y : {0, 5, 20, 40, 63}) {
+    for (int x : {255, 254, 200, 128}) {  // the horizon and near it
+      const RadiusMu rm = rMuAtTexel(t.shell(), x, y, 256, 64);
+      const double d = distanceToTopBoundaryM(a.topRadiusM, rm.radiusM, rm.mu);
+      const double reference = std::exp(-opticalDepth(a, rm.radiusM, rm.mu, d)[0]);
+      const double T = t.transmittance.at(x, y)[0];
+      worst = std::max(worst, std::abs(T - reference) / std::max(reference, 1e-300));
+      EXPECT_NEAR(T, reference, 1e-7 * reference + 1e-300) << x << " " << y;
+    }
+  }
+  // A horizontal ray 5 km up, between texels.
+  const double r = a.bottomRadiusM + 5e3;
+  const double reference =
+      std::exp(-opticalDepth(a, r, 0.0, distanceToTopBoundaryM(a.topRadiusM, r, 0.0))[0]);
+  const double T = transmittanceToTop(t, r, 0.0)[0];
+  std::printf("horizontal transmittance: worst texel relative error %.3g; 5 km, mu = 0: %.6g vs %.6g\n", worst, T,
+              reference);
+  EXPECT_NEAR(T / reference, 1.0, 2e-2);
+}
+
+TEST(Precompute, OzoneOnlyTentTransmittance) {
+  const Atmosphere a = shellAtmosphere(
+      {makeComponent("ozone", DensityProfile::tent(25e3, 15e3), 0.0, 2e-6, PhaseFunction::isotropic(), 1)});
+  PrecomputeOptions o = smallOptions();
+  o.orders = 3;
+  const AtmosphereTables t = precompute(a, o);
+  EXPECT_TRUE(t.singleScattering.empty());
+  for (int y = 0; y < o.transmittanceHeight; ++y) {
+    const RadiusMu rm = rMuAtTexel(t.shell(), 0, y, o.transmittanceWidth, o.transmittanceHeight);
+    const double tau = a.verticalOpticalDepth(rm.radiusM - a.bottomRadiusM, a.thicknessM())[0];
+    EXPECT_NEAR(t.transmittance.at(0, y)[0], std::exp(-tau), 1e-10) << y;
+    for (int x : {10, 40, 63}) {
+      const RadiusMu s = rMuAtTexel(t.shell(), x, y, o.transmittanceWidth, o.transmittanceHeight);
+      const double d = distanceToTopBoundaryM(a.topRadiusM, s.radiusM, s.mu);
+      EXPECT_NEAR(t.transmittance.at(x, y)[0], std::exp(-opticalDepth(a, s.radiusM, s.mu, d)[0]), 1e-9) << x << " " << y;
+    }
+  }
+  // 30 Dobson-like layer: vertical optical depth from the ground = 2e-6 * 15 km = 0.03.
+  EXPECT_NEAR(t.transmittance.at(0, 0)[0], std::exp(-0.03), 1e-9);
+  // Absorption only: no scattering of any order, no indirect irradiance.
+  for (double v : t.multipleScattering.values) EXPECT_EQ(v, 0.0);
+  for (double v : t.irradiance.values) EXPECT_EQ(v, 0.0);
+  for (const auto& m : t.orderMeanRadiance) EXPECT_EQ(m[0], 0.0);
+}
+
+// ---- single scattering -----------------------------------------------------------------------
+
+TEST(Precompute, SingleScatteringOpticallyThinLimit) {
+  // Constant density (huge scale height), beta_s = 1e-9 / m: tau < 1e-3 on any path, so
+  // S = beta_s * path length within 0.2 %.
+  const double beta = 1e-9;
+  const Atmosphere a = shellAtmosphere(
+      {makeComponent("thin", DensityProfile::exponential(1e13), beta, 0.0, PhaseFunction::rayleigh(), 1)});
+  PrecomputeOptions o = smallOptions();
+  o.orders = 1;
+  const AtmosphereTables t = precompute(a, o);
+  const ScatteringTableSize size{o.scatteringR, o.scatteringMu, o.scatteringMuS, o.scatteringNu};
+  const ShellRadii shell = t.shell();
+  int checked = 0;
+  double worst = 0.0;
+  for (int z = 0; z < o.scatteringR; ++z)
+    for (int y = 0; y < o.scatteringMu; ++y)
+      for (int x = 0; x < o.scatteringNu * o.scatteringMuS; ++x) {
+        const ScatteringPoint p = scatteringTexelPoint(shell, size, o.muSMin, x, y, z);
+        const double L = p.rayIntersectsGround ? distanceToBottomBoundaryM(shell.bottomRadiusM, p.r, p.mu)
+                                               : distanceToTopBoundaryM(shell.topRadiusM, p.r, p.mu);
+        // sun above the horizon all along the ray: at the start and the end
+        const double rEnd = std::sqrt(L * L + 2 * p.r * p.mu * L + p.r * p.r);
+        const double muSEnd = (p.r * p.muS + L * p.nu) / rEnd;
+        if (p.muS < 0.1 || muSEnd < 0.1 || L < 1.0) continue;
+        const double S = t.singleScattering[0].at(x, y, z)[0];
+        worst = std::max(worst, std::abs(S / (beta * L) - 1.0));
+        EXPECT_NEAR(S, beta * L, 2e-3 * beta * L) << x << " " << y << " " << z;
+        ++checked;
+      }
+  EXPECT_GT(checked, 200);
+  // The radiance by lookup for a horizontal view from 1 km up with the sun at 60 deg
+  // elevation in the view's vertical plane: beta P(theta) L.
+  const double r = shell.bottomRadiusM + 1e3, mu = 0.0, muS = 0.5, nu = std::sqrt(0.75);
+  const double L = distanceToTopBoundaryM(shell.topRadiusM, r, mu);
+  const double expected = beta * PhaseFunction::rayleigh()(nu) * L;
+  const double got = skyRadiance(t, a, r, mu, muS, nu)[0];
+  std::printf("thin layer: worst texel error %.3g over %d texels; lookup %.6g vs %.6g\n", worst, checked, got, expected);
+  EXPECT_NEAR(got, expected, 0.03 * expected);
+}
+
+TEST(Precompute, SingleScatteringMatchesBruteForceIntegral) {
+  const Atmosphere earth = loadAtmosphere("earth", {680.0, 550.0, 440.0});
+  PrecomputeOptions o = smallOptions();
+  o.transmittanceWidth = 256;
+  o.transmittanceHeight = 64;
+  o.orders = 1;
+  const AtmosphereTables t = precompute(earth, o);
+  const ShellRadii shell = t.shell();
+  const ScatteringTableSize size{o.scatteringR, o.scatteringMu, o.scatteringMuS, o.scatteringNu};
+  const double b = shell.bottomRadiusM, top = shell.topRadiusM;
+  double worst = 0.0;
+  int checked = 0;
+  // Texels with the sun well above the horizon, sky and ground rays.
+  for (int z : {0, 2, 5}) {
+    for (int y : {3, 12, 17, 20, 28}) {
+      for (int x : {o.scatteringMuS - 1, o.scatteringMuS + 5, 2 * o.scatteringMuS + 6, 3 * o.scatteringMuS - 3}) {
+        const ScatteringPoint p = scatteringTexelPoint(shell, size, o.muSMin, x, y, z);
+        if (p.muS < 0.3) continue;
+        const double L = p.rayIntersectsGround ? distanceToBottomBoundaryM(b, p.r, p.mu)
+                                               : distanceToTopBoundaryM(top, p.r, p.mu);
+        for (std::size_t q = 0; q < t.scatteringComponents.size(); ++q) {
+          const Component& c = earth.component(t.scatteringComponents[q]);
+          for (int l = 0; l < 3; ++l) {
+            const auto integrand = [&](double d) {
+              const double rd = std::sqrt(d * d + 2 * p.r * p.mu * d + p.r * p.r);
+              const double muSd = (p.r * p.muS + d * p.nu) / rd;
+              const double tauView = opticalDepth(earth, p.r, p.mu, d)[l];
+              const double tauSun = opticalDepth(earth, rd, muSd, distanceToTopBoundaryM(top, rd, muSd))[l];
+              return std::exp(-tauView - tauSun) * c.density.at(rd - b) * c.scatteringPerM[l];
+            };
+            const int n = 200;  // Simpson
+            double ref = 0.0;
+            for (int i = 0; i <= n; ++i)
+              ref += (i == 0 || i == n ? 1.0 : (i % 2 ? 4.0 : 2.0)) * integrand(L * i / n);
+            ref *= L / n / 3.0;
+            const double got = t.singleScattering[q].at(x, y, z)[l];
+            worst = std::max(worst, std::abs(got / ref - 1.0));
+            EXPECT_NEAR(got, ref, 0.01 * ref) << c.name << " l " << l << " texel " << x << " " << y << " " << z;
+            ++checked;
+          }
+        }
+      }
+    }
+  }
+  std::printf("single scattering vs brute force: worst relative error %.3g over %d values\n", worst, checked);
+  EXPECT_GT(checked, 50);
+}
+
+// ---- multiple scattering ---------------------------------------------------------------------
+
+TEST(Precompute, OrdersDecreaseInAPurelyScatteringAtmosphere) {
+  const Atmosphere a = shellAtmosphere(
+      {makeComponent("air", DensityProfile::exponential(8000.0), 2e-5, 0.0, PhaseFunction::rayleigh(), 1),
+       makeComponent("haze", DensityProfile::exponential(1200.0), 4e-6, 0.0, PhaseFunction::cornetteShanks(0.8), 1)});
+  PrecomputeOptions o = smallOptions();
+  o.orders = 5;
+  const AtmosphereTables t = precompute(a, o);
+  ASSERT_EQ(t.orderMeanRadiance.size(), 5u);
+  for (int k = 0; k < 5; ++k) std::printf("order %d: mean radiance %.6g\n", k + 1, t.orderMeanRadiance[k][0]);
+  for (int k = 1; k < 5; ++k) {
+    EXPECT_GT(t.orderMeanRadiance[k][0], 0.0);
+    EXPECT_LT(t.orderMeanRadiance[k][0], t.orderMeanRadiance[k - 1][0]);
+  }
+  // ratio of successive orders below the single-scattering albedo bound (< 1) and steady
+  EXPECT_LT(t.orderMeanRadiance[4][0] / t.orderMeanRadiance[3][0], 0.9);
+  expectTablesSane(t);
+}
+
+TEST(Precompute, EarthSecondOrderPositiveAndSmallerThanSingle) {
+  const Atmosphere earth = loadAtmosphere("earth", {680.0, 550.0, 440.0});
+  PrecomputeOptions o = smallOptions();
+  o.orders = 2;
+  const AtmosphereTables t = precompute(earth, o);
+  ASSERT_EQ(t.orderMeanRadiance.size(), 2u);
+  for (int l = 0; l < 3; ++l) {
+    std::printf("earth %.0f nm: order 1 %.5g, order 2 %.5g (ratio %.3f)\n", earth.wavelengthsNm[l],
+                t.orderMeanRadiance[0][l], t.orderMeanRadiance[1][l],
+                t.orderMeanRadiance[1][l] / t.orderMeanRadiance[0][l]);
+    EXPECT_GT(t.orderMeanRadiance[1][l], 0.0);
+    EXPECT_LT(t.orderMeanRadiance[1][l], t.orderMeanRadiance[0][l]);
+  }
+  // Blue scatters more: relatively more multiple scattering at 440 nm than at 680 nm.
+  EXPECT_GT(t.orderMeanRadiance[1][2] / t.orderMeanRadiance[0][2], t.orderMeanRadiance[1][0] / t.orderMeanRadiance[0][0]);
+  // Zenith sky from the ground, sun at 30 deg: multiple scattering is a fraction of the total.
+  const double b = earth.bottomRadiusM;
+  const std::vector<double> total = skyRadiance(t, earth, b, 1.0, 0.5, 0.5);
+  const std::vector<double> multiple = lookupScattering(t, t.multipleScattering, b, 1.0, 0.5, 0.5, false);
+  for (int l = 0; l < 3; ++l) {
+    EXPECT_GT(multiple[l], 0.0);
+    EXPECT_LT(multiple[l], 0.5 * total[l]);
+  }
+  // Indirect irradiance on the ground with the sun up: positive, below the direct one.
+  const std::vector<double> Ei = indirectIrradiance(t, b, 0.5), Ed = directIrradiance(t, b, 0.5);
+  for (int l = 0; l < 3; ++l) {
+    EXPECT_GT(Ei[l], 0.0);
+    EXPECT_LT(Ei[l], Ed[l]);
+  }
+}
+
+TEST(Precompute, GroundAlbedoAddsLight) {
+  auto make = [](double albedo) {
+    return shellAtmosphere(
+        {makeComponent("air", DensityProfile::exponential(8000.0), 1.5e-5, 0.0, PhaseFunction::rayleigh(), 1)},
+        albedo);
+  };
+  PrecomputeOptions o = smallOptions();
+  o.orders = 2;
+  const AtmosphereTables dark = precompute(make(0.0), o), bright = precompute(make(0.8), o);
+  EXPECT_DOUBLE_EQ(dark.orderMeanRadiance[0][0], bright.orderMeanRadiance[0][0]);
+  EXPECT_GT(bright.orderMeanRadiance[1][0], 1.2 * dark.orderMeanRadiance[1][0]);
+}
+
+// ---- robustness ------------------------------------------------------------------------------
+
+void checkPreset(const std::string& name) {
+  const Atmosphere a = loadAtmosphere(name, {680.0, 550.0, 440.0});
+  PrecomputeOptions o = smallOptions();
+  o.orders = 3;
+  const AtmosphereTables t = precompute(a, o);
+  expectTablesSane(t);
+  const double b = a.bottomRadiusM, top = a.topRadiusM;
+  for (double r : {b, b + 1.0, 0.5 * (b + top), top - 1.0, top}) {
+    for (double mu : {-1.0, horizonCosine(b, r), std::nextafter(horizonCosine(b, r), 1.0), 0.0, 0.3, 1.0}) {
+      for (double muS : {-1.0, o.muSMin, 0.0, 0.5, 1.0}) {
+        for (double nu : {-1.0, 0.0, 1.0}) {
+          std::string where;
+          EXPECT_TRUE(allFiniteNonNegative(skyRadiance(t, a, r, mu, muS, nu), where, "sky")) << name << " " << where;
+        }
+        std::string where;
+        EXPECT_TRUE(allFiniteNonNegative(indirectIrradiance(t, r, muS), where, "E")) << where;
+      }
+      std::string where;
+      EXPECT_TRUE(allFiniteNonNegative(transmittanceToTop(t, r, mu), where, "T")) << where;
+    }
+  }
+}
+
+TEST(Precompute, EarthTablesFiniteAndNonNegative) { checkPreset("earth"); }
+TEST(Precompute, MarsTablesFiniteAndNonNegative) { checkPreset("mars"); }
+
+TEST(Precompute, WavelengthBatchesGiveTheSameTables) {
+  const Atmosphere earth = loadAtmosphere("earth", {680.0, 550.0, 440.0});
+  PrecomputeOptions o = smallOptions();
+  o.orders = 2;
+  o.scatteringR = 4;
+  o.scatteringMu = 8;
+  const AtmosphereTables all = precompute(earth, o);
+  o.wavelengthBatch = 1;
+  const AtmosphereTables one = precompute(earth, o);
+  EXPECT_EQ(all.multipleScattering.values, one.multipleScattering.values);
+  EXPECT_EQ(all.singleScattering[0].values, one.singleScattering[0].values);
+  EXPECT_EQ(all.irradiance.values, one.irradiance.values);
+}
+
+TEST(Precompute, ProgressIsReportedAndCanCancel) {
+  const Atmosphere earth = loadAtmosphere("earth", {550.0});
+  PrecomputeOptions o = smallOptions();
+  o.scatteringR = 4;
+  o.scatteringMu = 8;
+  o.orders = 2;
+  std::vector<double> fractions;
+  std::vector<std::string> stages;
+  precompute(earth, o, [&](double f, const std::string& s) {
+    fractions.push_back(f);
+    if (stages.empty() || stages.back() != s) stages.push_back(s);
+    return true;
+  });
+  ASSERT_FALSE(fractions.empty());
+  for (std::size_t i = 1; i < fractions.size(); ++i) EXPECT_GE(fractions[i], fractions[i - 1]);
+  EXPECT_DOUBLE_EQ(fractions.back(), 1.0);
+  EXPECT_GE(stages.size(), 6u);
+  EXPECT_THROW(precompute(earth, o, [](double f, const std::string&) { return f < 0.3; }), PrecomputeCancelled);
+  o.scatteringMu = 7;
+  EXPECT_THROW(precompute(earth, o), std::invalid_argument);
+}
+
+// ---- refraction ------------------------------------------------------------------------------
+
+TEST(Precompute, RefractionKeepsVerticalRaysAndChangesGrazingOnes) {
+  const Atmosphere earth = loadAtmosphere("earth", {680.0, 550.0, 440.0});
+  PrecomputeOptions o = smallOptions();
+  o.orders = 2;
+  const AtmosphereTables off = precompute(earth, o);
+  o.refraction = true;
+  const AtmosphereTables on = precompute(earth, o);
+  expectTablesSane(on);
+  const int TW = o.transmittanceWidth, TH = o.transmittanceHeight;
+  for (int y = 0; y < TH; ++y)
+    for (int l = 0; l < 3; ++l)
+      EXPECT_NEAR(on.transmittance.at(0, y)[l], off.transmittance.at(0, y)[l], 1e-6 * off.transmittance.at(0, y)[l]);
+  // Vertical view and vertical sun: single scattering identical too.
+  const int x = o.scatteringMuS - 1, yz = o.scatteringMu / 2;
+  for (int z = 0; z < o.scatteringR; ++z)
+    for (std::size_t q = 0; q < off.singleScattering.size(); ++q)
+      for (int l = 0; l < 3; ++l) {
+        const double a = off.singleScattering[q].at(x, yz, z)[l], c = on.singleScattering[q].at(x, yz, z)[l];
+        EXPECT_NEAR(c, a, 1e-6 * a) << "z " << z << " q " << q;
+      }
+  // Near the horizon, from the ground and from 20 km up: different, finite, in [0, 1].
+  int differ = 0;
+  for (int y : {0, TH / 4}) {
+    for (int xx : {TW - 1, TW - 2, TW - 4}) {
+      for (int l = 0; l < 3; ++l) {
+        const double a = off.transmittance.at(xx, y)[l], c = on.transmittance.at(xx, y)[l];
+        EXPECT_TRUE(std::isfinite(c) && c >= 0.0 && c <= 1.0);
+        if (std::abs(c - a) > 1e-3 * a) ++differ;
+      }
+    }
+  }
+  std::printf("horizon from the ground, 550 nm: T = %.4g straight, %.4g refracted\n",
+              off.transmittance.at(TW - 1, 0)[1], on.transmittance.at(TW - 1, 0)[1]);
+  EXPECT_GE(differ, 9);
+}
+
+// ---- timing (not a test: --gtest_also_run_disabled_tests --gtest_filter=*Timing*) ------------
+
+TEST(Precompute, DISABLED_TimingDefaultSizes) {
+  for (bool refraction : {false, true}) {
+    const Atmosphere earth = loadAtmosphere("earth", {680.0, 550.0, 440.0});
+    PrecomputeOptions o;
+    o.refraction = refraction;
+    const AtmosphereTables t = precompute(earth, o);
+    std::printf("earth, 3 wavelengths, 4 orders, default sizes, refraction %s, tables %.1f MiB\n",
+                refraction ? "on" : "off", t.bytes() / 1048576.0);
+    for (const StageTiming& s : t.timings) std::printf("  %-22s %8.2f s\n", s.stage.c_str(), s.seconds);
+    for (std::size_t k = 0; k < t.orderMeanRadiance.size(); ++k)
+      std::printf("  order %zu mean radiance %.5g %.5g %.5g\n", k + 1, t.orderMeanRadiance[k][0],
+                  t.orderMeanRadiance[k][1], t.orderMeanRadiance[k][2]);
+  }
+}
+
+}  // namespace
+}  // namespace umbra::atmosphere
