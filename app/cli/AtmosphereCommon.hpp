@@ -1,0 +1,23 @@
+#pragma once
+// What the `umbra atmosphere ...` commands share: choosing the atmosphere.
+#include "Commands.hpp"
+
+#include "Atmosphere.hpp"
+
+#include <string>
+#include <vector>
+
+namespace umbra::cli {
+
+/// Adds --preset NAME and --config FILE (exactly one of them is needed).
+void addAtmosphereOptions(CLI::App* command, std::string& preset, std::string& config);
+
+/// The atmosphere named by --preset or --config, at these wavelengths; throws CommandError
+/// unless exactly one of them was given (and AtmosphereError for a bad file).
+atmosphere::Atmosphere loadAtmosphereOption(const std::string& preset, const std::string& config,
+                                            const std::vector<double>& wavelengthsNm);
+
+// The subcommands of `umbra atmosphere`, one file each.
+void addAtmosphereRefractionCommand(CLI::App& atmosphereCmd, Action& action);
+
+} // namespace umbra::cli
