@@ -137,9 +137,13 @@ TEST(AtmosphereTablesSource, UnknownAtmosphereIsAnError) {
 
 TEST(AtmosphereTablesSource, EveryTexelOfEveryTableIsFiniteAtEveryPreset) {
   CacheDir cache;
+  for (const bool refracted : {false, true})
   for (const char* preset : {"earth", "mars", "earth-2015-calbuco"}) {
+    SCOPED_TRACE(std::string(preset) + (refracted ? " (refracted paths)" : ""));
     vtkNew<vtkAtmosphereTablesSource> source;
     configure(source, cache, preset, vtkAtmosphereTablesSource::All);
+    source->SetRefractedPaths(refracted);
+    source->SetRefractionStepM(20e3);
     source->Update();
     ASSERT_TRUE(source->GetLastError().empty()) << source->GetLastError();
     EXPECT_EQ(source->GetLastPrecomputeCalls(), 1);
@@ -286,4 +290,22 @@ TEST(AtmosphereTablesSource, BadSizesAreAnError) {
   source->Update();
   EXPECT_NE(source->GetLastError().find("scatteringMu must be even"), std::string::npos) << source->GetLastError();
   EXPECT_FALSE(fs::exists(cache.path));
+}
+
+TEST(AtmosphereTablesSource, OneOrderGivesZeroMultipleScatteringAndIndirectIrradiance) {
+  CacheDir cache;
+  vtkNew<vtkAtmosphereTablesSource> source;
+  configure(source, cache, "earth", vtkAtmosphereTablesSource::MultipleScattering | vtkAtmosphereTablesSource::Irradiance);
+  source->SetOrders(1);
+  source->Update();
+  ASSERT_TRUE(source->GetLastError().empty()) << source->GetLastError();
+  for (const char* name : {"multiple-scattering", "irradiance"}) {
+    vtkImageData* image = block(source, name);
+    ASSERT_NE(image, nullptr) << name;
+    auto* a = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("L550nm"));
+    ASSERT_GT(a->GetNumberOfTuples(), 0);
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) ASSERT_EQ(a->GetValue(i), 0.0f) << name;
+  }
+  auto* direct = vtkFloatArray::SafeDownCast(block(source, "direct-irradiance")->GetPointData()->GetArray("L550nm"));
+  EXPECT_GT(direct->GetRange()[1], 0.5);
 }
