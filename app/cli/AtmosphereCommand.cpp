@@ -1,4 +1,4 @@
-// umbra atmosphere SUBCOMMAND: refraction, ...
+// umbra atmosphere SUBCOMMAND: refraction, precompute, ...
 #include "AtmosphereCommon.hpp"
 
 namespace umbra::cli {
@@ -20,6 +20,7 @@ void addAtmosphereCommand(CLI::App& app, Action& action) {
   CLI::App* atmosphereCmd = app.add_subcommand("atmosphere", "Atmosphere models: refraction, tables, sky");
   atmosphereCmd->require_subcommand(1);
   addAtmosphereRefractionCommand(*atmosphereCmd, action);
+  addAtmospherePrecomputeCommand(*atmosphereCmd, action);
 }
 
 } // namespace umbra::cli

@@ -2,6 +2,8 @@
 
 #include "Atmosphere.hpp"
 #include "Describe.hpp"
+#include "Precompute.hpp"
+#include "Spectrum.hpp"
 #include "FieldParameters.h"
 #include "Refraction.hpp"
 #include "SightLines.hpp"
@@ -14,11 +16,16 @@
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 
+#include <algorithm>
+#include <cctype>
+#include <optional>
+
 vtkStandardNewMacro(vtkAtmosphereTablesSource);
 
 namespace {
 
 using umbra::atmosphere::formatNumber;
+using umbra::atmosphere::ParameterMap;
 constexpr const char* kRefractionKind = "atmosphere-refraction";
 
 /// A 2D table over unit ranges with texel centres on the ends (Bruneton's convention).
@@ -38,25 +45,211 @@ void addArray(vtkImageData* image, const char* name, const std::vector<float>& v
   image->GetPointData()->AddArray(array);
 }
 
+/// "L680nm", "L393p57nm": the channel of a wavelength ('.' is a layer separator in EXR).
+std::string channelName(double nm) {
+  std::string s = formatNumber(nm);
+  std::replace(s.begin(), s.end(), '.', 'p');
+  return "L" + s + "nm";
+}
+
+/// Kind names allow [A-Za-z0-9_.-]; anything else in a component name becomes '_'.
+std::string kindPart(const std::string& name) {
+  std::string s = name;
+  for (char& c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) c = '_';
+  return s;
+}
+
+/// One Bruneton table: block name, its cache parameters, depth (1 for 2D), its values.
+struct BrunetonTable {
+  std::string name;
+  ParameterMap parameters;
+  int depth = 1;
+  std::optional<umbra::tables::Table> table;
+};
+
+umbra::tables::Table toTable(const std::vector<double>& values, int width, int rows, int channels,
+                             const std::vector<std::string>& names) {
+  umbra::tables::Table t;
+  t.width = width;
+  t.height = rows;
+  t.channels = names;
+  t.data.assign(static_cast<std::size_t>(width) * rows * channels, 0.0f);
+  if (!values.empty()) std::transform(values.begin(), values.end(), t.data.begin(), [](double v) { return static_cast<float>(v); });
+  return t;
+}
+
+/// The block of a table: 2D over unit ranges, or 3D in texel indices (rows stacked per slice).
+vtkSmartPointer<vtkImageData> blockOf(const umbra::tables::Table& t, int depth) {
+  vtkSmartPointer<vtkImageData> image;
+  if (depth <= 1) {
+    image = unitRangeImage(t.width, t.height);
+  } else {
+    image = vtkSmartPointer<vtkImageData>::New();
+    image->SetDimensions(t.width, t.height / depth, depth);
+    image->SetSpacing(1.0, 1.0, 1.0);
+    image->SetOrigin(0.0, 0.0, 0.0);
+  }
+  const std::size_t n = static_cast<std::size_t>(t.width) * t.height, nc = t.channels.size();
+  std::vector<float> values(n);
+  for (std::size_t c = 0; c < nc; ++c) {
+    for (std::size_t i = 0; i < n; ++i) values[i] = t.data[i * nc + c];
+    addArray(image, t.channels[c].c_str(), values);
+  }
+  if (nc > 0) image->GetPointData()->SetActiveScalars(t.channels[0].c_str());
+  return image;
+}
+
 } // namespace
 
 vtkAtmosphereTablesSource::vtkAtmosphereTablesSource() { this->SetNumberOfInputPorts(0); }
 
 void vtkAtmosphereTablesSource::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Atmosphere: " << this->Atmosphere << "\n" << indent << "Tables: " << this->Tables << "\n";
+  os << indent << "Atmosphere: " << this->Atmosphere << "\n" << indent << "Tables: " << this->Tables << "\n"
+     << indent << "Orders: " << this->Orders << "\n" << indent << "Wavelengths: " << this->Wavelengths << "\n"
+     << indent << "RefractedPaths: " << this->RefractedPaths << "\n";
 }
 
 int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) {
   using namespace umbra;
   vtkMultiBlockDataSet* output = vtkMultiBlockDataSet::GetData(out);
-  this->CacheHits = this->Computed = 0;
+  this->CacheHits = this->Computed = this->PrecomputeCalls = 0;
   this->Error.clear();
   try {
-    const atmosphere::Atmosphere atm = atmosphere::loadAtmosphere(this->Atmosphere, {680.0, 550.0, 440.0});
+    const std::vector<double> wavelengthsNm = this->Wavelengths == 3 ? atmosphere::WavelengthSet::rgb().nm
+                                                                     : atmosphere::WavelengthSet::uniform(this->Wavelengths).nm;
+    const atmosphere::Atmosphere atm = atmosphere::loadAtmosphere(this->Atmosphere, wavelengthsNm);
     const tables::TableCache cache(this->CacheDirectory.empty() ? tables::TableCache::defaultDirectory()
                                                                 : this->CacheDirectory);
     unsigned block = 0;
+
+    if (this->Tables & Bruneton) {
+      atmosphere::PrecomputeOptions po;
+      po.transmittanceWidth = this->TransmittanceSize[0];
+      po.transmittanceHeight = this->TransmittanceSize[1];
+      po.scatteringR = this->ScatteringSize[0];
+      po.scatteringMu = this->ScatteringSize[1];
+      po.scatteringMuS = this->ScatteringSize[2];
+      po.scatteringNu = this->ScatteringSize[3];
+      po.irradianceWidth = this->IrradianceSize[0];
+      po.irradianceHeight = this->IrradianceSize[1];
+      po.orders = this->Orders;
+      po.refraction = this->RefractedPaths;
+      po.refractionStepM = this->RefractionStepM;
+      po.threads = this->Threads;
+      if (const std::string e = po.validate(); !e.empty()) throw std::invalid_argument("precompute options: " + e);
+
+      // Everything that changes the values (not threads nor wavelengthBatch).
+      ParameterMap base = atmosphere::atmosphereParameters(atm);
+      base["transmittanceSize"] = std::to_string(po.transmittanceWidth) + "x" + std::to_string(po.transmittanceHeight);
+      base["scatteringSize"] = std::to_string(po.scatteringR) + "," + std::to_string(po.scatteringMu) + "," +
+                               std::to_string(po.scatteringMuS) + "," + std::to_string(po.scatteringNu);
+      base["irradianceSize"] = std::to_string(po.irradianceWidth) + "x" + std::to_string(po.irradianceHeight);
+      base["orders"] = std::to_string(po.orders);
+      base["samples"] = std::to_string(po.transmittanceSamples) + " " + std::to_string(po.singleScatteringSamples) + " " +
+                        std::to_string(po.multipleScatteringSamples) + " " + std::to_string(po.opticalDepthSubsamples) +
+                        " " + std::to_string(po.sphereSamples) + " " + std::to_string(po.irradianceSamples);
+      base["muSMin"] = formatNumber(po.muSMin);
+      base["sunAngularRadiusRad"] = formatNumber(po.sunAngularRadiusRad);
+      base["refractedPaths"] = po.refraction ? "1" : "0";
+      if (po.refraction) base["refractionStepM"] = formatNumber(po.refractionStepM);
+      base["units"] = "per unit solar irradiance; channels L<nm>nm, one per wavelength ('.' written 'p')";
+
+      std::vector<std::string> channels;
+      for (double nm : atm.wavelengthsNm) channels.push_back(channelName(nm));
+      const int scatterWidth = po.scatteringNu * po.scatteringMuS;
+      const std::string layout3 =
+          "x = nu index * MU_S + mu_s index, y = mu index + MU * r index (the MU rows of each R slice stacked; "
+          "the lower MU/2 rows of a slice: rays that hit the ground); Bruneton 2017 4D parametrisation";
+      auto entry = [&](std::string name, int bit, std::string layout, int depth) {
+        BrunetonTable t;
+        t.name = std::move(name);
+        t.parameters = base;
+        t.parameters["layout"] = std::move(layout);
+        t.parameters["depth"] = std::to_string(depth);
+        t.depth = depth;
+        return std::make_pair(bit, t);
+      };
+      std::vector<std::pair<int, BrunetonTable>> all;
+      all.push_back(entry("transmittance", Transmittance,
+                          "x = x_mu, y = x_r (Bruneton 2017 transmittance parametrisation, texel centres on the ends)", 1));
+      std::vector<std::string> components;
+      for (const atmosphere::Component& c : atm.components)
+        if (c.scatters()) {
+          components.push_back(c.name);
+          all.push_back(entry("single-scattering-" + kindPart(c.name), SingleScattering, layout3, po.scatteringR));
+          all.back().second.parameters["component"] = c.name;
+        }
+      all.push_back(entry("multiple-scattering", MultipleScattering, layout3, po.scatteringR));
+      const std::string layoutIrradiance =
+          "x = x_mu_s, y = x_r (Bruneton 2017 irradiance parametrisation, texel centres on the ends)";
+      all.push_back(entry("direct-irradiance", Irradiance, layoutIrradiance, 1));
+      all.push_back(entry("irradiance", Irradiance, layoutIrradiance, 1));
+      auto sizeOf = [&](const BrunetonTable& t) {
+        if (t.name == "transmittance") return std::make_pair(po.transmittanceWidth, po.transmittanceHeight);
+        if (t.depth > 1) return std::make_pair(scatterWidth, po.scatteringMu * po.scatteringR);
+        return std::make_pair(po.irradianceWidth, po.irradianceHeight);
+      };
+
+      const int requested = this->Tables & Bruneton;
+      bool allHit = true;
+      for (auto& [bit, t] : all) {
+        if (!(requested & bit)) continue;
+        if (this->UseCache) t.table = cache.load("atmosphere-" + t.name, t.parameters);
+        if (t.table && (t.table->channels != channels || std::make_pair(t.table->width, t.table->height) != sizeOf(t)))
+          t.table.reset();
+        allHit = allHit && t.table.has_value();
+      }
+      if (allHit) {
+        for (const auto& [bit, t] : all) this->CacheHits += (requested & bit) ? 1 : 0;
+      } else {
+        // Transmittance alone: no scattering worth the name (the smallest tables, one order).
+        const bool transmittanceOnly = requested == Transmittance;
+        atmosphere::PrecomputeOptions run = po;
+        if (transmittanceOnly) {
+          run.scatteringR = run.scatteringMuS = run.scatteringNu = 2;
+          run.scatteringMu = 4;
+          run.irradianceWidth = run.irradianceHeight = 2;
+          run.orders = 1;
+        }
+        ++this->PrecomputeCalls;
+        const atmosphere::AtmosphereTables result = atmosphere::precompute(atm, run, [this](double f, const std::string&) {
+          this->UpdateProgress(0.95 * f);
+          return true;
+        });
+        const int nc = static_cast<int>(channels.size());
+        for (auto& [bit, t] : all) {
+          if (transmittanceOnly && bit != Transmittance) continue;
+          const auto [w, h] = sizeOf(t);
+          const std::vector<double>* values = nullptr;
+          if (t.name == "transmittance") values = &result.transmittance.values;
+          else if (t.name == "multiple-scattering") values = &result.multipleScattering.values;
+          else if (t.name == "direct-irradiance") values = &result.directIrradiance.values;
+          else if (t.name == "irradiance") values = &result.irradiance.values;
+          else {
+            const auto i = std::find(components.begin(), components.end(), t.parameters.at("component")) - components.begin();
+            values = &result.singleScattering.at(static_cast<std::size_t>(i)).values;
+          }
+          // Orders 1: no multiple scattering nor indirect irradiance (empty tables: zeros).
+          if (!values->empty() && values->size() != static_cast<std::size_t>(w) * h * nc)
+            throw std::logic_error("precompute: unexpected size of table " + t.name);
+          t.table = toTable(*values, w, h, nc, channels);
+          if (this->UseCache) cache.store("atmosphere-" + t.name, t.parameters, *t.table);
+          this->Computed += (requested & bit) ? 1 : 0;
+        }
+      }
+      for (auto& [bit, t] : all) {
+        if (!(requested & bit)) continue;
+        auto image = blockOf(*t.table, t.depth);
+        ParameterMap parameters = t.parameters;
+        parameters["kind"] = "atmosphere-" + t.name;
+        filters::setFieldParameters(image, parameters);
+        output->SetBlock(block, image);
+        output->GetMetaData(block)->Set(vtkCompositeDataSet::NAME(), t.name.c_str());
+        ++block;
+      }
+    }
 
     if (this->Tables & Refraction) {
       auto parameters = atmosphere::refractionParameters(atm, atm.refractivityReferenceWavelengthNm);

@@ -1,13 +1,47 @@
 #pragma once
 // vtkAtmosphereTablesSource: the precomputed tables of a model atmosphere (issue #3) as
-// a vtkMultiBlockDataSet of vtkImageData blocks, each with its parameters in field data.
-// Only the tables asked for (SetTables) are made; each is cached on disk as EXR, keyed by
-// a hash of the parameters it depends on, and read back instead of recomputed on a hit.
+// a vtkMultiBlockDataSet of vtkImageData blocks, each with its parameters in field data
+// (umbra::filters::fieldParameters; "kind" names the table). Only the tables asked for
+// (SetTables) are made; each is cached on disk as one EXR file, keyed by a hash of the
+// parameters it depends on, and read back instead of recomputed on a hit.
 //
-// Tables so far:
-//   "refraction": the deviation / contact-altitude table of the eclipse paper (Figure 6)
-//     over the transmittance parametrisation: 2D, point coordinates (x_mu, x_r) with
-//     texel centres on the ends of [0, 1], arrays "deviation_rad", "contact_altitude_m".
+// Tables (block names in quotes, in this order; cache kinds "atmosphere-<block name>"):
+//   Transmittance       "transmittance": T(r, mu) to the top, 2D (x_mu, x_r).
+//   SingleScattering    "single-scattering-<component>": one 3D block per scattering
+//                       component (without its phase function).
+//   MultipleScattering  "multiple-scattering": orders 2..N, phases included, 3D.
+//   Irradiance          "direct-irradiance" (E_0) and "irradiance" (indirect, orders
+//                       1..N-1), 2D (x_mu_s, x_r).
+//   Refraction          "refraction": the deviation / contact-altitude table of the eclipse
+//     paper (Figure 6) over the transmittance parametrisation: 2D, arrays "deviation_rad",
+//     "contact_altitude_m" (keyed by refractionParameters only: aerosols do not change it).
+// Default: the four Bruneton tables (Bruneton); the refraction table only when asked for.
+// RefractedPaths (the precomputation along refracted rays) does not add the refraction
+// table by itself; the `umbra atmosphere precompute --refraction` command asks for both.
+//
+// The Bruneton tables (atmosphere/Precompute.hpp, per unit solar irradiance) come from one
+// precompute() call: when every requested one is in the cache they are read, otherwise the
+// precomputation runs once and every Bruneton table it made is stored. When Transmittance
+// is the only Bruneton table asked for, scattering is not computed (the precomputation
+// runs with 2x4x2x2 scattering and 2x2 irradiance tables, one order, and only the
+// transmittance table, which does not depend on them, is kept and stored). Their cache key
+// is atmosphereParameters(atm) plus every option that changes values (sizes, orders,
+// samples, refracted paths and step, muSMin, sun radius) and the table's own "layout" /
+// "depth" entries.
+//
+// Arrays: one float array per wavelength, named "L<nm>nm" (e.g. "L680nm"; a fractional
+// wavelength writes '.' as 'p': "L393p57nm" — formatNumber digits), the same names as the
+// EXR channels; parameter "wavelengthsNm" lists the exact values. Wavelengths: 3 = the
+// R, G, B mode (680, 550, 440 nm, in that order), else WavelengthSet::uniform(N).
+// The tables are computed in double precision and stored (EXR and arrays) as float.
+//
+// Geometry: 2D blocks have point coordinates over the unit ranges, texel centres on the
+// ends of [0, 1] (Bruneton's convention): spacing 1/(n-1). 3D blocks (scattering) have
+// dimensions (NU * MU_S) x MU x R, origin 0 and spacing 1 (texel indices): x = nu index *
+// MU_S + mu_s index, y = mu (the lower half for rays that hit the ground), z = r.
+// In EXR a 3D table is stored as 2D: width NU * MU_S, height MU * R, the MU rows of each
+// R slice stacked (row y + MU * z, like Bruneton's 3D textures); parameters "layout",
+// "depth" (= R), "scatteringSize" (R,MU,MU_S,NU) describe it.
 #include <vtkMultiBlockDataSetAlgorithm.h>
 
 #include <string>
@@ -18,20 +52,50 @@ public:
   vtkTypeMacro(vtkAtmosphereTablesSource, vtkMultiBlockDataSetAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum Table { Refraction = 1 << 3 };
+  enum Table {
+    Transmittance = 1 << 0,
+    SingleScattering = 1 << 1,
+    MultipleScattering = 1 << 2,
+    Refraction = 1 << 3,
+    Irradiance = 1 << 4,  ///< direct and indirect: two blocks
+    Bruneton = Transmittance | SingleScattering | MultipleScattering | Irradiance,
+    All = Bruneton | Refraction
+  };
 
   /// Preset name ("earth", "mars", "earth-2015-calbuco") or the path of a JSON file.
   vtkSetStdStringFromCharMacro(Atmosphere);
   vtkGetCharFromStdStringMacro(Atmosphere);
-  /// Which tables to make (bitwise or of Table values; default all).
+  /// Which tables to make (bitwise or of Table values; default Bruneton).
   vtkSetMacro(Tables, int);
   vtkGetMacro(Tables, int);
 
+  // ---- the Bruneton tables (PrecomputeOptions) ----
+  /// Scattering orders (1: single only; default 4).
+  vtkSetClampMacro(Orders, int, 1, 64);
+  vtkGetMacro(Orders, int);
+  /// Number of wavelengths: 3 = 680, 550, 440 nm; else WavelengthSet::uniform(N) (default 3).
+  vtkSetClampMacro(Wavelengths, int, 1, 256);
+  vtkGetMacro(Wavelengths, int);
+  vtkSetVector2Macro(TransmittanceSize, int);  ///< x_mu x x_r (default 256 x 64)
+  vtkGetVector2Macro(TransmittanceSize, int);
+  vtkSetVector4Macro(ScatteringSize, int);     ///< R, MU, MU_S, NU (default 32, 128, 32, 8)
+  vtkGetVector4Macro(ScatteringSize, int);
+  vtkSetVector2Macro(IrradianceSize, int);     ///< x_mu_s x x_r (default 64 x 16)
+  vtkGetVector2Macro(IrradianceSize, int);
+  /// Integrate along refracted rays (PrecomputeOptions::refraction, step RefractionStepM).
+  vtkSetMacro(RefractedPaths, bool);
+  vtkGetMacro(RefractedPaths, bool);
+  vtkBooleanMacro(RefractedPaths, bool);
+  /// OpenMP threads (0: the default); does not change the values.
+  vtkSetClampMacro(Threads, int, 0, 1024);
+  vtkGetMacro(Threads, int);
+
+  // ---- the refraction table ----
   vtkSetClampMacro(RefractionWidth, int, 2, 8192);
   vtkGetMacro(RefractionWidth, int);
   vtkSetClampMacro(RefractionHeight, int, 2, 8192);
   vtkGetMacro(RefractionHeight, int);
-  /// RK4 step along the rays [m] (default 10 km).
+  /// RK4 step along the rays [m] (default 10 km); also the step of the refracted paths.
   vtkSetClampMacro(RefractionStepM, double, 1.0, 1e6);
   vtkGetMacro(RefractionStepM, double);
 
@@ -42,9 +106,11 @@ public:
   vtkGetMacro(UseCache, bool);
   vtkBooleanMacro(UseCache, bool);
 
-  /// After an update: the tables read from the cache, computed, and the error (if any).
+  /// After an update: the tables (blocks) read from the cache, computed, and the error (if any).
   int GetLastCacheHits() const { return this->CacheHits; }
   int GetLastComputed() const { return this->Computed; }
+  /// Number of precompute() calls made by the last update (0 or 1).
+  int GetLastPrecomputeCalls() const { return this->PrecomputeCalls; }
   const std::string& GetLastError() const { return this->Error; }
 
 protected:
@@ -57,7 +123,14 @@ private:
   void operator=(const vtkAtmosphereTablesSource&) = delete;
 
   std::string Atmosphere = "earth";
-  int Tables = Refraction;
+  int Tables = Bruneton;
+  int Orders = 4;
+  int Wavelengths = 3;
+  int TransmittanceSize[2] = {256, 64};
+  int ScatteringSize[4] = {32, 128, 32, 8};
+  int IrradianceSize[2] = {64, 16};
+  bool RefractedPaths = false;
+  int Threads = 0;
   int RefractionWidth = 512;
   int RefractionHeight = 256;
   double RefractionStepM = 10e3;
@@ -66,5 +139,6 @@ private:
 
   int CacheHits = 0;
   int Computed = 0;
+  int PrecomputeCalls = 0;
   std::string Error;
 };

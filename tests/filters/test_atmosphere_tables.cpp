@@ -7,10 +7,12 @@
 #include <vtkImageData.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
+#include <vtkInformation.h>
 #include <vtkPointData.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -22,15 +24,45 @@ struct CacheDir {
   ~CacheDir() { fs::remove_all(path); }
 };
 
-vtkImageData* refractionBlock(vtkAtmosphereTablesSource* s) {
-  return vtkImageData::SafeDownCast(s->GetOutput()->GetBlock(0));
+vtkImageData* block(vtkAtmosphereTablesSource* s, const std::string& name) {
+  vtkMultiBlockDataSet* out = s->GetOutput();
+  for (unsigned i = 0; i < out->GetNumberOfBlocks(); ++i)
+    if (out->HasMetaData(i) && name == out->GetMetaData(i)->Get(vtkCompositeDataSet::NAME()))
+      return vtkImageData::SafeDownCast(out->GetBlock(i));
+  return nullptr;
 }
 
-void configure(vtkAtmosphereTablesSource* s, const CacheDir& cache, const char* atmosphere) {
+vtkImageData* refractionBlock(vtkAtmosphereTablesSource* s) { return block(s, "refraction"); }
+
+/// Tiny tables (the suite stays fast): transmittance 16x8, scattering 2*4 x 8 x 4,
+/// irradiance 8x4, 2 orders; the refraction table 32x16.
+void configure(vtkAtmosphereTablesSource* s, const CacheDir& cache, const char* atmosphere,
+               int tables = vtkAtmosphereTablesSource::Refraction) {
   s->SetAtmosphere(atmosphere);
+  s->SetTables(tables);
   s->SetRefractionWidth(32);
   s->SetRefractionHeight(16);
+  s->SetTransmittanceSize(16, 8);
+  s->SetScatteringSize(4, 8, 4, 2);
+  s->SetIrradianceSize(8, 4);
+  s->SetOrders(2);
   s->SetCacheDirectory(cache.path.c_str());
+}
+
+std::vector<std::string> blockNames(vtkAtmosphereTablesSource* s) {
+  std::vector<std::string> names;
+  vtkMultiBlockDataSet* out = s->GetOutput();
+  for (unsigned i = 0; i < out->GetNumberOfBlocks(); ++i)
+    names.push_back(out->HasMetaData(i) ? out->GetMetaData(i)->Get(vtkCompositeDataSet::NAME()) : "");
+  return names;
+}
+
+std::vector<std::string> cachedKinds(const CacheDir& cache) {
+  std::vector<std::string> files;
+  if (fs::exists(cache.path))
+    for (const auto& e : fs::directory_iterator(cache.path)) files.push_back(e.path().filename().string());
+  std::sort(files.begin(), files.end());
+  return files;
 }
 } // namespace
 
@@ -99,4 +131,181 @@ TEST(AtmosphereTablesSource, UnknownAtmosphereIsAnError) {
   configure(source, cache, "pluto");
   source->Update();
   EXPECT_NE(source->GetLastError().find("unknown atmosphere preset 'pluto'"), std::string::npos);
+}
+
+// ---- the Bruneton tables ----------------------------------------------------------------
+
+TEST(AtmosphereTablesSource, EveryTexelOfEveryTableIsFiniteAtEveryPreset) {
+  CacheDir cache;
+  for (const bool refracted : {false, true})
+  for (const char* preset : {"earth", "mars", "earth-2015-calbuco"}) {
+    SCOPED_TRACE(std::string(preset) + (refracted ? " (refracted paths)" : ""));
+    vtkNew<vtkAtmosphereTablesSource> source;
+    configure(source, cache, preset, vtkAtmosphereTablesSource::All);
+    source->SetRefractedPaths(refracted);
+    source->SetRefractionStepM(20e3);
+    source->Update();
+    ASSERT_TRUE(source->GetLastError().empty()) << source->GetLastError();
+    EXPECT_EQ(source->GetLastPrecomputeCalls(), 1);
+    const auto names = blockNames(source);
+    for (const char* name : {"transmittance", "multiple-scattering", "direct-irradiance", "irradiance", "refraction"})
+      EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << preset << " " << name;
+    EXPECT_NE(std::find(names.begin(), names.end(), "single-scattering-molecules"), names.end()) << preset;
+    EXPECT_EQ(source->GetLastComputed() + source->GetLastCacheHits(), static_cast<int>(names.size()));
+    for (const std::string& name : names) {
+      vtkImageData* image = block(source, name);
+      ASSERT_NE(image, nullptr) << name;
+      const auto parameters = umbra::filters::fieldParameters(image);
+      EXPECT_EQ(parameters.at("kind"), "atmosphere-" + name);
+      int dims[3];
+      image->GetDimensions(dims);
+      if (name.rfind("single-scattering", 0) == 0 || name == "multiple-scattering") {
+        EXPECT_EQ(dims[0], 8) << name;
+        EXPECT_EQ(dims[1], 8) << name;
+        EXPECT_EQ(dims[2], 4) << name;
+        EXPECT_EQ(parameters.at("depth"), "4");
+      } else {
+        EXPECT_EQ(dims[2], 1) << name;
+      }
+      const std::vector<std::string> arrays =
+          name == "refraction" ? std::vector<std::string>{"deviation_rad", "contact_altitude_m"}
+                               : std::vector<std::string>{"L680nm", "L550nm", "L440nm"};
+      ASSERT_EQ(image->GetPointData()->GetNumberOfArrays(), static_cast<int>(arrays.size())) << name;
+      for (const std::string& a : arrays) {
+        auto* array = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray(a.c_str()));
+        ASSERT_NE(array, nullptr) << preset << " " << name << " " << a;
+        ASSERT_EQ(array->GetNumberOfTuples(), static_cast<vtkIdType>(dims[0]) * dims[1] * dims[2]);
+        for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i) {
+          const float v = array->GetValue(i);
+          ASSERT_TRUE(std::isfinite(v)) << preset << " " << name << " " << a << " " << i;
+          if (name != "refraction") {
+            ASSERT_GE(v, 0.0f) << preset << " " << name << " " << a << " " << i;
+          }
+        }
+      }
+    }
+    // Transmittance is at most 1, and larger at the top than at the ground.
+    auto* t = vtkFloatArray::SafeDownCast(block(source, "transmittance")->GetPointData()->GetArray("L550nm"));
+    for (vtkIdType i = 0; i < t->GetNumberOfTuples(); ++i) ASSERT_LE(t->GetValue(i), 1.0f + 1e-6f);
+  }
+}
+
+TEST(AtmosphereTablesSource, SecondSourceReadsEveryTableFromTheCache) {
+  CacheDir cache;
+  vtkNew<vtkAtmosphereTablesSource> first, second;
+  configure(first, cache, "earth", vtkAtmosphereTablesSource::All);
+  first->Update();
+  ASSERT_TRUE(first->GetLastError().empty()) << first->GetLastError();
+  const auto names = blockNames(first);
+  EXPECT_EQ(first->GetLastCacheHits(), 0);
+  configure(second, cache, "earth", vtkAtmosphereTablesSource::All);
+  second->Update();
+  EXPECT_EQ(second->GetLastComputed(), 0);
+  EXPECT_EQ(second->GetLastPrecomputeCalls(), 0);
+  EXPECT_EQ(second->GetLastCacheHits(), static_cast<int>(names.size()));
+  ASSERT_EQ(blockNames(second), names);
+  for (const std::string& name : names) {
+    vtkPointData* a = block(first, name)->GetPointData();
+    vtkPointData* b = block(second, name)->GetPointData();
+    ASSERT_EQ(a->GetNumberOfArrays(), b->GetNumberOfArrays());
+    for (int k = 0; k < a->GetNumberOfArrays(); ++k) {
+      auto* x = vtkFloatArray::SafeDownCast(a->GetArray(k));
+      auto* y = vtkFloatArray::SafeDownCast(b->GetArray(a->GetArrayName(k)));
+      ASSERT_NE(y, nullptr);
+      for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i) ASSERT_EQ(x->GetValue(i), y->GetValue(i)) << name;
+    }
+    EXPECT_EQ(umbra::filters::fieldParameters(block(first, name)), umbra::filters::fieldParameters(block(second, name)));
+  }
+  // A subset of the cached tables is a hit too.
+  vtkNew<vtkAtmosphereTablesSource> subset;
+  configure(subset, cache, "earth", vtkAtmosphereTablesSource::MultipleScattering);
+  subset->Update();
+  EXPECT_EQ(subset->GetLastCacheHits(), 1);
+  EXPECT_EQ(subset->GetLastComputed(), 0);
+  // Another order count is another table.
+  vtkNew<vtkAtmosphereTablesSource> orders;
+  configure(orders, cache, "earth", vtkAtmosphereTablesSource::MultipleScattering);
+  orders->SetOrders(3);
+  orders->Update();
+  EXPECT_EQ(orders->GetLastComputed(), 1);
+}
+
+TEST(AtmosphereTablesSource, TransmittanceAloneComputesNoScattering) {
+  CacheDir cache;
+  vtkNew<vtkAtmosphereTablesSource> source;
+  configure(source, cache, "earth", vtkAtmosphereTablesSource::Transmittance);
+  source->Update();
+  ASSERT_TRUE(source->GetLastError().empty()) << source->GetLastError();
+  EXPECT_EQ(blockNames(source), std::vector<std::string>{"transmittance"});
+  EXPECT_EQ(source->GetLastComputed(), 1);
+  const auto files = cachedKinds(cache);
+  ASSERT_EQ(files.size(), 1u);
+  EXPECT_EQ(files[0].rfind("atmosphere-transmittance-", 0), 0u) << files[0];
+  // The same values as the transmittance of the full precomputation (which then hits it).
+  vtkNew<vtkAtmosphereTablesSource> full;
+  configure(full, cache, "earth", vtkAtmosphereTablesSource::Bruneton);
+  full->SetUseCache(false);
+  full->Update();
+  auto* a = vtkFloatArray::SafeDownCast(block(source, "transmittance")->GetPointData()->GetArray("L440nm"));
+  auto* b = vtkFloatArray::SafeDownCast(block(full, "transmittance")->GetPointData()->GetArray("L440nm"));
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) ASSERT_EQ(a->GetValue(i), b->GetValue(i));
+}
+
+TEST(AtmosphereTablesSource, OtherAerosolsMissTheScatteringTablesButHitRefraction) {
+  CacheDir cache;
+  vtkNew<vtkAtmosphereTablesSource> earth, calbuco;
+  const int tables = vtkAtmosphereTablesSource::SingleScattering | vtkAtmosphereTablesSource::Refraction;
+  configure(earth, cache, "earth", tables);
+  earth->Update();
+  const int single = static_cast<int>(blockNames(earth).size()) - 1;
+  EXPECT_GE(single, 2);  // molecules and aerosols
+  configure(calbuco, cache, "earth-2015-calbuco", tables);
+  calbuco->Update();
+  ASSERT_TRUE(calbuco->GetLastError().empty()) << calbuco->GetLastError();
+  EXPECT_EQ(calbuco->GetLastCacheHits(), 1);  // refraction
+  EXPECT_EQ(calbuco->GetLastComputed(), static_cast<int>(blockNames(calbuco).size()) - 1);
+  EXPECT_EQ(calbuco->GetLastPrecomputeCalls(), 1);
+}
+
+TEST(AtmosphereTablesSource, UniformWavelengthsAndRefractedPaths) {
+  CacheDir cache;
+  vtkNew<vtkAtmosphereTablesSource> source;
+  configure(source, cache, "earth", vtkAtmosphereTablesSource::Transmittance);
+  source->SetWavelengths(4);
+  source->SetRefractedPaths(true);
+  source->SetRefractionStepM(50e3);
+  source->Update();
+  ASSERT_TRUE(source->GetLastError().empty()) << source->GetLastError();
+  vtkPointData* pd = block(source, "transmittance")->GetPointData();
+  ASSERT_EQ(pd->GetNumberOfArrays(), 4);
+  EXPECT_STREQ(pd->GetArrayName(0), "L418p75nm");  // 360 + 0.5 * 470 / 4
+  EXPECT_EQ(umbra::filters::fieldParameters(block(source, "transmittance")).at("refractedPaths"), "1");
+}
+
+TEST(AtmosphereTablesSource, BadSizesAreAnError) {
+  CacheDir cache;
+  vtkNew<vtkAtmosphereTablesSource> source;
+  configure(source, cache, "earth", vtkAtmosphereTablesSource::Bruneton);
+  source->SetScatteringSize(4, 7, 4, 2);
+  source->Update();
+  EXPECT_NE(source->GetLastError().find("scatteringMu must be even"), std::string::npos) << source->GetLastError();
+  EXPECT_FALSE(fs::exists(cache.path));
+}
+
+TEST(AtmosphereTablesSource, OneOrderGivesZeroMultipleScatteringAndIndirectIrradiance) {
+  CacheDir cache;
+  vtkNew<vtkAtmosphereTablesSource> source;
+  configure(source, cache, "earth", vtkAtmosphereTablesSource::MultipleScattering | vtkAtmosphereTablesSource::Irradiance);
+  source->SetOrders(1);
+  source->Update();
+  ASSERT_TRUE(source->GetLastError().empty()) << source->GetLastError();
+  for (const char* name : {"multiple-scattering", "irradiance"}) {
+    vtkImageData* image = block(source, name);
+    ASSERT_NE(image, nullptr) << name;
+    auto* a = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("L550nm"));
+    ASSERT_GT(a->GetNumberOfTuples(), 0);
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) ASSERT_EQ(a->GetValue(i), 0.0f) << name;
+  }
+  auto* direct = vtkFloatArray::SafeDownCast(block(source, "direct-irradiance")->GetPointData()->GetArray("L550nm"));
+  EXPECT_GT(direct->GetRange()[1], 0.5);
 }

@@ -1,0 +1,203 @@
+// umbra atmosphere precompute --preset NAME|--config FILE [--refraction] [--orders N]
+//   [--wavelengths N] [--transmittance-size WxH] [--scattering-size R,MU,MU_S,NU]
+//   [--irradiance-size WxH] [--refraction-size WxH] --output DIR [--cache-dir D] [--no-cache]
+//
+// Writes the Bruneton tables of vtkAtmosphereTablesSource (and, with --refraction, the
+// refraction table; the scattering then follows refracted paths) into DIR, one EXR file per
+// table named <kind>.exr (kind = "atmosphere-<block name>", e.g.
+// atmosphere-transmittance.exr, atmosphere-single-scattering-molecules.exr), the layout of
+// the filter's header comment: channels "L<nm>nm", 3D tables with their R slices stacked.
+// DIR is created when its parent exists. Each file is written atomically; when one cannot
+// be written, those already written by this run are removed (and DIR if this run made it).
+// The size options exist mostly for tests and quick looks (e.g. --transmittance-size 16x8
+// --scattering-size 4,8,4,2 --irradiance-size 8x4 --orders 2 runs in well under a second).
+#include "AtmosphereCommon.hpp"
+#include "Commands.hpp"
+
+#include "FieldParameters.h"
+#include "vtkAtmosphereTablesSource.h"
+#include "umbra/tables/Exr.h"
+#include "umbra/tables/TableCache.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <regex>
+
+namespace fs = std::filesystem;
+
+namespace umbra::cli {
+namespace {
+
+std::vector<int> parseSize(const std::string& option, const std::string& text, int count, const char* separator,
+                           const char* example) {
+  std::vector<int> values;
+  std::string pattern = R"((\d{1,5}))";
+  for (int i = 1; i < count; ++i) pattern += std::string(separator) + R"((\d{1,5}))";
+  std::smatch m;
+  if (!std::regex_match(text, m, std::regex(pattern)))
+    throw CommandError(option + ": expected " + example + ", got '" + text + "'");
+  for (int i = 1; i <= count; ++i) values.push_back(std::stoi(m[i]));
+  return values;
+}
+
+/// A block back as a table: its arrays as channels, (NU * MU_S) x (MU * R) for 3D blocks.
+tables::Table tableOf(vtkImageData* image) {
+  tables::Table t;
+  int dims[3];
+  image->GetDimensions(dims);
+  t.width = dims[0];
+  t.height = dims[1] * dims[2];
+  vtkPointData* pd = image->GetPointData();
+  const int nc = pd->GetNumberOfArrays();
+  const std::size_t n = static_cast<std::size_t>(t.width) * t.height;
+  t.data.resize(n * static_cast<std::size_t>(nc));
+  for (int c = 0; c < nc; ++c) {
+    vtkDataArray* a = pd->GetArray(c);
+    t.channels.push_back(a->GetName());
+    for (std::size_t i = 0; i < n; ++i)
+      t.data[i * static_cast<std::size_t>(nc) + static_cast<std::size_t>(c)] =
+          static_cast<float>(a->GetComponent(static_cast<vtkIdType>(i), 0));
+  }
+  t.parameters = filters::fieldParameters(image);
+  return t;
+}
+
+} // namespace
+
+void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
+  CLI::App* precompute = atmosphereCmd.add_subcommand(
+      "precompute", "Precompute the Bruneton 2017 tables of an atmosphere (transmittance, single scattering per "
+                    "component, multiple scattering, direct and indirect irradiance; per unit solar irradiance) "
+                    "into a directory, one EXR file per table");
+  struct Options {
+    std::string preset, config, output;
+    bool refraction = false;
+    int orders = 4, wavelengths = 3;
+    std::string refractionSize = "512x256", transmittanceSize = "256x64", scatteringSize = "32,128,32,8", irradianceSize = "64x16";
+    std::string step = "10km";
+    CacheOptions cache;
+  };
+  auto o = std::make_shared<Options>();
+  addAtmosphereOptions(precompute, o->preset, o->config);
+  precompute->add_flag("--refraction", o->refraction,
+                       "Integrate along refracted rays, and also write the refraction (deviation) table");
+  precompute->add_option("--orders", o->orders, "Scattering orders (1: single scattering only)")->capture_default_str();
+  precompute->add_option("--wavelengths", o->wavelengths,
+                         "Wavelengths: 3 = 680, 550, 440 nm (R, G, B); else N uniform over 360-830 nm")
+      ->capture_default_str();
+  precompute->add_option("--transmittance-size", o->transmittanceSize, "Transmittance table WxH (x_mu x x_r)")
+      ->capture_default_str();
+  precompute->add_option("--scattering-size", o->scatteringSize,
+                         "Scattering tables R,MU,MU_S,NU (MU even); stored as (NU*MU_S) x (MU*R)")
+      ->capture_default_str();
+  precompute->add_option("--irradiance-size", o->irradianceSize, "Irradiance tables WxH (x_mu_s x x_r)")
+      ->capture_default_str();
+  precompute->add_option("--refraction-size", o->refractionSize,
+                         "Refraction table WxH (x_mu x x_r), with --refraction")
+      ->capture_default_str();
+  precompute->add_option("--output", o->output, "Directory to write (created if its parent exists)")->required();
+  o->cache.addTo(precompute);
+
+  precompute->callback([&action, o] {
+    action = [o] {
+      const auto transmittance = parseSize("--transmittance-size", o->transmittanceSize, 2, "x", "WxH (e.g. 256x64)");
+      const auto scattering =
+          parseSize("--scattering-size", o->scatteringSize, 4, ",", "R,MU,MU_S,NU (e.g. 32,128,32,8)");
+      const auto irradiance = parseSize("--irradiance-size", o->irradianceSize, 2, "x", "WxH (e.g. 64x16)");
+      if (transmittance[0] < 2 || transmittance[1] < 2 || transmittance[0] > 8192 || transmittance[1] > 8192)
+        throw CommandError("--transmittance-size: expected 2 to 8192 texels a side, got " + o->transmittanceSize);
+      if (scattering[0] < 2 || scattering[1] < 4 || scattering[1] % 2 != 0 || scattering[2] < 2 || scattering[3] < 2 ||
+          scattering[0] > 1024 || scattering[1] > 1024 || scattering[2] > 1024 || scattering[3] > 1024)
+        throw CommandError("--scattering-size: expected R, MU_S, NU in 2..1024 and MU even in 4..1024, got " +
+                           o->scatteringSize);
+      if (irradiance[0] < 2 || irradiance[1] < 2 || irradiance[0] > 8192 || irradiance[1] > 8192)
+        throw CommandError("--irradiance-size: expected 2 to 8192 texels a side, got " + o->irradianceSize);
+      const auto refraction = parseSize("--refraction-size", o->refractionSize, 2, "x", "WxH (e.g. 512x256)");
+      if (refraction[0] < 2 || refraction[1] < 2 || refraction[0] > 8192 || refraction[1] > 8192)
+        throw CommandError("--refraction-size: expected 2 to 8192 texels a side, got " + o->refractionSize);
+      if (o->orders < 1 || o->orders > 64) throw CommandError("--orders: expected 1 to 64, got " + std::to_string(o->orders));
+      if (o->wavelengths < 1 || o->wavelengths > 256)
+        throw CommandError("--wavelengths: expected 1 to 256, got " + std::to_string(o->wavelengths));
+
+      // The output directory: its parent must exist; it must be (or become) a directory.
+      const fs::path dir(o->output);
+      std::error_code ec;
+      const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
+      if (o->output.empty()) throw CommandError("--output: empty path");
+      if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw CommandError(o->output + ": not a directory");
+      if (!fs::exists(dir, ec) && !fs::is_directory(parent, ec))
+        throw CommandError(o->output + ": directory " + parent.string() + " does not exist");
+
+      // One-line errors for the atmosphere before any work.
+      const atmosphere::Atmosphere atm = loadAtmosphereOption(o->preset, o->config, {680.0, 550.0, 440.0});
+
+      auto source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
+      source->SetAtmosphere((o->preset.empty() ? o->config : o->preset).c_str());
+      source->SetTables(vtkAtmosphereTablesSource::Bruneton | (o->refraction ? vtkAtmosphereTablesSource::Refraction : 0));
+      source->SetRefractedPaths(o->refraction);
+      source->SetOrders(o->orders);
+      source->SetWavelengths(o->wavelengths);
+      source->SetTransmittanceSize(transmittance[0], transmittance[1]);
+      source->SetScatteringSize(scattering[0], scattering[1], scattering[2], scattering[3]);
+      source->SetIrradianceSize(irradiance[0], irradiance[1]);
+      source->SetRefractionWidth(refraction[0]);
+      source->SetRefractionHeight(refraction[1]);
+      source->SetCacheDirectory(o->cache.directory.c_str());
+      source->SetUseCache(!o->cache.disabled);
+
+      ProgressLine progress("atmosphere tables (" + atm.name + ")");
+      vtkNew<vtkCallbackCommand> onProgress;
+      onProgress->SetClientData(&progress);
+      onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
+        static_cast<ProgressLine*>(client)->update(*static_cast<double*>(data));
+      });
+      source->AddObserver(vtkCommand::ProgressEvent, onProgress);
+      const bool warnings = vtkObject::GetGlobalWarningDisplay() != 0;
+      vtkObject::GlobalWarningDisplayOff();  // the error comes back as one line below
+      source->Update();
+      vtkObject::SetGlobalWarningDisplay(warnings ? 1 : 0);
+      if (!source->GetLastError().empty()) throw CommandError(source->GetLastError());
+      if (source->GetLastCacheHits() > 0)
+        std::cerr << "cache hit: " << source->GetLastCacheHits() << " table(s) read from "
+                  << (o->cache.directory.empty() ? tables::TableCache::defaultDirectory() : o->cache.directory) << "\n";
+
+      vtkMultiBlockDataSet* blocks = source->GetOutput();
+      const bool created = !fs::exists(dir, ec);
+      if (created && !fs::create_directory(dir, ec))
+        throw CommandError(o->output + ": cannot create directory: " + ec.message());
+      std::vector<std::string> written;
+      try {
+        for (unsigned i = 0; i < blocks->GetNumberOfBlocks(); ++i) {
+          auto* image = vtkImageData::SafeDownCast(blocks->GetBlock(i));
+          if (!image) continue;
+          const tables::Table table = tableOf(image);
+          const std::string path = (dir / (table.parameters.at("kind") + ".exr")).string();
+          tables::writeExr(path, table);
+          written.push_back(path);
+        }
+      } catch (...) {
+        for (const std::string& p : written) fs::remove(p, ec);
+        if (created) fs::remove(dir, ec);
+        throw;
+      }
+      std::cout << "wrote " << written.size() << " tables (" << atm.name << ", " << o->orders << " orders, "
+                << o->wavelengths << " wavelengths" << (o->refraction ? ", refracted paths" : "") << ") to "
+                << o->output << ":\n";
+      for (const std::string& p : written) std::cout << "  " << p << "\n";
+      return 0;
+    };
+  });
+}
+
+} // namespace umbra::cli

@@ -1,0 +1,105 @@
+// `umbra atmosphere precompute`: one EXR per table in the output directory, readable, with
+// the right channels and no non-finite value; the cache; bad input leaves nothing behind.
+#include "CliRunner.hpp"
+
+#include "umbra/tables/Exr.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+using namespace umbra::test;
+namespace fs = std::filesystem;
+
+namespace {
+/// Tiny tables: the whole run takes a fraction of a second.
+std::vector<std::string> tiny(std::vector<std::string> args) {
+  for (const char* a : {"--transmittance-size", "16x8", "--scattering-size", "4,8,4,2", "--irradiance-size", "8x4",
+                        "--orders", "2"})
+    args.push_back(a);
+  return args;
+}
+
+std::vector<std::string> filesIn(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+} // namespace
+
+TEST(AtmospherePrecomputeCli, WritesOneExrPerTable) {
+  TempDir dir;
+  const RunResult r = run(UMBRA_EXE, tiny({"atmosphere", "precompute", "--preset", "earth", "--output", dir / "tables",
+                                           "--cache-dir", dir / "cache"}));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto files = filesIn(dir / "tables");
+  for (const char* f : {"atmosphere-transmittance.exr", "atmosphere-single-scattering-molecules.exr",
+                        "atmosphere-multiple-scattering.exr", "atmosphere-direct-irradiance.exr",
+                        "atmosphere-irradiance.exr"}) {
+    EXPECT_NE(std::find(files.begin(), files.end(), f), files.end()) << f;
+    EXPECT_NE(r.out.find(f), std::string::npos) << r.out;
+  }
+  EXPECT_EQ(std::find(files.begin(), files.end(), "atmosphere-refraction.exr"), files.end());
+  for (const std::string& f : files) {
+    const umbra::tables::Table t = umbra::tables::readExr(dir / ("tables/" + f));
+    EXPECT_EQ(t.channels, (std::vector<std::string>{"L680nm", "L550nm", "L440nm"})) << f;
+    EXPECT_EQ(t.parameters.at("kind") + ".exr", f);
+    if (f.find("scattering") != std::string::npos) {
+      EXPECT_EQ(t.width, 8) << f;
+      EXPECT_EQ(t.height, 32) << f;
+      EXPECT_EQ(t.parameters.at("depth"), "4");
+    }
+  }
+  const RunResult inspect = run(UMBRA_EXE, {"inspect", dir / "tables/atmosphere-multiple-scattering.exr"});
+  ASSERT_EQ(inspect.exitCode, 0) << inspect.err;
+  EXPECT_NE(inspect.out.find("non-finite 0"), std::string::npos) << inspect.out;
+  EXPECT_EQ(inspect.out.find("non-finite 1"), std::string::npos) << inspect.out;
+
+  // The same again: every table from the cache.
+  const RunResult again = run(UMBRA_EXE, tiny({"atmosphere", "precompute", "--preset", "earth", "--output",
+                                               dir / "again", "--cache-dir", dir / "cache"}));
+  ASSERT_EQ(again.exitCode, 0) << again.err;
+  EXPECT_NE(again.err.find("cache hit"), std::string::npos) << again.err;
+  EXPECT_EQ(filesIn(dir / "again"), files);
+}
+
+TEST(AtmospherePrecomputeCli, RefractionAndWavelengths) {
+  TempDir dir;
+  const RunResult r = run(UMBRA_EXE, tiny({"atmosphere", "precompute", "--preset", "mars", "--refraction",
+                                           "--refraction-size", "32x16", "--wavelengths", "5", "--output", dir / "t", "--no-cache"}));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  ASSERT_TRUE(fs::exists(dir / "t/atmosphere-refraction.exr"));
+  const umbra::tables::Table t = umbra::tables::readExr(dir / "t/atmosphere-transmittance.exr");
+  EXPECT_EQ(t.channels.size(), 5u);
+  EXPECT_EQ(t.channels[0], "L407nm");  // 360 + 0.5 * 470 / 5
+  EXPECT_EQ(t.parameters.at("refractedPaths"), "1");
+}
+
+TEST(AtmospherePrecomputeCli, BadInputWritesNothing) {
+  TempDir dir;
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {{"--preset", "pluto", "--output", dir / "t"}, "pluto"},
+      {{"--preset", "earth", "--orders", "0", "--output", dir / "t"}, "--orders"},
+      {{"--preset", "earth", "--output", dir / "missing/t"}, "does not exist"},
+      {{"--preset", "earth", "--scattering-size", "4,7,4,2", "--output", dir / "t"}, "--scattering-size"},
+      {{"--preset", "earth", "--transmittance-size", "16", "--output", dir / "t"}, "--transmittance-size"},
+      {{"--output", dir / "t"}, "--preset"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> args = {"atmosphere", "precompute", "--cache-dir", dir / "cache"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    if (c.message != "--orders") args.insert(args.end(), {"--orders", "2"});
+    const RunResult r = run(UMBRA_EXE, args);
+    EXPECT_NE(r.exitCode, 0) << c.message;
+    EXPECT_NE(r.err.find("umbra: error:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(dir.fileCount(), 0) << c.message;
+  }
+}
