@@ -20,6 +20,7 @@ void addAtmosphereCommand(CLI::App& app, Action& action) {
   CLI::App* atmosphereCmd = app.add_subcommand("atmosphere", "Atmosphere models: refraction, tables, sky");
   atmosphereCmd->require_subcommand(1);
   addAtmosphereRefractionCommand(*atmosphereCmd, action);
+  addAtmosphereSkyCommand(*atmosphereCmd, action);
 }
 
 } // namespace umbra::cli
