@@ -21,6 +21,7 @@ void addAtmosphereCommand(CLI::App& app, Action& action) {
   atmosphereCmd->require_subcommand(1);
   addAtmosphereRefractionCommand(*atmosphereCmd, action);
   addAtmospherePrecomputeCommand(*atmosphereCmd, action);
+  addAtmosphereSkyCommand(*atmosphereCmd, action);
 }
 
 } // namespace umbra::cli

@@ -20,5 +20,6 @@ atmosphere::Atmosphere loadAtmosphereOption(const std::string& preset, const std
 // The subcommands of `umbra atmosphere`, one file each.
 void addAtmosphereRefractionCommand(CLI::App& atmosphereCmd, Action& action);
 void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action);
+void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action);
 
 } // namespace umbra::cli

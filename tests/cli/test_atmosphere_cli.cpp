@@ -59,3 +59,59 @@ TEST(AtmosphereCli, MarsBendsLessThanOnePercentOfEarth) {
   EXPECT_GT(mars, 0.0);
   EXPECT_LT(mars, 0.01 * earth);
 }
+
+// ---- umbra atmosphere sky ----------------------------------------------------------------
+
+namespace {
+// Small and quick: 3 wavelengths, 2 orders, coarse grid.
+std::vector<std::string> skyArgs(const std::string& csv, double sunZenithDeg = 45.0) {
+  return {"atmosphere", "sky", "--preset", "earth", "--sun-zenith-deg", std::to_string(sunZenithDeg), "--orders", "2",
+          "--wavelengths", "3", "--zenith-step", "10", "--azimuth-step", "30", "--csv", csv};
+}
+
+void expectOneLineError(const RunResult& r) {
+  EXPECT_NE(r.exitCode, 0);
+  ASSERT_FALSE(r.err.empty());
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+}
+} // namespace
+
+TEST(AtmosphereSkyCli, CsvGridAndPlot) {
+  TempDir dir;
+  std::vector<std::string> args = skyArgs(dir / "sky.csv");
+  args.insert(args.end(), {"--plot", dir / "sky.png", "--plot-size", "64"});
+  const RunResult r = run(UMBRA_EXE, args);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::string header;
+  const auto rows = readRows(dir / "sky.csv", header);
+  EXPECT_EQ(header, "view_zenith_deg,view_azimuth_deg,luminance,r,g,b");
+  ASSERT_EQ(rows.size(), 10u * 7u);  // zenith 0..90 step 10, azimuth 0..180 step 30
+  for (const auto& row : rows) {
+    ASSERT_EQ(row.size(), 6u);
+    for (double v : row) {
+      EXPECT_TRUE(std::isfinite(v));
+      EXPECT_GE(v, 0.0);
+    }
+  }
+  EXPECT_EQ(rows.front()[0], 0.0);
+  EXPECT_EQ(rows.back()[0], 90.0);
+  EXPECT_EQ(rows.back()[1], 180.0);
+  EXPECT_GT(rows.front()[2], 1000.0);  // a daylit zenith, cd/m^2
+  const std::string png = readAll(dir / "sky.png");
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  EXPECT_EQ(dir.fileCount(), 2);
+}
+
+TEST(AtmosphereSkyCli, BadInputIsOneLineAndLeavesNoFile) {
+  TempDir dir;
+  std::vector<std::string> unknown = skyArgs(dir / "a.csv");
+  unknown[3] = "no-such-planet";
+  expectOneLineError(run(UMBRA_EXE, unknown));
+  expectOneLineError(run(UMBRA_EXE, skyArgs(dir / "b.csv", 200.0)));
+  expectOneLineError(run(UMBRA_EXE, skyArgs(dir / "missing-dir/c.csv")));
+  std::vector<std::string> badPlot = skyArgs(dir / "d.csv");
+  badPlot.insert(badPlot.end(), {"--plot", dir / "missing-dir/d.png"});
+  expectOneLineError(run(UMBRA_EXE, badPlot));
+  EXPECT_EQ(dir.fileCount(), 0);
+}
