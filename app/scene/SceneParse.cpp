@@ -1,4 +1,5 @@
 // parseScene: JSON text -> validated Scene (format: docs/scene-format.md).
+#include "JsonErrors.hpp"
 #include "scene/Scene.hpp"
 
 #include "SceneDetail.hpp"
@@ -135,24 +136,7 @@ json parseJson(const std::string& text, const std::string& file) {
   try {
     return json::parse(text, nullptr, true, /*ignore_comments=*/true);
   } catch (const json::parse_error& e) {
-    // byte is the 1-based index of the last character read.
-    const std::size_t end = std::min<std::size_t>(e.byte, text.size());
-    std::size_t line = 1, column = 0;
-    for (std::size_t i = 0; i + 1 < end; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 0;
-      } else {
-        ++column;
-      }
-    }
-    ++column;
-    std::string reason = e.what();
-    const std::size_t at = reason.find("parse error");
-    const std::size_t colon = at == std::string::npos ? at : reason.find(": ", at);
-    if (colon != std::string::npos) reason = reason.substr(colon + 2);
-    throw SceneError(file + ": invalid JSON at line " + std::to_string(line) + ", column " +
-                     std::to_string(column) + ": " + reason);
+    throw SceneError(atmosphere::jsonErrorMessage(text, e, file));
   }
 }
 
