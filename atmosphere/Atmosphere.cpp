@@ -171,17 +171,8 @@ public:
   /// Fails on a key that is not listed.
   void object(const json& value, const std::string& field, std::initializer_list<const char*> keys) const {
     if (!value.is_object()) fail(field, "expected an object, " + got(value));
-    for (const auto& item : value.items()) {
-      bool known = false;
-      std::string list;
-      for (const char* key : keys) {
-        known = known || item.key() == key;
-        list += (list.empty() ? "" : ", ") + std::string(key);
-      }
-      if (!known)
-        fail(field.empty() ? item.key() : field + "." + item.key(),
-             "unknown key (expected one of: " + list + ")");
-    }
+    if (const auto unknown = atmosphere::firstUnknownKey(value, keys))
+      fail(field.empty() ? unknown->key : field + "." + unknown->key, unknown->message);
   }
 
   const json& require(const json& object, const char* key, const std::string& field) const {
