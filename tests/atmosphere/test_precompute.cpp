@@ -3,6 +3,7 @@
 // the boundaries, and refraction. Small tables keep the suite fast.
 #include "ModelTestSupport.hpp"
 #include "Precompute.hpp"
+#include "PrecomputeTestSupport.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,22 +18,7 @@ namespace {
 
 using umbra::test::kPi;
 
-PrecomputeOptions smallOptions() {
-  PrecomputeOptions o;
-  o.transmittanceWidth = 64;
-  o.transmittanceHeight = 16;
-  o.scatteringR = 8;
-  o.scatteringMu = 32;
-  o.scatteringMuS = 8;
-  o.scatteringNu = 4;
-  o.irradianceWidth = 16;
-  o.irradianceHeight = 4;
-  o.sphereSamples = 8;
-  o.irradianceSamples = 16;
-  o.singleScatteringSamples = 30;
-  o.multipleScatteringSamples = 30;
-  return o;
-}
+PrecomputeOptions smallOptions() { return umbra::test::smallPrecomputeOptions(); }
 
 Component makeComponent(const std::string& name, DensityProfile density, double scattering, double absorption,
                         PhaseFunction phase, std::size_t nl) {

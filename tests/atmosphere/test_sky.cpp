@@ -5,6 +5,7 @@
 #include "Sky.hpp"
 
 #include "ModelTestSupport.hpp"
+#include "PrecomputeTestSupport.hpp"
 
 #include <gtest/gtest.h>
 
@@ -76,19 +77,7 @@ protected:
   static void SetUpTestSuite() {
     wavelengths = std::make_unique<WavelengthSet>(WavelengthSet::rgb());
     atmosphere = std::make_unique<Atmosphere>(loadAtmosphere("earth", wavelengths->nm));
-    PrecomputeOptions o;
-    o.transmittanceWidth = 64;
-    o.transmittanceHeight = 16;
-    o.scatteringR = 8;
-    o.scatteringMu = 32;
-    o.scatteringMuS = 8;
-    o.scatteringNu = 4;
-    o.irradianceWidth = 16;
-    o.irradianceHeight = 4;
-    o.sphereSamples = 8;
-    o.irradianceSamples = 16;
-    o.singleScatteringSamples = 30;
-    o.multipleScatteringSamples = 30;
+    PrecomputeOptions o = umbra::test::smallPrecomputeOptions();
     o.orders = 3;
     tables = std::make_unique<AtmosphereTables>(precompute(*atmosphere, o));
   }
