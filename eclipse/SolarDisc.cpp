@@ -113,4 +113,21 @@ QuadratureResult visibleFractionLimbDarkened(double R, double d, double u, doubl
   return {std::clamp(visible, 0.0, 1.0), err, static_cast<int>(levels)};
 }
 
+namespace {
+/// Flux fraction of the cap of sagitta h in [0, 1] of the limb-darkened unit disc: the
+/// chords y in [1 - h, 1] integrate to (1-u) capArea + u (pi/2) (h^2 - h^3/3).
+double limbDarkenedCapFraction(double h, double u) {
+  return ((1.0 - u) * capArea(1.0, h) + 0.5 * kPi * u * h * h * (1.0 - h / 3.0)) / (kPi * (1.0 - u / 3.0));
+}
+} // namespace
+
+double visibleFractionAboveHorizon(double d) { return visibleFractionAboveHorizonLimbDarkened(d, 0.0); }
+
+double visibleFractionAboveHorizonLimbDarkened(double d, double u) {
+  if (!(d > -1.0)) return 0.0;  // NaN reads as hidden
+  if (d >= 1.0) return 1.0;
+  // The visible cap has sagitta 1 + d; for more than half, 1 - the hidden cap.
+  return d <= 0.0 ? limbDarkenedCapFraction(1.0 + d, u) : 1.0 - limbDarkenedCapFraction(1.0 - d, u);
+}
+
 } // namespace umbra::eclipse

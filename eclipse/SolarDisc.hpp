@@ -41,4 +41,14 @@ struct QuadratureResult {
 QuadratureResult visibleFractionLimbDarkened(double occluderRadius, double separation,
     double limbDarkening = kDefaultLimbDarkening, double relativeTolerance = 1e-10);
 
+/// Fraction of a uniform solar disc above a straight horizon whose chord lies `d` disc
+/// radii below the disc's centre (d = 1: the whole disc is up, d = -1: none, d = 0: half).
+/// The circular segment of the terrain paper's Eq. 7, (pi - acos d + d sqrt(1 - d^2)) / pi,
+/// formed from the smaller cap so that a thin sliver keeps its relative accuracy.
+double visibleFractionAboveHorizon(double d);
+
+/// The same for the limb-darkened disc of Eq. 1 (linear law, coefficient u), in closed
+/// form: a chord at height y of the disc carries 2(1-u) sqrt(1-y^2) + u (pi/2)(1-y^2).
+double visibleFractionAboveHorizonLimbDarkened(double d, double limbDarkening = kDefaultLimbDarkening);
+
 } // namespace umbra::eclipse
