@@ -259,11 +259,25 @@ double referenceFraction(const HeightField& f, const MaximumMipmap& mip, int i, 
     const Profile p(f, mip, i, j, Lk, 0.0);
     const double e = p.sunElevation, lower = e - q * r, upper = e + q * r;
     const Profile strip(f, mip, i, j, Lk, lower);
-    double horizon = strip.terrainElevation(kStartTexels);
+    double horizon = strip.terrainElevation(kStartTexels), atS = kStartTexels;
     ++samples;
     for (double s = kStartTexels + o.referenceStepTexels; s < strip.sEnd + o.referenceStepTexels && horizon < upper;
-         s += o.referenceStepTexels, ++samples)
-      horizon = std::max(horizon, strip.terrainElevation(std::min(s, strip.sEnd)));
+         s += o.referenceStepTexels, ++samples) {
+      const double e = strip.terrainElevation(std::min(s, strip.sEnd));
+      if (e > horizon) horizon = e, atS = std::min(s, strip.sEnd);
+    }
+    // The exact peak near the highest sample: golden-section search within a step of it.
+    if (horizon > lower && horizon < upper) {
+      constexpr double g = 0.6180339887498949;
+      double x0 = std::max(kStartTexels, atS - o.referenceStepTexels), x1 = std::min(strip.sEnd, atS + o.referenceStepTexels);
+      double c = x1 - g * (x1 - x0), d = x0 + g * (x1 - x0);
+      double ec = strip.terrainElevation(c), ed = strip.terrainElevation(d);
+      for (int k = 0; k < 40; ++k, ++samples) {
+        if (ec > ed) x1 = d, d = c, ed = ec, c = x1 - g * (x1 - x0), ec = strip.terrainElevation(c);
+        else x0 = c, c = d, ec = ed, d = x0 + g * (x1 - x0), ed = strip.terrainElevation(d);
+      }
+      horizon = std::max({horizon, ec, ed});
+    }
     // The strip's rays between y = (horizon - e) / r and q are visible.
     const double yLo = std::clamp((horizon - e) / r, -q, q);
     auto F = [q](double y) { return 0.5 * (y * std::sqrt(std::max(0.0, q * q - y * y)) + q * q * std::asin(std::clamp(y / q, -1.0, 1.0))); };
