@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libvtk9-dev libvtk9-qt-dev qtbase5-dev
   libopenexr-dev libgeographiclib-dev libglm-dev liberfa-dev libboost-dev
-  nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev
+  nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev libgdal-dev
   xvfb xauth libgl1-mesa-dri
 )
 

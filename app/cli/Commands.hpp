@@ -29,6 +29,7 @@ void addPrecomputeCommand(CLI::App& app, Action& action);
 void addProfileCommand(CLI::App& app, Action& action);
 void addInspectCommand(CLI::App& app, Action& action);
 void addAtmosphereCommand(CLI::App& app, Action& action);
+void addTerrainCommand(CLI::App& app, Action& action);
 
 /// Progress for long work on stderr: a live percentage on a terminal, quiet otherwise.
 class ProgressLine {

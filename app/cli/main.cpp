@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   umbra::cli::addProfileCommand(app, action);
   umbra::cli::addInspectCommand(app, action);
   umbra::cli::addAtmosphereCommand(app, action);
+  umbra::cli::addTerrainCommand(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

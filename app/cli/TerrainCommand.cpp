@@ -1,0 +1,264 @@
+// umbra terrain shadow: the visible fraction of the solar disc over a DEM (terrain paper).
+#include "Commands.hpp"
+#include "OutputFile.hpp"
+#include "ShadowCommon.hpp"  // lengthOption
+#include "TerrainDem.hpp"
+
+#include "CraterField.hpp"
+#include "SoftShadow.hpp"
+#include "SolarDisc.hpp"
+#include "TerrainImageData.h"
+#include "scene/Bodies.hpp"
+#include "scene/Ephemeris.hpp"
+#include "scene/Time.hpp"
+#include "umbra/tables/Exr.h"
+#include "vtkTerrainHorizonShadowFilter.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPointData.h>
+#include <vtkUnsignedShortArray.h>
+#include <vtkXMLImageDataWriter.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+namespace umbra::cli {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+struct Options {
+  std::string dem, output, method = "dp", time, body = "Moon", bodyRadius, spacing = "30m";
+  long long seed = -1;
+  int size = 512, levels = 6, uniformSteps = 128;
+  double elevationDeg = NAN, azimuthDeg = NAN, latitudeDeg = NAN, longitudeDeg = NAN, limbDarkening = 0.0;
+};
+
+/// The Sun in the DEM's tangent frame and its angular radius.
+struct SunSetting {
+  glm::dvec3 direction;
+  double angularRadiusRad;
+};
+
+SunSetting sunFromTime(const Options& o, const scene::BodyPreset& body, double latDeg, double lonDeg) {
+  scene::UtcTime t;
+  try {
+    t = scene::parseUtc(o.time);
+  } catch (const std::exception& e) {
+    throw CommandError(std::string("--time: ") + e.what());
+  }
+  if (!scene::hasEphemeris(body.name) || !scene::hasRotationModel(body.name))
+    throw CommandError("--time: no ephemeris or rotation model for " + body.name + " (Moon, Earth, Mars have them)");
+  const glm::dvec3 toSun = scene::heliocentricPositionM("Sun", t) - scene::heliocentricPositionM(body.name, t);
+  const glm::dvec3 bodyFixed = glm::transpose(scene::bodyFixedToInertial(body.name, t)) * glm::normalize(toSun);
+  return {terrain::bodyFixedToTangent(latDeg, lonDeg) * bodyFixed, std::asin(eclipse::kSunRadiusM / glm::length(toSun))};
+}
+
+void writePng(const std::string& path, vtkImageData* result) {
+  vtkDataArray* fraction = result->GetPointData()->GetArray("visible_solar_fraction");
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(result->GetDimensions());
+  vtkNew<vtkUnsignedShortArray> gray;  // linear, 0 = umbra, 65535 = fully lit
+  gray->SetNumberOfTuples(fraction->GetNumberOfTuples());
+  for (vtkIdType k = 0; k < fraction->GetNumberOfTuples(); ++k)
+    gray->SetValue(k, static_cast<unsigned short>(std::lround(65535.0 * fraction->GetTuple1(k))));
+  image->GetPointData()->SetScalars(gray);
+  output::OutputFile out(path);
+  vtkNew<vtkPNGWriter> writer;  // VTK's first row is the bottom of the picture: north up
+  writer->SetInputData(image);
+  writer->SetFileName(out.tempPath().c_str());
+  writer->Write();
+  if (writer->GetErrorCode() != 0) throw CommandError(path + ": cannot write");
+  out.commit();
+}
+
+void writeVti(const std::string& path, vtkImageData* result) {
+  output::OutputFile out(path);
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(result);
+  writer->SetFileName(out.tempPath().c_str());
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0) throw CommandError(path + ": cannot write");
+  out.commit();
+}
+
+void writeExr(const std::string& path, vtkImageData* result, std::map<std::string, std::string> parameters) {
+  vtkDataArray* fraction = result->GetPointData()->GetArray("visible_solar_fraction");
+  int dims[3];
+  result->GetDimensions(dims);
+  tables::Table t;
+  t.width = dims[0];
+  t.height = dims[1];
+  t.channels = {"visible_solar_fraction"};
+  t.data.resize(static_cast<std::size_t>(dims[0]) * dims[1]);
+  for (int j = 0; j < dims[1]; ++j)  // the top row is the DEM's last (+y, north)
+    for (int i = 0; i < dims[0]; ++i)
+      t.data[static_cast<std::size_t>(dims[1] - 1 - j) * dims[0] + i] =
+          static_cast<float>(fraction->GetTuple1(static_cast<vtkIdType>(j) * dims[0] + i));
+  parameters["rows"] = "top row = last DEM row (+y, north)";
+  t.parameters = std::move(parameters);
+  tables::writeExr(path, t);
+}
+
+std::string fmt(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.10g", v);
+  return b;
+}
+
+int runShadow(const Options& o) {
+  output::checkWritable(o.output, {".exr", ".png", ".vti"});
+  const terrain::ShadowMethod method = [&] {
+    try {
+      return terrain::parseShadowMethod(o.method);
+    } catch (const std::exception& e) {
+      throw CommandError(std::string("--method: ") + e.what());
+    }
+  }();
+  const scene::BodyPreset* body = scene::findPreset(o.body);
+  if (!body) throw CommandError("--body: unknown body '" + o.body + "' (known: " + scene::presetNameList() + ")");
+  const double radiusOverride = o.bodyRadius.empty() ? 0.0 : lengthOption("--body-radius", o.bodyRadius);
+  if (!o.bodyRadius.empty() && !(radiusOverride > 0.0)) throw CommandError("--body-radius: expected a positive length");
+  const double spacingM = lengthOption("--spacing", o.spacing);
+  if (!(spacingM > 0.0)) throw CommandError("--spacing: expected a positive length, got " + o.spacing);
+
+  // The terrain.
+  Dem dem;
+  std::string source;
+  if (!o.dem.empty()) {
+    dem = readDem(o.dem, spacingM, radiusOverride > 0.0 ? radiusOverride : (body->name == "Moon" ? 0.0 : body->meanRadiusM));
+    source = o.dem;
+  } else {
+    terrain::CraterFieldOptions c;
+    c.seed = static_cast<std::uint64_t>(o.seed);
+    c.size = o.size;
+    c.spacingM = spacingM;
+    c.bodyRadiusM = radiusOverride > 0.0 ? radiusOverride : body->meanRadiusM;
+    try {
+      dem.field = terrain::makeCraterField(c);
+      dem.field.validate();
+    } catch (const std::exception& e) {
+      throw CommandError(std::string("--synthetic: ") + e.what());
+    }
+    source = "synthetic crater field, seed " + std::to_string(o.seed);
+  }
+  const double latDeg = !std::isnan(o.latitudeDeg) ? o.latitudeDeg : dem.centreLatitudeDeg.value_or(-90.0);
+  const double lonDeg = !std::isnan(o.longitudeDeg) ? o.longitudeDeg : dem.centreLongitudeDeg.value_or(0.0);
+  if (!(latDeg >= -90.0 && latDeg <= 90.0)) throw CommandError("--lat-deg: expected -90..90");
+
+  // The Sun.
+  SunSetting sun;
+  const bool angles = !std::isnan(o.elevationDeg) || !std::isnan(o.azimuthDeg);
+  if (angles == !o.time.empty())
+    throw CommandError("give either --sun-elevation-deg and --sun-azimuth-deg, or --time");
+  if (angles) {
+    if (std::isnan(o.elevationDeg) || std::isnan(o.azimuthDeg))
+      throw CommandError("give both --sun-elevation-deg and --sun-azimuth-deg");
+    if (!(o.elevationDeg >= -90.0 && o.elevationDeg <= 90.0)) throw CommandError("--sun-elevation-deg: expected -90..90");
+    if (!std::isfinite(o.azimuthDeg)) throw CommandError("--sun-azimuth-deg: expected a finite angle");
+    const double distance = scene::meanDistanceFromSunM(*body);
+    sun = {terrain::sunDirectionFromElevationAzimuth(o.elevationDeg * kDeg, o.azimuthDeg * kDeg),
+           distance > 0.0 ? std::asin(eclipse::kSunRadiusM / distance) : terrain::kSunAngularRadiusAt1AuRad};
+  } else {
+    sun = sunFromTime(o, *body, latDeg, lonDeg);
+  }
+  const double elevationDeg = std::asin(std::clamp(sun.direction.z, -1.0, 1.0)) / kDeg;
+  double azimuthDeg = std::atan2(sun.direction.x, sun.direction.y) / kDeg;
+  if (azimuthDeg < 0.0) azimuthDeg += 360.0;
+
+  // The shadow, through the filter.
+  auto image = filters::imageFromHeightField(dem.field);
+  vtkNew<vtkTerrainHorizonShadowFilter> filter;
+  filter->SetInputData(image);
+  filter->SetSunDirection(sun.direction.x, sun.direction.y, sun.direction.z);
+  filter->SetSunAngularRadiusRad(sun.angularRadiusRad);
+  filter->SetLimbDarkening(o.limbDarkening);
+  filter->SetBodyRadiusM(dem.field.bodyRadiusM);
+  filter->SetMethod(static_cast<int>(method));
+  filter->SetLevels(o.levels);
+  filter->SetUniformSteps(o.uniformSteps);
+  ProgressLine progress("terrain shadow");
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&progress);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* line, void* fraction) {
+    static_cast<ProgressLine*>(line)->update(*static_cast<double*>(fraction));
+  });
+  filter->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  const auto t0 = std::chrono::steady_clock::now();
+  filter->Update();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  vtkImageData* result = filter->GetOutput();
+  vtkDataArray* fraction = result->GetPointData()->GetArray("visible_solar_fraction");
+  if (!fraction) throw CommandError("the shadow computation failed");
+
+  const std::string ext = output::extensionOf(o.output);
+  if (ext == ".png") writePng(o.output, result);
+  else if (ext == ".vti") writeVti(o.output, result);
+  else
+    writeExr(o.output, result,
+             {{"source", source}, {"method", o.method}, {"levels", std::to_string(o.levels)},
+              {"uniformSteps", std::to_string(o.uniformSteps)}, {"spacingM", fmt(dem.field.spacingM)},
+              {"bodyRadiusM", fmt(dem.field.bodyRadiusM)}, {"sunElevationDeg", fmt(elevationDeg)},
+              {"sunAzimuthDeg", fmt(azimuthDeg)}, {"sunAngularRadiusRad", fmt(sun.angularRadiusRad)},
+              {"limbDarkening", fmt(o.limbDarkening)}, {"time", o.time}});
+
+  double sum = 0.0;
+  long long umbra = 0, lit = 0;
+  const vtkIdType n = fraction->GetNumberOfTuples();
+  for (vtkIdType k = 0; k < n; ++k) {
+    const double v = fraction->GetTuple1(k);
+    sum += v, umbra += v == 0.0, lit += v == 1.0;
+  }
+  std::printf("wrote %s: %d x %d at %.6g m (%s), method %s, %.2f s\n", o.output.c_str(), dem.field.width,
+              dem.field.height, dem.field.spacingM, source.c_str(), o.method.c_str(), seconds);
+  std::printf("sun elevation %.9f deg, azimuth %.9f deg at the centre (lat %.6f, lon %.6f), radius %.6f deg\n",
+              elevationDeg, azimuthDeg, latDeg, lonDeg, sun.angularRadiusRad / kDeg);
+  std::printf("mean visible fraction %.4f; umbra %.1f %%, penumbra %.1f %%, fully lit %.1f %%\n", sum / n,
+              100.0 * umbra / n, 100.0 * (n - umbra - lit) / n, 100.0 * lit / n);
+  return 0;
+}
+
+} // namespace
+
+void addTerrainCommand(CLI::App& app, Action& action) {
+  CLI::App* terrainCmd = app.add_subcommand("terrain", "Terrain: soft horizon shadows of the Sun on a DEM");
+  terrainCmd->require_subcommand(1);
+  CLI::App* shadow = terrainCmd->add_subcommand(
+      "shadow", "Visible fraction of the solar disc (0 = umbra, 1 = fully lit) at every sample of a DEM");
+  auto o = std::make_shared<Options>();
+  auto* dem = shadow->add_option("--dem", o->dem, "DEM raster (GeoTIFF or any GDAL raster; heights in m, projected CRS)");
+  auto* synthetic = shadow->add_option("--synthetic", o->seed, "Synthetic crater field with this seed (>= 0)");
+  dem->excludes(synthetic);
+  shadow->add_option("--size", o->size, "Synthetic field: samples per side")->capture_default_str()->check(CLI::Range(2, 8192));
+  shadow->add_option("--spacing", o->spacing, "Sample spacing (synthetic field, or a DEM without georeferencing)")
+      ->capture_default_str();
+  shadow->add_option("--sun-elevation-deg", o->elevationDeg, "Sun elevation at the DEM centre [deg]");
+  shadow->add_option("--sun-azimuth-deg", o->azimuthDeg, "Sun azimuth at the DEM centre, from north (+y) to east (+x) [deg]");
+  shadow->add_option("--time", o->time, "UTC instant (ISO 8601): the Sun from the ephemeris and the body's rotation");
+  shadow->add_option("--body", o->body, "Body (radius; ephemeris for --time)")->capture_default_str();
+  shadow->add_option("--body-radius", o->bodyRadius, "Override the body radius (units m, km)");
+  shadow->add_option("--lat-deg", o->latitudeDeg, "Latitude of the DEM centre for --time (default: georeferencing, else -90)");
+  shadow->add_option("--lon-deg", o->longitudeDeg, "Longitude of the DEM centre for --time (default: georeferencing, else 0)");
+  shadow->add_option("--method", o->method, "dp (maximum mipmap, Algorithm 1), uniform or reference")->capture_default_str();
+  shadow->add_option("--levels", o->levels, "DP: mip levels N' per concatenated interval")->capture_default_str()->check(CLI::Range(1, 30));
+  shadow->add_option("--uniform-steps", o->uniformSteps, "uniform: steps along each shadow ray")->capture_default_str()->check(CLI::Range(1, 1 << 20));
+  shadow->add_option("--limb-darkening", o->limbDarkening, "Linear limb darkening of the disc (0: uniform)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  shadow->add_option("--output", o->output, "Output: .exr (float), .png (16-bit linear gray), .vti (heights + fraction)")->required();
+  shadow->callback([&action, o, dem, synthetic] {
+    action = [o, dem, synthetic] {
+      if (dem->count() == 0 && synthetic->count() == 0) throw CommandError("give --dem FILE or --synthetic SEED");
+      if (synthetic->count() && o->seed < 0) throw CommandError("--synthetic: expected a seed >= 0");
+      return runShadow(*o);
+    };
+  });
+}
+
+} // namespace umbra::cli

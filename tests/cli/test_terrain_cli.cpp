@@ -1,0 +1,162 @@
+// `umbra terrain shadow`: the output holds the library's visible fraction (north up),
+// GeoTIFF input matches the same heights given directly, --time puts the Sun where the
+// lunar south pole sees it, and bad input gives one-line errors and no file.
+#include "CliRunner.hpp"
+
+#include "CraterField.hpp"
+#include "MaximumMipmap.hpp"
+#include "SoftShadow.hpp"
+#include "umbra/tables/Exr.h"
+
+#include <gdal.h>
+#include <ogr_srs_api.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <regex>
+
+using namespace umbra::test;
+using namespace umbra;
+
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+terrain::HeightField field(int size, int seed) {
+  terrain::CraterFieldOptions o;
+  o.size = size;
+  o.seed = seed;
+  return terrain::makeCraterField(o);
+}
+
+/// A north-up GeoTIFF of the field in lunar south polar stereographic coordinates, 30 m
+/// pixels, centred `eastM` from the pole; `noData` cells (if any) are written as -32768.
+void writeGeoTiff(const std::string& path, const terrain::HeightField& f, double eastM,
+                  const std::vector<int>& noData = {}) {
+  GDALAllRegister();
+  GDALDriverH driver = GDALGetDriverByName("GTiff");
+  GDALDatasetH ds = GDALCreate(driver, path.c_str(), f.width, f.height, 1, GDT_Float64, nullptr);
+  const double half = 0.5 * f.width * f.spacingM;
+  double gt[6] = {eastM - half, f.spacingM, 0.0, half, 0.0, -f.spacingM};
+  GDALSetGeoTransform(ds, gt);
+  OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
+  OSRImportFromProj4(srs, "+proj=stere +lat_0=-90 +lon_0=0 +k=1 +x_0=0 +y_0=0 +R=1737400 +units=m +no_defs");
+  GDALSetSpatialRef(ds, srs);
+  OSRDestroySpatialReference(srs);
+  std::vector<double> rows(f.heightsM.size());
+  for (int r = 0; r < f.height; ++r)
+    for (int i = 0; i < f.width; ++i) rows[r * f.width + i] = f.at(i, f.height - 1 - r);
+  for (int k : noData) rows[k] = -32768.0;
+  GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+  if (!noData.empty()) GDALSetRasterNoDataValue(band, -32768.0);
+  EXPECT_EQ(GDALRasterIO(band, GF_Write, 0, 0, f.width, f.height, rows.data(), f.width, f.height, GDT_Float64, 0, 0),
+            CE_None);
+  GDALClose(ds);
+}
+
+double printed(const std::string& out, const std::string& what) {
+  std::smatch m;
+  EXPECT_TRUE(std::regex_search(out, m, std::regex(what + " ([-0-9.]+)"))) << out;
+  return m.empty() ? NAN : std::stod(m[1]);
+}
+
+} // namespace
+
+TEST(TerrainCli, ExrHoldsTheLibrarysFractionNorthUp) {
+  TempDir dir;
+  const RunResult r = run(UMBRA_EXE, {"terrain", "shadow", "--synthetic", "4", "--size", "48", "--sun-elevation-deg",
+                                      "2", "--sun-azimuth-deg", "300", "--output", dir / "s.exr"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const tables::Table t = tables::readExr(dir / "s.exr");
+  ASSERT_EQ(t.width, 48);
+  ASSERT_EQ(t.height, 48);
+  EXPECT_EQ(t.parameters.at("method"), "dp");
+  const terrain::HeightField f = field(48, 4);
+  const terrain::MaximumMipmap mip(f);
+  terrain::SunDisc sun;
+  sun.direction = terrain::sunDirectionFromElevationAzimuth(2.0 * kDeg, 300.0 * kDeg);
+  sun.angularRadiusRad = std::stod(t.parameters.at("sunAngularRadiusRad"));  // the Moon's mean distance
+  EXPECT_NEAR(sun.angularRadiusRad, 0.2666 * kDeg, 0.001 * kDeg);
+  double sum = 0.0;
+  for (int j = 0; j < 48; j += 5)
+    for (int i = 0; i < 48; i += 3) {
+      const double v = terrain::visibleFraction(f, mip, i, j, sun, {});
+      EXPECT_NEAR(t.at(i, 47 - j, 0), v, 1e-6) << i << "," << j;
+      sum += v;
+    }
+  EXPECT_GT(sum, 1.0);
+}
+
+TEST(TerrainCli, GeoTiffInputMatchesTheSameHeightsAndHandlesNoData) {
+  TempDir dir;
+  const terrain::HeightField f = field(40, 8);
+  writeGeoTiff(dir / "dem.tif", f, 100e3);
+  const std::vector<std::string> sunArgs = {"--sun-elevation-deg", "1.2", "--sun-azimuth-deg", "75"};
+  auto args = [&](std::vector<std::string> a) {
+    a.insert(a.begin(), {"terrain", "shadow"});
+    a.insert(a.end(), sunArgs.begin(), sunArgs.end());
+    return a;
+  };
+  RunResult r = run(UMBRA_EXE, args({"--dem", dir / "dem.tif", "--output", dir / "dem.exr"}));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  // The raster's centre, 100 km from the pole along x: stereographic rho = 2 R tan(colatitude / 2).
+  EXPECT_NEAR(printed(r.out, "\\(lat"), -90.0 + 2.0 * std::atan(100.0 / (2.0 * 1737.4)) / kDeg, 1e-6) << r.out;
+  EXPECT_NEAR(printed(r.out, "lon"), 90.0, 1e-6) << r.out;
+  r = run(UMBRA_EXE, args({"--synthetic", "8", "--size", "40", "--output", dir / "syn.exr"}));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const tables::Table a = tables::readExr(dir / "dem.exr"), b = tables::readExr(dir / "syn.exr");
+  ASSERT_EQ(a.data.size(), b.data.size());
+  for (std::size_t k = 0; k < a.data.size(); ++k) ASSERT_NEAR(a.data[k], b.data[k], 1e-6) << k;
+
+  // No-data cells (GDAL's no-data value): finite output everywhere.
+  writeGeoTiff(dir / "holes.tif", f, 0.0, {0, 41, 42, 43, 500, 1599});
+  r = run(UMBRA_EXE, args({"--dem", dir / "holes.tif", "--method", "uniform", "--output", dir / "holes.exr"}));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (float v : tables::readExr(dir / "holes.exr").data) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f);
+}
+
+TEST(TerrainCli, TimeGivesTheSunTheLunarSouthPoleSees) {
+  // The Moon's axis is tilted 1.54 deg to the ecliptic: from the pole the Sun stays within
+  // ~1.6 deg of the horizon and goes once around it in a synodic month (29.53 days).
+  TempDir dir;
+  double previousAzimuth = NAN;
+  for (const char* time : {"2024-01-01T00:00:00Z", "2024-01-08T09:10:00Z", "2024-01-15T18:20:00Z"}) {
+    const RunResult r = run(UMBRA_EXE, {"terrain", "shadow", "--synthetic", "1", "--size", "16", "--time", time,
+                                        "--output", dir / "t.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const double elevation = printed(r.out, "sun elevation"), azimuth = printed(r.out, "azimuth");
+    EXPECT_LT(std::abs(elevation), 1.6) << time;
+    if (!std::isnan(previousAzimuth)) {
+      const double turned = std::fmod(std::abs(azimuth - previousAzimuth) + 360.0, 360.0);
+      EXPECT_NEAR(std::min(turned, 360.0 - turned), 90.0, 10.0) << time;  // a quarter month: a quarter turn
+    }
+    previousAzimuth = azimuth;
+  }
+}
+
+TEST(TerrainCli, BadInputGivesOneLineAndNoFile) {
+  TempDir dir;
+  const std::string out = dir / "x.exr";
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--dem", dir / "missing.tif", "--sun-elevation-deg", "1", "--sun-azimuth-deg", "0"}, "missing.tif"},
+      {{"--synthetic", "1", "--sun-elevation-deg", "1"}, "--sun-azimuth-deg"},
+      {{"--synthetic", "1"}, "--time"},
+      {{"--synthetic", "1", "--time", "yesterday"}, "--time"},
+      {{"--synthetic", "1", "--sun-elevation-deg", "1", "--sun-azimuth-deg", "0", "--method", "fast"}, "--method"},
+      {{"--sun-elevation-deg", "1", "--sun-azimuth-deg", "0"}, "--synthetic"},
+      {{"--synthetic", "1", "--sun-elevation-deg", "91", "--sun-azimuth-deg", "0"}, "--sun-elevation-deg"},
+  };
+  for (const auto& [extra, mention] : cases) {
+    std::vector<std::string> args = {"terrain", "shadow", "--output", out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult r = run(UMBRA_EXE, args);
+    EXPECT_NE(r.exitCode, 0) << mention;
+    EXPECT_NE(r.err.find(mention), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  const RunResult r = run(UMBRA_EXE, {"terrain", "shadow", "--synthetic", "1", "--sun-elevation-deg", "1",
+                                      "--sun-azimuth-deg", "0", "--output", dir / "x.txt"});
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_EQ(dir.fileCount(), 0);
+}
