@@ -212,8 +212,13 @@ TEST(SoftShadow, SunOverThePoleFromABodyFixedDirection) {
     for (ShadowMethod m : kMethods) {
       EXPECT_NEAR(visibleFraction(flat, flatMip, 20, 20, sun, test::method(m)),
                   test::segmentFraction(0.2 * kDeg / sun.angularRadiusRad), 1e-3) << shadowMethodName(m);
-      expectFiniteFractions(visibleFractionMap(f, mip, sun, test::method(m)));
+      if (m != ShadowMethod::Reference) expectFiniteFractions(visibleFractionMap(f, mip, sun, test::method(m)));
     }
+    for (int j = 0; j < f.height; j += 7)  // the reference is slow: every 7th sample
+      for (int i = 0; i < f.width; i += 7) {
+        const double v = visibleFraction(f, mip, i, j, sun, test::method(ShadowMethod::Reference));
+        ASSERT_TRUE(std::isfinite(v) && v >= 0.0 && v <= 1.0);
+      }
   }
   // Away from the poles the frame is east, north, up.
   const glm::dmat3 m = bodyFixedToTangent(0.0, 90.0);
