@@ -33,7 +33,8 @@ terrain::HeightField field(int size, int seed) {
 /// A north-up GeoTIFF of the field in lunar south polar stereographic coordinates, 30 m
 /// pixels, centred `eastM` from the pole; `noData` cells (if any) are written as -32768.
 void writeGeoTiff(const std::string& path, const terrain::HeightField& f, double eastM,
-                  const std::vector<int>& noData = {}) {
+                  const std::vector<int>& noData = {},
+                  const char* proj = "+proj=stere +lat_0=-90 +lon_0=0 +k=1 +x_0=0 +y_0=0 +R=1737400 +units=m +no_defs") {
   GDALAllRegister();
   GDALDriverH driver = GDALGetDriverByName("GTiff");
   GDALDatasetH ds = GDALCreate(driver, path.c_str(), f.width, f.height, 1, GDT_Float64, nullptr);
@@ -41,7 +42,7 @@ void writeGeoTiff(const std::string& path, const terrain::HeightField& f, double
   double gt[6] = {eastM - half, f.spacingM, 0.0, half, 0.0, -f.spacingM};
   GDALSetGeoTransform(ds, gt);
   OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
-  OSRImportFromProj4(srs, "+proj=stere +lat_0=-90 +lon_0=0 +k=1 +x_0=0 +y_0=0 +R=1737400 +units=m +no_defs");
+  OSRImportFromProj4(srs, proj);
   GDALSetSpatialRef(ds, srs);
   OSRDestroySpatialReference(srs);
   std::vector<double> rows(f.heightsM.size());
@@ -159,4 +160,23 @@ TEST(TerrainCli, BadInputGivesOneLineAndNoFile) {
                                       "--sun-azimuth-deg", "0", "--output", dir / "x.txt"});
   EXPECT_NE(r.exitCode, 0);
   EXPECT_EQ(dir.fileCount(), 0);
+}
+
+TEST(TerrainCli, VtiHoldsHeightsAndFractionAndGeographicRastersAreRefused) {
+  TempDir dir;
+  RunResult r = run(UMBRA_EXE, {"terrain", "shadow", "--synthetic", "2", "--size", "24", "--sun-elevation-deg", "3",
+                                "--sun-azimuth-deg", "10", "--limb-darkening", "0.6", "--output", dir / "s.vti"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::string vti = readAll(dir / "s.vti");
+  EXPECT_NE(vti.find("Name=\"height_m\""), std::string::npos);
+  EXPECT_NE(vti.find("Name=\"visible_solar_fraction\""), std::string::npos);
+  EXPECT_NE(vti.find("Spacing=\"30 30 1\""), std::string::npos);
+
+  // A latitude/longitude raster: one line naming the file and what to do.
+  writeGeoTiff(dir / "geo.tif", field(24, 2), 0.0, {}, "+proj=longlat +R=1737400 +no_defs");
+  r = run(UMBRA_EXE, {"terrain", "shadow", "--dem", dir / "geo.tif", "--sun-elevation-deg", "3", "--sun-azimuth-deg",
+                      "10", "--output", dir / "geo.exr"});
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("geo.tif: geographic"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "geo.exr"));
 }
