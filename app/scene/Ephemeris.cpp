@@ -104,17 +104,36 @@ glm::dmat3 bodyFixedToInertial(const std::string& body, UtcTime time) {
     eraC2t06a(tt1, tt2, time.jd1, time.jd2, 0.0, 0.0, rc2t);
     return glm::transpose(fromErfa(rc2t)); // rc2t is celestial-to-terrestrial
   }
-  // IAU WGCCRE 2015 models (Archinal et al. 2018), simplified: only the constant and
-  // linear terms of alpha0, delta0 and W are kept; the periodic terms (the Moon's
-  // E1..E13 series, Mars's nutation-precession series) are omitted. For Mars that costs
-  // well under 0.01 deg. For the Moon the 18.6-year E1 terms dominate: the pole can be
-  // off by up to ~1.5 deg and the prime meridian by a few degrees, so lunar body-fixed
-  // coordinates (observer on the Moon, terrain) are approximate until they are added.
+  // IAU WGCCRE 2015 models (Archinal et al. 2018). For the Moon with its periodic terms
+  // (the E1..E13 series: the 18.6-year E1 terms move the pole by 1.5 deg, which decides
+  // where the Sun stands at the lunar poles); for Mars only the constant and linear terms
+  // (its nutation-precession series costs well under 0.01 deg).
   double d = 0.0, t = 0.0;
   daysSinceJ2000(time, d, t);
   if (body == "Sun") return iauBodyFixedToInertial(286.13, 63.87, 84.176 + 14.1844000 * d);
-  if (body == "Moon")
-    return iauBodyFixedToInertial(269.9949, 66.5392, 38.3213 + 13.17635815 * d);
+  if (body == "Moon") {
+    // E_k = e0 + e1 d [deg]; then the coefficients of sin E_k in alpha0, cos E_k in
+    // delta0 and sin E_k in W [deg].
+    struct Term {
+      double e0, e1, alpha, delta, w;
+    };
+    static constexpr Term kTerms[13] = {
+        {125.045, -0.0529921, -3.8787, 1.5419, 3.5610},  {250.089, -0.1059842, -0.1204, 0.0239, 0.1208},
+        {260.008, 13.0120009, 0.0700, -0.0278, -0.0642}, {176.625, 13.3407154, -0.0172, 0.0068, 0.0158},
+        {357.529, 0.9856003, 0.0, 0.0, 0.0252},          {311.589, 26.4057084, 0.0072, -0.0029, -0.0066},
+        {134.963, 13.0649930, 0.0, 0.0009, -0.0047},     {276.617, 0.3287146, 0.0, 0.0, -0.0046},
+        {34.226, 1.7484877, 0.0, 0.0, 0.0028},           {15.134, -0.1589763, -0.0052, 0.0008, 0.0052},
+        {119.743, 0.0036096, 0.0, 0.0, 0.0040},          {239.961, 0.1643573, 0.0, 0.0, 0.0019},
+        {25.053, 12.9590088, 0.0043, -0.0009, -0.0044}};
+    constexpr double deg = 3.14159265358979323846 / 180.0;
+    double alpha0 = 269.9949 + 0.0031 * t, delta0 = 66.5392 + 0.0130 * t;
+    double w = 38.3213 + 13.17635815 * d - 1.4e-12 * d * d;
+    for (const Term& k : kTerms) {
+      const double e = std::fmod(k.e0 + k.e1 * d, 360.0) * deg;
+      alpha0 += k.alpha * std::sin(e), delta0 += k.delta * std::cos(e), w += k.w * std::sin(e);
+    }
+    return iauBodyFixedToInertial(alpha0, delta0, w);
+  }
   if (body == "Mars")
     return iauBodyFixedToInertial(317.68143 - 0.1061 * t, 52.88650 - 0.0609 * t,
                                   176.630 + 350.89198226 * d);

@@ -134,6 +134,18 @@ TEST(TerrainCli, TimeGivesTheSunTheLunarSouthPoleSees) {
     }
     previousAzimuth = azimuth;
   }
+  // Over an eclipse year (346.6 days) the pole's Sun goes from ~1.5 deg above the horizon
+  // to ~1.5 deg below (the lunar pole's precession terms of the IAU model).
+  double highest = -90.0, lowest = 90.0;
+  for (const char* time : {"2024-01-15T00:00:00Z", "2024-07-15T00:00:00Z"}) {
+    const RunResult r = run(UMBRA_EXE, {"terrain", "shadow", "--synthetic", "1", "--size", "16", "--time", time,
+                                        "--output", dir / "t.png"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    highest = std::max(highest, printed(r.out, "sun elevation"));
+    lowest = std::min(lowest, printed(r.out, "sun elevation"));
+  }
+  EXPECT_GT(highest, 1.3);
+  EXPECT_LT(lowest, -1.3);
 }
 
 TEST(TerrainCli, BadInputGivesOneLineAndNoFile) {
