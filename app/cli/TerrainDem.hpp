@@ -2,8 +2,10 @@
 // Reading a DEM for `umbra terrain`: GeoTIFF (or any raster GDAL reads), band 1, heights
 // in metres above the body's sphere. The raster must be in a projected CRS in metres with
 // square pixels and no rotation (e.g. the polar stereographic LOLA products); it is taken
-// as the gnomonic tangent grid of terrain::HeightField, centred on the raster's centre
-// (the two projections differ by < 1e-4 of the distance from the centre within 100 km of it).
+// as the gnomonic tangent grid of terrain::HeightField, centred on the raster's centre,
+// with the pixel size as the spacing. The two projections differ in scale by about
+// c^2 / 4 at a central angle c from their centres (2e-4 at 50 km, 8e-4 at 100 km on the
+// Moon): lengths across a 100 km DEM are good to ~0.1 %.
 // Rows are turned so that +j points up the raster (north for a north-up DEM).
 #include "HeightField.hpp"
 
