@@ -12,7 +12,9 @@
 // with S(x -> y) = S(x) - T(x, y) S(y) (aerial perspective) and the tables' per-unit-
 // irradiance values turned into the frame's units by M E_sun (below). The planet's ground
 // is the analytic sphere (radius bottomRadiusM): it replaces the frame's colour of the
-// planet (which EclipseShading lit without air).
+// planet (which EclipseShading lit without air) wherever the frame's depth lies within 1 %
+// of the ground hit (from 2 km up, the float camera matrices move grazing ground hits by
+// a few tenths of a percent).
 //
 // Colour. The tables hold one channel per wavelength (680, 550, 440 nm: the R, G, B mode of
 // vtkAtmosphereTablesSource) per unit solar irradiance. The HDR frame holds linear sRGB
@@ -90,6 +92,7 @@ class AtmosphereRendering {
   void SetAtmosphere(const atmosphere::Atmosphere& model, atmosphere::AtmosphereTables tables,
                      const glm::dvec3& centreM, const glm::dvec3& groundAlbedoRgb);
   bool HasAtmosphere() const;
+
   void ClearAtmosphere();
   const atmosphere::Atmosphere& GetModel() const;
   const atmosphere::AtmosphereTables& GetTables() const;

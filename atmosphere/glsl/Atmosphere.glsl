@@ -84,11 +84,19 @@ vec3 umbraAtmTransmittanceToTop(float r, float mu) {
   return texture(umbraAtmTransmittanceTable, umbraAtmTransmittanceUv(r, mu)).rgb;
 }
 
+// The radius of the point at distance d along (r, mu). In float r^2 carries ~0.5 m of
+// rounding at Earth's radius, which near the ground moves a lookup between the table's
+// lowest layers: a point known to be on the ground (endsOnGround) gets the bottom radius.
+float umbraAtmRadiusAlong(float r, float mu, float d, bool endsOnGround) {
+  if (endsOnGround) return umbraAtmBottom;
+  return clamp(sqrt(d * d + 2.0 * r * mu * d + r * r), umbraAtmBottom, umbraAtmTop);
+}
+
 // T between (r, mu) and the point at distance d along the ray (Bruneton 2017,
 // GetTransmittance): a ratio of two transmittances to the top, taken upwards for rays
 // that hit the ground.
-vec3 umbraAtmTransmittance(float r, float mu, float d, bool rayHitsGround) {
-  float rd = clamp(sqrt(d * d + 2.0 * r * mu * d + r * r), umbraAtmBottom, umbraAtmTop);
+vec3 umbraAtmTransmittance(float r, float mu, float d, bool rayHitsGround, bool endsOnGround) {
+  float rd = umbraAtmRadiusAlong(r, mu, d, endsOnGround);
   float mud = clamp((r * mu + d) / rd, -1.0, 1.0);
   if (rayHitsGround) {
     return min(umbraAtmTransmittanceToTop(rd, -mud) /
@@ -206,13 +214,15 @@ vec3 umbraAtmDirectIrradiance(float r, float muS) {
 // ---- the radiance along a view segment (Bruneton 2017, GetSkyRadianceToPoint) ---------
 
 // In-scattered radiance between (r, mu) and the point at distance d along the ray, with
-// the sun at cosines muS (zenith) and nu (view): S(x) - T(x, y) S(y).
-vec3 umbraAtmInScatteringToPoint(float r, float mu, float muS, float nu, float d, bool rayHitsGround) {
+// the sun at cosines muS (zenith) and nu (view): S(x) - T(x, y) S(y). endsOnGround: the
+// point is on the ground.
+vec3 umbraAtmInScatteringToPoint(float r, float mu, float muS, float nu, float d, bool rayHitsGround,
+                                 bool endsOnGround) {
   vec3 sx = umbraAtmScatteredRadiance(r, mu, muS, nu, rayHitsGround);
-  float rd = clamp(sqrt(d * d + 2.0 * r * mu * d + r * r), umbraAtmBottom, umbraAtmTop);
+  float rd = umbraAtmRadiusAlong(r, mu, d, endsOnGround);
   float mud = clamp((r * mu + d) / rd, -1.0, 1.0);
   float muSd = clamp((r * muS + d * nu) / rd, -1.0, 1.0);
   vec3 sy = umbraAtmScatteredRadiance(rd, mud, muSd, nu, rayHitsGround);
-  vec3 T = umbraAtmTransmittance(r, mu, d, rayHitsGround);
+  vec3 T = umbraAtmTransmittance(r, mu, d, rayHitsGround, endsOnGround);
   return max(sx - T * sy, vec3(0.0));
 }

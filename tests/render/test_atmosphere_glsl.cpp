@@ -96,3 +96,71 @@ TEST(AtmosphereGlsl, SkyRadianceFromSpace) {
   const Agreement a = compareSky(cam, directionFromAngles(0.0, 80.0), 96, 3);
   EXPECT_GE(a.samples, 100);
 }
+
+namespace {
+
+// Bruneton's transmittance between (r, mu) and the point at distance d (the CPU side of
+// umbraAtmTransmittance): a ratio of transmittances to the top, upwards for ground rays;
+// rd is the radius at that point.
+std::vector<double> transmittanceBetween(const atmosphere::AtmosphereTables& t, double r, double mu, double d,
+                                         bool ground, double rd) {
+  const double mud = std::clamp((r * mu + d) / rd, -1.0, 1.0);
+  const auto a = ground ? atmosphere::transmittanceToTop(t, rd, -mud) : atmosphere::transmittanceToTop(t, r, mu);
+  const auto b = ground ? atmosphere::transmittanceToTop(t, r, -mu) : atmosphere::transmittanceToTop(t, rd, mud);
+  std::vector<double> out(a.size());
+  for (std::size_t c = 0; c < a.size(); ++c) out[c] = std::min(a[c] / b[c], 1.0);
+  return out;
+}
+
+} // namespace
+
+// The ground seen from 2 km up, 5 to 60 km away: T(x, y) albedo / pi (E_0 + E_ind)(y) plus
+// the in-scattering S(x) - T(x, y) S(y) (aerial perspective), against the CPU.
+TEST(AtmosphereGlsl, GroundAndAerialPerspective) {
+  const AtmosphereFixture& f = atmosphereFixture();
+  const ViewCamera cam = groundCamera(2000.0, -8.0, 12.0);
+  const glm::dvec3 sunDir = directionFromAngles(25.0, 40.0);
+  AtmosphereScene scene(96, cam, sunDir);
+  scene.view.GetAtmosphere().SetColourMatrix(glm::dmat3(1.0));
+  scene.view.Render();
+  std::vector<float> hdr;
+  int w = 0, h = 0;
+  scene.view.ReadHdr(hdr, w, h);
+  const double b = f.tables.bottomRadiusM;
+  int samples = 0;
+  double maxRel = 0.0, minD = 1e30, maxD = 0.0;
+  for (int j = 2; j < h; j += 4) {
+    for (int i = 2; i < w; i += 4) {
+      const Ray ray = pixelRay(cam, w, h, i, j);
+      const glm::dvec3 x = ray.origin;
+      const double r = glm::length(x), mu = glm::dot(x, ray.dir) / r;
+      if (!atmosphere::rayIntersectsGround(b, r, mu)) continue;
+      const double d = atmosphere::distanceToBottomBoundaryM(b, r, mu);
+      const glm::dvec3 y = x + d * ray.dir;
+      const double muS = glm::dot(x, sunDir) / r, nu = glm::dot(ray.dir, sunDir);
+      const double muSy = glm::dot(glm::normalize(y), sunDir);
+      const double rd = b, mud = glm::dot(y, ray.dir) / rd, muSd = glm::dot(y, sunDir) / rd;
+      const auto T = transmittanceBetween(f.tables, r, mu, d, true, rd);
+      const auto Sx = atmosphere::skyRadiance(f.tables, f.model, r, mu, muS, nu);
+      const auto Sy = atmosphere::skyRadiance(f.tables, f.model, rd, mud, muSd, nu);
+      const auto E0 = atmosphere::directIrradiance(f.tables, b, muSy);
+      const auto Ei = atmosphere::indirectIrradiance(f.tables, b, muSy);
+      for (int c = 0; c < 3; ++c) {
+        const double S = std::max(Sx[c] - T[c] * Sy[c], 0.0);
+        const double expected = (T[c] * 0.1 / kPi * (E0[c] + Ei[c]) + S) * kSolarIrradiance;
+        const double gpu = hdr[3 * (static_cast<std::size_t>(j) * w + i) + c];
+        const double rel = std::abs(gpu - expected) / expected;
+        maxRel = std::max(maxRel, rel);
+        EXPECT_LT(rel, 0.01) << "pixel (" << i << ", " << j << ") channel " << c << ": GPU " << gpu << ", CPU "
+                             << expected << " at " << d << " m; T " << T[c] << " ground " << T[c] * 0.1 / kPi * (E0[c] + Ei[c]) * kSolarIrradiance << " S " << S * kSolarIrradiance << " Sx " << Sx[c] * kSolarIrradiance << " Sy " << Sy[c] * kSolarIrradiance << " mud " << mud << " muS " << muS << " nu " << nu;
+      }
+      minD = std::min(minD, d);
+      maxD = std::max(maxD, d);
+      ++samples;
+    }
+  }
+  std::printf("  %d ground samples %.0f..%.0f m away, max |GPU - CPU| / CPU = %.3g\n", samples, minD, maxD, maxRel);
+  EXPECT_GE(samples, 300);
+  EXPECT_LT(minD, 10e3);
+  EXPECT_GT(maxD, 30e3);
+}

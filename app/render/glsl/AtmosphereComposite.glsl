@@ -26,6 +26,7 @@ uniform vec3 umbraGroundAlbedo;
 const float umbraLogDepthMinM = 1.0e-3;           // as ReceiverFragment.glsl
 const float umbraLogDepthOctaves = 53.150849518;
 const float umbraFarAway = 3.0e38;
+const float umbraGroundTolerance = 0.01;
 
 // Distance along the ray to what the frame holds at this pixel (umbraFarAway: nothing).
 float umbraFrameDistance(float depth) {
@@ -90,9 +91,10 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
   bool ground = umbraAtmRayIntersectsGround(r, mu);
   float dEnd = ground ? umbraAtmDistanceToBottom(r, mu) : umbraAtmDistanceToTop(r, mu);
   float dObject = dFrame - t0;
-  // The frame's own planet ends the ray on the ground (the depth of the tessellated
-  // sphere is within a fraction of a percent of the analytic one).
-  bool onGround = ground && dObject >= dEnd * (1.0 - 2e-3) - 1.0;
+  // What the frame holds within 1 % of the ground hit is the planet itself (its depth is
+  // that of the analytic sphere, but with float camera matrices: grazing hits seen from
+  // a few km up move by a few tenths of a percent); it becomes the analytic ground.
+  bool onGround = ground && dObject >= dEnd * (1.0 - umbraGroundTolerance);
   bool onObject = !onGround && dObject < dEnd;
 
   if (onGround) {
@@ -100,14 +102,14 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
     float muSg = dot(normalize(y), umbraSunDirection);
     float rg = umbraAtmBottom;
     vec3 E = umbraAtmDirectIrradiance(rg, muSg) + umbraAtmIndirectIrradiance(rg, muSg);
-    vec3 T = umbraAtmTransmittance(r, mu, dEnd, true);
-    vec3 S = umbraAtmInScatteringToPoint(r, mu, muS, nu, dEnd, true);
+    vec3 T = umbraAtmTransmittance(r, mu, dEnd, true, true);
+    vec3 S = umbraAtmInScatteringToPoint(r, mu, muS, nu, dEnd, true, true);
     vec3 raw = T * umbraGroundAlbedo * 0.31830988618 * E + S;
     return umbraAtmToDisplay * raw * umbraSolarIrradiance;
   }
   if (onObject) {
-    vec3 T = umbraAtmTransmittance(r, mu, dObject, ground);
-    vec3 S = umbraAtmInScatteringToPoint(r, mu, muS, nu, dObject, ground);
+    vec3 T = umbraAtmTransmittance(r, mu, dObject, ground, false);
+    vec3 S = umbraAtmInScatteringToPoint(r, mu, muS, nu, dObject, ground, false);
     return T * frame + umbraAtmToDisplay * S * umbraSolarIrradiance;
   }
   vec3 T = umbraAtmTransmittanceToTop(r, mu);
