@@ -4,6 +4,7 @@
 // BodyView showing Earth (at the origin) with it, the Sun 1 au away.
 #include "AtmosphereRendering.h"
 #include "RenderTestSupport.hpp"
+#include "SceneInputs.h"
 
 #include "Spectrum.hpp"
 #include "vtkAtmosphereTablesSource.h"
@@ -26,20 +27,11 @@ struct AtmosphereFixture {
   atmosphere::AtmosphereTables tables;
 };
 
-/// Tables small enough for the suite: 64x16 transmittance, 8x32x8x4 scattering, 16x4
-/// irradiance, 3 orders.
-inline void setSmallTables(vtkAtmosphereTablesSource* source) {
-  source->SetTransmittanceSize(64, 16);
-  source->SetScatteringSize(8, 32, 8, 4);
-  source->SetIrradianceSize(16, 4);
-  source->SetOrders(3);
-}
-
 inline const AtmosphereFixture& atmosphereFixture() {
   static const AtmosphereFixture f = [] {
     vtkNew<vtkAtmosphereTablesSource> source;
     source->SetAtmosphere("earth");
-    setSmallTables(source);
+    useSmallAtmosphereTables(source);
     source->UseCacheOff();
     source->Update();
     if (!source->GetLastError().empty()) throw std::runtime_error(source->GetLastError());

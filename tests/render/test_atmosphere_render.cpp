@@ -1,0 +1,123 @@
+// The atmosphere in the render pass at the extremes (camera 1 m above the ground, on the
+// top boundary, 1 au away; the Sun on the horizon, the Sun behind the planet) and what a
+// sky must look like (bluer at the zenith than at the horizon at noon, a reddened Sun
+// low down), on the HDR frame with the display colour matrix.
+#include "AtmosphereTestSupport.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+
+using namespace umbra;
+using namespace umbra::render;
+using namespace umbra::render::test;
+using umbra::eclipse::luminance;
+
+namespace {
+
+struct Frame {
+  std::vector<float> rgb;
+  int w = 0, h = 0;
+  glm::dvec3 at(int i, int j) const {  // j from the top
+    const float* p = &rgb[3 * (static_cast<std::size_t>(j) * w + i)];
+    return {p[0], p[1], p[2]};
+  }
+  /// Rows (or columns) that are black in every channel from edge to edge.
+  int blackRows() const {
+    int n = 0;
+    for (int j = 0; j < h; ++j) {
+      bool black = true;
+      for (int i = 0; i < w && black; ++i) black = glm::length(at(i, j)) == 0.0;
+      n += black;
+    }
+    return n;
+  }
+};
+
+// Renders; ReadHdr throws on any non-finite value.
+Frame renderFrame(const ViewCamera& cam, const glm::dvec3& sunDir, int size = 64) {
+  AtmosphereScene scene(size, cam, sunDir);
+  scene.view.Render();
+  Frame f;
+  scene.view.ReadHdr(f.rgb, f.w, f.h);
+  return f;
+}
+
+double blueOverRed(const glm::dvec3& c) { return c.b / c.r; }
+
+} // namespace
+
+// 1 m above the ground, the Sun's centre exactly on the (geometric) horizon, looking at it.
+TEST(AtmosphereRender, OneMetreUpSunOnTheHorizon) {
+  const Frame f = renderFrame(groundCamera(1.0, 0.0, 4.0), directionFromAngles(0.0, 0.0));
+  EXPECT_EQ(f.blackRows(), 0);
+  for (int j = 0; j < f.h / 2 - 1; ++j)  // the sky, above the horizon
+    for (int i = 0; i < f.w; ++i) EXPECT_GT(f.at(i, j).r, 0.0) << i << ", " << j;
+  // The Sun's half disc at the centre outshines the sky beside it.
+  EXPECT_GT(luminance(f.at(f.w / 2, f.h / 2 - 1)), 10.0 * luminance(f.at(f.w / 8, f.h / 2 - 1)));
+}
+
+// On the top boundary, looking down at the limb 20 degrees below the horizontal.
+TEST(AtmosphereRender, CameraOnTheTopBoundary) {
+  const double top = atmosphereFixture().tables.topRadiusM - atmosphereFixture().tables.bottomRadiusM;
+  const Frame f = renderFrame(groundCamera(top, -15.0, 30.0), directionFromAngles(40.0, 30.0));
+  EXPECT_EQ(f.blackRows(), 0);
+  EXPECT_GT(luminance(f.at(f.w / 2, f.h - 1)), 0.0);  // the lit ground below
+}
+
+// 1 au from Earth (the Sun beside the camera): Earth is a few pixels wide and lit.
+TEST(AtmosphereRender, CameraOneAuAway) {
+  ViewCamera cam;
+  cam.positionM = {kAu, 0.0, 0.0};
+  cam.targetM = {0.0, 0.0, 0.0};
+  cam.up = {0.0, 0.0, 1.0};
+  cam.fovDeg = 0.02;  // Earth's diameter: 0.0049 degrees
+  const Frame f = renderFrame(cam, directionFromAngles(0.0, 10.0));
+  const glm::dvec3 centre = f.at(f.w / 2, f.h / 2);
+  EXPECT_GT(luminance(centre), 1.0);
+  EXPECT_LT(luminance(centre), 1361.0 / kPi);
+  EXPECT_EQ(luminance(f.at(0, 0)), 0.0);  // space
+}
+
+// The Sun exactly behind Earth, seen from 30 000 km on the night side, zoomed on the
+// limb (0.4 degrees: 210 km): the ground below (just past the terminator) is dark, the atmosphere's ring is
+// lit by forward scattering, space above is black.
+TEST(AtmosphereRender, SunExactlyBehindEarth) {
+  const double b = atmosphereFixture().tables.bottomRadiusM;
+  ViewCamera cam;
+  cam.positionM = {-3.0e7, 0.0, 0.0};
+  const double limb = std::asin((b + 40e3) / 3.0e7);  // grazing 40 km up
+  cam.targetM = cam.positionM + glm::dvec3(std::cos(limb), 0.0, std::sin(limb));
+  cam.up = {0.0, 0.0, 1.0};
+  cam.fovDeg = 0.4;
+  const Frame f = renderFrame(cam, directionFromAngles(0.0, 0.0), 96);
+  double ringMax = 0.0;
+  for (int j = 0; j < f.h; ++j) ringMax = std::max(ringMax, luminance(f.at(f.w / 2, j)));
+  const double ground = luminance(f.at(f.w / 2, f.h - 1)), space = luminance(f.at(f.w / 2, 0));
+  std::printf("  night ground %.3g, brightest in the ring %.3g, space %.3g W m^-2 sr^-1\n", ground, ringMax, space);
+  EXPECT_LT(ground, 1e-2 * ringMax);  // near the limb: the twilit ground under the terminator
+  EXPECT_GT(ringMax, 1.0);
+  EXPECT_EQ(space, 0.0);
+}
+
+// Noon-ish (Sun 60 degrees up): the zenith is bluer than the horizon.
+TEST(AtmosphereRender, ZenithBluerThanHorizonNearNoon) {
+  const Frame f = renderFrame(groundCamera(10.0, 45.0, 90.0), directionFromAngles(60.0, 180.0), 64);
+  const glm::dvec3 zenith = f.at(f.w / 2, 0), horizon = f.at(f.w / 2, f.h - 1);
+  std::printf("  zenith (%.4g, %.4g, %.4g), horizon (%.4g, %.4g, %.4g)\n", zenith.r, zenith.g, zenith.b, horizon.r,
+              horizon.g, horizon.b);
+  EXPECT_GT(zenith.b, zenith.r);
+  EXPECT_GT(blueOverRed(zenith), 1.2 * blueOverRed(horizon));
+}
+
+// The Sun's disc 2 degrees up is redder than 60 degrees up (its light crosses ~25 air masses).
+TEST(AtmosphereRender, LowSunIsReddened) {
+  const Frame low = renderFrame(groundCamera(10.0, 2.0, 4.0), directionFromAngles(2.0, 0.0));
+  const Frame high = renderFrame(groundCamera(10.0, 60.0, 4.0), directionFromAngles(60.0, 0.0));
+  const glm::dvec3 l = low.at(low.w / 2, low.h / 2), hi = high.at(high.w / 2, high.h / 2);
+  std::printf("  Sun at 2 deg (%.4g, %.4g, %.4g), at 60 deg (%.4g, %.4g, %.4g)\n", l.r, l.g, l.b, hi.r, hi.g, hi.b);
+  EXPECT_GT(l.r, l.b * 2.0);
+  EXPECT_LT(blueOverRed(l), 0.5 * blueOverRed(hi));
+  EXPECT_GT(luminance(hi), luminance(l));
+}
