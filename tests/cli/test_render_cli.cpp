@@ -8,7 +8,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 
 using namespace umbra;
 using namespace umbra::test;
@@ -78,4 +80,56 @@ TEST(RenderCli, ProfilePlotAsPng) {
                           {"UMBRA_CACHE_DIR=" + dir / "cache"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_GT(std::filesystem::file_size(dir.path / "p.png"), 2000u);
+}
+
+// ---- scenes with an atmosphere (small tables: --atmosphere-tables small) ----------------
+
+namespace {
+tables::Table renderExr(const TempDir& dir, const std::string& scene, const std::string& size) {
+  const RunResult r = run(UMBRA_EXE, {"render", scene, "--size", size, "--atmosphere-tables", "small", "--output",
+                                      dir / "frame.exr"},
+                          {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  tables::Table img = tables::readExr(dir / "frame.exr", {"R", "G", "B"});
+  for (float v : img.data) EXPECT_TRUE(std::isfinite(v));
+  return img;
+}
+glm::dvec3 pixel(const tables::Table& t, int x, int y) { return {t.at(x, y, 0), t.at(x, y, 1), t.at(x, y, 2)}; }
+} // namespace
+
+// The sunset example: the Sun (the camera's target, at the centre) is reddened, the sky
+// above it is lit and bluer high up than beside the Sun, the ground below is darker.
+TEST(RenderCli, SunsetExampleHasARedSunUnderABluerSky) {
+  TempDir dir;
+  const tables::Table img = renderExr(dir, UMBRA_SOURCE_DIR "/examples/scenes/earth-sunset.json", "160x90");
+  const int w = img.width, h = img.height;
+  const glm::dvec3 sun = pixel(img, w / 2, h / 2), top = pixel(img, w / 4, 0), beside = pixel(img, w / 4, h / 2);
+  const glm::dvec3 ground = pixel(img, w / 2, h - 1);
+  EXPECT_GT(sun.r, 2.0 * sun.b);
+  EXPECT_GT(sun.r, 100.0 * beside.r);
+  EXPECT_GT(top.b, 0.0);
+  EXPECT_GT(top.b / top.r, 1.5 * beside.b / beside.r);
+  EXPECT_LT(ground.g, beside.g);
+}
+
+// Earth from 150 000 km: the disc is lit, space around it black.
+TEST(RenderCli, EarthFrom150000kmExampleShowsALitDisc) {
+  TempDir dir;
+  const tables::Table img = renderExr(dir, UMBRA_SOURCE_DIR "/examples/scenes/earth-from-150000km.json", "160x120");
+  const glm::dvec3 centre = pixel(img, img.width / 2, img.height / 2), corner = pixel(img, 0, 0);
+  EXPECT_GT(centre.b, 1.0);
+  EXPECT_EQ(corner, glm::dvec3(0.0));
+}
+
+TEST(RenderCli, UnknownAtmosphereNamesTheFileAndField) {
+  TempDir dir;
+  const std::string scene = dir / "bad.json";
+  std::ofstream(scene) << R"({"bodies": [{"preset": "Sun"}, {"preset": "Earth", "position": [1.5e11, 0, 0],
+                             "atmosphere": "venus"}],
+                             "camera": {"position": [1.5e11, 0, 1e8], "target": "Earth"}})";
+  const RunResult r = run(UMBRA_EXE, {"render", scene, "--output", dir / "x.png"}, {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find(scene + ": bodies[1].atmosphere: unknown atmosphere preset 'venus'"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "x.png"));
 }
