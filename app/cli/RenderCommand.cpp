@@ -1,4 +1,4 @@
-// umbra render SCENE [--time ISO8601] [--size WxH] [--exposure EV] [--atmosphere-tables default|small]
+// umbra render SCENE [--time ISO8601] [--size WxH] [--exposure EV] [--atmosphere-tables default|small] [--refraction]
 //   --output FILE.png|FILE.exr
 // A body with "atmosphere" in the scene is drawn with it (AtmosphereRendering); its tables
 // come from vtkAtmosphereTablesSource through the cache (the first render of an atmosphere
@@ -48,6 +48,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
     std::string scene, time, size, output;
     std::optional<double> exposure;
     std::string atmosphereTables = "default";
+    bool refraction = false;
     CacheOptions cache;
   };
   auto o = std::make_shared<Options>();
@@ -60,6 +61,9 @@ void addRenderCommand(CLI::App& app, Action& action) {
                      "Atmosphere table sizes: default (vtkAtmosphereTablesSource's: 256x64, 32,128,32,8, 64x16, "
                      "4 orders) or small (64x16, 8,32,8,4, 16x4, 3 orders: quick looks and tests)")
       ->capture_default_str();
+  render->add_flag("--refraction", o->refraction,
+                   "Bend the rays through the atmosphere (eclipse paper, 4.2): a lifted, flattened Sun at the "
+                   "horizon; the tables then follow refracted paths");
   o->cache.addTo(render);
 
   render->callback([&action, o] {
@@ -90,7 +94,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
         tables->SetUseCache(!o->cache.disabled);
         if (o->atmosphereTables == "small") render::useSmallAtmosphereTables(tables);
         try {
-          render::applySceneAtmosphere(view, in, tables);
+          render::applySceneAtmosphere(view, in, tables, o->refraction);
         } catch (const std::runtime_error& e) {
           throw CommandError(e.what());
         }

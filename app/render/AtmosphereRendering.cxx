@@ -93,7 +93,7 @@ std::string parameter(vtkImageData* image, const std::string& block, const std::
 }
 
 vtkSmartPointer<vtkTextureObject> floatTexture(vtkOpenGLRenderWindow* window, int w, int h, int d,
-                                               const std::vector<float>& rgb) {
+                                               const std::vector<float>& rgb, int components = 3) {
   auto t = vtkSmartPointer<vtkTextureObject>::New();
   t->SetContext(window);
   t->SetMinificationFilter(vtkTextureObject::Linear);
@@ -101,11 +101,12 @@ vtkSmartPointer<vtkTextureObject> floatTexture(vtkOpenGLRenderWindow* window, in
   t->SetWrapS(vtkTextureObject::ClampToEdge);
   t->SetWrapT(vtkTextureObject::ClampToEdge);
   t->SetWrapR(vtkTextureObject::ClampToEdge);
-  t->SetInternalFormat(GL_RGB32F);
-  t->SetFormat(GL_RGB);
+  t->SetInternalFormat(components == 2 ? GL_RG32F : GL_RGB32F);
+  t->SetFormat(components == 2 ? GL_RG : GL_RGB);
   t->SetDataType(GL_FLOAT);
   void* data = const_cast<float*>(rgb.data());
-  const bool ok = d <= 1 ? t->Create2DFromRaw(w, h, 3, VTK_FLOAT, data) : t->Create3DFromRaw(w, h, d, 3, VTK_FLOAT, data);
+  const bool ok = d <= 1 ? t->Create2DFromRaw(w, h, components, VTK_FLOAT, data)
+                         : t->Create3DFromRaw(w, h, d, components, VTK_FLOAT, data);
   if (!ok) throw std::runtime_error("cannot create a " + std::to_string(w) + "x" + std::to_string(h) + " float texture");
   return t;
 }
@@ -230,7 +231,9 @@ struct AtmosphereRendering::Impl {
   double limbDarkening = 0.6;
   bool texturesStale = true;
 
-  vtkSmartPointer<vtkTextureObject> transmittance, scattering, irradiance, direct;
+  vtkSmartPointer<vtkTextureObject> transmittance, scattering, irradiance, direct, refraction;
+  std::vector<float> refractionValues;  // deviation, contact altitude per texel; empty: off
+  int refractionSize[2] = {0, 0};
   std::unique_ptr<vtkOpenGLQuadHelper> quad;
   vtkOpenGLRenderWindow* context = nullptr;
 
@@ -244,6 +247,11 @@ struct AtmosphereRendering::Impl {
     for (const atmosphere::Table3D& s : t.singleScattering) stacked.insert(stacked.end(), s.values.begin(), s.values.end());
     const atmosphere::Table3D& m = t.multipleScattering;
     scattering = floatTexture(window, m.width, m.height, m.depth * static_cast<int>(1 + t.singleScattering.size()), stacked);
+    // Without refraction a 2x2 table of zeros keeps the sampler valid.
+    const std::vector<float> none(8, 0.0f);
+    const bool on = !refractionValues.empty();
+    refraction = floatTexture(window, on ? refractionSize[0] : 2, on ? refractionSize[1] : 2, 1,
+                              on ? refractionValues : none, 2);
     texturesStale = false;
   }
 };
@@ -294,6 +302,32 @@ void AtmosphereRendering::SetSun(const SunLight& sun) {
   validateSun(sun);
   impl_->sun = sun;
 }
+void AtmosphereRendering::SetRefraction(vtkImageData* table) {
+  Impl& m = *impl_;
+  m.texturesStale = true;
+  if (!table) {
+    m.refractionValues.clear();
+    return;
+  }
+  int dims[3];
+  table->GetDimensions(dims);
+  vtkDataArray* dev = table->GetPointData()->GetArray("deviation_rad");
+  vtkDataArray* contact = table->GetPointData()->GetArray("contact_altitude_m");
+  const vtkIdType n = table->GetNumberOfPoints();
+  if (!dev || !contact || dims[2] != 1 || dims[0] < 2 || dims[1] < 2 || dev->GetNumberOfTuples() != n ||
+      contact->GetNumberOfTuples() != n)
+    throw std::invalid_argument("refraction table: expected a 2D image with arrays deviation_rad and contact_altitude_m");
+  m.refractionValues.resize(2 * static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i) {
+    m.refractionValues[2 * i] = static_cast<float>(dev->GetComponent(i, 0));
+    m.refractionValues[2 * i + 1] = static_cast<float>(contact->GetComponent(i, 0));
+  }
+  m.refractionSize[0] = dims[0];
+  m.refractionSize[1] = dims[1];
+}
+
+bool AtmosphereRendering::HasRefraction() const { return !impl_->refractionValues.empty(); }
+
 void AtmosphereRendering::SetOrigin(const glm::dvec3& originM) { impl_->origin = originM; }
 void AtmosphereRendering::SetColourMatrix(const glm::dmat3& m) { impl_->colour = m; }
 void AtmosphereRendering::SetLimbDarkening(double u) { impl_->limbDarkening = u; }
@@ -380,6 +414,7 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   const int size[4] = {t.options.scatteringR, t.options.scatteringMu, t.options.scatteringMuS, t.options.scatteringNu};
   p->SetUniform1iv("umbraAtmScatteringSize", 4, size);
   p->SetUniformi("umbraAtmComponents", static_cast<int>(t.singleScattering.size()));
+  p->SetUniformi("umbraRefraction", m.refractionValues.empty() ? 0 : 1);
   p->SetUniform3fv("umbraAtmPhase", 24, reinterpret_cast<const float(*)[3]>(m.phase.data()));
 
   colour->Activate();
@@ -388,6 +423,8 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   m.scattering->Activate();
   m.irradiance->Activate();
   m.direct->Activate();
+  m.refraction->Activate();
+  p->SetUniformi("umbraRefractionTable", m.refraction->GetTextureUnit());
   p->SetUniformi("umbraFrameColour", colour->GetTextureUnit());
   p->SetUniformi("umbraFrameDepth", depth->GetTextureUnit());
   p->SetUniformi("umbraAtmTransmittanceTable", m.transmittance->GetTextureUnit());
@@ -395,6 +432,7 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   p->SetUniformi("umbraAtmIrradianceTable", m.irradiance->GetTextureUnit());
   p->SetUniformi("umbraAtmDirectIrradianceTable", m.direct->GetTextureUnit());
   m.quad->Render();
+  m.refraction->Deactivate();
   m.direct->Deactivate();
   m.irradiance->Deactivate();
   m.scattering->Deactivate();
@@ -410,7 +448,7 @@ void AtmosphereRendering::ReleaseGraphicsResources(vtkOpenGLRenderWindow* window
     m.quad->ReleaseGraphicsResources(window);
     m.quad.reset();
   }
-  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.direct}) {
+  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.direct, &m.refraction}) {
     if (*t && window) (*t)->ReleaseGraphicsResources(window);
     *t = nullptr;
   }

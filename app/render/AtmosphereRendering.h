@@ -53,6 +53,7 @@
 #include <memory>
 #include <string>
 
+class vtkImageData;
 class vtkMultiBlockDataSet;
 class vtkOpenGLRenderWindow;
 class vtkRenderer;
@@ -103,6 +104,16 @@ class AtmosphereRendering {
   void SetOrigin(const glm::dvec3& originM);
   /// The matrix from table channels to the frame's colour (default atmosphereToDisplayMatrix).
   void SetColourMatrix(const glm::dmat3& m);
+  /// Refraction (eclipse paper, section 4.2; nullptr: off): the "refraction" block of
+  /// vtkAtmosphereTablesSource (arrays deviation_rad, contact_altitude_m over the
+  /// transmittance parametrisation). Rays that leave the atmosphere are bent by the
+  /// deviation before they look up the background and the Sun; rays whose contact altitude
+  /// is negative see black. Perspective views only. The scattering tables should then come
+  /// from refracted paths (vtkAtmosphereTablesSource::RefractedPaths). Throws
+  /// std::invalid_argument for a malformed table.
+  void SetRefraction(vtkImageData* table);
+  bool HasRefraction() const;
+
   /// Limb darkening of the Sun's disc (eclipse/SolarDisc.hpp's Eq. 1 coefficient).
   void SetLimbDarkening(double u);
 

@@ -2,7 +2,11 @@
 
 #include "Atmosphere.hpp"
 #include "Spectrum.hpp"
+#include "FieldParameters.h"
 #include "vtkAtmosphereTablesSource.h"
+
+#include <vtkImageData.h>
+#include <vtkMultiBlockDataSet.h>
 
 #include "ShadowLut.hpp"  // luminance()
 #include "scene/Scene.hpp"
@@ -13,6 +17,17 @@
 #include <stdexcept>
 
 namespace umbra::render {
+
+namespace {
+vtkImageData* refractionBlock(vtkMultiBlockDataSet* blocks) {
+  for (unsigned i = 0; i < blocks->GetNumberOfBlocks(); ++i) {
+    const auto p = filters::fieldParameters(blocks->GetBlock(i));
+    const auto kind = p.find("kind");
+    if (kind != p.end() && kind->second == "atmosphere-refraction") return vtkImageData::SafeDownCast(blocks->GetBlock(i));
+  }
+  throw std::runtime_error("atmosphere tables: no refraction block");
+}
+} // namespace
 
 SceneInputs sceneInputs(const scene::Scene& s) {
   SceneInputs in;
@@ -55,7 +70,8 @@ SceneInputs sceneInputs(const scene::Scene& s) {
   return in;
 }
 
-void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTablesSource* source) {
+void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTablesSource* source,
+                          bool refraction) {
   if (!in.atmosphere) {
     view.GetAtmosphere().ClearAtmosphere();
     return;
@@ -65,13 +81,15 @@ void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTa
   if (body == in.bodies.end()) throw std::logic_error("no body '" + a.body + "' for its atmosphere");
   source->SetAtmosphere(a.model.c_str());
   source->SetWavelengths(3);
-  source->SetTables(vtkAtmosphereTablesSource::Bruneton);
+  source->SetTables(vtkAtmosphereTablesSource::Bruneton | (refraction ? vtkAtmosphereTablesSource::Refraction : 0));
+  source->SetRefractedPaths(refraction);
   source->Update();
   if (!source->GetLastError().empty())
     throw std::runtime_error("atmosphere of '" + a.body + "': " + source->GetLastError());
   const atmosphere::Atmosphere model = atmosphere::loadAtmosphere(a.model, atmosphere::WavelengthSet::rgb().nm);
   view.GetAtmosphere().SetAtmosphere(model, tablesFromBlocks(source->GetOutput(), model), body->centreM,
                                      body->albedoRgb);
+  view.GetAtmosphere().SetRefraction(refraction ? refractionBlock(source->GetOutput()) : nullptr);
 }
 
 void useSmallAtmosphereTables(vtkAtmosphereTablesSource* source) {

@@ -41,8 +41,12 @@ SceneInputs sceneInputs(const scene::Scene& scene);
 /// Hands the tables of in.atmosphere to view.GetAtmosphere() (call after SetBodies): they
 /// come from `source` (its cache, sizes and orders as the caller set them; this sets the
 /// atmosphere, 3 wavelengths and the Bruneton tables only). Without an atmosphere, clears
-/// the view's. Throws std::runtime_error naming the body when the tables cannot be made.
-void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTablesSource* source);
+/// the view's. With `refraction`, the source also makes the refraction table and
+/// integrates along refracted paths, and the view bends its rays
+/// (AtmosphereRendering::SetRefraction). Throws std::runtime_error naming the body when the
+/// tables cannot be made.
+void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTablesSource* source,
+                          bool refraction = false);
 
 /// Small atmosphere tables for quick looks and tests: 64x16 transmittance, 8,32,8,4
 /// scattering, 16x4 irradiance, 3 orders (about a second to compute).

@@ -64,8 +64,9 @@ bool umbraAtmRayIntersectsGround(float r, float mu) {
 
 // ---- transmittance -------------------------------------------------------------------
 
-// transmittanceUvFromRMu (Eq. 2 of the eclipse paper).
-vec2 umbraAtmTransmittanceUv(float r, float mu) {
+// transmittanceUvFromRMu (Eq. 2 of the eclipse paper) for a table of n texels (the
+// transmittance and the refraction tables share it).
+vec2 umbraAtmTransmittanceUvSized(float r, float mu, vec2 n) {
   float b = umbraAtmBottom, t = umbraAtmTop;
   r = clamp(r, b, t);
   mu = clamp(mu, -1.0, 1.0);
@@ -75,8 +76,10 @@ vec2 umbraAtmTransmittanceUv(float r, float mu) {
   float dMin = t - r, dMax = rho + H;
   float xMu = clamp((d - dMin) / (dMax - dMin), 0.0, 1.0);
   float xR = clamp(rho / H, 0.0, 1.0);
-  vec2 n = vec2(textureSize(umbraAtmTransmittanceTable, 0));
   return vec2(umbraAtmTexCoord(xMu, n.x), umbraAtmTexCoord(xR, n.y));
+}
+vec2 umbraAtmTransmittanceUv(float r, float mu) {
+  return umbraAtmTransmittanceUvSized(r, mu, vec2(textureSize(umbraAtmTransmittanceTable, 0)));
 }
 
 // transmittanceToTop: T from (r, mu) to the top (below the horizon: the horizon's value).

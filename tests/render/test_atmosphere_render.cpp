@@ -4,6 +4,9 @@
 // low down), on the HDR frame with the display colour matrix.
 #include "AtmosphereTestSupport.hpp"
 
+#include "Refraction.hpp"
+#include "SightLines.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -120,4 +123,103 @@ TEST(AtmosphereRender, LowSunIsReddened) {
   EXPECT_GT(l.r, l.b * 2.0);
   EXPECT_LT(blueOverRed(l), 0.5 * blueOverRed(hi));
   EXPECT_GT(luminance(hi), luminance(l));
+}
+
+// ---- refraction (eclipse paper, section 4.2) --------------------------------------------
+
+namespace {
+
+// The fixture's atmosphere with refracted paths and the refraction table (256 x 128).
+struct RefractionFixture {
+  atmosphere::AtmosphereTables tables;
+  vtkSmartPointer<vtkImageData> refraction;
+};
+const RefractionFixture& refractionFixture() {
+  static const RefractionFixture f = [] {
+    vtkNew<vtkAtmosphereTablesSource> source;
+    source->SetAtmosphere("earth");
+    useSmallAtmosphereTables(source);
+    source->SetTables(vtkAtmosphereTablesSource::Bruneton | vtkAtmosphereTablesSource::Refraction);
+    source->SetRefractedPaths(true);
+    source->SetRefractionWidth(256);
+    source->SetRefractionHeight(128);
+    source->UseCacheOff();
+    source->Update();
+    RefractionFixture out;
+    out.tables = tablesFromBlocks(source->GetOutput(), atmosphereFixture().model);
+    vtkMultiBlockDataSet* blocks = source->GetOutput();
+    out.refraction = vtkImageData::SafeDownCast(blocks->GetBlock(blocks->GetNumberOfBlocks() - 1));
+    return out;
+  }();
+  return f;
+}
+
+struct DiscExtent {
+  int top = -1, bottom = -1, left = -1, right = -1;  // rows from the top, columns
+  int height() const { return bottom - top + 1; }
+  int width() const { return right - left + 1; }
+};
+// The pixels whose red channel exceeds 5 % of the brightest one: the Sun's disc.
+DiscExtent discOf(const Frame& f) {
+  double peak = 0.0;
+  for (int j = 0; j < f.h; ++j)
+    for (int i = 0; i < f.w; ++i) peak = std::max(peak, f.at(i, j).r);
+  DiscExtent d;
+  for (int j = 0; j < f.h; ++j)
+    for (int i = 0; i < f.w; ++i) {
+      if (f.at(i, j).r < 0.05 * peak) continue;
+      if (d.top < 0) d.top = j;
+      d.bottom = j;
+      d.left = d.left < 0 ? i : std::min(d.left, i);
+      d.right = std::max(d.right, i);
+    }
+  return d;
+}
+
+} // namespace
+
+// A sunset seen from 2 m, the Sun's centre 0.3 degrees above the geometric horizon: with
+// refraction its disc is flattened (height / width < 0.9) and each edge is lifted by the
+// deviation of the ray through it (traced on the CPU, the refraction table's source).
+TEST(AtmosphereRender, RefractionLiftsAndFlattensTheSettingSun) {
+  const RefractionFixture& rf = refractionFixture();
+  const AtmosphereFixture& f = atmosphereFixture();
+  const ViewCamera cam = groundCamera(2.0, 0.5, 2.5);
+  const double sunElevationDeg = 0.3;
+  auto frameWith = [&](bool refraction) {
+    AtmosphereScene scene(200, cam, directionFromAngles(sunElevationDeg, 0.0));
+    scene.view.GetAtmosphere().SetAtmosphere(f.model, refraction ? rf.tables : f.tables, glm::dvec3(0.0),
+                                             scene.earth.albedoRgb);
+    scene.view.GetAtmosphere().SetRefraction(refraction ? rf.refraction.Get() : nullptr);
+    scene.view.Render();
+    Frame out;
+    scene.view.ReadHdr(out.rgb, out.w, out.h);
+    return out;
+  };
+  const Frame bent = frameWith(true), straight = frameWith(false);
+  const DiscExtent d = discOf(bent), s = discOf(straight);
+  const double flattening = double(d.height()) / d.width();
+  std::printf("  disc %d x %d px with refraction (height / width %.3f), %d x %d px without\n", d.width(),
+              d.height(), flattening, s.width(), s.height());
+  EXPECT_LT(flattening, 0.9);
+  EXPECT_GT(double(s.height()) / s.width(), 0.95);
+  EXPECT_LT(d.bottom, s.bottom);  // lifted
+
+  // Each edge's apparent elevation minus the deviation of its ray is the geometric edge.
+  const atmosphere::RefractiveMedium medium =
+      atmosphere::refractiveMedium(f.model, f.model.refractivityReferenceWavelengthNm);
+  const double r = glm::length(cam.positionM), pxDeg = 2.5 / bent.h;
+  const double sunRadiusDeg = std::asin(6.957e8 / kAu) * 180.0 / kPi;
+  auto check = [&](int row, double edgeSign) {
+    const Ray ray = pixelRay(cam, bent.w, bent.h, bent.w / 2, row);
+    const double mu = glm::dot(ray.dir, glm::normalize(cam.positionM));
+    const double apparentDeg = std::asin(mu) * 180.0 / kPi;
+    const double deviationDeg = atmosphere::traceRay(medium, r, mu).deviationRad * 180.0 / kPi;
+    const double geometricDeg = apparentDeg - deviationDeg, expected = sunElevationDeg + edgeSign * sunRadiusDeg;
+    std::printf("  edge row %d: apparent %.4f deg, deviation %.4f deg, geometric %.4f deg (expected %.4f)\n", row,
+                apparentDeg, deviationDeg, geometricDeg, expected);
+    EXPECT_NEAR(geometricDeg, expected, 1.5 * pxDeg);
+  };
+  check(d.top, 1.0);
+  check(d.bottom, -1.0);
 }

@@ -22,6 +22,8 @@ uniform float umbraSolarIrradiance;   // W m^-2 at the planet
 uniform float umbraLimbDarkening;
 uniform mat3 umbraAtmToDisplay;       // table channels -> frame colour
 uniform vec3 umbraGroundAlbedo;
+uniform int umbraRefraction;          // 1: bend the rays that leave the atmosphere
+uniform sampler2D umbraRefractionTable;  // deviation (rad), contact altitude (m) over (x_mu, x_r)
 
 const float umbraLogDepthMinM = 1.0e-3;           // as ReceiverFragment.glsl
 const float umbraLogDepthOctaves = 53.150849518;
@@ -44,6 +46,34 @@ float umbraSunDisc(vec3 dir) {
   float u = umbraLimbDarkening;
   float profile = (1.0 - u * (1.0 - sqrt(max(1.0 - rho * rho, 0.0)))) / (1.0 - u / 3.0);
   return profile * umbraSolarIrradiance / (3.14159265 * umbraSunAngularRadius * umbraSunAngularRadius);
+}
+
+// Where a direction meets the image (perspective), in texture coordinates.
+vec2 umbraImageOf(vec3 d) {
+  float f = dot(d, umbraRayForward);
+  vec2 ndc = vec2(dot(d, umbraRayX) / dot(umbraRayX, umbraRayX), dot(d, umbraRayY) / dot(umbraRayY, umbraRayY)) / f;
+  return 0.5 * ndc + vec2(0.5);
+}
+
+// The background of a ray leaving the atmosphere from x (radius r, view cosine mu) with
+// refraction (eclipse paper, section 4.2): a ray bent into the ground sees black; else the
+// exit ray (the view ray turned towards the planet's centre by the deviation) looks up
+// the frame at its vanishing point, black where the frame holds something there (the
+// ray passed behind it), plus the Sun's disc along the exit ray.
+vec3 umbraRefractedBackground(vec3 x, float r, float mu, vec3 dir) {
+  vec2 dc = texture(umbraRefractionTable,
+                    umbraAtmTransmittanceUvSized(r, mu, vec2(textureSize(umbraRefractionTable, 0)))).rg;
+  if (dc.y < 0.0) return vec3(0.0);
+  vec3 toCentre = -x / r;
+  vec3 across = toCentre - dot(toCentre, dir) * dir;
+  float l = length(across);
+  vec3 exitDir = l > 0.0 ? cos(dc.x) * dir + sin(dc.x) * (across / l) : dir;
+  vec3 seen = vec3(0.0);
+  vec2 at = umbraImageOf(exitDir);
+  if (dot(exitDir, umbraRayForward) > 0.0 && all(greaterThanEqual(at, vec2(0.0))) && all(lessThanEqual(at, vec2(1.0))) &&
+      texture(umbraFrameDepth, at).r >= 1.0)
+    seen = texture(umbraFrameColour, at).rgb;
+  return seen + vec3(umbraSunDisc(exitDir));
 }
 
 vec3 umbraAtmosphereComposite(vec2 uv) {
@@ -112,6 +142,8 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
     vec3 S = umbraAtmInScatteringToPoint(r, mu, muS, nu, dObject, ground, false);
     return T * frame + umbraAtmToDisplay * S * umbraSolarIrradiance;
   }
+  if (umbraRefraction == 1 && umbraParallel == 0 && dFrame >= umbraFarAway)
+    background = umbraRefractedBackground(x, r, mu, dir);
   vec3 T = umbraAtmTransmittanceToTop(r, mu);
   vec3 S = umbraAtmScatteredRadiance(r, mu, muS, nu, false);
   return T * background + umbraAtmToDisplay * S * umbraSolarIrradiance;
