@@ -19,32 +19,51 @@ namespace {
 struct Agreement {
   int samples = 0;
   double maxRelative = 0.0;
+  double minDistanceM = 1e30, maxDistanceM = 0.0;  // to the ground (compareGround)
 };
+
+struct RawFrame {
+  std::vector<float> hdr;
+  int w = 0, h = 0;
+  double at(int i, int j, int c) const { return hdr[3 * (static_cast<std::size_t>(j) * w + i) + c]; }
+};
+
+// The frame in the tables' own channels (identity colour matrix) times the irradiance.
+RawFrame renderRaw(const ViewCamera& camera, const glm::dvec3& sunDir, int size) {
+  AtmosphereScene scene(size, camera, sunDir);
+  scene.view.GetAtmosphere().SetColourMatrix(glm::dmat3(1.0));
+  scene.view.Render();
+  RawFrame f;
+  scene.view.ReadHdr(f.hdr, f.w, f.h);
+  return f;
+}
+
+// Where the ray starts in the atmosphere (planet at the origin): its origin inside the
+// shell, else its entry point; nothing when it misses (or grazes within 0.1 %) the shell.
+std::optional<glm::dvec3> startPoint(const Ray& ray, double top) {
+  if (glm::length(ray.origin) <= top) return ray.origin;
+  const double tc = -glm::dot(ray.origin, ray.dir);
+  const glm::dvec3 perp = ray.origin + tc * ray.dir;
+  const double h = glm::length(perp);
+  if (h >= top * 0.999 || tc <= 0.0) return std::nullopt;
+  return perp - std::sqrt((top - h) * (top + h)) * ray.dir;
+}
 
 // Sky pixels (rays that leave the atmosphere without meeting the ground, away from the
 // Sun's disc and from the horizon, where the tables switch halves) against skyRadiance at
 // the camera, or at the entry point for a camera outside the atmosphere.
 Agreement compareSky(const ViewCamera& camera, const glm::dvec3& sunDir, int size, int step) {
   const AtmosphereFixture& f = atmosphereFixture();
-  AtmosphereScene scene(size, camera, sunDir);
-  scene.view.GetAtmosphere().SetColourMatrix(glm::dmat3(1.0));
-  scene.view.Render();
-  std::vector<float> hdr;
-  int w = 0, h = 0;
-  scene.view.ReadHdr(hdr, w, h);
+  const RawFrame frame = renderRaw(camera, sunDir, size);
+  const int w = frame.w, h = frame.h;
   const double b = f.tables.bottomRadiusM, t = f.tables.topRadiusM;
   Agreement a;
   for (int j = step / 2; j < h; j += step) {
     for (int i = step / 2; i < w; i += step) {
       const Ray ray = pixelRay(camera, w, h, i, j);
-      glm::dvec3 x = ray.origin;  // planet at the origin
-      if (glm::length(x) > t) {   // move to the entry point
-        const double tc = -glm::dot(x, ray.dir);
-        const glm::dvec3 perp = x + tc * ray.dir;
-        const double hgt = glm::length(perp);
-        if (hgt >= t * 0.999 || tc <= 0.0) continue;
-        x = perp - std::sqrt((t - hgt) * (t + hgt)) * ray.dir;
-      }
+      const auto start = startPoint(ray, t);
+      if (!start) continue;
+      const glm::dvec3 x = *start;
       const double r = glm::length(x);
       const double mu = glm::dot(x, ray.dir) / r;
       if (atmosphere::rayIntersectsGround(b, r, mu)) continue;
@@ -55,7 +74,7 @@ Agreement compareSky(const ViewCamera& camera, const glm::dvec3& sunDir, int siz
       const std::vector<double> cpu = atmosphere::skyRadiance(f.tables, f.model, r, mu, muS, nu);
       for (int c = 0; c < 3; ++c) {
         const double expected = cpu[c] * kSolarIrradiance;
-        const double gpu = hdr[3 * (static_cast<std::size_t>(j) * w + i) + c];
+        const double gpu = frame.at(i, j, c);
         const double rel = std::abs(gpu - expected) / expected;
         a.maxRelative = std::max(a.maxRelative, rel);
         EXPECT_LT(rel, 0.01) << "pixel (" << i << ", " << j << ") channel " << c << ": GPU " << gpu << ", CPU "
@@ -84,17 +103,20 @@ TEST(AtmosphereGlsl, SkyRadianceTowardsALowSun) {
   EXPECT_GE(a.samples, 300);
 }
 
-// From 20 000 km, the limb of the atmosphere: the entry point on the top boundary.
+// From 20 000 and 150 000 km, the limb of the atmosphere: the entry point on the top
+// boundary (the same 200 km of limb in the frame).
 TEST(AtmosphereGlsl, SkyRadianceFromSpace) {
   const double t = atmosphereFixture().tables.topRadiusM;
-  ViewCamera cam;
-  cam.positionM = {2.0e7, 0.0, 0.0};
-  const double grazing = std::asin((t - 30e3) / 2.0e7);  // grazing 30 km below the top
-  cam.targetM = cam.positionM + glm::dvec3(-std::cos(grazing), 0.0, std::sin(grazing));
-  cam.up = {0.0, 0.0, 1.0};
-  cam.fovDeg = 1.0;
-  const Agreement a = compareSky(cam, directionFromAngles(0.0, 80.0), 96, 3);
-  EXPECT_GE(a.samples, 100);
+  for (double distance : {2.0e7, 1.5e8}) {
+    ViewCamera cam;
+    cam.positionM = {distance, 0.0, 0.0};
+    const double grazing = std::asin((t - 30e3) / distance);  // grazing 30 km below the top
+    cam.targetM = cam.positionM + glm::dvec3(-std::cos(grazing), 0.0, std::sin(grazing));
+    cam.up = {0.0, 0.0, 1.0};
+    cam.fovDeg = 2.0 * std::atan(1e5 / distance) * 180.0 / kPi;
+    const Agreement a = compareSky(cam, directionFromAngles(0.0, 80.0), 96, 3);
+    EXPECT_GE(a.samples, 100) << distance;
+  }
 }
 
 namespace {
@@ -114,53 +136,68 @@ std::vector<double> transmittanceBetween(const atmosphere::AtmosphereTables& t, 
 
 } // namespace
 
-// The ground seen from 2 km up, 5 to 60 km away: T(x, y) albedo / pi (E_0 + E_ind)(y) plus
-// the in-scattering S(x) - T(x, y) S(y) (aerial perspective), against the CPU.
-TEST(AtmosphereGlsl, GroundAndAerialPerspective) {
+namespace {
+
+// Ground pixels: T(x, y) albedo / pi (E_0 + E_ind)(y) plus the in-scattering
+// S(x) - T(x, y) S(y) (aerial perspective), against the CPU; x the camera or the entry point.
+Agreement compareGround(const ViewCamera& cam, const glm::dvec3& sunDir, int size, int step) {
   const AtmosphereFixture& f = atmosphereFixture();
-  const ViewCamera cam = groundCamera(2000.0, -8.0, 12.0);
-  const glm::dvec3 sunDir = directionFromAngles(25.0, 40.0);
-  AtmosphereScene scene(96, cam, sunDir);
-  scene.view.GetAtmosphere().SetColourMatrix(glm::dmat3(1.0));
-  scene.view.Render();
-  std::vector<float> hdr;
-  int w = 0, h = 0;
-  scene.view.ReadHdr(hdr, w, h);
+  const RawFrame frame = renderRaw(cam, sunDir, size);
   const double b = f.tables.bottomRadiusM;
-  int samples = 0;
-  double maxRel = 0.0, minD = 1e30, maxD = 0.0;
-  for (int j = 2; j < h; j += 4) {
-    for (int i = 2; i < w; i += 4) {
-      const Ray ray = pixelRay(cam, w, h, i, j);
-      const glm::dvec3 x = ray.origin;
+  Agreement a;
+  for (int j = step / 2; j < frame.h; j += step) {
+    for (int i = step / 2; i < frame.w; i += step) {
+      const Ray ray = pixelRay(cam, frame.w, frame.h, i, j);
+      const auto start = startPoint(ray, f.tables.topRadiusM);
+      if (!start) continue;
+      const glm::dvec3 x = *start;
       const double r = glm::length(x), mu = glm::dot(x, ray.dir) / r;
       if (!atmosphere::rayIntersectsGround(b, r, mu)) continue;
       const double d = atmosphere::distanceToBottomBoundaryM(b, r, mu);
       const glm::dvec3 y = x + d * ray.dir;
       const double muS = glm::dot(x, sunDir) / r, nu = glm::dot(ray.dir, sunDir);
-      const double muSy = glm::dot(glm::normalize(y), sunDir);
       const double rd = b, mud = glm::dot(y, ray.dir) / rd, muSd = glm::dot(y, sunDir) / rd;
       const auto T = transmittanceBetween(f.tables, r, mu, d, true, rd);
       const auto Sx = atmosphere::skyRadiance(f.tables, f.model, r, mu, muS, nu);
       const auto Sy = atmosphere::skyRadiance(f.tables, f.model, rd, mud, muSd, nu);
-      const auto E0 = atmosphere::directIrradiance(f.tables, b, muSy);
-      const auto Ei = atmosphere::indirectIrradiance(f.tables, b, muSy);
+      const auto E0 = atmosphere::directIrradiance(f.tables, b, muSd);
+      const auto Ei = atmosphere::indirectIrradiance(f.tables, b, muSd);
       for (int c = 0; c < 3; ++c) {
         const double S = std::max(Sx[c] - T[c] * Sy[c], 0.0);
         const double expected = (T[c] * 0.1 / kPi * (E0[c] + Ei[c]) + S) * kSolarIrradiance;
-        const double gpu = hdr[3 * (static_cast<std::size_t>(j) * w + i) + c];
+        const double gpu = frame.at(i, j, c);
         const double rel = std::abs(gpu - expected) / expected;
-        maxRel = std::max(maxRel, rel);
+        a.maxRelative = std::max(a.maxRelative, rel);
         EXPECT_LT(rel, 0.01) << "pixel (" << i << ", " << j << ") channel " << c << ": GPU " << gpu << ", CPU "
-                             << expected << " at " << d << " m; T " << T[c] << " ground " << T[c] * 0.1 / kPi * (E0[c] + Ei[c]) * kSolarIrradiance << " S " << S * kSolarIrradiance << " Sx " << Sx[c] * kSolarIrradiance << " Sy " << Sy[c] * kSolarIrradiance << " mud " << mud << " muS " << muS << " nu " << nu;
+                             << expected << " at " << d << " m";
       }
-      minD = std::min(minD, d);
-      maxD = std::max(maxD, d);
-      ++samples;
+      a.minDistanceM = std::min(a.minDistanceM, d);
+      a.maxDistanceM = std::max(a.maxDistanceM, d);
+      ++a.samples;
     }
   }
-  std::printf("  %d ground samples %.0f..%.0f m away, max |GPU - CPU| / CPU = %.3g\n", samples, minD, maxD, maxRel);
-  EXPECT_GE(samples, 300);
-  EXPECT_LT(minD, 10e3);
-  EXPECT_GT(maxD, 30e3);
+  std::printf("  %d ground samples %.0f..%.0f m away, max |GPU - CPU| / CPU = %.3g\n", a.samples, a.minDistanceM,
+              a.maxDistanceM, a.maxRelative);
+  return a;
+}
+
+} // namespace
+
+// The ground seen from 2 km up, 8 to 56 km away.
+TEST(AtmosphereGlsl, GroundAndAerialPerspective) {
+  const Agreement a = compareGround(groundCamera(2000.0, -8.0, 12.0), directionFromAngles(25.0, 40.0), 96, 4);
+  EXPECT_GE(a.samples, 300);
+  EXPECT_LT(a.minDistanceM, 10e3);
+  EXPECT_GT(a.maxDistanceM, 30e3);
+}
+
+// The whole planet from 150 000 km: the day side through the atmosphere from its top.
+TEST(AtmosphereGlsl, GroundFrom150000km) {
+  ViewCamera cam;
+  cam.positionM = {0.0, -1.5e8, 2.0e7};
+  cam.targetM = {0.0, 0.0, 0.0};
+  cam.up = {0.0, 0.0, 1.0};
+  cam.fovDeg = 6.0;
+  const Agreement a = compareGround(cam, directionFromAngles(10.0, -60.0), 96, 3);
+  EXPECT_GE(a.samples, 200);
 }
