@@ -92,8 +92,10 @@ std::string parameter(vtkImageData* image, const std::string& block, const std::
   return it->second;
 }
 
+/// A float texture, linear, clamped to the edges. Three-channel data go up as RGBA32F
+/// (padded): Mesa's llvmpipe samples four-channel float textures much faster than RGB32F.
 vtkSmartPointer<vtkTextureObject> floatTexture(vtkOpenGLRenderWindow* window, int w, int h, int d,
-                                               const std::vector<float>& rgb, int components = 3) {
+                                               const std::vector<float>& values, int components = 3) {
   auto t = vtkSmartPointer<vtkTextureObject>::New();
   t->SetContext(window);
   t->SetMinificationFilter(vtkTextureObject::Linear);
@@ -101,12 +103,18 @@ vtkSmartPointer<vtkTextureObject> floatTexture(vtkOpenGLRenderWindow* window, in
   t->SetWrapS(vtkTextureObject::ClampToEdge);
   t->SetWrapT(vtkTextureObject::ClampToEdge);
   t->SetWrapR(vtkTextureObject::ClampToEdge);
-  t->SetInternalFormat(components == 2 ? GL_RG32F : GL_RGB32F);
-  t->SetFormat(components == 2 ? GL_RG : GL_RGB);
+  std::vector<float> data = values;
+  if (components == 3) {
+    data.assign(values.size() / 3 * 4, 0.0f);
+    for (std::size_t i = 0; i < values.size() / 3; ++i)
+      for (int c = 0; c < 3; ++c) data[4 * i + c] = values[3 * i + c];
+    components = 4;
+  }
+  t->SetInternalFormat(components == 2 ? GL_RG32F : GL_RGBA32F);
+  t->SetFormat(components == 2 ? GL_RG : GL_RGBA);
   t->SetDataType(GL_FLOAT);
-  void* data = const_cast<float*>(rgb.data());
-  const bool ok = d <= 1 ? t->Create2DFromRaw(w, h, components, VTK_FLOAT, data)
-                         : t->Create3DFromRaw(w, h, d, components, VTK_FLOAT, data);
+  const bool ok = d <= 1 ? t->Create2DFromRaw(w, h, components, VTK_FLOAT, data.data())
+                         : t->Create3DFromRaw(w, h, d, components, VTK_FLOAT, data.data());
   if (!ok) throw std::runtime_error("cannot create a " + std::to_string(w) + "x" + std::to_string(h) + " float texture");
   return t;
 }
