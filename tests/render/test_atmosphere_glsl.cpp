@@ -201,3 +201,32 @@ TEST(AtmosphereGlsl, GroundFrom150000km) {
   const Agreement a = compareGround(cam, directionFromAngles(10.0, -60.0), 96, 3);
   EXPECT_GE(a.samples, 200);
 }
+
+// The colour matrix keeps the bare Sun white: M (1, 1, 1) = (1, 1, 1); a Rayleigh-like
+// spectrum (more blue than red) comes out blue.
+TEST(AtmosphereGlsl, ColourMatrixKeepsTheSunWhite) {
+  const glm::dmat3 m = atmosphereToDisplayMatrix(atmosphere::WavelengthSet::rgb().nm);
+  const glm::dvec3 sun = m * glm::dvec3(1.0);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(sun[c], 1.0, 1e-12);
+  const glm::dvec3 sky = m * glm::dvec3(std::pow(550.0 / 680.0, 4), 1.0, std::pow(550.0 / 440.0, 4));
+  EXPECT_GT(sky.b, 1.5 * sky.r);
+  EXPECT_THROW(atmosphereToDisplayMatrix({500.0, 600.0}), std::invalid_argument);
+}
+
+// The phase lobes the shader evaluates reproduce every analytic phase function.
+TEST(AtmosphereGlsl, PhaseLobesReproduceThePhaseFunctions) {
+  using atmosphere::PhaseFunction;
+  const PhaseFunction phases[] = {PhaseFunction::isotropic(), PhaseFunction::rayleigh(), PhaseFunction::penndorf(),
+                                  PhaseFunction::henyeyGreenstein(0.7), PhaseFunction::cornetteShanks(0.8),
+                                  PhaseFunction::doubleHenyeyGreenstein(0.8, -0.3, 0.9)};
+  for (const PhaseFunction& p : phases) {
+    PhaseLobe a, b;
+    phaseLobes(p, a, b);
+    for (double c = -1.0; c <= 1.0; c += 0.125) {
+      auto lobe = [c](const PhaseLobe& l) { return l.a * (1.0 + l.b * c * c) / std::pow(1.0 + l.g * l.g - 2.0 * l.g * c, 1.5); };
+      EXPECT_NEAR(lobe(a) + lobe(b), p(c), 1e-12 * std::max(1.0, p(c))) << p.describe() << " at " << c;
+    }
+  }
+  PhaseLobe a, b;
+  EXPECT_THROW(phaseLobes(PhaseFunction::tabulated({-1.0, 1.0}, {1.0, 1.0}), a, b), std::invalid_argument);
+}
