@@ -133,8 +133,8 @@ json parseJson(const std::string& text, const std::string& file) {
   }
 }
 
-/// The atmosphere a body's "atmosphere" key asks for: true (the preset named like the
-/// body: earth, mars), false, a preset name, or a JSON file (relative to the scene file).
+/// The atmosphere a body's "atmosphere" key asks for: true (the atmosphere preset named
+/// like the body's preset, else its name: earth, mars), false, a preset name, or a JSON file (relative to the scene file).
 /// The model is loaded once here so that a bad one fails with the scene's file and field.
 std::string parseAtmosphereModel(const Reader& in, const json& value, const std::string& field,
                                  const std::string& bodyName, const std::string& sceneFile) {
@@ -223,7 +223,7 @@ Body parseBody(const Reader& in, const json& value, const std::string& field, co
 
   if (value.contains("atmosphere")) {
     body.atmosphereModel = parseAtmosphereModel(in, value["atmosphere"], field + ".atmosphere",
-                                                 body.name, sceneFile);
+                                                 body.preset.empty() ? body.name : body.preset, sceneFile);
     body.hasAtmosphere = !body.atmosphereModel.empty();
   }
   if (value.contains("albedo"))

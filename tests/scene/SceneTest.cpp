@@ -149,6 +149,8 @@ TEST(Scene, AtmosphereChoices) {
     return parseScene(fixedScene(R"({"preset": "Sun"}, )" + body), kFile).bodies[1].atmosphereModel;
   };
   EXPECT_EQ(model(R"({"preset": "Earth", "position": [1e11, 0, 0], "atmosphere": true})"), "earth");
+  EXPECT_EQ(model(R"({"preset": "Earth", "name": "Terra", "position": [1e11, 0, 0], "atmosphere": true})"), "earth");
+  EXPECT_EQ(model(R"({"name": "Mars", "radius": "3389.5 km", "position": [1e11, 0, 0], "atmosphere": true})"), "mars");
   EXPECT_EQ(model(R"({"preset": "Earth", "position": [1e11, 0, 0]})"), "");
   EXPECT_EQ(model(R"({"preset": "Earth", "position": [1e11, 0, 0], "atmosphere": false})"), "");
   EXPECT_EQ(model(R"({"preset": "Earth", "position": [1e11, 0, 0], "atmosphere": "earth-2015-calbuco"})"),
