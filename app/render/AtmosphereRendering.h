@@ -6,7 +6,7 @@
 // transmittance and the in-scattered radiance come from the precomputed Bruneton tables
 // (atmosphere/glsl/Atmosphere.glsl, the GLSL twin of atmosphere/Precompute.cpp's lookups):
 //   ray misses the shell, or an object lies before it:  F = frame colour
-//   ray ends on the planet's ground:   F = M E_sun [T(x, y) albedo / pi (E_0 + E_ind)(y) + S(x -> y)]
+//   ray ends on the planet's ground:   F = M E_sun [T(x, y) albedo / pi (f E_0 + E_ind)(y) + S(x -> y)]
 //   ray ends on an object in the air:  F = T(x, y) frame + M E_sun S(x -> y)
 //   ray leaves the atmosphere:         F = T(x, top) (frame + Sun's disc) + M E_sun S(x)
 // with S(x -> y) = S(x) - T(x, y) S(y) (aerial perspective) and the tables' per-unit-
@@ -14,7 +14,10 @@
 // is the analytic sphere (radius bottomRadiusM): it replaces the frame's colour of the
 // planet (which EclipseShading lit without air) wherever the frame's depth lies within 1 %
 // of the ground hit (from 2 km up, the float camera matrices move grazing ground hits by
-// a few tenths of a percent).
+// a few tenths of a percent). f is the eclipse factor of other bodies there, read back
+// from the frame (its colour over albedo / pi E_sun cos i; 1 where the Sun is within 3
+// degrees of the horizon or the frame shows nothing): it dims the direct sunlight, not
+// the sky light (E_ind).
 //
 // Colour. The tables hold one channel per wavelength (680, 550, 440 nm: the R, G, B mode of
 // vtkAtmosphereTablesSource) per unit solar irradiance. The HDR frame holds linear sRGB

@@ -223,3 +223,46 @@ TEST(AtmosphereRender, RefractionLiftsAndFlattensTheSettingSun) {
   check(d.top, 1.0);
   check(d.bottom, -1.0);
 }
+
+// A solar eclipse seen from space: the Moon's shadow on the ground survives the
+// atmosphere (the direct sunlight there is dimmed by the frame's eclipse factor), and the
+// ground far from it is as without the Moon.
+TEST(AtmosphereRender, EclipseShadowOnTheGroundThroughTheAtmosphere) {
+  const AtmosphereFixture& f = atmosphereFixture();
+  ViewCamera cam;
+  cam.positionM = {1.0e8, -2.0e7, 1.0e7};
+  cam.targetM = {0.0, 0.0, 0.0};
+  cam.up = {0.0, 0.0, 1.0};
+  cam.fovDeg = 8.0;
+  auto frameWith = [&](bool moon) {
+    AtmosphereScene scene(96, cam, directionFromAngles(0.0, 0.0));
+    std::vector<SphereBody> bodies{scene.earth};
+    if (moon) bodies.push_back({"Moon", {kMoonDistance, 0.0, 0.0}, 1.7374e6, {0.1, 0.1, 0.1}});
+    scene.view.SetBodies(scene.sun, bodies, testLutImage());
+    scene.view.GetAtmosphere().SetAtmosphere(f.model, f.tables, glm::dvec3(0.0), scene.earth.albedoRgb);
+    scene.view.SetCamera(cam);
+    scene.view.Render();
+    Frame out;
+    scene.view.ReadHdr(out.rgb, out.w, out.h);
+    return out;
+  };
+  const Frame eclipsed = frameWith(true), clear = frameWith(false);
+  // The pixel of the sub-solar point (1, 0, 0) R, and one 40 degrees north of it.
+  auto pixelOf = [&](const glm::dvec3& p) {
+    const glm::dvec3 fwd = glm::normalize(cam.targetM - cam.positionM);
+    const glm::dvec3 right = glm::normalize(glm::cross(fwd, cam.up)), up = glm::cross(right, fwd);
+    const glm::dvec3 d = glm::normalize(p - cam.positionM);
+    const double t = std::tan(0.5 * cam.fovDeg * kPi / 180.0);
+    const double x = glm::dot(d, right) / glm::dot(d, fwd) / t, y = glm::dot(d, up) / glm::dot(d, fwd) / t;
+    return std::pair<int, int>(static_cast<int>((x + 1.0) * 0.5 * eclipsed.w),
+                               static_cast<int>((1.0 - y) * 0.5 * eclipsed.h));
+  };
+  const double R = f.tables.bottomRadiusM;
+  const auto [i0, j0] = pixelOf({R, 0.0, 0.0});
+  const auto [i1, j1] = pixelOf({R * std::cos(0.7), 0.0, R * std::sin(0.7)});
+  const double inShadow = luminance(eclipsed.at(i0, j0)) / luminance(clear.at(i0, j0));
+  const double far = luminance(eclipsed.at(i1, j1)) / luminance(clear.at(i1, j1));
+  std::printf("  eclipsed / clear: %.3f at the sub-solar point, %.4f 40 degrees north\n", inShadow, far);
+  EXPECT_LT(inShadow, 0.5);
+  EXPECT_NEAR(far, 1.0, 1e-3);
+}

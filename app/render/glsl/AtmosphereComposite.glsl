@@ -131,7 +131,13 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
     vec3 y = x + dEnd * dir;
     float muSg = dot(normalize(y), umbraSunDirection);
     float rg = umbraAtmBottom;
-    vec3 E = umbraAtmDirectIrradiance(rg, muSg) + umbraAtmIndirectIrradiance(rg, muSg);
+    // The eclipse shadow of other bodies on the ground (EclipseShading lit the planet's
+    // pixel as albedo / pi E_sun cos i times that factor): it dims the direct sunlight.
+    vec3 eclipse = vec3(1.0);
+    vec3 unshadowed = umbraGroundAlbedo * (0.31830988618 * umbraSolarIrradiance * muSg);
+    if (dFrame < umbraFarAway && muSg > 0.05 && all(greaterThan(unshadowed, vec3(0.0))))
+      eclipse = clamp(frame / unshadowed, vec3(0.0), vec3(1.0));
+    vec3 E = eclipse * umbraAtmDirectIrradiance(rg, muSg) + umbraAtmIndirectIrradiance(rg, muSg);
     vec3 T = umbraAtmTransmittance(r, mu, dEnd, true, true);
     vec3 S = umbraAtmInScatteringToPoint(r, mu, muS, nu, dEnd, true, true);
     vec3 raw = T * umbraGroundAlbedo * 0.31830988618 * E + S;
