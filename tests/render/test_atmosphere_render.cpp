@@ -266,3 +266,34 @@ TEST(AtmosphereRender, EclipseShadowOnTheGroundThroughTheAtmosphere) {
   EXPECT_LT(inShadow, 0.5);
   EXPECT_NEAR(far, 1.0, 1e-3);
 }
+
+// From the Moon's distance, the Sun exactly behind Earth (a total lunar eclipse seen from
+// the Moon), zoomed on the limb: refraction bends rays around the planet onto the Sun's
+// disc (reconstructed along the exit ray), so the ring outshines the scattered light
+// alone by far; the rays bent into the ground stay dark.
+TEST(AtmosphereRender, RefractionShowsTheSunThroughTheLimbFromTheMoon) {
+  const RefractionFixture& rf = refractionFixture();
+  const AtmosphereFixture& f = atmosphereFixture();
+  const double b = f.tables.bottomRadiusM;
+  ViewCamera cam;
+  cam.positionM = {-kMoonDistance, 0.0, 0.0};
+  const double limb = std::asin((b + 20e3) / kMoonDistance);
+  cam.targetM = cam.positionM + glm::dvec3(std::cos(limb), 0.0, std::sin(limb));
+  cam.up = {0.0, 0.0, 1.0};
+  cam.fovDeg = 0.02;  // 134 km across
+  auto brightest = [&](bool refraction) {
+    AtmosphereScene scene(64, cam, directionFromAngles(0.0, 0.0));
+    scene.view.GetAtmosphere().SetAtmosphere(f.model, refraction ? rf.tables : f.tables, glm::dvec3(0.0),
+                                             scene.earth.albedoRgb);
+    scene.view.GetAtmosphere().SetRefraction(refraction ? rf.refraction.Get() : nullptr);
+    scene.view.Render();
+    Frame out;
+    scene.view.ReadHdr(out.rgb, out.w, out.h);
+    double m = 0.0;
+    for (int j = 0; j < out.h; ++j) m = std::max(m, luminance(out.at(out.w / 2, j)));
+    return m;
+  };
+  const double bent = brightest(true), straight = brightest(false);
+  std::printf("  brightest limb pixel: %.4g with refraction, %.4g without (W m^-2 sr^-1)\n", bent, straight);
+  EXPECT_GT(bent, 10.0 * straight);
+}
