@@ -176,27 +176,32 @@ DiscExtent discOf(const Frame& f) {
   return d;
 }
 
+// A frame with or without refraction (the refracted-path tables and the refraction table,
+// or the plain ones).
+Frame renderRefracted(const ViewCamera& cam, const glm::dvec3& sunDir, int size, bool refraction) {
+  const RefractionFixture& rf = refractionFixture();
+  const AtmosphereFixture& f = atmosphereFixture();
+  AtmosphereScene scene(size, cam, sunDir);
+  scene.view.GetAtmosphere().SetAtmosphere(f.model, refraction ? rf.tables : f.tables, glm::dvec3(0.0),
+                                           scene.earth.albedoRgb);
+  scene.view.GetAtmosphere().SetRefraction(refraction ? rf.refraction.Get() : nullptr);
+  scene.view.Render();
+  Frame out;
+  scene.view.ReadHdr(out.rgb, out.w, out.h);
+  return out;
+}
+
 } // namespace
 
 // A sunset seen from 2 m, the Sun's centre 0.3 degrees above the geometric horizon: with
 // refraction its disc is flattened (height / width < 0.9) and each edge is lifted by the
 // deviation of the ray through it (traced on the CPU, the refraction table's source).
 TEST(AtmosphereRender, RefractionLiftsAndFlattensTheSettingSun) {
-  const RefractionFixture& rf = refractionFixture();
   const AtmosphereFixture& f = atmosphereFixture();
   const ViewCamera cam = groundCamera(2.0, 0.5, 2.5);
   const double sunElevationDeg = 0.3;
-  auto frameWith = [&](bool refraction) {
-    AtmosphereScene scene(200, cam, directionFromAngles(sunElevationDeg, 0.0));
-    scene.view.GetAtmosphere().SetAtmosphere(f.model, refraction ? rf.tables : f.tables, glm::dvec3(0.0),
-                                             scene.earth.albedoRgb);
-    scene.view.GetAtmosphere().SetRefraction(refraction ? rf.refraction.Get() : nullptr);
-    scene.view.Render();
-    Frame out;
-    scene.view.ReadHdr(out.rgb, out.w, out.h);
-    return out;
-  };
-  const Frame bent = frameWith(true), straight = frameWith(false);
+  const glm::dvec3 sunDir = directionFromAngles(sunElevationDeg, 0.0);
+  const Frame bent = renderRefracted(cam, sunDir, 200, true), straight = renderRefracted(cam, sunDir, 200, false);
   const DiscExtent d = discOf(bent), s = discOf(straight);
   const double flattening = double(d.height()) / d.width();
   std::printf("  disc %d x %d px with refraction (height / width %.3f), %d x %d px without\n", d.width(),
@@ -272,9 +277,7 @@ TEST(AtmosphereRender, EclipseShadowOnTheGroundThroughTheAtmosphere) {
 // disc (reconstructed along the exit ray), so the ring outshines the scattered light
 // alone by far; the rays bent into the ground stay dark.
 TEST(AtmosphereRender, RefractionShowsTheSunThroughTheLimbFromTheMoon) {
-  const RefractionFixture& rf = refractionFixture();
-  const AtmosphereFixture& f = atmosphereFixture();
-  const double b = f.tables.bottomRadiusM;
+  const double b = atmosphereFixture().tables.bottomRadiusM;
   ViewCamera cam;
   cam.positionM = {-kMoonDistance, 0.0, 0.0};
   const double limb = std::asin((b + 20e3) / kMoonDistance);
@@ -282,13 +285,7 @@ TEST(AtmosphereRender, RefractionShowsTheSunThroughTheLimbFromTheMoon) {
   cam.up = {0.0, 0.0, 1.0};
   cam.fovDeg = 0.02;  // 134 km across
   auto brightest = [&](bool refraction) {
-    AtmosphereScene scene(64, cam, directionFromAngles(0.0, 0.0));
-    scene.view.GetAtmosphere().SetAtmosphere(f.model, refraction ? rf.tables : f.tables, glm::dvec3(0.0),
-                                             scene.earth.albedoRgb);
-    scene.view.GetAtmosphere().SetRefraction(refraction ? rf.refraction.Get() : nullptr);
-    scene.view.Render();
-    Frame out;
-    scene.view.ReadHdr(out.rgb, out.w, out.h);
+    const Frame out = renderRefracted(cam, directionFromAngles(0.0, 0.0), 64, refraction);
     double m = 0.0;
     for (int j = 0; j < out.h; ++j) m = std::max(m, luminance(out.at(out.w / 2, j)));
     return m;
