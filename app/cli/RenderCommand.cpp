@@ -1,10 +1,15 @@
-// umbra render SCENE [--time ISO8601] [--size WxH] [--exposure EV] --output FILE.png|FILE.exr
+// umbra render SCENE [--time ISO8601] [--size WxH] [--exposure EV] [--atmosphere-tables default|small] [--refraction]
+//   --output FILE.png|FILE.exr
+// A body with "atmosphere" in the scene is drawn with it (AtmosphereRendering); its tables
+// come from vtkAtmosphereTablesSource through the cache (the first render of an atmosphere
+// at default sizes precomputes them: about a minute on 2 cores).
 #include "BodyView.h"
 #include "Commands.hpp"
 #include "OutputFile.hpp"
 #include "SceneInputs.h"
 #include "ShadowCommon.hpp"
 #include "SolarDisc.hpp"
+#include "vtkAtmosphereTablesSource.h"
 #include "vtkEclipseShadowLutSource.h"
 
 #include "scene/Scene.hpp"
@@ -12,6 +17,7 @@
 #include "umbra/tables/Exr.h"
 
 #include <vtkImageData.h>
+#include <vtkNew.h>
 
 #include <cstdlib>
 #include <iostream>
@@ -41,6 +47,8 @@ void addRenderCommand(CLI::App& app, Action& action) {
   struct Options {
     std::string scene, time, size, output;
     std::optional<double> exposure;
+    std::string atmosphereTables = "default";
+    bool refraction = false;
     CacheOptions cache;
   };
   auto o = std::make_shared<Options>();
@@ -49,6 +57,13 @@ void addRenderCommand(CLI::App& app, Action& action) {
   render->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default: the scene's)");
   render->add_option("--exposure", o->exposure, "Exposure in EV (default: the scene's)");
   render->add_option("--output,-o", o->output, "Image to write: FILE.png or FILE.exr")->required();
+  render->add_option("--atmosphere-tables", o->atmosphereTables,
+                     "Atmosphere table sizes: default (vtkAtmosphereTablesSource's: 256x64, 32,128,32,8, 64x16, "
+                     "4 orders) or small (64x16, 8,32,8,4, 16x4, 3 orders: quick looks and tests)")
+      ->capture_default_str();
+  render->add_flag("--refraction", o->refraction,
+                   "Bend the rays through the atmosphere (eclipse paper, 4.2): a lifted, flattened Sun at the "
+                   "horizon; the tables then follow refracted paths");
   o->cache.addTo(render);
 
   render->callback([&action, o] {
@@ -64,6 +79,8 @@ void addRenderCommand(CLI::App& app, Action& action) {
       }
       if (!o->size.empty()) parseSize(o->size, s.width, s.height);
       if (o->exposure) s.exposureEv = *o->exposure;
+      if (o->atmosphereTables != "default" && o->atmosphereTables != "small")
+        throw CommandError("--atmosphere-tables: expected default or small, got '" + o->atmosphereTables + "'");
       if (!std::getenv("DISPLAY")) throw CommandError("rendering needs an X display: run under xvfb-run -a");
 
       const render::SceneInputs in = render::sceneInputs(s);
@@ -71,6 +88,18 @@ void addRenderCommand(CLI::App& app, Action& action) {
 
       render::BodyView view(s.width, s.height, /*offscreen=*/true);
       view.SetBodies(in.sun, in.bodies, lut->GetOutput());
+      if (in.atmosphere) {
+        vtkNew<vtkAtmosphereTablesSource> tables;
+        tables->SetCacheDirectory(o->cache.directory.c_str());
+        tables->SetUseCache(!o->cache.disabled);
+        if (o->atmosphereTables == "small") render::useSmallAtmosphereTables(tables);
+        try {
+          render::applySceneAtmosphere(view, in, tables, o->refraction);
+        } catch (const std::runtime_error& e) {
+          throw CommandError(e.what());
+        }
+        if (tables->GetLastCacheHits() > 0) std::cerr << "atmosphere tables: cache hit\n";
+      }
       view.SetCamera(in.camera);
       view.SetExposureEV(s.exposureEv);
       view.Render();

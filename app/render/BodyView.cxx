@@ -50,6 +50,7 @@ struct BodyView::Impl {
   vtkSmartPointer<vtkRenderer> renderer;
   vtkSmartPointer<vtkUmbraRenderPass> pass;
   EclipseShading shading;
+  AtmosphereRendering atmosphere;
   std::vector<BodyProp> bodies;
   ViewCamera camera;
   bool cameraSet = false;
@@ -70,6 +71,7 @@ BodyView::BodyView(int width, int height, bool offscreen) : impl_(std::make_uniq
   m.renderer->AutomaticLightCreationOff();
   m.renderer->RemoveAllLights();
   m.renderer->SetPass(m.pass);
+  m.pass->SetAtmosphere(&m.atmosphere);
   m.window = vtkSmartPointer<vtkRenderWindow>::New();
   m.window->SetOffScreenRendering(offscreen ? 1 : 0);
   m.window->SetMultiSamples(0);
@@ -103,6 +105,7 @@ void BodyView::SetBodies(const SunLight& sun, const std::vector<SphereBody>& bod
   validateSun(sun);
   m.shading.SetShadowLut(shadowLut);  // validates before it changes anything
   m.shading.SetSun(sun);
+  m.atmosphere.SetSun(sun);
 
   m.shading.ClearReceivers();
   for (BodyProp& p : m.bodies) m.renderer->RemoveActor(p.actor);
@@ -169,6 +172,7 @@ void BodyView::SetCamera(const ViewCamera& c) {
   else cam->SetViewAngle(c.fovDeg);
   cam->SetClippingRange(m.nearM, m.farM);
   m.shading.SetOrigin(c.positionM);
+  m.atmosphere.SetOrigin(c.positionM);
 }
 
 const ViewCamera& BodyView::GetCamera() const { return impl_->camera; }
@@ -249,6 +253,7 @@ vtkRenderWindow* BodyView::GetRenderWindow() { return impl_->window; }
 vtkRenderer* BodyView::GetRenderer() { return impl_->renderer; }
 vtkUmbraRenderPass* BodyView::GetRenderPass() { return impl_->pass; }
 EclipseShading& BodyView::GetShading() { return impl_->shading; }
+AtmosphereRendering& BodyView::GetAtmosphere() { return impl_->atmosphere; }
 
 void BodyView::WritePng(const std::string& path) {
   namespace fs = std::filesystem;

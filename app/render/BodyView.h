@@ -13,6 +13,7 @@
 // so a body 1 m away and one 4e8 m away keep their order whatever near/far are.
 //
 // Rendering needs an X display (Debian's VTK has no EGL/OSMesa): run under xvfb-run.
+#include "AtmosphereRendering.h"
 #include "EclipseShading.h"
 
 #include <glm/vec3.hpp>
@@ -68,6 +69,9 @@ class BodyView {
   vtkRenderer* GetRenderer();
   vtkUmbraRenderPass* GetRenderPass();
   EclipseShading& GetShading();
+  /// The atmosphere drawn over the bodies (AtmosphereRendering::SetAtmosphere; none by
+  /// default). Its Sun and origin follow SetBodies and SetCamera.
+  AtmosphereRendering& GetAtmosphere();
 
   /// The tone-mapped frame as an 8-bit RGB PNG. Written to a temporary file next to
   /// `path`, then renamed. Throws std::runtime_error naming the path on failure.

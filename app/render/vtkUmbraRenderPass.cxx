@@ -1,5 +1,6 @@
 #include "vtkUmbraRenderPass.h"
 
+#include "AtmosphereRendering.h"
 #include "RenderGlsl.hpp"
 
 #include <vtkObjectFactory.h>
@@ -36,25 +37,38 @@ void vtkUmbraRenderPass::PrintSelf(ostream& os, vtkIndent indent) {
      << (this->HdrValid ? "" : " (none)") << "\n";
 }
 
+namespace {
+// An RGBA32F colour buffer of w x h (re)allocated as needed; Nearest: the quads read each
+// texel at its own pixel centre, unfiltered.
+bool prepareColour(vtkSmartPointer<vtkTextureObject>& t, vtkOpenGLRenderWindow* renWin, int w, int h) {
+  if (!t) {
+    t = vtkSmartPointer<vtkTextureObject>::New();
+    t->SetContext(renWin);
+    t->SetMinificationFilter(vtkTextureObject::Nearest);
+    t->SetMagnificationFilter(vtkTextureObject::Nearest);
+    t->SetWrapS(vtkTextureObject::ClampToEdge);
+    t->SetWrapT(vtkTextureObject::ClampToEdge);
+    t->SetInternalFormat(GL_RGBA32F);
+    t->SetFormat(GL_RGBA);
+    t->SetDataType(GL_FLOAT);
+    return t->Allocate2D(w, h, 4, VTK_FLOAT);
+  }
+  if (t->GetWidth() != static_cast<unsigned>(w) || t->GetHeight() != static_cast<unsigned>(h)) t->Resize(w, h);
+  return true;
+}
+} // namespace
+
 bool vtkUmbraRenderPass::PrepareBuffers(vtkOpenGLRenderWindow* renWin, int w, int h) {
   if (this->ColorTexture && this->ColorTexture->GetContext() != renWin) {
     this->ReleaseGraphicsResources(renWin);
   }
-  if (!this->ColorTexture) {
-    this->ColorTexture = vtkSmartPointer<vtkTextureObject>::New();
-    this->ColorTexture->SetContext(renWin);
-    // Nearest: the quad reads each texel at its own pixel centre, unfiltered.
-    this->ColorTexture->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->ColorTexture->SetMagnificationFilter(vtkTextureObject::Nearest);
-    this->ColorTexture->SetWrapS(vtkTextureObject::ClampToEdge);
-    this->ColorTexture->SetWrapT(vtkTextureObject::ClampToEdge);
-    this->ColorTexture->SetInternalFormat(GL_RGBA32F);
-    this->ColorTexture->SetFormat(GL_RGBA);
-    this->ColorTexture->SetDataType(GL_FLOAT);
-    if (!this->ColorTexture->Allocate2D(w, h, 4, VTK_FLOAT)) return false;
-  } else if (this->ColorTexture->GetWidth() != static_cast<unsigned>(w) ||
-             this->ColorTexture->GetHeight() != static_cast<unsigned>(h)) {
-    this->ColorTexture->Resize(w, h);
+  if (!prepareColour(this->ColorTexture, renWin, w, h)) return false;
+  if (this->Atmosphere && this->Atmosphere->HasAtmosphere()) {
+    if (!prepareColour(this->ComposedTexture, renWin, w, h)) return false;
+    if (!this->ComposedFrameBuffer) {
+      this->ComposedFrameBuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+      this->ComposedFrameBuffer->SetContext(renWin);
+    }
   }
   if (!this->DepthTexture) {
     this->DepthTexture = vtkSmartPointer<vtkTextureObject>::New();
@@ -122,6 +136,38 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
   ostate->PopFramebufferBindings();
 
+  // 1b. The atmosphere over it, into the composed buffer.
+  vtkTextureObject* hdr = this->ColorTexture;
+  this->HdrComposed = false;
+  if (this->Atmosphere && this->Atmosphere->HasAtmosphere()) {
+    ostate->PushFramebufferBindings();
+    this->ComposedFrameBuffer->Bind();
+    this->ComposedFrameBuffer->AddColorAttachment(0, this->ComposedTexture);
+    this->ComposedFrameBuffer->ActivateDrawBuffer(0);
+    if (!this->ComposedFrameBuffer->Start(w, h)) {
+      ostate->PopFramebufferBindings();
+      vtkErrorMacro("the composed float framebuffer is incomplete.");
+      return;
+    }
+    ostate->vtkglViewport(0, 0, w, h);
+    ostate->vtkglScissor(0, 0, w, h);
+    ostate->vtkglDisable(GL_BLEND);
+    ostate->vtkglDisable(GL_DEPTH_TEST);
+    bool drawn = false;
+    try {
+      drawn = this->Atmosphere->Draw(renWin, r, this->ColorTexture, this->DepthTexture, w, h);
+    } catch (const std::exception& e) {
+      vtkErrorMacro("atmosphere: " << e.what());
+    }
+    ostate->PopFramebufferBindings();
+    if (!drawn) {
+      vtkErrorMacro("cannot draw the atmosphere.");
+      return;
+    }
+    hdr = this->ComposedTexture;
+    this->HdrComposed = true;
+  }
+
   // 2. Tone-map onto the current framebuffer.
   if (!this->QuadHelper) {
     std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
@@ -141,9 +187,9 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
     return;
   }
 
-  this->ColorTexture->Activate();
+  hdr->Activate();
   vtkShaderProgram* program = this->QuadHelper->Program;
-  program->SetUniformi("umbraHdr", this->ColorTexture->GetTextureUnit());
+  program->SetUniformi("umbraHdr", hdr->GetTextureUnit());
   program->SetUniformf("umbraExposureScale", static_cast<float>(std::exp2(this->ExposureEV)));
   program->SetUniformi("umbraToneMapping", this->ToneMapping);
 
@@ -152,7 +198,7 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   ostate->vtkglViewport(x, y, w, h);
   ostate->vtkglScissor(x, y, w, h);
   this->QuadHelper->Render();
-  this->ColorTexture->Deactivate();
+  hdr->Deactivate();
 
   this->LastWindow = renWin;
   this->HdrWidth = w;
@@ -170,8 +216,9 @@ bool vtkUmbraRenderPass::ReadHdrPixels(std::vector<float>& rgba, int& width, int
   vtkOpenGLState* ostate = renWin->GetState();
   rgba.resize(static_cast<std::size_t>(this->HdrWidth) * this->HdrHeight * 4);
   ostate->PushReadFramebufferBinding();
-  this->FrameBufferObject->Bind(GL_READ_FRAMEBUFFER);
-  this->FrameBufferObject->ActivateReadBuffer(0);
+  vtkOpenGLFramebufferObject* fbo = this->HdrComposed ? this->ComposedFrameBuffer.Get() : this->FrameBufferObject.Get();
+  fbo->Bind(GL_READ_FRAMEBUFFER);
+  fbo->ActivateReadBuffer(0);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, this->HdrWidth, this->HdrHeight, GL_RGBA, GL_FLOAT, rgba.data());
   ostate->PopReadFramebufferBinding();
@@ -202,6 +249,15 @@ void vtkUmbraRenderPass::ReleaseGraphicsResources(vtkWindow* w) {
     this->DepthTexture->ReleaseGraphicsResources(w);
     this->DepthTexture = nullptr;
   }
+  if (this->ComposedFrameBuffer) {
+    this->ComposedFrameBuffer->ReleaseGraphicsResources(w);
+    this->ComposedFrameBuffer = nullptr;
+  }
+  if (this->ComposedTexture) {
+    this->ComposedTexture->ReleaseGraphicsResources(w);
+    this->ComposedTexture = nullptr;
+  }
+  if (this->Atmosphere) this->Atmosphere->ReleaseGraphicsResources(vtkOpenGLRenderWindow::SafeDownCast(w));
   this->HdrValid = false;
   this->LastWindow = nullptr;
 }

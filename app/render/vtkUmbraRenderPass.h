@@ -9,6 +9,10 @@
 // and sRGB the exact IEC 61966-2-1 encoding. The last HDR frame stays readable with
 // ReadHdrPixels (EXR output, tests).
 //
+// With an atmosphere (SetAtmosphere), the frame is composed with it
+// (AtmosphereRendering::Draw) into a second float buffer between the delegate and the tone
+// map; that composed frame is the HDR frame.
+//
 // Usage: renderer->SetPass(pass). The default delegate is a vtkRenderStepsPass (which is
 // itself a vtkCameraPass around the usual lights/opaque/translucent/volume/overlay
 // sequence); SetDelegatePass replaces it.
@@ -27,6 +31,9 @@ class vtkOpenGLFramebufferObject;
 class vtkOpenGLQuadHelper;
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
+namespace umbra::render {
+class AtmosphereRendering;
+}
 
 class vtkUmbraRenderPass : public vtkImageProcessingPass {
  public:
@@ -52,6 +59,9 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
   /// ReleaseGraphicsResources, or the window is gone.
   bool ReadHdrPixels(std::vector<float>& rgba, int& width, int& height);
 
+  /// The atmosphere drawn over the frame (not owned; nullptr: none).
+  void SetAtmosphere(umbra::render::AtmosphereRendering* atmosphere) { this->Atmosphere = atmosphere; }
+
  protected:
   vtkUmbraRenderPass();
   ~vtkUmbraRenderPass() override;
@@ -63,6 +73,10 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
   vtkSmartPointer<vtkTextureObject> ColorTexture;
   vtkSmartPointer<vtkTextureObject> DepthTexture;
   std::unique_ptr<vtkOpenGLQuadHelper> QuadHelper;
+  umbra::render::AtmosphereRendering* Atmosphere = nullptr;
+  vtkSmartPointer<vtkOpenGLFramebufferObject> ComposedFrameBuffer;  // the atmosphere's output
+  vtkSmartPointer<vtkTextureObject> ComposedTexture;
+  bool HdrComposed = false;
 
   vtkWeakPointer<vtkOpenGLRenderWindow> LastWindow;
   int HdrWidth = 0;

@@ -32,13 +32,17 @@ const Body& findBody(const Scene& scene, const std::string& name, const std::str
   return *body;
 }
 
-/// The camera's up: the file's, else the observer body's north pole, else ICRS +z;
+/// The camera's up: the file's (a vector, or "zenith": away from the observer body's
+/// centre), else the observer body's north pole, else ICRS +z;
 /// when that is parallel to the view direction, the first ICRS axis that is not.
 /// Returned orthogonal to the view direction and normalized.
 glm::dvec3 chooseUp(const Scene& scene, const glm::dvec3& viewDir) {
   glm::dvec3 up(0.0, 0.0, 1.0);
   if (scene.camera.requestedUp) {
     up = *scene.camera.requestedUp;
+  } else if (scene.camera.upIsZenith && scene.camera.observer) {
+    const Body& body = findBody(scene, scene.camera.observer->body, "camera.observer.body");
+    up = scene.camera.positionM - body.positionM;
   } else if (scene.camera.observer) {
     const Body& body = findBody(scene, scene.camera.observer->body, "camera.observer.body");
     up = bodyFixedToInertial(body.preset, scene.time) * glm::dvec3(0.0, 0.0, 1.0);

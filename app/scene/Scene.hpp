@@ -27,6 +27,10 @@ struct Body {
   glm::dvec3 positionM{0.0};     ///< heliocentric, ICRS axes
   bool positionFromEphemeris = false;
   bool hasAtmosphere = false;
+  /// The atmosphere `umbra render` draws: a preset name ("earth") or an absolute file
+  /// path; "" for none. Set only when the scene asks for it (`"atmosphere": true`, a
+  /// preset name or a file), never by a preset's default.
+  std::string atmosphereModel;
   double albedo = 0.0;           ///< geometric albedo
   glm::dvec3 color{1.0};         ///< linear RGB display tint in [0, 1]
 
@@ -49,6 +53,7 @@ struct Camera {
   glm::dvec3 targetM{0.0};          ///< heliocentric, ICRS axes
   glm::dvec3 up{0.0, 0.0, 1.0};     ///< unit, orthogonal to the view direction
   std::optional<glm::dvec3> requestedUp; ///< the file's "up"; empty: the default
+  bool upIsZenith = false;          ///< the file's "up": "zenith" (the observer's vertical)
   double fovDeg = 45.0;             ///< vertical field of view
 };
 

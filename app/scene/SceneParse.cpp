@@ -1,5 +1,7 @@
 // parseScene: JSON text -> validated Scene (format: docs/scene-format.md).
+#include "Atmosphere.hpp"
 #include "JsonErrors.hpp"
+#include "Spectrum.hpp"
 #include "scene/Scene.hpp"
 
 #include "SceneDetail.hpp"
@@ -131,7 +133,41 @@ json parseJson(const std::string& text, const std::string& file) {
   }
 }
 
-Body parseBody(const Reader& in, const json& value, const std::string& field) {
+/// The atmosphere a body's "atmosphere" key asks for: true (the atmosphere preset named
+/// like the body's preset, else its name: earth, mars), false, a preset name, or a JSON file (relative to the scene file).
+/// The model is loaded once here so that a bad one fails with the scene's file and field.
+std::string parseAtmosphereModel(const Reader& in, const json& value, const std::string& field,
+                                 const std::string& bodyName, const std::string& sceneFile) {
+  std::string model;
+  if (value.is_boolean()) {
+    if (!value.get<bool>()) return "";
+    std::string lower = bodyName;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    const auto names = atmosphere::presetNames();
+    if (std::find(names.begin(), names.end(), lower) == names.end())
+      in.fail(field, "no atmosphere preset named after '" + bodyName + "': give a preset name or a file");
+    model = lower;
+  } else if (value.is_string() && !value.get<std::string>().empty()) {
+    model = value.get<std::string>();
+    const bool isFile = model.find('/') != std::string::npos ||
+                        (model.size() > 5 && model.compare(model.size() - 5, 5, ".json") == 0);
+    if (isFile) {
+      std::filesystem::path p(model);
+      if (p.is_relative()) p = std::filesystem::path(sceneFile).parent_path() / p;
+      model = p.lexically_normal().string();
+    }
+  } else {
+    in.fail(field, "expected true, false, an atmosphere preset name or a file, " + got(value));
+  }
+  try {
+    atmosphere::loadAtmosphere(model, atmosphere::WavelengthSet::rgb().nm);
+  } catch (const std::exception& e) {
+    in.fail(field, e.what());
+  }
+  return model;
+}
+
+Body parseBody(const Reader& in, const json& value, const std::string& field, const std::string& sceneFile) {
   in.object(value, field,
             {"preset", "name", "radius", "equatorialRadius", "polarRadius", "position",
              "atmosphere", "albedo", "color"});
@@ -185,8 +221,11 @@ Body parseBody(const Reader& in, const json& value, const std::string& field) {
             "expected [x, y, z] in metres or \"ephemeris\", " + got(value["position"]));
   }
 
-  if (value.contains("atmosphere"))
-    body.hasAtmosphere = in.boolean(value["atmosphere"], field + ".atmosphere");
+  if (value.contains("atmosphere")) {
+    body.atmosphereModel = parseAtmosphereModel(in, value["atmosphere"], field + ".atmosphere",
+                                                 body.preset.empty() ? body.name : body.preset, sceneFile);
+    body.hasAtmosphere = !body.atmosphereModel.empty();
+  }
   if (value.contains("albedo"))
     body.albedo = in.number(value["albedo"], field + ".albedo", 0.0, 1.0, "a number in [0, 1]");
   if (value.contains("color")) body.color = in.color(value["color"], field + ".color");
@@ -200,7 +239,7 @@ void parseBodies(const Reader& in, const json& root, Scene& scene) {
     in.fail("bodies", "expected a non-empty list of bodies, " + got(list));
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string field = index("bodies", i);
-    Body body = parseBody(in, list[i], field);
+    Body body = parseBody(in, list[i], field, scene.path);
     for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
       if (scene.bodies[j].name == body.name)
         in.fail(field + ".name", "duplicate name '" + body.name + "' (also " +
@@ -273,7 +312,10 @@ void parseCamera(const Reader& in, const json& root, Scene& scene) {
   else if (target.is_string()) camera.targetBody = sceneBody(in, scene, target, "camera.target").name;
   else in.fail("camera.target", "expected a body name or [x, y, z] in metres, " + got(target));
 
-  if (value.contains("up")) {
+  if (value.contains("up") && value["up"] == "zenith") {
+    if (!value.contains("observer")) in.fail("camera.up", "\"zenith\" needs a camera observer");
+    camera.upIsZenith = true;
+  } else if (value.contains("up")) {
     const glm::dvec3 up = in.vector(value["up"], "camera.up");
     if (!(glm::length(up) > 0.0)) in.fail("camera.up", "expected a non-zero vector");
     camera.requestedUp = up;

@@ -8,7 +8,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 
 using namespace umbra;
 using namespace umbra::test;
@@ -78,4 +80,92 @@ TEST(RenderCli, ProfilePlotAsPng) {
                           {"UMBRA_CACHE_DIR=" + dir / "cache"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_GT(std::filesystem::file_size(dir.path / "p.png"), 2000u);
+}
+
+// ---- scenes with an atmosphere (small tables: --atmosphere-tables small) ----------------
+
+namespace {
+tables::Table renderExr(const TempDir& dir, const std::string& scene, const std::string& size) {
+  const RunResult r = run(UMBRA_EXE, {"render", scene, "--size", size, "--atmosphere-tables", "small", "--output",
+                                      dir / "frame.exr"},
+                          {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  tables::Table img = tables::readExr(dir / "frame.exr", {"R", "G", "B"});
+  for (float v : img.data) EXPECT_TRUE(std::isfinite(v));
+  return img;
+}
+glm::dvec3 pixel(const tables::Table& t, int x, int y) { return {t.at(x, y, 0), t.at(x, y, 1), t.at(x, y, 2)}; }
+} // namespace
+
+// The sunset example: the Sun (the camera's target, at the centre) is reddened, the sky
+// above it is lit and bluer high up than beside the Sun, the ground below is darker.
+TEST(RenderCli, SunsetExampleHasARedSunUnderABluerSky) {
+  TempDir dir;
+  const tables::Table img = renderExr(dir, UMBRA_SOURCE_DIR "/examples/scenes/earth-sunset.json", "160x90");
+  const int w = img.width, h = img.height;
+  const glm::dvec3 sun = pixel(img, w / 2, h / 2), top = pixel(img, w / 4, 0), beside = pixel(img, w / 4, h / 2);
+  const glm::dvec3 ground = pixel(img, w / 2, h - 1);
+  EXPECT_GT(sun.r, 2.0 * sun.b);
+  EXPECT_GT(sun.r, 100.0 * beside.r);
+  EXPECT_GT(top.b, 0.0);
+  EXPECT_GT(top.b / top.r, 1.5 * beside.b / beside.r);
+  EXPECT_LT(ground.g, beside.g);
+}
+
+// Earth from 150 000 km: the disc is lit, space around it black.
+TEST(RenderCli, EarthFrom150000kmExampleShowsALitDisc) {
+  TempDir dir;
+  const tables::Table img = renderExr(dir, UMBRA_SOURCE_DIR "/examples/scenes/earth-from-150000km.json", "160x120");
+  const glm::dvec3 centre = pixel(img, img.width / 2, img.height / 2), corner = pixel(img, 0, 0);
+  EXPECT_GT(centre.b, 1.0);
+  EXPECT_EQ(corner, glm::dvec3(0.0));
+}
+
+TEST(RenderCli, UnknownAtmosphereNamesTheFileAndField) {
+  TempDir dir;
+  const std::string scene = dir / "bad.json";
+  std::ofstream(scene) << R"({"bodies": [{"preset": "Sun"}, {"preset": "Earth", "position": [1.5e11, 0, 0],
+                             "atmosphere": "venus"}],
+                             "camera": {"position": [1.5e11, 0, 1e8], "target": "Earth"}})";
+  const RunResult r = run(UMBRA_EXE, {"render", scene, "--output", dir / "x.png"}, {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find(scene + ": bodies[1].atmosphere: unknown atmosphere preset 'venus'"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "x.png"));
+}
+
+// Image tests: the atmosphere examples at 96x54 with small tables against baseline EXR
+// files (linear radiance) in tests/cli/baselines; UMBRA_UPDATE_BASELINES=1 rewrites them.
+// Threshold: every channel within 5 % (+ 1e-3 W m^-2 sr^-1) on 99 % of the pixels (edges
+// of the Sun's disc and the horizon may move by a pixel between rasterisers), and the
+// mean relative difference below 1 %.
+TEST(RenderCli, AtmosphereExamplesMatchTheirBaselines) {
+  for (const std::string name : {"earth-sunset", "earth-from-150000km"}) {
+    TempDir dir;
+    const tables::Table img =
+        renderExr(dir, UMBRA_SOURCE_DIR "/examples/scenes/" + name + ".json", "96x54");
+    const std::string baseline = UMBRA_SOURCE_DIR "/tests/cli/baselines/" + name + ".exr";
+    if (std::getenv("UMBRA_UPDATE_BASELINES")) {
+      tables::Table t = img;
+      t.parameters = {{"kind", "radiance-image"}, {"scene", "examples/scenes/" + name + ".json"},
+                      {"command", "umbra render SCENE --size 96x54 --atmosphere-tables small"}};
+      tables::writeExr(baseline, t);
+    }
+    const tables::Table ref = tables::readExr(baseline, {"R", "G", "B"});
+    ASSERT_EQ(ref.width, img.width) << name;
+    ASSERT_EQ(ref.height, img.height) << name;
+    int outside = 0;
+    double sumRel = 0.0;
+    for (std::size_t i = 0; i < img.data.size(); ++i) {
+      const double a = img.data[i], b = ref.data[i];
+      const double diff = std::abs(a - b);
+      sumRel += diff / (std::abs(b) + 1e-3);
+      outside += diff > 0.05 * std::abs(b) + 1e-3;
+    }
+    const double n = static_cast<double>(img.data.size());
+    std::printf("  %s: %d of %zu values outside 5 %%, mean relative difference %.2g\n", name.c_str(), outside,
+                img.data.size(), sumRel / n);
+    EXPECT_LE(outside, 0.01 * n) << name;
+    EXPECT_LT(sumRel / n, 0.01) << name;
+  }
 }

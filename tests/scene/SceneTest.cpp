@@ -142,6 +142,47 @@ TEST(SceneValidation, MoreMessagesNameTheField) {
             "examples/x.json: time: invalid UTC time '2015-09-28T25:00Z': hour out of range");
 }
 
+// "atmosphere": true (the preset named after the body), false, a preset, a file relative
+// to the scene; a preset's own flag (Earth: true) does not ask for rendering.
+TEST(Scene, AtmosphereChoices) {
+  auto model = [](const std::string& body) {
+    return parseScene(fixedScene(R"({"preset": "Sun"}, )" + body), kFile).bodies[1].atmosphereModel;
+  };
+  EXPECT_EQ(model(R"({"preset": "Earth", "position": [1e11, 0, 0], "atmosphere": true})"), "earth");
+  EXPECT_EQ(model(R"({"preset": "Earth", "name": "Terra", "position": [1e11, 0, 0], "atmosphere": true})"), "earth");
+  EXPECT_EQ(model(R"({"name": "Mars", "radius": "3389.5 km", "position": [1e11, 0, 0], "atmosphere": true})"), "mars");
+  EXPECT_EQ(model(R"({"preset": "Earth", "position": [1e11, 0, 0]})"), "");
+  EXPECT_EQ(model(R"({"preset": "Earth", "position": [1e11, 0, 0], "atmosphere": false})"), "");
+  EXPECT_EQ(model(R"({"preset": "Earth", "position": [1e11, 0, 0], "atmosphere": "earth-2015-calbuco"})"),
+            "earth-2015-calbuco");
+  const auto dir = std::filesystem::temp_directory_path() / "umbra-scene-atmosphere-test";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream(dir / "thin.json") << R"({"extends": "earth", "name": "thin"})";
+  }
+  const Scene scene = parseScene(
+      fixedScene(R"({"preset": "Sun"}, {"preset": "Earth", "position": [1e11, 0, 0], "atmosphere": "thin.json"})"),
+      (dir / "scene.json").string());
+  EXPECT_EQ(scene.bodies[1].atmosphereModel, (dir / "thin.json").string());
+  std::filesystem::remove_all(dir);
+}
+
+TEST(SceneValidation, AtmosphereMessages) {
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "Moon", "position": [1, 0, 0], "atmosphere": true})")),
+            "examples/x.json: bodies[1].atmosphere: no atmosphere preset named after 'Moon': give a preset "
+            "name or a file");
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "Moon", "position": [1, 0, 0], "atmosphere": 3})")),
+            "examples/x.json: bodies[1].atmosphere: expected true, false, an atmosphere preset name or a "
+            "file, got 3");
+  const std::string unknown =
+      errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "Moon", "position": [1, 0, 0], "atmosphere": "venus"})"));
+  EXPECT_EQ(unknown.rfind("examples/x.json: bodies[1].atmosphere: ", 0), 0u) << unknown;
+  EXPECT_NE(unknown.find("venus"), std::string::npos) << unknown;
+  const std::string missing =
+      errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "Moon", "position": [1, 0, 0], "atmosphere": "no/such.json"})"));
+  EXPECT_EQ(missing.rfind("examples/x.json: bodies[1].atmosphere: ", 0), 0u) << missing;
+}
+
 TEST(SceneValidation, CameraMessages) {
   const std::string head = R"({"time": "2015-09-28T01:45Z",
     "bodies": [{"preset": "Sun"}, {"preset": "Earth"}, {"preset": "Moon"},
@@ -177,7 +218,7 @@ TEST(Scene, DefaultsAndOverrides) {
   const Scene scene = parseScene(
       fixedScene(R"({"preset": "Sun"},
                     {"preset": "Moon", "name": "Luna", "radius": "1000 km", "albedo": 0.2,
-                     "position": ["1 au", 0, "-2km"], "atmosphere": true, "color": [1, 0, 0]},
+                     "position": ["1 au", 0, "-2km"], "atmosphere": "mars", "color": [1, 0, 0]},
                     {"name": "Rock", "radius": 10, "position": [1e11, 0, 0]})"),
       "scenes/my-scene.json");
   EXPECT_EQ(scene.name, "my-scene");
@@ -192,6 +233,7 @@ TEST(Scene, DefaultsAndOverrides) {
   EXPECT_EQ(luna->polarRadiusM, 1e6);
   EXPECT_EQ(luna->albedo, 0.2);
   EXPECT_TRUE(luna->hasAtmosphere);
+  EXPECT_EQ(luna->atmosphereModel, "mars");
   EXPECT_FALSE(luna->positionFromEphemeris);
   EXPECT_EQ(luna->positionM, glm::dvec3(149597870700.0, 0.0, -2000.0));
   EXPECT_EQ(luna->color, glm::dvec3(1, 0, 0));

@@ -1,0 +1,466 @@
+#include "AtmosphereRendering.h"
+
+#include "AtmosphereGlsl.hpp"
+#include "FieldParameters.h"
+#include "RenderGlsl.hpp"
+#include "Spectrum.hpp"
+
+#include <vtkCamera.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkOpenGLQuadHelper.h>
+#include <vtkOpenGLRenderUtilities.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLShaderCache.h>
+#include <vtkPointData.h>
+#include <vtkRenderer.h>
+#include <vtkShaderProgram.h>
+#include <vtkSmartPointer.h>
+#include <vtkTextureObject.h>
+#include <vtk_glew.h>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace umbra::render {
+namespace {
+
+constexpr double kAuM = 1.495978707e11;
+constexpr double kPi = 3.14159265358979323846;
+
+bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+vtkImageData* block(vtkMultiBlockDataSet* blocks, const std::string& name) {
+  for (unsigned i = 0; i < blocks->GetNumberOfBlocks(); ++i) {
+    vtkInformation* info = blocks->HasMetaData(i) ? blocks->GetMetaData(i) : nullptr;
+    if (info && info->Has(vtkCompositeDataSet::NAME()) && name == info->Get(vtkCompositeDataSet::NAME())) {
+      if (auto* image = vtkImageData::SafeDownCast(blocks->GetBlock(i))) return image;
+    }
+  }
+  throw std::invalid_argument("atmosphere tables: no block '" + name + "'");
+}
+
+/// The block's arrays (one per wavelength, in order) interleaved per texel, as doubles.
+std::vector<double> interleaved(vtkImageData* image, const std::string& name, int channels) {
+  vtkPointData* pd = image->GetPointData();
+  if (pd->GetNumberOfArrays() != channels) {
+    throw std::invalid_argument("atmosphere tables: block '" + name + "' has " +
+                                std::to_string(pd->GetNumberOfArrays()) + " channels, expected " +
+                                std::to_string(channels));
+  }
+  const vtkIdType n = image->GetNumberOfPoints();
+  std::vector<double> v(static_cast<std::size_t>(n) * channels);
+  for (int c = 0; c < channels; ++c) {
+    vtkDataArray* a = pd->GetArray(c);
+    if (!a || a->GetNumberOfTuples() != n || a->GetNumberOfComponents() != 1) {
+      throw std::invalid_argument("atmosphere tables: block '" + name + "' has a malformed array");
+    }
+    for (vtkIdType i = 0; i < n; ++i) v[static_cast<std::size_t>(i) * channels + c] = a->GetComponent(i, 0);
+  }
+  return v;
+}
+
+/// A table's size and values from its block (2D: depth 1).
+template <class Table>
+void readTable(vtkImageData* image, const std::string& name, int channels, Table& t, int& depth) {
+  int dims[3];
+  image->GetDimensions(dims);
+  t.width = dims[0];
+  t.height = dims[1];
+  depth = dims[2];
+  t.channels = channels;
+  t.values = interleaved(image, name, channels);
+}
+void read2D(vtkMultiBlockDataSet* blocks, const std::string& name, int channels, atmosphere::Table2D& t) {
+  int depth = 1;
+  readTable(block(blocks, name), name, channels, t, depth);
+}
+void read3D(vtkImageData* image, const std::string& name, int channels, atmosphere::Table3D& t) {
+  readTable(image, name, channels, t, t.depth);
+}
+
+std::string parameter(vtkImageData* image, const std::string& block, const std::string& key) {
+  const auto p = filters::fieldParameters(image);
+  const auto it = p.find(key);
+  if (it == p.end()) throw std::invalid_argument("atmosphere tables: block '" + block + "' has no parameter '" + key + "'");
+  return it->second;
+}
+
+/// A float texture, linear, clamped to the edges. Three-channel data go up as RGBA32F
+/// (padded): Mesa's llvmpipe samples four-channel float textures much faster than RGB32F.
+vtkSmartPointer<vtkTextureObject> floatTexture(vtkOpenGLRenderWindow* window, int w, int h, int d,
+                                               const std::vector<float>& values, int components = 3) {
+  auto t = vtkSmartPointer<vtkTextureObject>::New();
+  t->SetContext(window);
+  t->SetMinificationFilter(vtkTextureObject::Linear);
+  t->SetMagnificationFilter(vtkTextureObject::Linear);
+  t->SetWrapS(vtkTextureObject::ClampToEdge);
+  t->SetWrapT(vtkTextureObject::ClampToEdge);
+  t->SetWrapR(vtkTextureObject::ClampToEdge);
+  std::vector<float> data = values;
+  if (components == 3) {
+    data.assign(values.size() / 3 * 4, 0.0f);
+    for (std::size_t i = 0; i < values.size() / 3; ++i)
+      for (int c = 0; c < 3; ++c) data[4 * i + c] = values[3 * i + c];
+    components = 4;
+  }
+  t->SetInternalFormat(components == 2 ? GL_RG32F : GL_RGBA32F);
+  t->SetFormat(components == 2 ? GL_RG : GL_RGBA);
+  t->SetDataType(GL_FLOAT);
+  const bool ok = d <= 1 ? t->Create2DFromRaw(w, h, components, VTK_FLOAT, data.data())
+                         : t->Create3DFromRaw(w, h, d, components, VTK_FLOAT, data.data());
+  if (!ok) throw std::runtime_error("cannot create a " + std::to_string(w) + "x" + std::to_string(h) + " float texture");
+  return t;
+}
+
+std::vector<float> asFloat(const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); }
+
+void setVec3(vtkShaderProgram* p, const char* name, const glm::dvec3& v) {
+  const float f[3] = {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+  p->SetUniform3f(name, f);
+}
+
+} // namespace
+
+atmosphere::AtmosphereTables tablesFromBlocks(vtkMultiBlockDataSet* blocks, const atmosphere::Atmosphere& atm) {
+  if (!blocks) throw std::invalid_argument("atmosphere tables: no data");
+  atmosphere::AtmosphereTables t;
+  const int nc = static_cast<int>(atm.wavelengthsNm.size());
+  t.bottomRadiusM = atm.bottomRadiusM;
+  t.topRadiusM = atm.topRadiusM;
+  t.wavelengthsNm = atm.wavelengthsNm;
+  read2D(blocks, "transmittance", nc, t.transmittance);
+  read3D(block(blocks, "multiple-scattering"), "multiple-scattering", nc, t.multipleScattering);
+  read2D(blocks, "direct-irradiance", nc, t.directIrradiance);
+  read2D(blocks, "irradiance", nc, t.irradiance);
+  for (const atmosphere::Component& c : atm.components) {
+    if (!c.scatters()) continue;
+    // The block whose "component" parameter names it.
+    vtkImageData* single = nullptr;
+    for (unsigned i = 0; i < blocks->GetNumberOfBlocks() && !single; ++i) {
+      auto* image = vtkImageData::SafeDownCast(blocks->GetBlock(i));
+      if (!image) continue;
+      const auto p = filters::fieldParameters(image);
+      const auto kind = p.find("kind"), component = p.find("component");
+      if (kind != p.end() && kind->second.rfind("atmosphere-single-scattering", 0) == 0 && component != p.end() &&
+          component->second == c.name)
+        single = image;
+    }
+    if (!single) throw std::invalid_argument("atmosphere tables: no single-scattering block for component '" + c.name + "'");
+    t.scatteringComponents.push_back(c.name);
+    t.singleScattering.emplace_back();
+    read3D(single, "single-scattering of " + c.name, nc, t.singleScattering.back());
+  }
+  vtkImageData* ms = block(blocks, "multiple-scattering");
+  atmosphere::PrecomputeOptions& o = t.options;
+  {
+    std::istringstream in(parameter(ms, "multiple-scattering", "scatteringSize"));
+    char comma = 0;
+    in >> o.scatteringR >> comma >> o.scatteringMu >> comma >> o.scatteringMuS >> comma >> o.scatteringNu;
+    if (!in) throw std::invalid_argument("atmosphere tables: bad scatteringSize");
+  }
+  o.muSMin = std::stod(parameter(ms, "multiple-scattering", "muSMin"));
+  o.sunAngularRadiusRad = std::stod(parameter(ms, "multiple-scattering", "sunAngularRadiusRad"));
+  o.transmittanceWidth = t.transmittance.width;
+  o.transmittanceHeight = t.transmittance.height;
+  o.irradianceWidth = t.irradiance.width;
+  o.irradianceHeight = t.irradiance.height;
+  auto checkScattering = [&](const atmosphere::Table3D& s, const std::string& name) {
+    if (s.width != o.scatteringNu * o.scatteringMuS || s.height != o.scatteringMu || s.depth != o.scatteringR)
+      throw std::invalid_argument("atmosphere tables: block '" + name + "' does not match scatteringSize");
+  };
+  checkScattering(t.multipleScattering, "multiple-scattering");
+  for (std::size_t q = 0; q < t.singleScattering.size(); ++q)
+    checkScattering(t.singleScattering[q], "single-scattering-" + t.scatteringComponents[q]);
+  return t;
+}
+
+glm::dmat3 atmosphereToDisplayMatrix(const std::vector<double>& wavelengthsNm) {
+  const atmosphere::WavelengthSet set = atmosphere::WavelengthSet::rgb();
+  if (wavelengthsNm != set.nm) throw std::invalid_argument("the atmosphere renders with 3 wavelengths (680, 550, 440 nm)");
+  glm::dmat3 x(0.0);  // column i: the linear sRGB of a unit spectral radiance at sample i, times E_sun there
+  for (int i = 0; i < 3; ++i) {
+    std::vector<double> unit(3, 0.0);
+    unit[i] = atmosphere::solarIrradianceWm2PerNm(set.nm[i]);
+    x[i] = atmosphere::spectralRadianceToLinearSrgb(set, unit);
+  }
+  const glm::dvec3 sun = x * glm::dvec3(1.0);
+  glm::dmat3 m(0.0);
+  for (int col = 0; col < 3; ++col)
+    for (int row = 0; row < 3; ++row) m[col][row] = x[col][row] / sun[row];
+  return m;
+}
+
+void phaseLobes(const atmosphere::PhaseFunction& p, PhaseLobe& first, PhaseLobe& second) {
+  using Kind = atmosphere::PhaseFunction::Kind;
+  second = {};
+  // A single lobe A (1 + B c^2) / (1 + g^2 - 2 g c)^(3/2): A and B from p(0) and p(1).
+  auto lobe = [](const atmosphere::PhaseFunction& f, double g) {
+    PhaseLobe l;
+    l.g = g;
+    l.a = f(0.0) * std::pow(1.0 + g * g, 1.5);
+    const double oneMinusG = 1.0 - g;
+    l.b = f(1.0) * oneMinusG * oneMinusG * std::abs(oneMinusG) / l.a - 1.0;
+    return l;
+  };
+  switch (p.kind()) {
+    case Kind::Isotropic:
+    case Kind::Rayleigh:
+    case Kind::Penndorf: first = lobe(p, 0.0); return;
+    case Kind::HenyeyGreenstein:
+    case Kind::CornetteShanks: first = lobe(p, p.g()); return;
+    case Kind::DoubleHenyeyGreenstein: {
+      first = lobe(atmosphere::PhaseFunction::henyeyGreenstein(p.g()), p.g());
+      second = lobe(atmosphere::PhaseFunction::henyeyGreenstein(p.g2()), p.g2());
+      first.a *= p.alpha();
+      second.a *= 1.0 - p.alpha();
+      return;
+    }
+    case Kind::Tabulated: break;
+  }
+  throw std::invalid_argument("the renderer has no GLSL form of the phase function " + p.describe());
+}
+
+struct AtmosphereRendering::Impl {
+  bool has = false;
+  atmosphere::Atmosphere model;
+  atmosphere::AtmosphereTables tables;
+  glm::dvec3 centre{0.0}, albedo{0.1};
+  std::vector<float> phase;  // 24 vec3
+  SunLight sun;
+  glm::dvec3 origin{0.0};
+  glm::dmat3 colour{1.0};
+  double limbDarkening = 0.6;
+  bool texturesStale = true;
+
+  vtkSmartPointer<vtkTextureObject> transmittance, scattering, irradiance, direct, refraction;
+  std::vector<float> refractionValues;  // deviation, contact altitude per texel; empty: off
+  int refractionSize[2] = {0, 0};
+  std::unique_ptr<vtkOpenGLQuadHelper> quad;
+  vtkOpenGLRenderWindow* context = nullptr;
+
+  void upload(vtkOpenGLRenderWindow* window) {
+    const atmosphere::AtmosphereTables& t = tables;
+    transmittance = floatTexture(window, t.transmittance.width, t.transmittance.height, 1, asFloat(t.transmittance.values));
+    irradiance = floatTexture(window, t.irradiance.width, t.irradiance.height, 1, asFloat(t.irradiance.values));
+    direct = floatTexture(window, t.directIrradiance.width, t.directIrradiance.height, 1, asFloat(t.directIrradiance.values));
+    // Slab 0: multiple scattering, then one slab per component (z-major: consecutive).
+    std::vector<float> stacked = asFloat(t.multipleScattering.values);
+    for (const atmosphere::Table3D& s : t.singleScattering) stacked.insert(stacked.end(), s.values.begin(), s.values.end());
+    const atmosphere::Table3D& m = t.multipleScattering;
+    scattering = floatTexture(window, m.width, m.height, m.depth * static_cast<int>(1 + t.singleScattering.size()), stacked);
+    // Without refraction a 2x2 table of zeros keeps the sampler valid.
+    const std::vector<float> none(8, 0.0f);
+    const bool on = !refractionValues.empty();
+    refraction = floatTexture(window, on ? refractionSize[0] : 2, on ? refractionSize[1] : 2, 1,
+                              on ? refractionValues : none, 2);
+    texturesStale = false;
+  }
+};
+
+AtmosphereRendering::AtmosphereRendering() : impl_(std::make_unique<Impl>()) {}
+AtmosphereRendering::~AtmosphereRendering() = default;
+
+void AtmosphereRendering::SetAtmosphere(const atmosphere::Atmosphere& model, atmosphere::AtmosphereTables tables,
+                                        const glm::dvec3& centreM, const glm::dvec3& groundAlbedoRgb) {
+  if (!finite(centreM)) throw std::invalid_argument("atmosphere centre must be finite");
+  if (!finite(groundAlbedoRgb) || glm::min(groundAlbedoRgb.x, glm::min(groundAlbedoRgb.y, groundAlbedoRgb.z)) < 0.0)
+    throw std::invalid_argument("ground albedo must be finite and >= 0");
+  if (tables.wavelengthsNm != model.wavelengthsNm) throw std::invalid_argument("atmosphere tables and model differ in wavelengths");
+  if (tables.singleScattering.size() > static_cast<std::size_t>(kMaxComponents))
+    throw std::invalid_argument("the renderer draws at most " + std::to_string(kMaxComponents) + " scattering components");
+  Impl& m = *impl_;
+  std::vector<float> phase(24 * 3, 0.0f);
+  for (std::size_t q = 0; q < tables.scatteringComponents.size(); ++q) {
+    const atmosphere::Component& c = model.component(tables.scatteringComponents[q]);
+    for (int l = 0; l < 3; ++l) {
+      PhaseLobe a, b;
+      phaseLobes(c.phase(l), a, b);
+      const PhaseLobe lobes[2] = {a, b};
+      for (int k = 0; k < 2; ++k) {
+        const std::size_t base = (6 * q + 3 * k) * 3 + l;
+        phase[base] = static_cast<float>(lobes[k].a);
+        phase[base + 3] = static_cast<float>(lobes[k].b);
+        phase[base + 6] = static_cast<float>(lobes[k].g);
+      }
+    }
+  }
+  m.colour = atmosphereToDisplayMatrix(tables.wavelengthsNm);
+  m.phase = std::move(phase);
+  m.model = model;
+  m.tables = std::move(tables);
+  m.centre = centreM;
+  m.albedo = groundAlbedoRgb;
+  m.has = true;
+  m.texturesStale = true;
+}
+
+bool AtmosphereRendering::HasAtmosphere() const { return impl_->has; }
+void AtmosphereRendering::ClearAtmosphere() { impl_->has = false; }
+const atmosphere::Atmosphere& AtmosphereRendering::GetModel() const { return impl_->model; }
+const atmosphere::AtmosphereTables& AtmosphereRendering::GetTables() const { return impl_->tables; }
+const glm::dvec3& AtmosphereRendering::GetCentre() const { return impl_->centre; }
+void AtmosphereRendering::SetSun(const SunLight& sun) {
+  validateSun(sun);
+  impl_->sun = sun;
+}
+void AtmosphereRendering::SetRefraction(vtkImageData* table) {
+  Impl& m = *impl_;
+  m.texturesStale = true;
+  if (!table) {
+    m.refractionValues.clear();
+    return;
+  }
+  int dims[3];
+  table->GetDimensions(dims);
+  vtkDataArray* dev = table->GetPointData()->GetArray("deviation_rad");
+  vtkDataArray* contact = table->GetPointData()->GetArray("contact_altitude_m");
+  const vtkIdType n = table->GetNumberOfPoints();
+  if (!dev || !contact || dims[2] != 1 || dims[0] < 2 || dims[1] < 2 || dev->GetNumberOfTuples() != n ||
+      contact->GetNumberOfTuples() != n)
+    throw std::invalid_argument("refraction table: expected a 2D image with arrays deviation_rad and contact_altitude_m");
+  m.refractionValues.resize(2 * static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i) {
+    m.refractionValues[2 * i] = static_cast<float>(dev->GetComponent(i, 0));
+    m.refractionValues[2 * i + 1] = static_cast<float>(contact->GetComponent(i, 0));
+  }
+  m.refractionSize[0] = dims[0];
+  m.refractionSize[1] = dims[1];
+}
+
+bool AtmosphereRendering::HasRefraction() const { return !impl_->refractionValues.empty(); }
+
+void AtmosphereRendering::SetOrigin(const glm::dvec3& originM) { impl_->origin = originM; }
+void AtmosphereRendering::SetColourMatrix(const glm::dmat3& m) { impl_->colour = m; }
+void AtmosphereRendering::SetLimbDarkening(double u) { impl_->limbDarkening = u; }
+
+bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, vtkTextureObject* colour,
+                               vtkTextureObject* depth, int width, int height) {
+  Impl& m = *impl_;
+  if (!m.has) return true;
+  if (m.context != window) {
+    ReleaseGraphicsResources(m.context);
+    m.context = window;
+    m.texturesStale = true;
+  }
+  if (m.texturesStale) m.upload(window);
+  if (!m.quad) {
+    std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
+    vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl",
+                                 std::string(atmosphere::kAtmosphereGlsl) + "\n" + glsl::kAtmosphereComposite +
+                                     "\n//VTK::FSQ::Decl");
+    vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
+                                 "  gl_FragData[0] = vec4(umbraAtmosphereComposite(texCoord), 1.0);\n//VTK::FSQ::Impl");
+    m.quad = std::make_unique<vtkOpenGLQuadHelper>(window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+                                                   fs.c_str(), "");
+  } else {
+    window->GetShaderCache()->ReadyShaderProgram(m.quad->Program);
+  }
+  vtkShaderProgram* p = m.quad->Program;
+  if (!p || !p->GetCompiled()) return false;
+
+  // The camera (double): world position, basis, projection.
+  vtkCamera* cam = renderer->GetActiveCamera();
+  glm::dvec3 pos, focal, up;
+  cam->GetPosition(&pos.x);
+  cam->GetFocalPoint(&focal.x);
+  cam->GetViewUp(&up.x);
+  const glm::dvec3 fwd = glm::normalize(focal - pos);
+  const glm::dvec3 right = glm::normalize(glm::cross(fwd, up));
+  const glm::dvec3 camUp = glm::cross(right, fwd);
+  const double aspect = double(width) / height;
+  const glm::dvec3 cameraWorld = m.origin + pos;
+  const glm::dvec3 toCentre = m.centre - cameraWorld;
+  const double camRadius = glm::length(toCentre);
+  const bool parallel = cam->GetParallelProjection() != 0;
+  setVec3(p, "umbraPlanetFromCamera", toCentre);
+  setVec3(p, "umbraCameraUp", camRadius > 0.0 ? -toCentre / camRadius : glm::dvec3(0.0, 0.0, 1.0));
+  p->SetUniformf("umbraCameraRadius", static_cast<float>(camRadius));
+  setVec3(p, "umbraRayForward", fwd);
+  p->SetUniformi("umbraParallel", parallel ? 1 : 0);
+  if (parallel) {
+    const double s = cam->GetParallelScale();
+    setVec3(p, "umbraRayOriginX", right * (s * aspect));
+    setVec3(p, "umbraRayOriginY", camUp * s);
+    setVec3(p, "umbraRayX", glm::dvec3(0.0));
+    setVec3(p, "umbraRayY", glm::dvec3(0.0));
+  } else {
+    const double t = std::tan(0.5 * cam->GetViewAngle() * kPi / 180.0);
+    setVec3(p, "umbraRayX", right * (t * aspect));
+    setVec3(p, "umbraRayY", camUp * t);
+    setVec3(p, "umbraRayOriginX", glm::dvec3(0.0));
+    setVec3(p, "umbraRayOriginY", glm::dvec3(0.0));
+  }
+  double nearFar[2];
+  cam->GetClippingRange(nearFar);
+  p->SetUniformf("umbraNear", static_cast<float>(nearFar[0]));
+  p->SetUniformf("umbraFar", static_cast<float>(nearFar[1]));
+
+  const glm::dvec3 toSun = m.sun.positionM - m.centre;
+  const double dSun = glm::length(toSun);
+  setVec3(p, "umbraSunDirection", toSun / dSun);
+  p->SetUniformf("umbraSunAngularRadius", static_cast<float>(std::asin(std::min(1.0, m.sun.radiusM / dSun))));
+  p->SetUniformf("umbraSolarIrradiance", static_cast<float>(m.sun.irradianceAt1AuWm2 * (kAuM / dSun) * (kAuM / dSun)));
+  p->SetUniformf("umbraLimbDarkening", static_cast<float>(m.limbDarkening));
+  float mat[9];
+  for (int col = 0; col < 3; ++col)
+    for (int row = 0; row < 3; ++row) mat[3 * col + row] = static_cast<float>(m.colour[col][row]);
+  p->SetUniformMatrix3x3("umbraAtmToDisplay", mat);
+  setVec3(p, "umbraGroundAlbedo", m.albedo);
+
+  // The tables.
+  const atmosphere::AtmosphereTables& t = m.tables;
+  p->SetUniformf("umbraAtmBottom", static_cast<float>(t.bottomRadiusM));
+  p->SetUniformf("umbraAtmTop", static_cast<float>(t.topRadiusM));
+  p->SetUniformf("umbraAtmMuSMin", static_cast<float>(t.options.muSMin));
+  const int size[4] = {t.options.scatteringR, t.options.scatteringMu, t.options.scatteringMuS, t.options.scatteringNu};
+  p->SetUniform1iv("umbraAtmScatteringSize", 4, size);
+  p->SetUniformi("umbraAtmComponents", static_cast<int>(t.singleScattering.size()));
+  p->SetUniformi("umbraRefraction", m.refractionValues.empty() ? 0 : 1);
+  p->SetUniform3fv("umbraAtmPhase", 24, reinterpret_cast<const float(*)[3]>(m.phase.data()));
+
+  colour->Activate();
+  depth->Activate();
+  m.transmittance->Activate();
+  m.scattering->Activate();
+  m.irradiance->Activate();
+  m.direct->Activate();
+  m.refraction->Activate();
+  p->SetUniformi("umbraRefractionTable", m.refraction->GetTextureUnit());
+  p->SetUniformi("umbraFrameColour", colour->GetTextureUnit());
+  p->SetUniformi("umbraFrameDepth", depth->GetTextureUnit());
+  p->SetUniformi("umbraAtmTransmittanceTable", m.transmittance->GetTextureUnit());
+  p->SetUniformi("umbraAtmScatteringTable", m.scattering->GetTextureUnit());
+  p->SetUniformi("umbraAtmIrradianceTable", m.irradiance->GetTextureUnit());
+  p->SetUniformi("umbraAtmDirectIrradianceTable", m.direct->GetTextureUnit());
+  m.quad->Render();
+  m.refraction->Deactivate();
+  m.direct->Deactivate();
+  m.irradiance->Deactivate();
+  m.scattering->Deactivate();
+  m.transmittance->Deactivate();
+  depth->Deactivate();
+  colour->Deactivate();
+  return true;
+}
+
+void AtmosphereRendering::ReleaseGraphicsResources(vtkOpenGLRenderWindow* window) {
+  Impl& m = *impl_;
+  if (m.quad) {
+    m.quad->ReleaseGraphicsResources(window);
+    m.quad.reset();
+  }
+  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.direct, &m.refraction}) {
+    if (*t && window) (*t)->ReleaseGraphicsResources(window);
+    *t = nullptr;
+  }
+  m.texturesStale = true;
+}
+
+} // namespace umbra::render

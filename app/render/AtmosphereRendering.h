@@ -1,0 +1,136 @@
+#pragma once
+// AtmosphereRendering: the atmosphere of one body drawn as a post-process of
+// vtkUmbraRenderPass's HDR frame (Algorithm 1 of Costa et al., "Interactive Visualization
+// of Atmospheric Effects for Celestial Bodies", section 5): per pixel, the view ray is
+// intersected with the atmosphere's shell and compared with the depth buffer; the
+// transmittance and the in-scattered radiance come from the precomputed Bruneton tables
+// (atmosphere/glsl/Atmosphere.glsl, the GLSL twin of atmosphere/Precompute.cpp's lookups):
+//   ray misses the shell, or an object lies before it:  F = frame colour
+//   ray ends on the planet's ground:   F = M E_sun [T(x, y) albedo / pi (f E_0 + E_ind)(y) + S(x -> y)]
+//   ray ends on an object in the air:  F = T(x, y) frame + M E_sun S(x -> y)
+//   ray leaves the atmosphere:         F = T(x, top) (frame + Sun's disc) + M E_sun S(x)
+// with S(x -> y) = S(x) - T(x, y) S(y) (aerial perspective) and the tables' per-unit-
+// irradiance values turned into the frame's units by M E_sun (below). The planet's ground
+// is the analytic sphere (radius bottomRadiusM): it replaces the frame's colour of the
+// planet (which EclipseShading lit without air) wherever the frame's depth lies within 1 %
+// of the ground hit (from 2 km up, the float camera matrices move grazing ground hits by
+// a few tenths of a percent). f is the eclipse factor of other bodies there, read back
+// from the frame (its colour over albedo / pi E_sun cos i; 1 where the Sun is within 3
+// degrees of the horizon or the frame shows nothing): it dims the direct sunlight, not
+// the sky light (E_ind).
+//
+// Colour. The tables hold one channel per wavelength (680, 550, 440 nm: the R, G, B mode of
+// vtkAtmosphereTablesSource) per unit solar irradiance. The HDR frame holds linear sRGB
+// in W m^-2 sr^-1 for a white Sun of broadband irradiance E_sun (EclipseShading: a
+// surface of albedo a has radiance a / pi E_sun cos i). The atmosphere keeps that
+// convention: M = diag(1 / s) X W, with W = diag(E_sun,lambda(680, 550, 440 nm)) the
+// ASTM G173 solar spectrum (atmosphere/Spectrum.hpp), X the 3x3 map from the three
+// spectral samples to linear sRGB (the solar-ratio rule of Spectrum.hpp: CIE 1931 and the
+// sRGB primaries) and s = X W (1, 1, 1) the Sun's own linear sRGB. So the bare Sun stays
+// white (1, 1, 1), a grey table value k gives k E_sun in every channel, and a sky's colour
+// is its CIE colour white-balanced to the Sun. Transmittance (per wavelength) multiplies
+// the frame's R, G, B channels directly (680, 550, 440 nm stand for R, G, B).
+//
+// Coordinates (camera-relative, as BodyView): the world camera is origin + the VTK camera
+// position; every uniform is computed in double relative to the camera (or the planet)
+// and only then rounded to float: the planet centre relative to the camera, the camera's
+// radius and altitude, the ray's basis. The ray-shell intersection uses the impact
+// vector (no squares of the camera distance), so a camera 1 au away and one 1 m above the
+// ground both keep float precision where it matters.
+//
+// Depth. Perspective frames hold logarithmic depth (app/render/glsl/ReceiverFragment.glsl:
+// distance = 1 mm 2^(depth * 53.15)), parallel ones the window depth between near and far;
+// depth 1 is the background.
+//
+// The Sun's disc (not drawn by the bodies) is drawn behind the atmosphere for rays that
+// reach the background: radiance E_sun / (pi alpha^2) times the linear limb darkening of
+// the eclipse paper's Eq. 1 (normalised to the disc's mean), attenuated by T.
+#include "EclipseShading.h"  // SunLight
+
+#include "Atmosphere.hpp"
+#include "Precompute.hpp"
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include <memory>
+#include <string>
+
+class vtkImageData;
+class vtkMultiBlockDataSet;
+class vtkOpenGLRenderWindow;
+class vtkRenderer;
+class vtkTextureObject;
+
+namespace umbra::render {
+
+/// The tables of vtkAtmosphereTablesSource's output (the Bruneton blocks: transmittance,
+/// single scattering per component, multiple scattering, direct and indirect irradiance)
+/// back as AtmosphereTables (float values widened to double), for `atmosphere` (the model
+/// they were computed for, at the same wavelengths). Throws std::invalid_argument naming
+/// the missing or inconsistent block.
+atmosphere::AtmosphereTables tablesFromBlocks(vtkMultiBlockDataSet* blocks, const atmosphere::Atmosphere& atmosphere);
+
+/// The colour matrix M of the header (for 680, 550, 440 nm).
+glm::dmat3 atmosphereToDisplayMatrix(const std::vector<double>& wavelengthsNm);
+
+/// One phase lobe per channel: A (1 + B c^2) / (1 + g^2 - 2 g c)^(3/2).
+struct PhaseLobe {
+  double a = 0.0, b = 0.0, g = 0.0;
+};
+/// The two lobes of a phase function (the second A = 0 unless double Henyey-Greenstein).
+/// Throws std::invalid_argument for tabulated phase functions.
+void phaseLobes(const atmosphere::PhaseFunction& phase, PhaseLobe& first, PhaseLobe& second);
+
+class AtmosphereRendering {
+ public:
+  static constexpr int kMaxComponents = 4;  ///< scattering components per atmosphere
+
+  AtmosphereRendering();
+  ~AtmosphereRendering();
+  AtmosphereRendering(const AtmosphereRendering&) = delete;
+  AtmosphereRendering& operator=(const AtmosphereRendering&) = delete;
+
+  /// The atmosphere of the body centred at centreM (world, m): its model, its tables
+  /// (3 wavelengths) and the ground's linear sRGB albedo. Throws std::invalid_argument.
+  void SetAtmosphere(const atmosphere::Atmosphere& model, atmosphere::AtmosphereTables tables,
+                     const glm::dvec3& centreM, const glm::dvec3& groundAlbedoRgb);
+  bool HasAtmosphere() const;
+
+  void ClearAtmosphere();
+  const atmosphere::Atmosphere& GetModel() const;
+  const atmosphere::AtmosphereTables& GetTables() const;
+  const glm::dvec3& GetCentre() const;
+
+  void SetSun(const SunLight& sun);
+  /// World position of the VTK scene's origin (BodyView: the camera position).
+  void SetOrigin(const glm::dvec3& originM);
+  /// The matrix from table channels to the frame's colour (default atmosphereToDisplayMatrix).
+  void SetColourMatrix(const glm::dmat3& m);
+  /// Refraction (eclipse paper, section 4.2; nullptr: off): the "refraction" block of
+  /// vtkAtmosphereTablesSource (arrays deviation_rad, contact_altitude_m over the
+  /// transmittance parametrisation). Rays that leave the atmosphere are bent by the
+  /// deviation before they look up the background and the Sun; rays whose contact altitude
+  /// is negative see black. Perspective views only. The scattering tables should then come
+  /// from refracted paths (vtkAtmosphereTablesSource::RefractedPaths). Throws
+  /// std::invalid_argument for a malformed table.
+  void SetRefraction(vtkImageData* table);
+  bool HasRefraction() const;
+
+  /// Limb darkening of the Sun's disc (eclipse/SolarDisc.hpp's Eq. 1 coefficient).
+  void SetLimbDarkening(double u);
+
+  /// Draws the atmosphere: reads `colour` and `depth` (the delegate's frame), writes the
+  /// composed frame into the currently bound draw framebuffer (w x h). False when the
+  /// shader cannot be built.
+  bool Draw(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, vtkTextureObject* colour,
+            vtkTextureObject* depth, int width, int height);
+  void ReleaseGraphicsResources(vtkOpenGLRenderWindow* window);
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace umbra::render

@@ -1,0 +1,156 @@
+// The atmosphere over the HDR frame (AtmosphereRendering, Algorithm 1 of the atmospheres
+// paper). Needs atmosphere/glsl/Atmosphere.glsl before it. Full-screen quad: texCoord in
+// [0, 1]^2. Lengths in metres; every position relative to the camera (or to the ray's
+// origin for parallel views), computed in double on the CPU.
+
+uniform sampler2D umbraFrameColour;
+uniform sampler2D umbraFrameDepth;
+uniform vec3 umbraPlanetFromCamera;   // planet centre - camera
+uniform vec3 umbraCameraUp;           // (camera - planet centre) / |.|
+uniform float umbraCameraRadius;      // |camera - planet centre|
+uniform vec3 umbraRayForward;         // perspective: dir = normalize(F + x X + y Y)
+uniform vec3 umbraRayX;
+uniform vec3 umbraRayY;
+uniform vec3 umbraRayOriginX;         // parallel: origin = x OX + y OY, dir = F
+uniform vec3 umbraRayOriginY;
+uniform int umbraParallel;
+uniform float umbraNear;              // parallel: window depth 0 .. 1 = near .. far
+uniform float umbraFar;
+uniform vec3 umbraSunDirection;       // unit, from the planet towards the Sun
+uniform float umbraSunAngularRadius;  // rad
+uniform float umbraSolarIrradiance;   // W m^-2 at the planet
+uniform float umbraLimbDarkening;
+uniform mat3 umbraAtmToDisplay;       // table channels -> frame colour
+uniform vec3 umbraGroundAlbedo;
+uniform int umbraRefraction;          // 1: bend the rays that leave the atmosphere
+uniform sampler2D umbraRefractionTable;  // deviation (rad), contact altitude (m) over (x_mu, x_r)
+
+const float umbraLogDepthMinM = 1.0e-3;           // as ReceiverFragment.glsl
+const float umbraLogDepthOctaves = 53.150849518;
+const float umbraFarAway = 3.0e38;
+const float umbraGroundTolerance = 0.01;
+
+// Distance along the ray to what the frame holds at this pixel (umbraFarAway: nothing).
+float umbraFrameDistance(float depth) {
+  if (depth >= 1.0) return umbraFarAway;
+  if (umbraParallel == 1) return umbraNear + depth * (umbraFar - umbraNear);
+  return umbraLogDepthMinM * exp2(depth * umbraLogDepthOctaves);
+}
+
+// The Sun's disc (linear limb darkening, mean radiance E / (pi alpha^2)) seen along dir.
+float umbraSunDisc(vec3 dir) {
+  vec3 a = normalize(dir), b = umbraSunDirection;
+  float angle = 2.0 * atan(length(a - b), length(a + b));
+  if (angle >= umbraSunAngularRadius) return 0.0;
+  float rho = angle / umbraSunAngularRadius;
+  float u = umbraLimbDarkening;
+  float profile = (1.0 - u * (1.0 - sqrt(max(1.0 - rho * rho, 0.0)))) / (1.0 - u / 3.0);
+  return profile * umbraSolarIrradiance / (3.14159265 * umbraSunAngularRadius * umbraSunAngularRadius);
+}
+
+// Where a direction meets the image (perspective), in texture coordinates.
+vec2 umbraImageOf(vec3 d) {
+  float f = dot(d, umbraRayForward);
+  vec2 ndc = vec2(dot(d, umbraRayX) / dot(umbraRayX, umbraRayX), dot(d, umbraRayY) / dot(umbraRayY, umbraRayY)) / f;
+  return 0.5 * ndc + vec2(0.5);
+}
+
+// The background of a ray leaving the atmosphere from x (radius r, view cosine mu) with
+// refraction (eclipse paper, section 4.2): a ray bent into the ground sees black; else the
+// exit ray (the view ray turned towards the planet's centre by the deviation) looks up
+// the frame at its vanishing point, black where the frame holds something there (the
+// ray passed behind it), plus the Sun's disc along the exit ray.
+vec3 umbraRefractedBackground(vec3 x, float r, float mu, vec3 dir) {
+  vec2 dc = texture(umbraRefractionTable,
+                    umbraAtmTransmittanceUvSized(r, mu, vec2(textureSize(umbraRefractionTable, 0)))).rg;
+  if (dc.y < 0.0) return vec3(0.0);
+  vec3 toCentre = -x / r;
+  vec3 across = toCentre - dot(toCentre, dir) * dir;
+  float l = length(across);
+  vec3 exitDir = l > 0.0 ? cos(dc.x) * dir + sin(dc.x) * (across / l) : dir;
+  vec3 seen = vec3(0.0);
+  vec2 at = umbraImageOf(exitDir);
+  if (dot(exitDir, umbraRayForward) > 0.0 && all(greaterThanEqual(at, vec2(0.0))) && all(lessThanEqual(at, vec2(1.0))) &&
+      texture(umbraFrameDepth, at).r >= 1.0)
+    seen = texture(umbraFrameColour, at).rgb;
+  return seen + vec3(umbraSunDisc(exitDir));
+}
+
+vec3 umbraAtmosphereComposite(vec2 uv) {
+  vec2 ndc = 2.0 * uv - vec2(1.0);
+  vec3 dir;
+  vec3 centre = umbraPlanetFromCamera;  // planet centre relative to the ray's origin
+  if (umbraParallel == 1) {
+    dir = normalize(umbraRayForward);
+    centre -= ndc.x * umbraRayOriginX + ndc.y * umbraRayOriginY;
+  } else {
+    dir = normalize(umbraRayForward + ndc.x * umbraRayX + ndc.y * umbraRayY);
+  }
+  vec3 frame = texture(umbraFrameColour, uv).rgb;
+  float dFrame = umbraFrameDistance(texture(umbraFrameDepth, uv).r);
+  vec3 background = dFrame >= umbraFarAway ? frame + vec3(umbraSunDisc(dir)) : frame;
+
+  // The view ray against the top of the atmosphere, by its impact vector.
+  float top = umbraAtmTop;
+  float tc = dot(centre, dir);
+  vec3 perp = centre - tc * dir;  // from the ray's closest point to the centre
+  float h = length(perp);
+  if (h >= top) return background;
+  float q = sqrt((top - h) * (top + h));
+  if (tc + q <= 0.0) return background;  // the shell is behind
+
+  // x: the camera when inside the shell, else the entry point; r, mu there.
+  float t0, r, mu;
+  vec3 x;
+  bool inside = umbraParallel == 0 && umbraCameraRadius < top;
+  if (inside) {
+    t0 = 0.0;
+    r = umbraCameraRadius;
+    x = r * umbraCameraUp;
+    mu = dot(umbraCameraUp, dir);
+  } else {
+    t0 = max(tc - q, 0.0);
+    x = -perp - q * dir;
+    r = top;
+    mu = dot(x, dir) / top;
+  }
+  if (dFrame <= t0) return frame;  // an object before the atmosphere
+
+  float muS = dot(x, umbraSunDirection) / r;
+  float nu = dot(dir, umbraSunDirection);
+  bool ground = umbraAtmRayIntersectsGround(r, mu);
+  float dEnd = ground ? umbraAtmDistanceToBottom(r, mu) : umbraAtmDistanceToTop(r, mu);
+  float dObject = dFrame - t0;
+  // What the frame holds within 1 % of the ground hit is the planet itself (its depth is
+  // that of the analytic sphere, but with float camera matrices: grazing hits seen from
+  // a few km up move by a few tenths of a percent); it becomes the analytic ground.
+  bool onGround = ground && dObject >= dEnd * (1.0 - umbraGroundTolerance);
+  bool onObject = !onGround && dObject < dEnd;
+
+  if (onGround) {
+    vec3 y = x + dEnd * dir;
+    float muSg = dot(normalize(y), umbraSunDirection);
+    float rg = umbraAtmBottom;
+    // The eclipse shadow of other bodies on the ground (EclipseShading lit the planet's
+    // pixel as albedo / pi E_sun cos i times that factor): it dims the direct sunlight.
+    vec3 eclipse = vec3(1.0);
+    vec3 unshadowed = umbraGroundAlbedo * (0.31830988618 * umbraSolarIrradiance * muSg);
+    if (dFrame < umbraFarAway && muSg > 0.05 && all(greaterThan(unshadowed, vec3(0.0))))
+      eclipse = clamp(frame / unshadowed, vec3(0.0), vec3(1.0));
+    vec3 E = eclipse * umbraAtmDirectIrradiance(rg, muSg) + umbraAtmIndirectIrradiance(rg, muSg);
+    vec3 T = umbraAtmTransmittance(r, mu, dEnd, true, true);
+    vec3 S = umbraAtmInScatteringToPoint(r, mu, muS, nu, dEnd, true, true);
+    vec3 raw = T * umbraGroundAlbedo * 0.31830988618 * E + S;
+    return umbraAtmToDisplay * raw * umbraSolarIrradiance;
+  }
+  if (onObject) {
+    vec3 T = umbraAtmTransmittance(r, mu, dObject, ground, false);
+    vec3 S = umbraAtmInScatteringToPoint(r, mu, muS, nu, dObject, ground, false);
+    return T * frame + umbraAtmToDisplay * S * umbraSolarIrradiance;
+  }
+  if (umbraRefraction == 1 && umbraParallel == 0 && dFrame >= umbraFarAway)
+    background = umbraRefractedBackground(x, r, mu, dir);
+  vec3 T = umbraAtmTransmittanceToTop(r, mu);
+  vec3 S = umbraAtmScatteredRadiance(r, mu, muS, nu, false);
+  return T * background + umbraAtmToDisplay * S * umbraSolarIrradiance;
+}

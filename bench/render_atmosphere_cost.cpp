@@ -1,0 +1,102 @@
+// Frame time of the atmosphere in the render pass (issue #6; eclipse paper Tables 1-2:
+// refraction +20 %): the earth-sunset example rendered without the atmosphere, with it,
+// and with refraction, interleaved frame by frame, timed with GL timer queries
+// (GL_TIME_ELAPSED around the frame) and with the wall clock (after glFinish); prints the
+// medians. Tables from vtkAtmosphereTablesSource through the cache (the first run at
+// default sizes precomputes them). Needs an X display (xvfb-run -a); on llvmpipe the
+// fragment work runs on the CPU.
+//
+//   xvfb-run -a build/bench/umbra-bench-render-atmosphere [--frames 20] [--width 1920 --height 1080]
+//       [--tables default|small]
+#include "BodyView.h"
+#include "SceneInputs.h"
+#include "ShadowLut.hpp"
+#include "ShadowLutData.h"
+#include "scene/Scene.hpp"
+#include "vtkAtmosphereTablesSource.h"
+
+#include <CLI/CLI.hpp>
+
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkRenderWindow.h>
+#include <vtk_glew.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+using namespace umbra;
+
+int main(int argc, char** argv) {
+  CLI::App app{"Frame time without the atmosphere, with it and with refraction"};
+  int frames = 20, width = 1920, height = 1080;
+  std::string tables = "default";
+  std::string scenePath = UMBRA_SOURCE_DIR "/examples/scenes/earth-sunset.json";
+  app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
+  app.add_option("--width", width)->capture_default_str();
+  app.add_option("--height", height)->capture_default_str();
+  app.add_option("--tables", tables, "Atmosphere table sizes: default or small")->capture_default_str();
+  app.add_option("--scene", scenePath, "A scene with an atmosphere")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  const scene::Scene s = scene::loadScene(scenePath);
+  const render::SceneInputs in = render::sceneInputs(s);
+  if (!in.atmosphere) {
+    std::fprintf(stderr, "%s: no body asks for an atmosphere\n", scenePath.c_str());
+    return 1;
+  }
+  const auto lut = filters::toImageData(eclipse::buildAirlessShadowLut({64, 64}));
+  const char* names[3] = {"no atmosphere", "atmosphere", "atmosphere + refraction"};
+  std::vector<std::unique_ptr<render::BodyView>> views;
+  for (int k = 0; k < 3; ++k) {
+    views.push_back(std::make_unique<render::BodyView>(width, height, true));
+    render::BodyView& v = *views.back();
+    v.SetBodies(in.sun, in.bodies, lut);
+    if (k > 0) {
+      vtkNew<vtkAtmosphereTablesSource> source;
+      if (tables == "small") render::useSmallAtmosphereTables(source);
+      render::applySceneAtmosphere(v, in, source, k == 2);
+    }
+    v.SetCamera(in.camera);
+    v.SetExposureEV(s.exposureEv);
+    v.Render();  // warm up: shaders, textures
+  }
+  std::vector<double> gpu[3], wall[3];
+  std::vector<GLuint> queries(3, 0);
+  for (int k = 0; k < 3; ++k) {
+    views[k]->GetRenderWindow()->MakeCurrent();
+    glGenQueries(1, &queries[k]);
+  }
+  for (int f = 0; f < frames; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      vtkRenderWindow* w = views[k]->GetRenderWindow();
+      w->MakeCurrent();
+      const auto t0 = std::chrono::steady_clock::now();
+      glBeginQuery(GL_TIME_ELAPSED, queries[k]);
+      views[k]->Render();
+      w->MakeCurrent();
+      glEndQuery(GL_TIME_ELAPSED);
+      glFinish();
+      wall[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      GLuint64 ns = 0;
+      glGetQueryObjectui64v(queries[k], GL_QUERY_RESULT, &ns);
+      gpu[k].push_back(ns * 1e-6);
+    }
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  std::printf("| %dx%d, %d frames, %s tables, median | GL timer [ms] | wall [ms] | GL time vs no atmosphere |\n",
+              width, height, frames, tables.c_str());
+  std::printf("|---|---:|---:|---:|\n");
+  for (int k = 0; k < 3; ++k)
+    std::printf("| %s | %.2f | %.2f | %+.1f %% |\n", names[k], median(gpu[k]), median(wall[k]),
+                100.0 * (median(gpu[k]) / median(gpu[0]) - 1.0));
+  const double atm = median(gpu[1]);
+  std::printf("\nrefraction vs atmosphere without it: %+.1f %%\n", 100.0 * (median(gpu[2]) / atm - 1.0));
+  return 0;
+}

@@ -1,0 +1,296 @@
+// The atmosphere in the render pass at the extremes (camera 1 m above the ground, on the
+// top boundary, 1 au away; the Sun on the horizon, the Sun behind the planet) and what a
+// sky must look like (bluer at the zenith than at the horizon at noon, a reddened Sun
+// low down), on the HDR frame with the display colour matrix.
+#include "AtmosphereTestSupport.hpp"
+
+#include "Refraction.hpp"
+#include "SightLines.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+
+using namespace umbra;
+using namespace umbra::render;
+using namespace umbra::render::test;
+using umbra::eclipse::luminance;
+
+namespace {
+
+struct Frame {
+  std::vector<float> rgb;
+  int w = 0, h = 0;
+  glm::dvec3 at(int i, int j) const {  // j from the top
+    const float* p = &rgb[3 * (static_cast<std::size_t>(j) * w + i)];
+    return {p[0], p[1], p[2]};
+  }
+  /// Rows (or columns) that are black in every channel from edge to edge.
+  int blackRows() const {
+    int n = 0;
+    for (int j = 0; j < h; ++j) {
+      bool black = true;
+      for (int i = 0; i < w && black; ++i) black = glm::length(at(i, j)) == 0.0;
+      n += black;
+    }
+    return n;
+  }
+};
+
+// Renders; ReadHdr throws on any non-finite value.
+Frame renderFrame(const ViewCamera& cam, const glm::dvec3& sunDir, int size = 64) {
+  AtmosphereScene scene(size, cam, sunDir);
+  scene.view.Render();
+  Frame f;
+  scene.view.ReadHdr(f.rgb, f.w, f.h);
+  return f;
+}
+
+double blueOverRed(const glm::dvec3& c) { return c.b / c.r; }
+
+} // namespace
+
+// 1 m above the ground, the Sun's centre exactly on the (geometric) horizon, looking at it.
+TEST(AtmosphereRender, OneMetreUpSunOnTheHorizon) {
+  const Frame f = renderFrame(groundCamera(1.0, 0.0, 4.0), directionFromAngles(0.0, 0.0));
+  EXPECT_EQ(f.blackRows(), 0);
+  for (int j = 0; j < f.h / 2 - 1; ++j)  // the sky, above the horizon
+    for (int i = 0; i < f.w; ++i) EXPECT_GT(f.at(i, j).r, 0.0) << i << ", " << j;
+  // The Sun's half disc at the centre outshines the sky beside it.
+  EXPECT_GT(luminance(f.at(f.w / 2, f.h / 2 - 1)), 10.0 * luminance(f.at(f.w / 8, f.h / 2 - 1)));
+}
+
+// On the top boundary, looking down at the limb 20 degrees below the horizontal.
+TEST(AtmosphereRender, CameraOnTheTopBoundary) {
+  const double top = atmosphereFixture().tables.topRadiusM - atmosphereFixture().tables.bottomRadiusM;
+  const Frame f = renderFrame(groundCamera(top, -15.0, 30.0), directionFromAngles(40.0, 30.0));
+  EXPECT_EQ(f.blackRows(), 0);
+  EXPECT_GT(luminance(f.at(f.w / 2, f.h - 1)), 0.0);  // the lit ground below
+}
+
+// 1 au from Earth (the Sun beside the camera): Earth is a few pixels wide and lit.
+TEST(AtmosphereRender, CameraOneAuAway) {
+  ViewCamera cam;
+  cam.positionM = {kAu, 0.0, 0.0};
+  cam.targetM = {0.0, 0.0, 0.0};
+  cam.up = {0.0, 0.0, 1.0};
+  cam.fovDeg = 0.02;  // Earth's diameter: 0.0049 degrees
+  const Frame f = renderFrame(cam, directionFromAngles(0.0, 10.0));
+  const glm::dvec3 centre = f.at(f.w / 2, f.h / 2);
+  EXPECT_GT(luminance(centre), 1.0);
+  EXPECT_LT(luminance(centre), 1361.0 / kPi);
+  EXPECT_EQ(luminance(f.at(0, 0)), 0.0);  // space
+}
+
+// The Sun exactly behind Earth, seen from 30 000 km on the night side, zoomed on the
+// limb (0.4 degrees: 210 km): the ground below (just past the terminator) is dark, the atmosphere's ring is
+// lit by forward scattering, space above is black.
+TEST(AtmosphereRender, SunExactlyBehindEarth) {
+  const double b = atmosphereFixture().tables.bottomRadiusM;
+  ViewCamera cam;
+  cam.positionM = {-3.0e7, 0.0, 0.0};
+  const double limb = std::asin((b + 40e3) / 3.0e7);  // grazing 40 km up
+  cam.targetM = cam.positionM + glm::dvec3(std::cos(limb), 0.0, std::sin(limb));
+  cam.up = {0.0, 0.0, 1.0};
+  cam.fovDeg = 0.4;
+  const Frame f = renderFrame(cam, directionFromAngles(0.0, 0.0), 96);
+  double ringMax = 0.0;
+  for (int j = 0; j < f.h; ++j) ringMax = std::max(ringMax, luminance(f.at(f.w / 2, j)));
+  const double ground = luminance(f.at(f.w / 2, f.h - 1)), space = luminance(f.at(f.w / 2, 0));
+  std::printf("  night ground %.3g, brightest in the ring %.3g, space %.3g W m^-2 sr^-1\n", ground, ringMax, space);
+  EXPECT_LT(ground, 1e-2 * ringMax);  // near the limb: the twilit ground under the terminator
+  EXPECT_GT(ringMax, 1.0);
+  EXPECT_EQ(space, 0.0);
+}
+
+// Noon-ish (Sun 60 degrees up): the zenith is bluer than the horizon.
+TEST(AtmosphereRender, ZenithBluerThanHorizonNearNoon) {
+  const Frame f = renderFrame(groundCamera(10.0, 45.0, 90.0), directionFromAngles(60.0, 180.0), 64);
+  const glm::dvec3 zenith = f.at(f.w / 2, 0), horizon = f.at(f.w / 2, f.h - 1);
+  std::printf("  zenith (%.4g, %.4g, %.4g), horizon (%.4g, %.4g, %.4g)\n", zenith.r, zenith.g, zenith.b, horizon.r,
+              horizon.g, horizon.b);
+  EXPECT_GT(zenith.b, zenith.r);
+  EXPECT_GT(blueOverRed(zenith), 1.2 * blueOverRed(horizon));
+}
+
+// The Sun's disc 2 degrees up is redder than 60 degrees up (its light crosses ~25 air masses).
+TEST(AtmosphereRender, LowSunIsReddened) {
+  const Frame low = renderFrame(groundCamera(10.0, 2.0, 4.0), directionFromAngles(2.0, 0.0));
+  const Frame high = renderFrame(groundCamera(10.0, 60.0, 4.0), directionFromAngles(60.0, 0.0));
+  const glm::dvec3 l = low.at(low.w / 2, low.h / 2), hi = high.at(high.w / 2, high.h / 2);
+  std::printf("  Sun at 2 deg (%.4g, %.4g, %.4g), at 60 deg (%.4g, %.4g, %.4g)\n", l.r, l.g, l.b, hi.r, hi.g, hi.b);
+  EXPECT_GT(l.r, l.b * 2.0);
+  EXPECT_LT(blueOverRed(l), 0.5 * blueOverRed(hi));
+  EXPECT_GT(luminance(hi), luminance(l));
+}
+
+// ---- refraction (eclipse paper, section 4.2) --------------------------------------------
+
+namespace {
+
+// The fixture's atmosphere with refracted paths and the refraction table (256 x 128).
+struct RefractionFixture {
+  atmosphere::AtmosphereTables tables;
+  vtkSmartPointer<vtkImageData> refraction;
+};
+const RefractionFixture& refractionFixture() {
+  static const RefractionFixture f = [] {
+    vtkNew<vtkAtmosphereTablesSource> source;
+    source->SetAtmosphere("earth");
+    useSmallAtmosphereTables(source);
+    source->SetTables(vtkAtmosphereTablesSource::Bruneton | vtkAtmosphereTablesSource::Refraction);
+    source->SetRefractedPaths(true);
+    source->SetRefractionWidth(256);
+    source->SetRefractionHeight(128);
+    source->UseCacheOff();
+    source->Update();
+    RefractionFixture out;
+    out.tables = tablesFromBlocks(source->GetOutput(), atmosphereFixture().model);
+    vtkMultiBlockDataSet* blocks = source->GetOutput();
+    out.refraction = vtkImageData::SafeDownCast(blocks->GetBlock(blocks->GetNumberOfBlocks() - 1));
+    return out;
+  }();
+  return f;
+}
+
+struct DiscExtent {
+  int top = -1, bottom = -1, left = -1, right = -1;  // rows from the top, columns
+  int height() const { return bottom - top + 1; }
+  int width() const { return right - left + 1; }
+};
+// The pixels whose red channel exceeds 5 % of the brightest one: the Sun's disc.
+DiscExtent discOf(const Frame& f) {
+  double peak = 0.0;
+  for (int j = 0; j < f.h; ++j)
+    for (int i = 0; i < f.w; ++i) peak = std::max(peak, f.at(i, j).r);
+  DiscExtent d;
+  for (int j = 0; j < f.h; ++j)
+    for (int i = 0; i < f.w; ++i) {
+      if (f.at(i, j).r < 0.05 * peak) continue;
+      if (d.top < 0) d.top = j;
+      d.bottom = j;
+      d.left = d.left < 0 ? i : std::min(d.left, i);
+      d.right = std::max(d.right, i);
+    }
+  return d;
+}
+
+// A frame with or without refraction (the refracted-path tables and the refraction table,
+// or the plain ones).
+Frame renderRefracted(const ViewCamera& cam, const glm::dvec3& sunDir, int size, bool refraction) {
+  const RefractionFixture& rf = refractionFixture();
+  const AtmosphereFixture& f = atmosphereFixture();
+  AtmosphereScene scene(size, cam, sunDir);
+  scene.view.GetAtmosphere().SetAtmosphere(f.model, refraction ? rf.tables : f.tables, glm::dvec3(0.0),
+                                           scene.earth.albedoRgb);
+  scene.view.GetAtmosphere().SetRefraction(refraction ? rf.refraction.Get() : nullptr);
+  scene.view.Render();
+  Frame out;
+  scene.view.ReadHdr(out.rgb, out.w, out.h);
+  return out;
+}
+
+} // namespace
+
+// A sunset seen from 2 m, the Sun's centre 0.3 degrees above the geometric horizon: with
+// refraction its disc is flattened (height / width < 0.9) and each edge is lifted by the
+// deviation of the ray through it (traced on the CPU, the refraction table's source).
+TEST(AtmosphereRender, RefractionLiftsAndFlattensTheSettingSun) {
+  const AtmosphereFixture& f = atmosphereFixture();
+  const ViewCamera cam = groundCamera(2.0, 0.5, 2.5);
+  const double sunElevationDeg = 0.3;
+  const glm::dvec3 sunDir = directionFromAngles(sunElevationDeg, 0.0);
+  const Frame bent = renderRefracted(cam, sunDir, 200, true), straight = renderRefracted(cam, sunDir, 200, false);
+  const DiscExtent d = discOf(bent), s = discOf(straight);
+  const double flattening = double(d.height()) / d.width();
+  std::printf("  disc %d x %d px with refraction (height / width %.3f), %d x %d px without\n", d.width(),
+              d.height(), flattening, s.width(), s.height());
+  EXPECT_LT(flattening, 0.9);
+  EXPECT_GT(double(s.height()) / s.width(), 0.95);
+  EXPECT_LT(d.bottom, s.bottom);  // lifted
+
+  // Each edge's apparent elevation minus the deviation of its ray is the geometric edge.
+  const atmosphere::RefractiveMedium medium =
+      atmosphere::refractiveMedium(f.model, f.model.refractivityReferenceWavelengthNm);
+  const double r = glm::length(cam.positionM), pxDeg = 2.5 / bent.h;
+  const double sunRadiusDeg = std::asin(6.957e8 / kAu) * 180.0 / kPi;
+  auto check = [&](int row, double edgeSign) {
+    const Ray ray = pixelRay(cam, bent.w, bent.h, bent.w / 2, row);
+    const double mu = glm::dot(ray.dir, glm::normalize(cam.positionM));
+    const double apparentDeg = std::asin(mu) * 180.0 / kPi;
+    const double deviationDeg = atmosphere::traceRay(medium, r, mu).deviationRad * 180.0 / kPi;
+    const double geometricDeg = apparentDeg - deviationDeg, expected = sunElevationDeg + edgeSign * sunRadiusDeg;
+    std::printf("  edge row %d: apparent %.4f deg, deviation %.4f deg, geometric %.4f deg (expected %.4f)\n", row,
+                apparentDeg, deviationDeg, geometricDeg, expected);
+    EXPECT_NEAR(geometricDeg, expected, 1.5 * pxDeg);
+  };
+  check(d.top, 1.0);
+  check(d.bottom, -1.0);
+}
+
+// A solar eclipse seen from space: the Moon's shadow on the ground survives the
+// atmosphere (the direct sunlight there is dimmed by the frame's eclipse factor), and the
+// ground far from it is as without the Moon.
+TEST(AtmosphereRender, EclipseShadowOnTheGroundThroughTheAtmosphere) {
+  const AtmosphereFixture& f = atmosphereFixture();
+  ViewCamera cam;
+  cam.positionM = {1.0e8, -2.0e7, 1.0e7};
+  cam.targetM = {0.0, 0.0, 0.0};
+  cam.up = {0.0, 0.0, 1.0};
+  cam.fovDeg = 8.0;
+  auto frameWith = [&](bool moon) {
+    AtmosphereScene scene(96, cam, directionFromAngles(0.0, 0.0));
+    std::vector<SphereBody> bodies{scene.earth};
+    if (moon) bodies.push_back({"Moon", {kMoonDistance, 0.0, 0.0}, 1.7374e6, {0.1, 0.1, 0.1}});
+    scene.view.SetBodies(scene.sun, bodies, testLutImage());
+    scene.view.GetAtmosphere().SetAtmosphere(f.model, f.tables, glm::dvec3(0.0), scene.earth.albedoRgb);
+    scene.view.SetCamera(cam);
+    scene.view.Render();
+    Frame out;
+    scene.view.ReadHdr(out.rgb, out.w, out.h);
+    return out;
+  };
+  const Frame eclipsed = frameWith(true), clear = frameWith(false);
+  // The pixel of the sub-solar point (1, 0, 0) R, and one 40 degrees north of it.
+  auto pixelOf = [&](const glm::dvec3& p) {
+    const glm::dvec3 fwd = glm::normalize(cam.targetM - cam.positionM);
+    const glm::dvec3 right = glm::normalize(glm::cross(fwd, cam.up)), up = glm::cross(right, fwd);
+    const glm::dvec3 d = glm::normalize(p - cam.positionM);
+    const double t = std::tan(0.5 * cam.fovDeg * kPi / 180.0);
+    const double x = glm::dot(d, right) / glm::dot(d, fwd) / t, y = glm::dot(d, up) / glm::dot(d, fwd) / t;
+    return std::pair<int, int>(static_cast<int>((x + 1.0) * 0.5 * eclipsed.w),
+                               static_cast<int>((1.0 - y) * 0.5 * eclipsed.h));
+  };
+  const double R = f.tables.bottomRadiusM;
+  const auto [i0, j0] = pixelOf({R, 0.0, 0.0});
+  const auto [i1, j1] = pixelOf({R * std::cos(0.7), 0.0, R * std::sin(0.7)});
+  const double inShadow = luminance(eclipsed.at(i0, j0)) / luminance(clear.at(i0, j0));
+  const double far = luminance(eclipsed.at(i1, j1)) / luminance(clear.at(i1, j1));
+  std::printf("  eclipsed / clear: %.3f at the sub-solar point, %.4f 40 degrees north\n", inShadow, far);
+  EXPECT_LT(inShadow, 0.5);
+  EXPECT_NEAR(far, 1.0, 1e-3);
+}
+
+// From the Moon's distance, the Sun exactly behind Earth (a total lunar eclipse seen from
+// the Moon), zoomed on the limb: refraction bends rays around the planet onto the Sun's
+// disc (reconstructed along the exit ray), so the ring outshines the scattered light
+// alone by far; the rays bent into the ground stay dark.
+TEST(AtmosphereRender, RefractionShowsTheSunThroughTheLimbFromTheMoon) {
+  const double b = atmosphereFixture().tables.bottomRadiusM;
+  ViewCamera cam;
+  cam.positionM = {-kMoonDistance, 0.0, 0.0};
+  const double limb = std::asin((b + 20e3) / kMoonDistance);
+  cam.targetM = cam.positionM + glm::dvec3(std::cos(limb), 0.0, std::sin(limb));
+  cam.up = {0.0, 0.0, 1.0};
+  cam.fovDeg = 0.02;  // 134 km across
+  auto brightest = [&](bool refraction) {
+    const Frame out = renderRefracted(cam, directionFromAngles(0.0, 0.0), 64, refraction);
+    double m = 0.0;
+    for (int j = 0; j < out.h; ++j) m = std::max(m, luminance(out.at(out.w / 2, j)));
+    return m;
+  };
+  const double bent = brightest(true), straight = brightest(false);
+  std::printf("  brightest limb pixel: %.4g with refraction, %.4g without (W m^-2 sr^-1)\n", bent, straight);
+  EXPECT_GT(bent, 10.0 * straight);
+}
