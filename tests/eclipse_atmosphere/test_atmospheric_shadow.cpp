@@ -4,12 +4,10 @@
 // ozone (Fig. 13), Calbuco, Mars at Phobos (Fig. 12 right), the ends u -> 0 and u -> 1,
 // and finite tables at every preset. Small tables throughout.
 #include "AtmosphericShadow.hpp"
+#include "EclipseAtmosphere.hpp"
 
 #include "Atmosphere.hpp"
 #include "PrecomputeTestSupport.hpp"
-#include "Precompute.hpp"
-#include "Refraction.hpp"
-#include "SightLines.hpp"
 #include "Spectrum.hpp"
 
 #include <gtest/gtest.h>
@@ -26,36 +24,23 @@ namespace {
 constexpr double kMoonDistanceM = 384400e3;
 constexpr double kPhobosDistanceM = 9376e3;
 
-struct Body {
-  atmosphere::Atmosphere atm;
-  atmosphere::AtmosphereTables tables;
-  atmosphere::RefractionTable refraction;
-  AtmosphericShadowModel model;
-};
-
-/// One precomputed body per atmosphere (JSON text or preset), shared by the tests.
-const Body& body(const std::string& preset, const std::string& json = {}) {
-  static std::map<std::string, std::unique_ptr<Body>> cache;
-  const std::string key = preset + json;
-  auto& slot = cache[key];
+/// One prepared atmosphere per preset (or JSON text), shared by the tests of a process.
+const eclipse::EclipseAtmosphere& body(const std::string& preset, const std::string& json = {}) {
+  static std::map<std::string, std::unique_ptr<eclipse::EclipseAtmosphere>> cache;
+  auto& slot = cache[preset + json];
   if (slot) return *slot;
-  slot = std::make_unique<Body>();
-  Body& b = *slot;
   const std::vector<double> nm = atmosphere::WavelengthSet::rgb().nm;
-  b.atm = json.empty() ? atmosphere::loadAtmosphere(preset, nm)
-                       : atmosphere::parseAtmosphere(json, "test.json", nm, atmosphere::presetDirectory());
-  atmosphere::PrecomputeOptions o = test::smallPrecomputeOptions();
-  o.refraction = true;
-  o.orders = 2;
-  b.tables = atmosphere::precompute(b.atm, o);
-  b.refraction = atmosphere::buildRefractionTable(atmosphere::refractiveMedium(b.atm, 550.0), 128, 64, 10e3);
+  const atmosphere::Atmosphere atm =
+      json.empty() ? atmosphere::loadAtmosphere(preset, nm)
+                   : atmosphere::parseAtmosphere(json, "test.json", nm, atmosphere::presetDirectory());
+  eclipse::EclipseAtmosphereOptions o;
+  o.tables = test::smallPrecomputeOptions();
+  o.tables.orders = 2;
+  o.refractionWidth = 128, o.refractionHeight = 64;
+  o.profileSamples = 2048;
   const bool mars = preset == "mars";
-  b.model.system = {eclipse::kSunRadiusM, b.atm.bottomRadiusM, mars ? 2.2794e11 : 1.496e11};
-  b.model.rays = eclipse::limbRayProfile(b.tables, &b.refraction, 2048);
-  b.model.tables = &b.tables;
-  b.model.atmosphere = &b.atm;
-  b.model.terrain = eclipse::defaultTerrain(mars ? "mars" : "earth");
-  return b;
+  slot = eclipse::prepareEclipseAtmosphere(atm, mars ? "mars" : "earth", mars ? 2.2794e11 : 1.496e11, o);
+  return *slot;
 }
 
 eclipse::LimbViewParams smallLimb() { return {64, 128, 8, 16}; }
