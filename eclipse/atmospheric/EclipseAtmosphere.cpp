@@ -7,14 +7,6 @@
 #include <stdexcept>
 
 namespace umbra::eclipse {
-namespace {
-std::string number(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-} // namespace
 
 std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::Atmosphere& atm,
                                                             const std::string& occluderName,
@@ -51,26 +43,30 @@ std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::At
   return e;
 }
 
-std::map<std::string, std::string> eclipseAtmosphereParameters(const EclipseAtmosphere& e,
+std::map<std::string, std::string> eclipseAtmosphereParameters(const atmosphere::Atmosphere& atm,
+                                                               const std::string& occluderName,
+                                                               double sunOccluderDistanceM,
                                                                const EclipseAtmosphereOptions& o) {
-  std::map<std::string, std::string> p = atmosphere::atmosphereParameters(e.atmosphere);
-  const atmosphere::PrecomputeOptions& t = e.tables.options;
+  std::map<std::string, std::string> p = atmosphere::atmosphereParameters(atm);
+  const atmosphere::PrecomputeOptions& t = o.tables;
   std::ostringstream s;
   s << t.transmittanceWidth << "x" << t.transmittanceHeight << " " << t.scatteringR << "," << t.scatteringMu << ","
     << t.scatteringMuS << "," << t.scatteringNu << " " << t.irradianceWidth << "x" << t.irradianceHeight << " orders "
     << t.orders << " samples " << t.transmittanceSamples << " " << t.singleScatteringSamples << " "
     << t.multipleScatteringSamples << " " << t.opticalDepthSubsamples << " " << t.sphereSamples << " "
-    << t.irradianceSamples << " muSMin " << number(t.muSMin) << " sun " << number(t.sunAngularRadiusRad);
+    << t.irradianceSamples << " muSMin " << atmosphere::formatNumber(t.muSMin) << " sun "
+    << atmosphere::formatNumber(t.sunAngularRadiusRad);
   p["atmosphereTables"] = s.str();
   p["refraction"] = o.refraction ? std::to_string(o.refractionWidth) + "x" + std::to_string(o.refractionHeight) +
-                                       " step " + number(o.refractionStepM)
+                                       " step " + atmosphere::formatNumber(o.refractionStepM)
                                  : "off";
   p["profileSamples"] = std::to_string(o.profileSamples);
-  p["terrainMeanElevationM"] = number(e.model.terrain.meanElevationM);
-  p["sunRadiusM"] = number(e.model.system.sunRadiusM);
-  p["occluderRadiusM"] = number(e.model.system.occluderRadiusM);
-  p["sunOccluderDistanceM"] = number(e.model.system.sunOccluderDistanceM);
-  p["limbDarkening"] = number(e.model.limbDarkening);
+  const double terrain =
+      o.terrainMeanElevationM >= 0.0 ? o.terrainMeanElevationM : defaultTerrain(occluderName).meanElevationM;
+  p["terrainMeanElevationM"] = atmosphere::formatNumber(terrain);
+  p["sunRadiusM"] = atmosphere::formatNumber(kSunRadiusM);
+  p["occluderRadiusM"] = atmosphere::formatNumber(atm.bottomRadiusM);
+  p["sunOccluderDistanceM"] = atmosphere::formatNumber(sunOccluderDistanceM);
   return p;
 }
 

@@ -50,8 +50,11 @@ std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::At
                                                             const EclipseAtmosphereOptions& options,
                                                             const EclipseProgress& progress = {});
 
-/// Every parameter that changes the tables' values (for headers and cache keys).
-std::map<std::string, std::string> eclipseAtmosphereParameters(const EclipseAtmosphere& prepared,
+/// Every parameter that changes the prepared model's values, known before preparing it
+/// (for headers and cache keys): the atmosphere's, the options', the bodies'.
+std::map<std::string, std::string> eclipseAtmosphereParameters(const atmosphere::Atmosphere& atm,
+                                                               const std::string& occluderName,
+                                                               double sunOccluderDistanceM,
                                                                const EclipseAtmosphereOptions& options);
 
 } // namespace umbra::eclipse

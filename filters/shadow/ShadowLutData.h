@@ -19,6 +19,9 @@ namespace umbra::filters {
 inline constexpr const char* kShadowLutArrayName = "I_over_Isun";
 /// `kind` of the airless shadow LuT in the table cache and the EXR header.
 inline constexpr const char* kAirlessShadowLutKind = "eclipse-shadow-airless";
+/// `kind` of the atmospheric shadow LuT and of the limb-luminance LuT.
+inline constexpr const char* kAtmosphereShadowLutKind = "eclipse-shadow-atmosphere";
+inline constexpr const char* kLimbLuminanceLutKind = "eclipse-limb-luminance";
 
 /// Shortest decimal text that reads back as the same double (for headers and keys).
 std::string formatNumber(double x);
