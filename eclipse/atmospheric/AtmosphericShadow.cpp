@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <stdexcept>
 
@@ -192,7 +193,9 @@ double TerrainModel::transmission(double contactAltitudeM) const {
 
 TerrainModel defaultTerrain(const std::string& occluderName) {
   TerrainModel t;
-  if (occluderName == "earth") t.meanElevationM = 240.0;
+  std::string name = occluderName;
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (name == "earth") t.meanElevationM = 240.0;
   return t;
 }
 

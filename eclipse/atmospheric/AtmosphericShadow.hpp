@@ -50,7 +50,7 @@ struct TerrainModel {
   double meanElevationM = 0.0;
   double transmission(double contactAltitudeM) const;
 };
-/// Earth 240 m; other bodies 0 (configurable).
+/// Earth 240 m; other bodies 0 (configurable). The name in any case ("Earth", "earth").
 TerrainModel defaultTerrain(const std::string& occluderName);
 
 /// Optics of a ray crossing the atmosphere with impact parameter b, at `samples` values of b
