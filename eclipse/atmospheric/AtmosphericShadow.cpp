@@ -21,11 +21,12 @@ double sq(double x) { return x * x; }
 /// cos(a) - cos(b) without cancellation.
 double cosDifference(double a, double b) { return 2.0 * std::sin(0.5 * (a + b)) * std::sin(0.5 * (b - a)); }
 
-/// Gauss-Legendre nodes and weights on [0, 1], 12 points.
+/// Gauss-Legendre nodes and weights on [0, 1], N points.
+template <int N>
 struct GaussLegendre {
-  std::array<double, 12> x{}, w{};
+  std::array<double, N> x{}, w{};
   GaussLegendre() {
-    const int n = 12;
+    const int n = N;
     for (int i = 0; i < n; ++i) {
       double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 0.0;
       for (int it = 0; it < 100; ++it) {
@@ -44,8 +45,9 @@ struct GaussLegendre {
     }
   }
 };
-const GaussLegendre& gaussLegendre() {
-  static const GaussLegendre g;
+template <int N>
+const GaussLegendre<N>& gaussLegendre() {
+  static const GaussLegendre<N> g;
   return g;
 }
 
@@ -65,11 +67,13 @@ struct SunRow {
     return limbDarkenedLuminance(std::sqrt(rho2), limbDarkening) * std::max(cosine, 0.0);
   }
   /// Integral of the integrand over [a, b] inside the chord (the substitution
-  /// beta = a + (b - a)(1 - cos t) / 2 smooths the square roots at the disc's edge).
+  /// beta = a + (b - a)(1 - cos t) / 2 smooths the square roots at the disc's edge), with
+  /// N Gauss-Legendre points (12 for a whole chord, 4 for a pixel's part of it).
+  template <int N>
   double integral(double a, double b) const {
     a = std::max(a, betaBegin), b = std::min(b, betaEnd);
     if (b <= a) return 0.0;
-    const GaussLegendre& g = gaussLegendre();
+    const GaussLegendre<N>& g = gaussLegendre<N>();
     double sum = 0.0;
     for (std::size_t i = 0; i < g.x.size(); ++i) {
       const double t = kPi * g.x[i];
@@ -359,7 +363,7 @@ LimbView renderLimbView(const AtmosphericShadowModel& m, const LimbPosition& p, 
     const int j1 = std::min(C - 1, static_cast<int>(row.betaEnd / dBeta));
     for (int j = j0; j <= j1; ++j) {
       // The mean over the pixel's beta range; the cosine is divided back out (radiance).
-      const double mean = row.integral(j * dBeta, (j + 1) * dBeta) / dBeta;
+      const double mean = row.integral<4>(j * dBeta, (j + 1) * dBeta) / dBeta;
       const double beta = (j + 0.5) * dBeta;
       const double cosine = row.cosTheta * row.cosDelta + row.sinTheta * row.sinDelta * std::cos(beta);
       const double L = mean / std::max(cosine, 1e-12);
@@ -394,7 +398,7 @@ Illuminance illuminanceAt(const AtmosphericShadowModel& m, const LimbPosition& p
     for (int i = 0; i < params.rows; ++i) {
       const SunRow row = sunThroughRow(m, p, g, i, T.data());
       if (row.empty()) continue;
-      const double e = 2.0 * g.solidAnglePerBeta[i] * row.integral(row.betaBegin, row.betaEnd);
+      const double e = 2.0 * g.solidAnglePerBeta[i] * row.integral<12>(row.betaBegin, row.betaEnd);
       for (int c = 0; c < nc; ++c) I.indirect[c] += e * T[c];
     }
   }
