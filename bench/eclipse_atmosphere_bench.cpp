@@ -42,7 +42,7 @@ double timed(const F& f) {
   return seconds(t0);
 }
 
-constexpr double kMoonM = 384400e3;
+double kMoonM = 384400e3;  // the profile's distance (--distance)
 
 struct Reference {
   std::vector<double> offsetsM;
@@ -103,18 +103,25 @@ int main(int argc, char** argv) {
   std::vector<std::string> sections{"set", "scaling", "extent", "error"};
   std::string preset = "earth";
   int points = 41, referenceRows = 2048;
+  double distanceKm = 384400.0, sunDistanceM = 1.496e11;
+  std::vector<int> lutSizes{64, 128, 256};
   app.add_option("--sections", sections, "Which parts to run")->delimiter(',');
   app.add_option("--atmosphere", preset, "Atmosphere preset")->capture_default_str();
   app.add_option("--profile-points", points, "Points of the error profile")->capture_default_str();
   app.add_option("--reference-limb", referenceRows, "Rows and columns of the reference limb views")->capture_default_str();
+  app.add_option("--distance-km", distanceKm, "Distance of the error profile behind the occluder")->capture_default_str();
+  app.add_option("--sun-distance-m", sunDistanceM, "Sun-occluder distance")->capture_default_str();
+  app.add_option("--lut-sizes", lutSizes, "Shadow-LuT sizes of the error section")->delimiter(',');
   CLI11_PARSE(app, argc, argv);
+  kMoonM = distanceKm * 1e3;
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // lines as they come, also into a file
   const std::set<std::string> run(sections.begin(), sections.end());
   std::printf("threads: %d\n\n", omp_get_max_threads());
 
   const atmosphere::Atmosphere atm = atmosphere::loadAtmosphere(preset, atmosphere::WavelengthSet::rgb().nm);
   const eclipse::EclipseAtmosphereOptions options;  // defaults: 4 orders, refraction 512 x 256, 10 km
   std::unique_ptr<eclipse::EclipseAtmosphere> set;
-  const double tablesS = timed([&] { set = eclipse::prepareEclipseAtmosphere(atm, preset, 1.496e11, options); });
+  const double tablesS = timed([&] { set = eclipse::prepareEclipseAtmosphere(atm, preset, sunDistanceM, options); });
   const AtmosphericShadowModel& m = set->model;
   eclipse::ShadowLut lut256;
 
@@ -125,7 +132,7 @@ int main(int argc, char** argv) {
     const double limbS = timed([&] { eclipse::buildLimbLuminanceLut(m, lp); });
     std::printf("## complete %s set\n\n| stage | seconds |\n|---|---|\n", preset.c_str());
     std::printf("| atmosphere tables (3 wavelengths, 4 orders, refracted paths) + refraction table 512x256 + ray profile | %.1f |\n", tablesS);
-    std::printf("| shadow LuT 256^2 (limb views 256^2, scattering 32^2 cells) | %.1f |\n", shadowS);
+    std::printf("| shadow LuT 256^2 (limb views 256^2, scattering 16^2 cells) | %.1f |\n", shadowS);
     std::printf("| limb-luminance LuT 64x64x64 (views 64x256) | %.1f |\n", limbS);
     std::printf("| **total** | **%.1f** |\n\n", tablesS + shadowS + limbS);
   }
@@ -135,7 +142,7 @@ int main(int argc, char** argv) {
     for (int n : {32, 64, 128}) {
       eclipse::AtmosphericShadowLutParams sp;
       sp.width = sp.height = n;
-      std::printf("| shadow LuT (limb 256^2, cells 32^2) | %d^2 | %.2f |\n", n, timed([&] { eclipse::buildAtmosphericShadowLut(m, sp); }));
+      std::printf("| shadow LuT (limb 256^2, cells 16^2) | %d^2 | %.2f |\n", n, timed([&] { eclipse::buildAtmosphericShadowLut(m, sp); }));
     }
     for (int rows : {64, 128, 256, 512}) {
       eclipse::AtmosphericShadowLutParams sp;
@@ -190,11 +197,11 @@ int main(int argc, char** argv) {
     ref.rays = eclipse::limbRayProfile(set->tables, &fine, 16384);
     Reference r;
     const double refS = timed([&] { r = reference(ref, points, referenceRows); });
-    std::printf("## error against the brute-force reference\n\nreference: deviation table 1024x512 at 2.5 km "
-                "(%.0f s), limb views %dx%d with 128^2 scattering cells, %d points (%.0f s)\n\n",
-                fineS, referenceRows, referenceRows, points, refS);
+    std::printf("## error against the brute-force reference (%s, %.0f km)\n\nreference: deviation table 1024x512 at 2.5 km "
+                "(%.0f s), limb views %dx%d with 128^2 scattering cells, %d points (%.1f s)\n\n",
+                preset.c_str(), distanceKm, fineS, referenceRows, referenceRows, points, refS);
     std::printf("| what | setting | seconds | max rel. error R,G | max rel. error luminance |\n|---|---|---|---|---|\n");
-    for (int n : {64, 128, 256}) {
+    for (int n : lutSizes) {
       eclipse::ShadowLut lut;
       double s = 0.0;
       eclipse::AtmosphericShadowLutParams sp;
@@ -205,7 +212,7 @@ int main(int argc, char** argv) {
       std::printf("| shadow LuT (sampled) | %d^2 | %s | %.2e | %.2e |\n", n, s > 0 ? std::to_string(s).substr(0, 5).c_str() : "(set)", e.rg, e.luminance);
     }
     for (int rows : {32, 64, 128, 256, 512}) {
-      eclipse::LimbViewParams limb{rows, rows, 32, 32};
+      eclipse::LimbViewParams limb{rows, rows, 16, 16};
       std::vector<glm::dvec3> v;
       const double s = timed([&] { v = direct(m, r, limb); });
       const Errors e = compare(r, v);
@@ -216,16 +223,22 @@ int main(int argc, char** argv) {
       const Errors e = compare(r, direct(m, r, limb));
       std::printf("| scattering cells (direct) | %d^2 | - | %.2e | %.2e |\n", cells, e.rg, e.luminance);
     }
-    for (double step : {40e3, 20e3, 10e3, 5e3}) {
+    struct Refraction {
+      int w, h;
+      double step;
+    };
+    for (const Refraction& q : {Refraction{512, 256, 40e3}, Refraction{512, 256, 20e3}, Refraction{512, 256, 5e3},
+                                Refraction{256, 128, 10e3}, Refraction{1024, 512, 10e3}}) {
       atmosphere::RefractionTable t;
       const double s = timed([&] {
         t = atmosphere::buildRefractionTable(atmosphere::refractiveMedium(atm, atm.refractivityReferenceWavelengthNm),
-                                             512, 256, step);
+                                             q.w, q.h, q.step);
       });
       AtmosphericShadowModel mm = m;
       mm.rays = eclipse::limbRayProfile(set->tables, &t, 4096);
-      const Errors e = compare(r, direct(mm, r, {256, 256, 32, 32}));
-      std::printf("| refraction step (table 512x256, direct) | %.0f km | %.1f | %.2e | %.2e |\n", step / 1e3, s, e.rg, e.luminance);
+      const Errors e = compare(r, direct(mm, r, {256, 256, 16, 16}));
+      std::printf("| deviation table (direct, limb 256^2) | %dx%d, %.0f km | %.1f | %.2e | %.2e |\n", q.w, q.h, q.step / 1e3, s,
+                  e.rg, e.luminance);
     }
     std::printf("\n");
   }

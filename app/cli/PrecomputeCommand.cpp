@@ -103,7 +103,6 @@ void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action) {
       limb->SetColumns(o->limbLutSize);
       limb->SetLayers(o->layers);
       limb->SetLimbRows(o->atmosphere.limbSize);
-      limb->SetScatteringCells(o->atmosphere.scatteringCells);
       updateEclipseSource(limb, "limb-luminance LuT", o->cache);
 
       const bool created = !fs::exists(dir, ec);

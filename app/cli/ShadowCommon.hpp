@@ -42,7 +42,7 @@ double lengthOption(const std::string& option, const std::string& text);
 struct EclipseAtmosphereChoice {
   std::string atmosphere;  ///< empty: airless
   int limbSize = 256;
-  int scatteringCells = 32;
+  int scatteringCells = 16;  ///< of the shadow LuT's limb views (the limb-luminance LuT keeps 32)
   int orders = 4;
   bool draftTables = false;
   void addTo(CLI::App* command);

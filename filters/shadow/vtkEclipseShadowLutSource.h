@@ -39,7 +39,7 @@ public:
   vtkGetMacro(RelativeTolerance, double);
 
   /// Limb views (atmosphere only): rows = columns = LimbSize (default 256), the in-scattered
-  /// light on ScatteringCells x ScatteringCells cells (default 32).
+  /// light on ScatteringCells x ScatteringCells cells (default 16).
   vtkSetClampMacro(LimbSize, int, 1, 65536);
   vtkGetMacro(LimbSize, int);
   vtkSetClampMacro(ScatteringCells, int, 1, 65536);
@@ -60,7 +60,7 @@ private:
   double LimbDarkening = 0.6;
   double RelativeTolerance = 1e-10;
   int LimbSize = 256;
-  int ScatteringCells = 32;
+  int ScatteringCells = 16;
 
   int RequestAtmospheric(vtkInformation* outInfo, vtkImageData* output);
 };
