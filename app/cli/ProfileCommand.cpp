@@ -95,7 +95,6 @@ void addProfileCommand(CLI::App& app, Action& action) {
       }
       const bool withAtmosphere = !o->atmosphere.atmosphere.empty();
       if (withAtmosphere && o->noAtmosphere) throw CommandError("--atmosphere and --no-atmosphere exclude each other");
-      if (withAtmosphere && o->exact) throw CommandError("--exact: only for an airless occluder (the atmospheric LuT is sampled)");
       if (withAtmosphere && !o->lut.empty()) throw CommandError("--lut and --atmosphere exclude each other");
       if (withAtmosphere) occ.radiusM = o->atmosphere.bottomRadiusM();
       if (occ.hasAtmosphere && !o->noAtmosphere && !withAtmosphere)
@@ -103,8 +102,11 @@ void addProfileCommand(CLI::App& app, Action& action) {
                   << "atmosphere (--no-atmosphere silences this note)\n";
 
       vtkNew<vtkShadowProfileFilter> filter;
+      vtkSmartPointer<vtkTable> exactAtmospheric;  // --exact --atmosphere: computed point by point
       vtkSmartPointer<vtkEclipseShadowLutSource> lut;  // exact mode needs none
-      if (!o->lut.empty() && !o->exact) {
+      if (withAtmosphere && o->exact) {
+        exactAtmospheric = atmosphericProfile(o->atmosphere, occ, distanceM, maxOffsetM, o->samples, o->limbDarkening);
+      } else if (!o->lut.empty() && !o->exact) {
         filter->SetInputData(readShadowLut(o->lut));
       } else if (!o->exact) {
         lut = updateShadowLut(o->size, o->limbDarkening, o->cache, &occ, &o->atmosphere);
@@ -118,8 +120,8 @@ void addProfileCommand(CLI::App& app, Action& action) {
       filter->SetSamples(o->samples);
       filter->SetExact(o->exact);
       filter->SetLimbDarkening(o->limbDarkening);
-      filter->Update();
-      vtkTable* table = filter->GetOutput();
+      if (!exactAtmospheric) filter->Update();
+      vtkTable* table = exactAtmospheric ? exactAtmospheric.Get() : filter->GetOutput();
       if (table->GetNumberOfRows() != o->samples) throw CommandError("the shadow profile could not be computed");
 
       plot::writeProfileCsv(table, o->csv);

@@ -7,6 +7,7 @@
 #include "scene/Time.hpp"
 #include "scene/Units.hpp"
 #include "Atmosphere.hpp"
+#include "EclipseAtmosphere.hpp"
 #include "Spectrum.hpp"
 #include "vtkEclipseShadowLutSource.h"
 
@@ -14,6 +15,7 @@
 #include <vtkCommand.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkTable.h>
 
 #include <iostream>
 
@@ -114,6 +116,31 @@ void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& 
     std::cerr << "cached: " << source->GetCachePath() << "\n";
   if (!source->GetCacheWarning().empty())
     std::cerr << "umbra: warning: could not cache the table: " << source->GetCacheWarning() << "\n";
+}
+
+vtkSmartPointer<vtkTable> atmosphericProfile(const EclipseAtmosphereChoice& atmosphere, const OccluderChoice& occ,
+                                             double distanceM, double maxOffsetM, int samples, double limbDarkening) {
+  auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
+  atmosphere.configure(source, occ);
+  ProgressLine progress("atmosphere tables " + atmosphere.atmosphere);
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&progress);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
+    static_cast<ProgressLine*>(client)->update(*static_cast<double*>(data));
+  });
+  source->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  std::shared_ptr<const eclipse::EclipseAtmosphere> prepared;
+  try {
+    prepared = source->GetPreparedAtmosphere();
+  } catch (const std::exception& e) {
+    throw CommandError(std::string("--atmosphere: ") + e.what());
+  }
+  eclipse::AtmosphericShadowModel model = prepared->model;
+  model.limbDarkening = limbDarkening;
+  if (!(maxOffsetM > 0.0)) maxOffsetM = 1.25 * eclipse::shadowConeRadii(model.system, distanceM).penumbraRadiusM;
+  const eclipse::LimbViewParams limb{atmosphere.limbSize, atmosphere.limbSize, atmosphere.scatteringCells,
+                                     atmosphere.scatteringCells};
+  return filters::profileTable(eclipse::atmosphericShadowProfile(model, distanceM, maxOffsetM, samples, nullptr, limb));
 }
 
 vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limbDarkening, const CacheOptions& cache,

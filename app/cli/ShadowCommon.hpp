@@ -11,6 +11,7 @@
 class vtkEclipseAtmosphereSource;
 class vtkEclipseShadowLutSource;
 class vtkImageData;
+class vtkTable;
 
 namespace umbra::cli {
 
@@ -61,6 +62,12 @@ void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& 
 vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limbDarkening, const CacheOptions& cache,
                                                            const OccluderChoice* occluder = nullptr,
                                                            const EclipseAtmosphereChoice* atmosphere = nullptr);
+
+/// The shadow's cross-section through an atmosphere computed directly at every sample
+/// (no LuT; limb views of atmosphere.limbSize rows): the columns of vtkShadowProfileFilter.
+/// maxOffsetM 0: 1.25 x the penumbra's radius.
+vtkSmartPointer<vtkTable> atmosphericProfile(const EclipseAtmosphereChoice& atmosphere, const OccluderChoice& occluder,
+                                             double distanceM, double maxOffsetM, int samples, double limbDarkening);
 
 /// `umbra precompute eclipse` (PrecomputeCommand.cpp).
 void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action);

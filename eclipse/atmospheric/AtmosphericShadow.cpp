@@ -325,11 +325,10 @@ std::vector<ProfileSample> atmosphericShadowProfile(const AtmosphericShadowModel
     s.offsetM = maxOffsetM * k / (samples - 1);
     const LimbPosition p = limbPositionBehind(m, distanceBehindM, s.offsetM);
     const LutCoords c = lutCoordsOf(p);
-    if (c.v >= 1.0) {
-      s.rgb = glm::dvec3(1.0);
-    } else if (lut) {
-      s.rgb = lut->sample(c);
-    } else {
+    if (lut) {
+      // The LuT ends at v = 1 (the solid body's penumbra), as the renderer reads it.
+      s.rgb = c.v >= 1.0 ? glm::dvec3(1.0) : lut->sample(c);
+    } else {  // directly: also past v = 1, where the atmosphere still dims the Sun
       const std::vector<double> t = illuminanceAt(m, p, limb).total();
       s.rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
     }

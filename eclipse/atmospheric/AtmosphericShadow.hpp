@@ -147,8 +147,9 @@ Illuminance illuminanceAt(const AtmosphericShadowModel& model, const LimbPositio
                           const LimbViewParams& params);
 
 /// Cross-section of the shadow `distanceBehindM` behind the occluder, offsets 0 to
-/// `maxOffsetM` in `samples` samples (>= 2): sampled from `lut` (bilinear, as the renderer)
-/// or, without it, computed directly at each point (illuminanceAt with `limb`).
+/// `maxOffsetM` in `samples` samples (>= 2): sampled from `lut` (bilinear, as the renderer;
+/// 1 past v = 1) or, without it, computed directly at each point (illuminanceAt with
+/// `limb`; past v = 1 too, where the ring of the atmosphere still covers part of the Sun).
 std::vector<ProfileSample> atmosphericShadowProfile(const AtmosphericShadowModel& model, double distanceBehindM,
                                                     double maxOffsetM, int samples, const ShadowLut* lut,
                                                     const LimbViewParams& limb = {});

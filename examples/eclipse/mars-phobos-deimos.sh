@@ -5,6 +5,7 @@
 source "$(dirname "$0")/common.sh"
 for moon in phobos:9376km deimos:23463km; do
   name="${moon%%:*}" distance="${moon#*:}"
-  "$UMBRA" profile shadow --occluder mars --atmosphere mars --distance "$distance" \
+  # --exact: the moons sit in the first texels of the LuT's u axis (docs/accuracy-vs-speed.md).
+  "$UMBRA" profile shadow --occluder mars --atmosphere mars --distance "$distance" --exact \
     --csv "$out/mars-shadow-$name.csv" --plot "$out/mars-shadow-$name.svg" "${extra[@]}"
 done

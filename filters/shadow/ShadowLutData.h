@@ -11,6 +11,7 @@
 #include <string>
 
 class vtkImageData;
+class vtkTable;
 namespace umbra::tables { struct Table; }
 
 namespace umbra::filters {
@@ -39,6 +40,9 @@ eclipse::ShadowLut fromTable(const tables::Table& table, const std::string& orig
 vtkSmartPointer<vtkImageData> toImageData(const eclipse::ShadowLut& lut);
 /// Throws std::runtime_error if the image is not a 2D float RGB LuT.
 eclipse::ShadowLut fromImageData(vtkImageData* image);
+
+/// A shadow profile as a table: columns offset_km, r, g, b, luminance.
+vtkSmartPointer<vtkTable> profileTable(const std::vector<eclipse::ProfileSample>& samples);
 
 
 } // namespace umbra::filters

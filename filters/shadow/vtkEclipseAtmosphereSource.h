@@ -68,6 +68,13 @@ public:
   vtkGetMacro(UseCache, bool);
   vtkBooleanMacro(UseCache, bool);
 
+  /// The prepared atmosphere (tables, deviation table, the shadow model), made now if
+  /// needed, with progress events; for computations outside the tables, e.g. a profile
+  /// computed directly. Throws on a bad atmosphere or options.
+  std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> GetPreparedAtmosphere() {
+    return this->PrepareAtmosphere(0.0, 1.0);
+  }
+
   /// After an update: whether the table came from the cache, and the cache file's path.
   bool GetLastUpdateWasCacheHit() const { return this->LastCacheHit; }
   const std::string& GetCachePath() const { return this->CachePath; }
