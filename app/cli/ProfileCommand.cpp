@@ -1,5 +1,7 @@
 // umbra profile shadow (--occluder BODY --distance 384400km | --scene FILE [--time T]) [--samples N] [--exact]
-//                      --csv FILE [--plot FILE]
+//                      [--atmosphere PRESET [--limb-size N] [--draft-tables]] --csv FILE [--plot FILE]
+// With --atmosphere the LuT is the atmospheric one and the plot is log-scale I/I_sun with
+// the umbra's and the penumbra's edges marked (the eclipse paper's Figure 12).
 #include "Commands.hpp"
 #include "OutputFile.hpp"
 #include "ProfileExport.hpp"
@@ -29,8 +31,9 @@ void addProfileCommand(CLI::App& app, Action& action) {
   struct Options {
     std::string occluder, distance, sunDistance, occluderRadius, maxOffset, csv, plot, lut, scene, time;
     int samples = 1001, size = 256;
-    bool noAtmosphere = false, exact = false;
+    bool noAtmosphere = false, exact = false, logPlot = false;
     double limbDarkening = 0.6;
+    EclipseAtmosphereChoice atmosphere;
     CacheOptions cache;
   };
   auto o = std::make_shared<Options>();
@@ -51,7 +54,9 @@ void addProfileCommand(CLI::App& app, Action& action) {
   CLI::Option* size = shadow->add_option("--size", o->size, "Texels along u and v of the shadow LuT (with --scene: the scene's)")->capture_default_str()->check(CLI::Range(8, 4096));
   shadow->add_option("--limb-darkening", o->limbDarkening, "Linear limb-darkening coefficient of the Sun (Eq. 1)")
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
-  shadow->add_flag("--no-atmosphere", o->noAtmosphere, "Treat the occluder as airless (the only model so far)");
+  shadow->add_flag("--no-atmosphere", o->noAtmosphere, "Treat the occluder as airless (the default without --atmosphere)");
+  shadow->add_flag("--log", o->logPlot, "Log-scale plot with the umbra's and penumbra's edges (default with --atmosphere)");
+  o->atmosphere.addTo(shadow);
   shadow->add_option("--lut", o->lut, "Read the shadow LuT from this EXR (from 'umbra precompute shadow') instead of building it")
       ->check(CLI::ExistingFile);
   shadow->add_flag("--exact", o->exact, "Compute every sample directly instead of through the LuT");
@@ -88,16 +93,23 @@ void addProfileCommand(CLI::App& app, Action& action) {
         maxOffsetM = lengthOption("--max-offset", o->maxOffset);
         if (!(maxOffsetM > 0.0)) throw CommandError("--max-offset: expected a positive length, got " + o->maxOffset);
       }
-      if (occ.hasAtmosphere && !o->noAtmosphere)
-        std::cerr << "note: " << occ.name << "'s atmosphere is not modelled yet; this is the shadow of an airless "
-                  << occ.name << " (--no-atmosphere silences this note)\n";
+      const bool withAtmosphere = !o->atmosphere.atmosphere.empty();
+      if (withAtmosphere && o->noAtmosphere) throw CommandError("--atmosphere and --no-atmosphere exclude each other");
+      if (withAtmosphere && !o->lut.empty()) throw CommandError("--lut and --atmosphere exclude each other");
+      if (withAtmosphere) occ.radiusM = o->atmosphere.bottomRadiusM();
+      if (occ.hasAtmosphere && !o->noAtmosphere && !withAtmosphere)
+        std::cerr << "note: this is the shadow of an airless " << occ.name << "; --atmosphere PRESET adds its "
+                  << "atmosphere (--no-atmosphere silences this note)\n";
 
       vtkNew<vtkShadowProfileFilter> filter;
+      vtkSmartPointer<vtkTable> exactAtmospheric;  // --exact --atmosphere: computed point by point
       vtkSmartPointer<vtkEclipseShadowLutSource> lut;  // exact mode needs none
-      if (!o->lut.empty() && !o->exact) {
+      if (withAtmosphere && o->exact) {
+        exactAtmospheric = atmosphericProfile(o->atmosphere, occ, distanceM, maxOffsetM, o->samples, o->limbDarkening);
+      } else if (!o->lut.empty() && !o->exact) {
         filter->SetInputData(readShadowLut(o->lut));
       } else if (!o->exact) {
-        lut = updateShadowLut(o->size, o->limbDarkening, o->cache, &occ);
+        lut = updateShadowLut(o->size, o->limbDarkening, o->cache, &occ, &o->atmosphere);
         filter->SetInputConnection(lut->GetOutputPort());
       }
       filter->SetSunRadiusM(sunRadiusM);
@@ -108,18 +120,29 @@ void addProfileCommand(CLI::App& app, Action& action) {
       filter->SetSamples(o->samples);
       filter->SetExact(o->exact);
       filter->SetLimbDarkening(o->limbDarkening);
-      filter->Update();
-      vtkTable* table = filter->GetOutput();
+      if (!exactAtmospheric) filter->Update();
+      vtkTable* table = exactAtmospheric ? exactAtmospheric.Get() : filter->GetOutput();
       if (table->GetNumberOfRows() != o->samples) throw CommandError("the shadow profile could not be computed");
 
       plot::writeProfileCsv(table, o->csv);
       std::cout << "wrote " << o->csv << "\n";
-      if (!o->plot.empty()) {
-        plot::writeProfilePlot(table, o->plot, occ.name + "'s shadow at " + where + (o->exact ? " (exact)" : ""));
-        std::cout << "wrote " << o->plot << "\n";
-      }
       const eclipse::ShadowConeRadii r =
           eclipse::shadowConeRadii({sunRadiusM, occ.radiusM, occ.sunDistanceM}, distanceM);
+      if (!o->plot.empty()) {
+        plot::ProfilePlotStyle style;
+        style.logScale = o->logPlot || withAtmosphere;
+        if (style.logScale) {
+          style.markersKm.emplace_back(std::max(r.umbraRadiusM, r.antumbraRadiusM) / 1e3,
+                                       r.antumbraRadiusM > 0.0 ? "antumbra" : "umbra");
+          style.markersKm.emplace_back(r.penumbraRadiusM / 1e3, "penumbra");
+        }
+        plot::writeProfilePlot(table, o->plot,
+                               occ.name + "'s shadow at " + where +
+                                   (withAtmosphere ? " through " + o->atmosphere.atmosphere : "") +
+                                   (o->exact ? " (exact)" : ""),
+                               style);
+        std::cout << "wrote " << o->plot << "\n";
+      }
       std::cout << std::fixed << std::setprecision(1) << "geometric radii at " << where << ": "
                 << (r.antumbraRadiusM > 0.0 ? "antumbra " : "umbra ") << std::max(r.umbraRadiusM, r.antumbraRadiusM) / 1e3
                 << " km, penumbra " << r.penumbraRadiusM / 1e3 << " km\n";

@@ -6,12 +6,16 @@
 #include "scene/Scene.hpp"
 #include "scene/Time.hpp"
 #include "scene/Units.hpp"
+#include "Atmosphere.hpp"
+#include "EclipseAtmosphere.hpp"
+#include "Spectrum.hpp"
 #include "vtkEclipseShadowLutSource.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkTable.h>
 
 #include <iostream>
 
@@ -55,8 +59,93 @@ OccluderChoice chooseOccluder(const std::string& name, const std::string& radius
   return c;
 }
 
+void EclipseAtmosphereChoice::addTo(CLI::App* command) {
+  command->add_option("--atmosphere", atmosphere,
+                      "The occluder's atmosphere: a preset (earth, earth-2015-calbuco, mars) or a JSON file; "
+                      "refracted and scattered light then reach into the shadow");
+  command->add_option("--limb-size", limbSize, "Rows and columns of the limb view rendered per shadow-LuT texel")
+      ->capture_default_str()->check(CLI::Range(4, 4096));
+  command->add_option("--scattering-cells", scatteringCells,
+                      "Cells (a side) of a limb view on which the in-scattered light is sampled")
+      ->capture_default_str()->check(CLI::Range(1, 1024));
+  command->add_option("--orders", orders, "Scattering orders of the atmosphere tables")
+      ->capture_default_str()->check(CLI::Range(1, 64));
+  command->add_flag("--draft-tables", draftTables,
+                    "Small atmosphere tables (transmittance 64x16, scattering 8,32,8,4, irradiance 16x4, "
+                    "refraction 128x64): seconds instead of minutes, for quick looks and tests");
+}
+
+double EclipseAtmosphereChoice::bottomRadiusM() const {
+  try {
+    return atmosphere::loadAtmosphere(atmosphere, atmosphere::WavelengthSet::rgb().nm).bottomRadiusM;
+  } catch (const std::exception& e) {
+    throw CommandError(std::string("--atmosphere: ") + e.what());
+  }
+}
+
+void EclipseAtmosphereChoice::configure(vtkEclipseAtmosphereSource* source, const OccluderChoice& occ) const {
+  source->SetOccluderName(occ.name.c_str());
+  source->SetOccluderRadiusM(occ.radiusM);
+  source->SetSunOccluderDistanceM(occ.sunDistanceM);
+  source->SetAtmosphere(atmosphere.c_str());
+  source->SetOrders(orders);
+  if (draftTables) {
+    source->SetTransmittanceSize(64, 16);
+    source->SetScatteringSize(8, 32, 8, 4);
+    source->SetIrradianceSize(16, 4);
+    source->SetRefractionSize(128, 64);
+  }
+}
+
+void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& what, const CacheOptions& cache) {
+  source->SetCacheDirectory(cache.directory.c_str());
+  source->SetUseCache(!cache.disabled);
+  ProgressLine progress(what);
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&progress);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
+    static_cast<ProgressLine*>(client)->update(*static_cast<double*>(data));
+  });
+  source->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  source->Update();
+  source->RemoveObserver(onProgress);
+  if (source->GetOutput()->GetNumberOfPoints() == 0) throw CommandError("the " + what + " could not be computed");
+  if (source->GetLastUpdateWasCacheHit())
+    std::cerr << "cache hit: " << source->GetCachePath() << "\n";
+  else if (!cache.disabled && source->GetCacheWarning().empty())
+    std::cerr << "cached: " << source->GetCachePath() << "\n";
+  if (!source->GetCacheWarning().empty())
+    std::cerr << "umbra: warning: could not cache the table: " << source->GetCacheWarning() << "\n";
+}
+
+vtkSmartPointer<vtkTable> atmosphericProfile(const EclipseAtmosphereChoice& atmosphere, const OccluderChoice& occ,
+                                             double distanceM, double maxOffsetM, int samples, double limbDarkening) {
+  auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
+  atmosphere.configure(source, occ);
+  ProgressLine progress("atmosphere tables " + atmosphere.atmosphere);
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&progress);
+  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
+    static_cast<ProgressLine*>(client)->update(*static_cast<double*>(data));
+  });
+  source->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  std::shared_ptr<const eclipse::EclipseAtmosphere> prepared;
+  try {
+    prepared = source->GetPreparedAtmosphere();
+  } catch (const std::exception& e) {
+    throw CommandError(std::string("--atmosphere: ") + e.what());
+  }
+  eclipse::AtmosphericShadowModel model = prepared->model;
+  model.limbDarkening = limbDarkening;
+  if (!(maxOffsetM > 0.0)) maxOffsetM = 1.25 * eclipse::shadowConeRadii(model.system, distanceM).penumbraRadiusM;
+  const eclipse::LimbViewParams limb{atmosphere.limbSize, atmosphere.limbSize, atmosphere.scatteringCells,
+                                     atmosphere.scatteringCells};
+  return filters::profileTable(eclipse::atmosphericShadowProfile(model, distanceM, maxOffsetM, samples, nullptr, limb));
+}
+
 vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limbDarkening, const CacheOptions& cache,
-                                                           const OccluderChoice* occluder) {
+                                                           const OccluderChoice* occluder,
+                                                           const EclipseAtmosphereChoice* atmosphere) {
   auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
   source->SetWidth(size);
   source->SetHeight(size);
@@ -66,32 +155,33 @@ vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limb
     source->SetOccluderRadiusM(occluder->radiusM);
     source->SetSunOccluderDistanceM(occluder->sunDistanceM);
   }
-  source->SetCacheDirectory(cache.directory.c_str());
-  source->SetUseCache(!cache.disabled);
-
-  ProgressLine progress("shadow LuT " + std::to_string(size) + "x" + std::to_string(size));
-  vtkNew<vtkCallbackCommand> onProgress;
-  onProgress->SetClientData(&progress);
-  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
-    static_cast<ProgressLine*>(client)->update(*static_cast<double*>(data));
-  });
-  source->AddObserver(vtkCommand::ProgressEvent, onProgress);
-  source->Update();
-  if (source->GetOutput()->GetNumberOfPoints() == 0) throw CommandError("the shadow LuT could not be computed");
-  if (source->GetLastUpdateWasCacheHit())
-    std::cerr << "cache hit: " << source->GetCachePath() << "\n";
-  else if (!cache.disabled && source->GetCacheWarning().empty())
-    std::cerr << "cached: " << source->GetCachePath() << "\n";
-  if (!source->GetCacheWarning().empty())
-    std::cerr << "umbra: warning: could not cache the table: " << source->GetCacheWarning() << "\n";
+  std::string what = "shadow LuT " + std::to_string(size) + "x" + std::to_string(size);
+  if (atmosphere && !atmosphere->atmosphere.empty()) {
+    if (!occluder) throw CommandError("an atmosphere needs an occluder");
+    atmosphere->configure(source, *occluder);
+    source->SetLimbSize(atmosphere->limbSize);
+    source->SetScatteringCells(atmosphere->scatteringCells);
+    what += " through the atmosphere " + atmosphere->atmosphere;
+  }
+  const bool warnings = vtkObject::GetGlobalWarningDisplay() != 0;
+  vtkObject::GlobalWarningDisplayOff();  // a failure comes back as one line
+  try {
+    updateEclipseSource(source, what, cache);
+  } catch (...) {
+    vtkObject::SetGlobalWarningDisplay(warnings ? 1 : 0);
+    throw;
+  }
+  vtkObject::SetGlobalWarningDisplay(warnings ? 1 : 0);
   return source;
 }
 
 vtkSmartPointer<vtkImageData> readShadowLut(const std::string& path) {
   const tables::Table table = tables::readExr(path, {"R", "G", "B"});
   const auto kind = table.parameters.find("kind");
-  if (kind == table.parameters.end() || kind->second != filters::kAirlessShadowLutKind)
-    throw CommandError(path + ": not a shadow LuT (its header has no kind=" + filters::kAirlessShadowLutKind + ")");
+  if (kind == table.parameters.end() ||
+      (kind->second != filters::kAirlessShadowLutKind && kind->second != filters::kAtmosphereShadowLutKind))
+    throw CommandError(path + ": not a shadow LuT (its header has no kind=" + filters::kAirlessShadowLutKind + " or " +
+                       filters::kAtmosphereShadowLutKind + ")");
   auto image = filters::toImageData(filters::fromTable(table, path));
   filters::setFieldParameters(image, table.parameters);
   return image;

@@ -8,8 +8,10 @@
 
 #include <string>
 
+class vtkEclipseAtmosphereSource;
 class vtkEclipseShadowLutSource;
 class vtkImageData;
+class vtkTable;
 
 namespace umbra::cli {
 
@@ -36,11 +38,39 @@ SceneShadow sceneShadow(const std::string& scenePath, const std::string& time);
 /// Parse a length option ("384400km"); throws CommandError naming the option.
 double lengthOption(const std::string& option, const std::string& text);
 
+/// The occluder's atmosphere for the eclipse tables: --atmosphere PRESET|FILE, the limb
+/// views' size and the precomputation's (--draft-tables: small tables for quick looks).
+struct EclipseAtmosphereChoice {
+  std::string atmosphere;  ///< empty: airless
+  int limbSize = 256;
+  int scatteringCells = 16;  ///< of the shadow LuT's limb views (the limb-luminance LuT keeps 32)
+  int orders = 4;
+  bool draftTables = false;
+  void addTo(CLI::App* command);
+  /// Checks the atmosphere file (one-line error) and returns its bottom radius [m].
+  double bottomRadiusM() const;
+  void configure(vtkEclipseAtmosphereSource* source, const OccluderChoice& occluder) const;
+};
+
+/// Update an eclipse-table source with progress on stderr, cache reporting, and a
+/// CommandError when it fails.
+void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& what, const CacheOptions& cache);
+
 /// Build the LuT through the filter, with progress on stderr and cache reporting. The
 /// occluder, if given, is recorded in the LuT's parameters (an airless LuT's values do
-/// not depend on it).
+/// not depend on it). With an atmosphere (not empty), the atmospheric LuT.
 vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limbDarkening, const CacheOptions& cache,
-                                                           const OccluderChoice* occluder = nullptr);
+                                                           const OccluderChoice* occluder = nullptr,
+                                                           const EclipseAtmosphereChoice* atmosphere = nullptr);
+
+/// The shadow's cross-section through an atmosphere computed directly at every sample
+/// (no LuT; limb views of atmosphere.limbSize rows): the columns of vtkShadowProfileFilter.
+/// maxOffsetM 0: 1.25 x the penumbra's radius.
+vtkSmartPointer<vtkTable> atmosphericProfile(const EclipseAtmosphereChoice& atmosphere, const OccluderChoice& occluder,
+                                             double distanceM, double maxOffsetM, int samples, double limbDarkening);
+
+/// `umbra precompute eclipse` (PrecomputeCommand.cpp).
+void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action);
 
 /// A shadow LuT written by `umbra precompute shadow`; throws naming the file if it is not one.
 vtkSmartPointer<vtkImageData> readShadowLut(const std::string& path);

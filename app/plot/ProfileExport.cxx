@@ -14,6 +14,7 @@
 #include <vtkPlot.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
 #include <vtkWindowToImageFilter.h>
@@ -59,28 +60,56 @@ std::string xmlEscaped(const std::string& text) {
   return out;
 }
 
-void writeSvg(vtkTable* t, const std::string& path, const std::string& title) {
+/// The lower end of a log-scale axis: the decade below the smallest positive value (>= 1e-9).
+double logAxisMinimum(vtkTable* t) {
+  double lo = 1.0;
+  for (const Line& line : kLines) {
+    auto* y = column(t, line.column);
+    for (vtkIdType i = 0; i < y->GetNumberOfTuples(); ++i)
+      if (y->GetValue(i) > 0.0) lo = std::min(lo, y->GetValue(i));
+  }
+  return std::pow(10.0, std::floor(std::log10(std::max(lo, 1e-9))));
+}
+
+void writeSvg(vtkTable* t, const std::string& path, const std::string& title, const ProfilePlotStyle& style) {
   const double W = 800, H = 500, left = 70, right = 20, top = 40, bottom = 60;
   auto* x = column(t, "offset_km");
   const vtkIdType n = x->GetNumberOfTuples();
   const double xMax = std::max(x->GetValue(n - 1), 1e-12);
+  const double yLo = style.logScale ? logAxisMinimum(t) : 0.0;
   const auto px = [&](double v) { return left + (W - left - right) * v / xMax; };
-  const auto py = [&](double v) { return H - bottom - (H - top - bottom) * std::clamp(v, 0.0, 1.05) / 1.05; };
+  // Linear: [0, 1.05]; log: [yLo, 1.05] in log10.
+  const auto yFraction = [&](double v) {
+    if (!style.logScale) return std::clamp(v, 0.0, 1.05) / 1.05;
+    const double l = std::log10(std::clamp(v, yLo, 1.05));
+    return (l - std::log10(yLo)) / (std::log10(1.05) - std::log10(yLo));
+  };
+  const auto py = [&](double v) { return H - bottom - (H - top - bottom) * yFraction(v); };
 
   std::ostringstream s;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
     << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
     << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
     << "<text x=\"" << W / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << xmlEscaped(title) << "</text>\n";
-  for (int k = 0; k <= 5; ++k) {  // axes and ticks
-    const double xv = xMax * k / 5, yv = 0.2 * k;
-    s << "<line x1=\"" << px(xv) << "\" y1=\"" << py(0) << "\" x2=\"" << px(xv) << "\" y2=\"" << py(1.05)
-      << "\" stroke=\"#ddd\"/>\n<text x=\"" << px(xv) << "\" y=\"" << py(0) + 18 << "\" text-anchor=\"middle\">"
+  for (int k = 0; k <= 5; ++k) {  // axes and vertical grid
+    const double xv = xMax * k / 5;
+    s << "<line x1=\"" << px(xv) << "\" y1=\"" << py(yLo) << "\" x2=\"" << px(xv) << "\" y2=\"" << py(1.05)
+      << "\" stroke=\"#ddd\"/>\n<text x=\"" << px(xv) << "\" y=\"" << py(yLo) + 18 << "\" text-anchor=\"middle\">"
       << std::lround(xv) << "</text>\n";
+  }
+  std::vector<double> yTicks;
+  if (style.logScale)
+    for (double v = yLo; v <= 1.0 + 1e-9; v *= 10.0) yTicks.push_back(v);
+  else
+    for (int k = 0; k <= 5; ++k) yTicks.push_back(0.2 * k);
+  for (double yv : yTicks)
     s << "<line x1=\"" << px(0) << "\" y1=\"" << py(yv) << "\" x2=\"" << px(xMax) << "\" y2=\"" << py(yv)
       << "\" stroke=\"#ddd\"/>\n<text x=\"" << px(0) - 8 << "\" y=\"" << py(yv) + 4 << "\" text-anchor=\"end\">"
       << yv << "</text>\n";
-  }
+  for (const auto& [km, label] : style.markersKm)
+    s << "<line x1=\"" << px(km) << "\" y1=\"" << py(yLo) << "\" x2=\"" << px(km) << "\" y2=\"" << py(1.05)
+      << "\" stroke=\"#555\" stroke-dasharray=\"6,4\"/>\n<text x=\"" << px(km) + 4 << "\" y=\"" << top + 12
+      << "\" fill=\"#555\">" << xmlEscaped(label) << "</text>\n";
   s << "<text x=\"" << W / 2 << "\" y=\"" << H - 15 << "\" text-anchor=\"middle\">offset from the shadow axis [km]</text>\n"
     << "<text transform=\"translate(18," << H / 2 << ") rotate(-90)\" text-anchor=\"middle\">I / I_sun</text>\n";
   int legend = 0;
@@ -104,7 +133,7 @@ void writeSvg(vtkTable* t, const std::string& path, const std::string& title) {
   out.commit();
 }
 
-void writePng(vtkTable* t, const std::string& path, const std::string& title) {
+void writePng(vtkTable* t, const std::string& path, const std::string& title, const ProfilePlotStyle& style) {
   if (!std::getenv("DISPLAY"))
     throw std::runtime_error(path + ": PNG plots need an X display (run under xvfb-run -a) - or write .svg");
   vtkNew<vtkContextView> view;
@@ -116,6 +145,27 @@ void writePng(vtkTable* t, const std::string& path, const std::string& title) {
   chart->GetTitleProperties()->SetFontSize(16);
   view->GetScene()->AddItem(chart);
   addProfileLines(chart, t);
+  const double yLo = style.logScale ? logAxisMinimum(t) : 0.0;
+  if (style.logScale) {
+    chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
+    chart->GetAxis(vtkAxis::LEFT)->SetRange(yLo, 1.05);
+  }
+  std::vector<vtkSmartPointer<vtkTable>> markers;  // kept alive until rendered
+  for (const auto& [km, label] : style.markersKm) {
+    auto m = vtkSmartPointer<vtkTable>::New();
+    vtkNew<vtkDoubleArray> mx, my;
+    mx->SetName("offset_km");
+    my->SetName(label.c_str());
+    for (double yv : {std::max(yLo, 1e-12), 1.05}) mx->InsertNextValue(km), my->InsertNextValue(yv);
+    m->AddColumn(mx);
+    m->AddColumn(my);
+    vtkPlot* plot = chart->AddPlot(vtkChart::LINE);
+    plot->SetInputData(m, 0, 1);
+    plot->SetColor(90, 90, 90, 255);
+    plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
+    plot->SetLabel(label);
+    markers.push_back(m);
+  }
   view->GetRenderWindow()->Render();
 
   vtkNew<vtkWindowToImageFilter> grab;
@@ -171,10 +221,10 @@ void writeProfileCsv(vtkTable* t, const std::string& path) {
   out.commit();
 }
 
-void writeProfilePlot(vtkTable* t, const std::string& path, const std::string& title) {
+void writeProfilePlot(vtkTable* t, const std::string& path, const std::string& title, const ProfilePlotStyle& style) {
   const std::string ext = output::extensionOf(path);
-  if (ext == ".svg") return writeSvg(t, path, title);
-  if (ext == ".png") return writePng(t, path, title);
+  if (ext == ".svg") return writeSvg(t, path, title, style);
+  if (ext == ".png") return writePng(t, path, title, style);
   throw std::runtime_error(path + ": unsupported plot type (expected .png or .svg)");
 }
 

@@ -3,6 +3,8 @@
 // `offset_km,r,g,b,luminance`, and plots as PNG (vtkChartXY, needs an X display) or SVG
 // (written directly, no display). Every file is written atomically.
 #include <string>
+#include <utility>
+#include <vector>
 
 class vtkChartXY;
 class vtkTable;
@@ -14,9 +16,18 @@ inline constexpr const char* kProfileCsvHeader = "offset_km,r,g,b,luminance";
 
 void writeProfileCsv(vtkTable* profile, const std::string& path);
 
+/// How a profile is drawn: linear I / I_sun in [0, 1.05] (default), or logarithmic from the
+/// decade below the smallest value (the eclipse paper's Figure 12), with vertical lines
+/// at given offsets (e.g. the umbra's and the penumbra's edges).
+struct ProfilePlotStyle {
+  bool logScale = false;
+  std::vector<std::pair<double, std::string>> markersKm;  ///< offset, label
+};
+
 /// Plot r, g, b and luminance over the offset; the type follows the extension
 /// (.png or .svg). Throws std::runtime_error naming the path on failure.
-void writeProfilePlot(vtkTable* profile, const std::string& path, const std::string& title);
+void writeProfilePlot(vtkTable* profile, const std::string& path, const std::string& title,
+                      const ProfilePlotStyle& style = {});
 
 /// The lines of a profile plot, added to a chart (shared by the PNG export and the GUI).
 void addProfileLines(vtkChartXY* chart, vtkTable* profile);

@@ -5,7 +5,9 @@
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkDoubleArray.h>
 #include <vtkPointData.h>
+#include <vtkTable.h>
 
 #include <charconv>
 #include <stdexcept>
@@ -79,6 +81,25 @@ eclipse::ShadowLut fromImageData(vtkImageData* image) {
   lut.height = dims[1];
   lut.rgb.assign(values->GetPointer(0), values->GetPointer(0) + 3 * static_cast<std::size_t>(dims[0]) * dims[1]);
   return lut;
+}
+
+vtkSmartPointer<vtkTable> profileTable(const std::vector<eclipse::ProfileSample>& samples) {
+  auto table = vtkSmartPointer<vtkTable>::New();
+  const char* names[] = {"offset_km", "r", "g", "b", "luminance"};
+  vtkDoubleArray* columns[5];
+  for (int c = 0; c < 5; ++c) {
+    auto column = vtkSmartPointer<vtkDoubleArray>::New();
+    column->SetName(names[c]);
+    column->SetNumberOfTuples(static_cast<vtkIdType>(samples.size()));
+    table->AddColumn(column);
+    columns[c] = column;
+  }
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const auto& s = samples[k];
+    const double row[5] = {s.offsetM / 1e3, s.rgb.r, s.rgb.g, s.rgb.b, s.luminance};
+    for (int c = 0; c < 5; ++c) columns[c]->SetValue(static_cast<vtkIdType>(k), row[c]);
+  }
+  return table;
 }
 
 } // namespace umbra::filters

@@ -11,6 +11,7 @@
 #include <string>
 
 class vtkImageData;
+class vtkTable;
 namespace umbra::tables { struct Table; }
 
 namespace umbra::filters {
@@ -19,6 +20,9 @@ namespace umbra::filters {
 inline constexpr const char* kShadowLutArrayName = "I_over_Isun";
 /// `kind` of the airless shadow LuT in the table cache and the EXR header.
 inline constexpr const char* kAirlessShadowLutKind = "eclipse-shadow-airless";
+/// `kind` of the atmospheric shadow LuT and of the limb-luminance LuT.
+inline constexpr const char* kAtmosphereShadowLutKind = "eclipse-shadow-atmosphere";
+inline constexpr const char* kLimbLuminanceLutKind = "eclipse-limb-luminance";
 
 /// Shortest decimal text that reads back as the same double (for headers and keys).
 std::string formatNumber(double x);
@@ -36,6 +40,9 @@ eclipse::ShadowLut fromTable(const tables::Table& table, const std::string& orig
 vtkSmartPointer<vtkImageData> toImageData(const eclipse::ShadowLut& lut);
 /// Throws std::runtime_error if the image is not a 2D float RGB LuT.
 eclipse::ShadowLut fromImageData(vtkImageData* image);
+
+/// A shadow profile as a table: columns offset_km, r, g, b, luminance.
+vtkSmartPointer<vtkTable> profileTable(const std::vector<eclipse::ProfileSample>& samples);
 
 
 } // namespace umbra::filters

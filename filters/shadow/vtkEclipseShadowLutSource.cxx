@@ -1,5 +1,6 @@
 #include "vtkEclipseShadowLutSource.h"
 
+#include "EclipseAtmosphere.hpp"
 #include "ShadowLutData.h"
 #include "umbra/tables/TableCache.h"
 
@@ -12,26 +13,18 @@
 
 vtkStandardNewMacro(vtkEclipseShadowLutSource);
 
-vtkEclipseShadowLutSource::vtkEclipseShadowLutSource() { this->SetNumberOfInputPorts(0); }
+vtkEclipseShadowLutSource::vtkEclipseShadowLutSource() = default;
 
 void vtkEclipseShadowLutSource::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Size: " << this->Width << " x " << this->Height << "\n"
      << indent << "LimbDarkening: " << this->LimbDarkening << "\n"
-     << indent << "Occluder: " << this->OccluderName << " (" << this->OccluderRadiusM << " m)\n"
-     << indent << "UseCache: " << this->UseCache << " " << this->CacheDirectory << "\n";
+     << indent << "LimbSize: " << this->LimbSize << " ScatteringCells: " << this->ScatteringCells << "\n";
 }
 
 int vtkEclipseShadowLutSource::RequestInformation(vtkInformation*, vtkInformationVector**,
                                                   vtkInformationVector* out) {
-  vtkInformation* info = out->GetInformationObject(0);
-  const int extent[6] = {0, this->Width - 1, 0, this->Height - 1, 0, 0};
-  info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  const double spacing[3] = {1.0 / this->Width, 1.0 / this->Height, 1.0};
-  const double origin[3] = {0.5 / this->Width, 0.5 / this->Height, 0.0};
-  info->Set(vtkDataObject::SPACING(), spacing, 3);
-  info->Set(vtkDataObject::ORIGIN(), origin, 3);
-  vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_FLOAT, 3);
+  SetLutInformation(out, this->Width, this->Height, 1);
   return 1;
 }
 
@@ -39,6 +32,7 @@ int vtkEclipseShadowLutSource::RequestData(vtkInformation*, vtkInformationVector
                                            vtkInformationVector* out) {
   using namespace umbra;
   vtkImageData* output = vtkImageData::GetData(out);
+  if (this->HasAtmosphere()) return this->RequestAtmospheric(out->GetInformationObject(0), output);
   const eclipse::ShadowLutParams params{this->Width, this->Height, this->LimbDarkening, this->RelativeTolerance};
   const auto parameters = filters::airlessLutParameters(params);
   const tables::TableCache cache(this->CacheDirectory.empty() ? tables::TableCache::defaultDirectory()
@@ -84,6 +78,57 @@ int vtkEclipseShadowLutSource::RequestData(vtkInformation*, vtkInformationVector
   fieldParameters["sunRadiusM"] = filters::formatNumber(this->SunRadiusM);
   fieldParameters["sunOccluderDistanceM"] = filters::formatNumber(this->SunOccluderDistanceM);
   filters::setFieldParameters(output, fieldParameters);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+int vtkEclipseShadowLutSource::RequestAtmospheric(vtkInformation* outInfo, vtkImageData* output) {
+  using namespace umbra;
+  try {
+    int ext[6] = {0, this->Width - 1, 0, this->Height - 1, 0, 0};
+    if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), ext);
+    const eclipse::LutExtent extent{std::max(ext[0], 0), std::min(ext[1], this->Width - 1) + 1, std::max(ext[2], 0),
+                                    std::min(ext[3], this->Height - 1) + 1};
+    if (extent.empty()) throw std::invalid_argument("empty update extent");
+    const bool whole = extent.uBegin == 0 && extent.vBegin == 0 && extent.uEnd == this->Width && extent.vEnd == this->Height;
+
+    eclipse::AtmosphericShadowLutParams params;
+    params.width = this->Width;
+    params.height = this->Height;
+    params.limb = {this->LimbSize, this->LimbSize, this->ScatteringCells, this->ScatteringCells};
+    auto parameters = this->AtmosphereParameters();
+    parameters["kind"] = filters::kAtmosphereShadowLutKind;
+    parameters["model"] = "limb views of the refracted Sun and in-scattered light + direct light past r_atmo (eclipse paper 5.2); v1";
+    parameters["width"] = std::to_string(this->Width);
+    parameters["height"] = std::to_string(this->Height);
+    parameters["limbView"] = std::to_string(this->LimbSize) + "x" + std::to_string(this->LimbSize) + " scattering " +
+                             std::to_string(this->ScatteringCells) + "x" + std::to_string(this->ScatteringCells);
+    parameters["limbDarkening"] = filters::formatNumber(this->LimbDarkening);
+    parameters["occluder"] = this->OccluderName;
+    parameters["values"] = "I/I_sun (R, G, B: 680, 550, 440 nm) at texel centres u=(i+0.5)/width, v=(j+0.5)/height (Eq. 4)";
+    if (!whole)
+      parameters["extent"] = std::to_string(extent.uBegin) + " " + std::to_string(extent.uEnd) + " " +
+                             std::to_string(extent.vBegin) + " " + std::to_string(extent.vEnd);
+    eclipse::ShadowLut lut;
+    lut.width = extent.uEnd - extent.uBegin;
+    lut.height = extent.vEnd - extent.vBegin;
+    lut.rgb = this->CachedOrComputed(
+        filters::kAtmosphereShadowLutKind, parameters, lut.width, lut.height, this->LimbDarkening,
+        [&](const eclipse::AtmosphericShadowModel& model, const eclipse::Progress& progress) {
+          return eclipse::buildAtmosphericShadowLut(model, params, extent, progress).rgb;
+        });
+    vtkSmartPointer<vtkImageData> image = filters::toImageData(lut);
+    output->ShallowCopy(image);
+    output->SetExtent(extent.uBegin, extent.uEnd - 1, extent.vBegin, extent.vEnd - 1, 0, 0);
+    output->SetSpacing(1.0 / this->Width, 1.0 / this->Height, 1.0);
+    output->SetOrigin(0.5 / this->Width, 0.5 / this->Height, 0.0);
+    parameters["sunRadiusM"] = filters::formatNumber(this->SunRadiusM);
+    filters::setFieldParameters(output, parameters);
+  } catch (const std::exception& e) {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
   this->UpdateProgress(1.0);
   return 1;
 }

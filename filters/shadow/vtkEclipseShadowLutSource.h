@@ -6,16 +6,24 @@
 //
 // The bodies (Sun and occluder) are carried into the output's field data for the filters
 // downstream; they do not change the airless table's values and are not part of its key.
-#include "SolarDisc.hpp"
-
-#include <vtkImageAlgorithm.h>
+//
+// With an atmosphere (SetAtmosphere, vtkEclipseAtmosphereSource) the table is the
+// atmospheric shadow LuT of umbra::eclipse::buildAtmosphericShadowLut (refracted Sun and
+// in-scattered light summed over limb views, plus the direct light past r_atmo), cached
+// under kind "eclipse-shadow-atmosphere" keyed by every parameter of the atmosphere, its
+// tables and the limb views. Only the requested update extent is computed (e.g. the u
+// range where a scene's receiver can be); a partial extent is cached separately. Without
+// one, the airless LuT, bit for bit as before.
+#include "vtkEclipseAtmosphereSource.h"
 
 #include <string>
 
-class vtkEclipseShadowLutSource : public vtkImageAlgorithm {
+class vtkImageData;
+
+class vtkEclipseShadowLutSource : public vtkEclipseAtmosphereSource {
 public:
   static vtkEclipseShadowLutSource* New();
-  vtkTypeMacro(vtkEclipseShadowLutSource, vtkImageAlgorithm);
+  vtkTypeMacro(vtkEclipseShadowLutSource, vtkEclipseAtmosphereSource);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// Texels along u and v (default 256 x 256).
@@ -30,29 +38,12 @@ public:
   vtkSetClampMacro(RelativeTolerance, double, 1e-15, 1e-2);
   vtkGetMacro(RelativeTolerance, double);
 
-  /// The bodies, passed on in field data [m].
-  vtkSetStdStringFromCharMacro(OccluderName);
-  vtkGetCharFromStdStringMacro(OccluderName);
-  vtkSetMacro(OccluderRadiusM, double);
-  vtkGetMacro(OccluderRadiusM, double);
-  vtkSetMacro(SunRadiusM, double);
-  vtkGetMacro(SunRadiusM, double);
-  vtkSetMacro(SunOccluderDistanceM, double);
-  vtkGetMacro(SunOccluderDistanceM, double);
-
-  /// Cache directory; empty (default) = umbra::tables::TableCache::defaultDirectory().
-  vtkSetStdStringFromCharMacro(CacheDirectory);
-  vtkGetCharFromStdStringMacro(CacheDirectory);
-  /// Read and write the cache (default on).
-  vtkSetMacro(UseCache, bool);
-  vtkGetMacro(UseCache, bool);
-  vtkBooleanMacro(UseCache, bool);
-
-  /// After an update: whether the table came from the cache, and the cache file's path.
-  bool GetLastUpdateWasCacheHit() const { return this->LastCacheHit; }
-  const std::string& GetCachePath() const { return this->CachePath; }
-  /// After an update: a cache store that failed (the table is still produced), or empty.
-  const std::string& GetCacheWarning() const { return this->CacheWarning; }
+  /// Limb views (atmosphere only): rows = columns = LimbSize (default 256), the in-scattered
+  /// light on ScatteringCells x ScatteringCells cells (default 16).
+  vtkSetClampMacro(LimbSize, int, 1, 65536);
+  vtkGetMacro(LimbSize, int);
+  vtkSetClampMacro(ScatteringCells, int, 1, 65536);
+  vtkGetMacro(ScatteringCells, int);
 
 protected:
   vtkEclipseShadowLutSource();
@@ -68,14 +59,8 @@ private:
   int Height = 256;
   double LimbDarkening = 0.6;
   double RelativeTolerance = 1e-10;
-  std::string OccluderName;
-  double OccluderRadiusM = 6371.0084e3;
-  double SunRadiusM = umbra::eclipse::kSunRadiusM;
-  double SunOccluderDistanceM = 149597870700.0;
-  std::string CacheDirectory;
-  bool UseCache = true;
+  int LimbSize = 256;
+  int ScatteringCells = 16;
 
-  bool LastCacheHit = false;
-  std::string CachePath;
-  std::string CacheWarning;
+  int RequestAtmospheric(vtkInformation* outInfo, vtkImageData* output);
 };

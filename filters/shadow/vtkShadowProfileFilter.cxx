@@ -66,19 +66,6 @@ int vtkShadowProfileFilter::RequestData(vtkInformation*, vtkInformationVector** 
   const auto samples = eclipse::shadowProfile(system, this->ReceiverDistanceM, maxOffset, this->Samples,
                                               this->Exact ? nullptr : &lut, this->LimbDarkening);
 
-  const char* names[] = {"offset_km", "r", "g", "b", "luminance"};
-  vtkDoubleArray* columns[5];
-  for (int c = 0; c < 5; ++c) {
-    auto column = vtkSmartPointer<vtkDoubleArray>::New();
-    column->SetName(names[c]);
-    column->SetNumberOfTuples(static_cast<vtkIdType>(samples.size()));
-    output->AddColumn(column);
-    columns[c] = column;
-  }
-  for (std::size_t k = 0; k < samples.size(); ++k) {
-    const auto& s = samples[k];
-    const double row[5] = {s.offsetM / 1e3, s.rgb.r, s.rgb.g, s.rgb.b, s.luminance};
-    for (int c = 0; c < 5; ++c) columns[c]->SetValue(static_cast<vtkIdType>(k), row[c]);
-  }
+  output->ShallowCopy(filters::profileTable(samples));
   return 1;
 }

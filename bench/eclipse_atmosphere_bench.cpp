@@ -1,0 +1,246 @@
+// Time and error of the eclipse tables through an atmosphere (issue 4): the complete Earth
+// set (atmosphere tables with refraction, shadow LuT, limb-luminance LuT), how each stage
+// scales with its size, the full LuT against the part a scene needs (the u range of the
+// Moon's distances), and the error of the shadow LuT, the limb-view size and the refraction
+// step against a brute-force reference: illuminanceAt computed directly at each point of a
+// profile (no LuT interpolation) with a fine limb view (--reference-limb rows, 128 x 128
+// scattering cells) and a fine deviation table (1024 x 512, 2.5 km step). Errors are the
+// largest relative error of R and G and of the luminance over the profile at the Moon's
+// mean distance (0 to 1.1 x the penumbra's radius), where the reference is above 1e-5.
+// Prints Markdown tables for docs/accuracy-vs-speed.md.
+//
+//   build/bench/umbra-bench-eclipse-atmosphere [--sections set,scaling,extent,error] [--profile-points 41]
+#include "AtmosphericShadow.hpp"
+#include "EclipseAtmosphere.hpp"
+#include "SightLines.hpp"
+#include "Spectrum.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <string>
+#include <vector>
+
+using namespace umbra;
+using eclipse::AtmosphericShadowModel;
+
+namespace {
+
+double seconds(const std::chrono::steady_clock::time_point& t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+template <class F>
+double timed(const F& f) {
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  return seconds(t0);
+}
+
+double kMoonM = 384400e3;  // the profile's distance (--distance)
+
+struct Reference {
+  std::vector<double> offsetsM;
+  std::vector<glm::dvec3> rgb;
+};
+
+Reference reference(const AtmosphericShadowModel& m, int points, int rows) {
+  Reference r;
+  const double edge = 1.1 * eclipse::shadowConeRadii(m.system, kMoonM).penumbraRadiusM;
+  for (int k = 0; k < points; ++k) r.offsetsM.push_back(edge * k / (points - 1));
+  r.rgb.resize(points);
+  const eclipse::LimbViewParams limb{rows, rows, 128, 128};
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int k = 0; k < points; ++k) {
+    const auto t = eclipse::illuminanceAt(m, eclipse::limbPositionBehind(m, kMoonM, r.offsetsM[k]), limb).total();
+    r.rgb[k] = eclipse::rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
+  }
+  return r;
+}
+
+struct Errors {
+  double rg = 0.0, luminance = 0.0;
+};
+Errors compare(const Reference& ref, const std::vector<glm::dvec3>& values) {
+  Errors e;
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    for (int c = 0; c < 2; ++c)
+      if (ref.rgb[k][c] > 1e-5) e.rg = std::max(e.rg, std::abs(values[k][c] / ref.rgb[k][c] - 1.0));
+    const double l = eclipse::luminance(ref.rgb[k]);
+    if (l > 1e-5) e.luminance = std::max(e.luminance, std::abs(eclipse::luminance(values[k]) / l - 1.0));
+  }
+  return e;
+}
+
+std::vector<glm::dvec3> direct(const AtmosphericShadowModel& m, const Reference& ref, const eclipse::LimbViewParams& limb) {
+  std::vector<glm::dvec3> v(ref.offsetsM.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int k = 0; k < static_cast<int>(v.size()); ++k) {
+    const auto t = eclipse::illuminanceAt(m, eclipse::limbPositionBehind(m, kMoonM, ref.offsetsM[k]), limb).total();
+    v[k] = eclipse::rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
+  }
+  return v;
+}
+
+std::vector<glm::dvec3> sampled(const AtmosphericShadowModel& m, const Reference& ref, const eclipse::ShadowLut& lut) {
+  std::vector<glm::dvec3> v;
+  for (double off : ref.offsetsM) {
+    const eclipse::LutCoords c = eclipse::lutCoordsOf(eclipse::limbPositionBehind(m, kMoonM, off));
+    v.push_back(c.v >= 1.0 ? glm::dvec3(1.0) : lut.sample(c));
+  }
+  return v;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Time and error of the eclipse tables through an atmosphere"};
+  std::vector<std::string> sections{"set", "scaling", "extent", "error"};
+  std::string preset = "earth";
+  int points = 41, referenceRows = 2048;
+  double distanceKm = 384400.0, sunDistanceM = 1.496e11;
+  std::vector<int> lutSizes{64, 128, 256};
+  app.add_option("--sections", sections, "Which parts to run")->delimiter(',');
+  app.add_option("--atmosphere", preset, "Atmosphere preset")->capture_default_str();
+  app.add_option("--profile-points", points, "Points of the error profile")->capture_default_str();
+  app.add_option("--reference-limb", referenceRows, "Rows and columns of the reference limb views")->capture_default_str();
+  app.add_option("--distance-km", distanceKm, "Distance of the error profile behind the occluder")->capture_default_str();
+  app.add_option("--sun-distance-m", sunDistanceM, "Sun-occluder distance")->capture_default_str();
+  app.add_option("--lut-sizes", lutSizes, "Shadow-LuT sizes of the error section")->delimiter(',');
+  CLI11_PARSE(app, argc, argv);
+  kMoonM = distanceKm * 1e3;
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // lines as they come, also into a file
+  const std::set<std::string> run(sections.begin(), sections.end());
+  std::printf("threads: %d\n\n", omp_get_max_threads());
+
+  const atmosphere::Atmosphere atm = atmosphere::loadAtmosphere(preset, atmosphere::WavelengthSet::rgb().nm);
+  const eclipse::EclipseAtmosphereOptions options;  // defaults: 4 orders, refraction 512 x 256, 10 km
+  std::unique_ptr<eclipse::EclipseAtmosphere> set;
+  const double tablesS = timed([&] { set = eclipse::prepareEclipseAtmosphere(atm, preset, sunDistanceM, options); });
+  const AtmosphericShadowModel& m = set->model;
+  eclipse::ShadowLut lut256;
+
+  if (run.count("set")) {
+    eclipse::AtmosphericShadowLutParams sp;  // 256^2, limb 256^2, 32^2 scattering cells
+    const double shadowS = timed([&] { lut256 = eclipse::buildAtmosphericShadowLut(m, sp); });
+    eclipse::LimbLuminanceLutParams lp;  // 64 x 64 x 64, 256 rows
+    const double limbS = timed([&] { eclipse::buildLimbLuminanceLut(m, lp); });
+    std::printf("## complete %s set\n\n| stage | seconds |\n|---|---|\n", preset.c_str());
+    std::printf("| atmosphere tables (3 wavelengths, 4 orders, refracted paths) + refraction table 512x256 + ray profile | %.1f |\n", tablesS);
+    std::printf("| shadow LuT 256^2 (limb views 256^2, scattering 16^2 cells) | %.1f |\n", shadowS);
+    std::printf("| limb-luminance LuT 64x64x64 (views 64x256) | %.1f |\n", limbS);
+    std::printf("| **total** | **%.1f** |\n\n", tablesS + shadowS + limbS);
+  }
+
+  if (run.count("scaling")) {
+    std::printf("## scaling\n\n| table | size | seconds |\n|---|---|---|\n");
+    for (int n : {32, 64, 128}) {
+      eclipse::AtmosphericShadowLutParams sp;
+      sp.width = sp.height = n;
+      std::printf("| shadow LuT (limb 256^2, cells 16^2) | %d^2 | %.2f |\n", n, timed([&] { eclipse::buildAtmosphericShadowLut(m, sp); }));
+    }
+    for (int rows : {64, 128, 256, 512}) {
+      eclipse::AtmosphericShadowLutParams sp;
+      sp.width = sp.height = 64;
+      sp.limb.rows = sp.limb.columns = rows;
+      std::printf("| shadow LuT 64^2, limb rows | %d | %.2f |\n", rows, timed([&] { eclipse::buildAtmosphericShadowLut(m, sp); }));
+    }
+    for (int cells : {8, 16, 32, 64}) {
+      eclipse::AtmosphericShadowLutParams sp;
+      sp.width = sp.height = 64;
+      sp.limb.scatteringColumns = sp.limb.scatteringRows = cells;
+      std::printf("| shadow LuT 64^2, scattering cells | %d^2 | %.2f |\n", cells, timed([&] { eclipse::buildAtmosphericShadowLut(m, sp); }));
+    }
+    for (int n : {16, 32, 64}) {
+      eclipse::LimbLuminanceLutParams lp;
+      lp.width = lp.height = lp.columns = n;
+      std::printf("| limb-luminance LuT | %dx%dx%d | %.2f |\n", n, n, n, timed([&] { eclipse::buildLimbLuminanceLut(m, lp); }));
+    }
+    std::printf("\n");
+  }
+
+  if (run.count("extent")) {
+    // The Moon between perigee and apogee: the u texels its centre can be at (v from 0 to 1
+    // moves u a little: take the range over v as well).
+    const int n = 256;
+    double uLo = 1.0, uHi = 0.0;
+    for (double d : {356500e3, 406700e3})
+      for (double offset : {0.0, 1.1 * eclipse::shadowConeRadii(m.system, d).penumbraRadiusM}) {
+        const double u = eclipse::lutCoordsOf(eclipse::limbPositionBehind(m, d, offset)).u;
+        uLo = std::min(uLo, u), uHi = std::max(uHi, u);
+      }
+    const eclipse::LutExtent ext{std::max(0, static_cast<int>(std::floor(uLo * n - 0.5))),
+                                 std::min(n, static_cast<int>(std::ceil(uHi * n + 0.5)) + 1), 0, n};
+    eclipse::AtmosphericShadowLutParams sp;
+    const double fullS = lut256.rgb.empty() ? timed([&] { lut256 = eclipse::buildAtmosphericShadowLut(m, sp); }) : -1.0;
+    const double partS = timed([&] { eclipse::buildAtmosphericShadowLut(m, sp, ext); });
+    std::printf("## full against scene-limited\n\n| request | texels | seconds |\n|---|---|---|\n");
+    if (fullS >= 0) std::printf("| whole LuT | %d | %.1f |\n", n * n, fullS);
+    else std::printf("| whole LuT | %d | (see the complete set) |\n", n * n);
+    std::printf("| Moon 356 500-406 700 km: u texels %d-%d | %d | %.2f |\n\n", ext.uBegin, ext.uEnd - 1,
+                (ext.uEnd - ext.uBegin) * n, partS);
+  }
+
+  if (run.count("error")) {
+    // The reference: a fine deviation table and fine limb views, evaluated at each point.
+    atmosphere::RefractionTable fine;
+    const double fineS = timed([&] {
+      fine = atmosphere::buildRefractionTable(atmosphere::refractiveMedium(atm, atm.refractivityReferenceWavelengthNm),
+                                              1024, 512, 2.5e3);
+    });
+    AtmosphericShadowModel ref = m;
+    ref.rays = eclipse::limbRayProfile(set->tables, &fine, 16384);
+    Reference r;
+    const double refS = timed([&] { r = reference(ref, points, referenceRows); });
+    std::printf("## error against the brute-force reference (%s, %.0f km)\n\nreference: deviation table 1024x512 at 2.5 km "
+                "(%.0f s), limb views %dx%d with 128^2 scattering cells, %d points (%.1f s)\n\n",
+                preset.c_str(), distanceKm, fineS, referenceRows, referenceRows, points, refS);
+    std::printf("| what | setting | seconds | max rel. error R,G | max rel. error luminance |\n|---|---|---|---|---|\n");
+    for (int n : lutSizes) {
+      eclipse::ShadowLut lut;
+      double s = 0.0;
+      eclipse::AtmosphericShadowLutParams sp;
+      sp.width = sp.height = n;
+      if (n == 256 && !lut256.rgb.empty()) lut = lut256;
+      else s = timed([&] { lut = eclipse::buildAtmosphericShadowLut(m, sp); });
+      const Errors e = compare(r, sampled(m, r, lut));
+      std::printf("| shadow LuT (sampled) | %d^2 | %s | %.2e | %.2e |\n", n, s > 0 ? std::to_string(s).substr(0, 5).c_str() : "(set)", e.rg, e.luminance);
+    }
+    for (int rows : {32, 64, 128, 256, 512}) {
+      eclipse::LimbViewParams limb{rows, rows, 16, 16};
+      std::vector<glm::dvec3> v;
+      const double s = timed([&] { v = direct(m, r, limb); });
+      const Errors e = compare(r, v);
+      std::printf("| limb view rows (direct, %d points) | %d | %.3f | %.2e | %.2e |\n", points, rows, s, e.rg, e.luminance);
+    }
+    for (int cells : {8, 16, 32, 64}) {
+      eclipse::LimbViewParams limb{256, 256, cells, cells};
+      const Errors e = compare(r, direct(m, r, limb));
+      std::printf("| scattering cells (direct) | %d^2 | - | %.2e | %.2e |\n", cells, e.rg, e.luminance);
+    }
+    struct Refraction {
+      int w, h;
+      double step;
+    };
+    for (const Refraction& q : {Refraction{512, 256, 40e3}, Refraction{512, 256, 20e3}, Refraction{512, 256, 5e3},
+                                Refraction{256, 128, 10e3}, Refraction{1024, 512, 10e3}}) {
+      atmosphere::RefractionTable t;
+      const double s = timed([&] {
+        t = atmosphere::buildRefractionTable(atmosphere::refractiveMedium(atm, atm.refractivityReferenceWavelengthNm),
+                                             q.w, q.h, q.step);
+      });
+      AtmosphericShadowModel mm = m;
+      mm.rays = eclipse::limbRayProfile(set->tables, &t, 4096);
+      const Errors e = compare(r, direct(mm, r, {256, 256, 16, 16}));
+      std::printf("| deviation table (direct, limb 256^2) | %dx%d, %.0f km | %.1f | %.2e | %.2e |\n", q.w, q.h, q.step / 1e3, s,
+                  e.rg, e.luminance);
+    }
+    std::printf("\n");
+  }
+  return 0;
+}

@@ -1,0 +1,516 @@
+#include "AtmosphericShadow.hpp"
+
+#include "Atmosphere.hpp"
+#include "Precompute.hpp"
+#include "Refraction.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <stdexcept>
+
+namespace umbra::eclipse {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double sq(double x) { return x * x; }
+
+/// cos(a) - cos(b) without cancellation.
+double cosDifference(double a, double b) { return 2.0 * std::sin(0.5 * (a + b)) * std::sin(0.5 * (b - a)); }
+
+/// Gauss-Legendre nodes and weights on [0, 1], N points.
+template <int N>
+struct GaussLegendre {
+  std::array<double, N> x{}, w{};
+  GaussLegendre() {
+    const int n = N;
+    for (int i = 0; i < n; ++i) {
+      double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 0.0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1.0, p1 = z;
+        for (int k = 2; k <= n; ++k) {
+          const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
+          p0 = p1, p1 = p2;
+        }
+        dp = n * (z * p1 - p0) / (z * z - 1.0);
+        const double dz = p1 / dp;
+        z -= dz;
+        if (std::abs(dz) < 1e-16) break;
+      }
+      x[i] = 0.5 * (1.0 - z);
+      w[i] = 1.0 / ((1.0 - z * z) * dp * dp);  // 2 / ((1 - z^2) P'^2) on [-1, 1], halved
+    }
+  }
+};
+template <int N>
+const GaussLegendre<N>& gaussLegendre() {
+  static const GaussLegendre<N> g;
+  return g;
+}
+
+/// One limb-view row and where the Sun is seen through it.
+struct SunRow {
+  double A = 0.0, B = 0.0, K = 1.0;  ///< sin^2(a/2) = A + B sin^2(beta/2); K = sin^2(phi_sun/2)
+  double cosTheta = 1.0, sinTheta = 0.0, cosDelta = 1.0, sinDelta = 0.0;
+  double limbDarkening = 0.6;
+  double betaBegin = 0.0, betaEnd = 0.0;  ///< the chord of the solar disc; empty when equal
+  bool empty() const { return betaEnd <= betaBegin; }
+
+  /// Radiance of the Sun (relative: the disc's mean is 1) times the cosine towards the Sun.
+  double integrand(double beta) const {
+    const double s = std::sin(0.5 * beta);
+    const double rho2 = std::clamp((A + B * s * s) / K, 0.0, 1.0);
+    const double cosine = cosTheta * cosDelta + sinTheta * sinDelta * std::cos(beta);
+    return limbDarkenedLuminance(std::sqrt(rho2), limbDarkening) * std::max(cosine, 0.0);
+  }
+  /// Integral of the integrand over [a, b] inside the chord (the substitution
+  /// beta = a + (b - a)(1 - cos t) / 2 smooths the square roots at the disc's edge), with
+  /// N Gauss-Legendre points (12 for a whole chord, 4 for a pixel's part of it).
+  template <int N>
+  double integral(double a, double b) const {
+    a = std::max(a, betaBegin), b = std::min(b, betaEnd);
+    if (b <= a) return 0.0;
+    const GaussLegendre<N>& g = gaussLegendre<N>();
+    double sum = 0.0;
+    for (std::size_t i = 0; i < g.x.size(); ++i) {
+      const double t = kPi * g.x[i];
+      sum += g.w[i] * integrand(a + (b - a) * 0.5 * (1.0 - std::cos(t))) * std::sin(t);
+    }
+    return sum * kPi * (b - a) * 0.5;
+  }
+};
+
+SunRow sunRow(double exitPolarRad, const LimbPosition& p, double theta, double limbDarkening) {
+  SunRow row;
+  row.A = sq(std::sin(0.5 * (exitPolarRad - p.separationRad)));
+  row.B = std::sin(exitPolarRad) * std::sin(p.separationRad);
+  row.K = sq(std::sin(0.5 * p.sunAngularRadiusRad));
+  row.cosTheta = std::cos(theta), row.sinTheta = std::sin(theta);
+  row.cosDelta = std::cos(p.separationRad), row.sinDelta = std::sin(p.separationRad);
+  row.limbDarkening = limbDarkening;
+  // A + B s2 <= K for s2 = sin^2(beta / 2) in [0, 1].
+  double lo = 0.0, hi = 1.0;
+  const double slack = row.K - row.A;
+  if (std::abs(row.B) <= 1e-300) {
+    if (slack < 0.0) return row;
+  } else if (row.B > 0.0) {
+    hi = std::min(1.0, slack / row.B);
+  } else {
+    lo = std::max(0.0, slack / row.B);
+  }
+  if (hi < lo || hi < 0.0 || lo > 1.0) return row;
+  row.betaBegin = 2.0 * std::asin(std::sqrt(std::clamp(lo, 0.0, 1.0)));
+  row.betaEnd = 2.0 * std::asin(std::sqrt(std::clamp(hi, 0.0, 1.0)));
+  return row;
+}
+
+/// The rows of a view: gamma edges, polar angles, solid angle per unit beta.
+struct RowGeometry {
+  std::vector<double> theta, impactM, solidAnglePerBeta;
+};
+RowGeometry rowGeometry(const LimbPosition& p, int rows) {
+  RowGeometry g;
+  g.theta.resize(rows), g.impactM.resize(rows), g.solidAnglePerBeta.resize(rows);
+  const double span = p.atmosphereAngularRadiusRad - p.occluderAngularRadiusRad;
+  for (int i = 0; i < rows; ++i) {
+    const double lo = p.occluderAngularRadiusRad + span * i / rows;
+    const double hi = p.occluderAngularRadiusRad + span * (i + 1) / rows;
+    g.theta[i] = p.occluderAngularRadiusRad + span * (i + 0.5) / rows;
+    g.impactM[i] = p.occluderDistanceM * std::sin(g.theta[i]);
+    g.solidAnglePerBeta[i] = cosDifference(lo, hi);
+  }
+  return g;
+}
+
+/// The in-scattered radiance of cell (column, row) of a scatteringColumns x scatteringRows
+/// grid, per channel, and the cosine towards the Sun of its centre.
+void scatteredRadiance(const AtmosphericShadowModel& m, const LimbPosition& p, double theta, double beta,
+                       double* out, double& cosine) {
+  const double d = p.occluderDistanceM, rTop = m.atmosphereRadiusM();
+  const double st = std::sin(theta), ct = std::cos(theta);
+  const double b = std::min(d * st, rTop);
+  // Observer at (-d, 0, 0), occluder at the origin, Sun direction (cos delta, sin delta, 0),
+  // view direction w = (cos theta, sin theta cos beta, sin theta sin beta).
+  const glm::dvec3 w(ct, st * std::cos(beta), st * std::sin(beta));
+  const glm::dvec3 s(std::cos(p.separationRad), std::sin(p.separationRad), 0.0);
+  const double t = d * ct - std::sqrt(std::max(0.0, rTop * rTop - b * b));
+  const glm::dvec3 x(-d + t * w.x, t * w.y, t * w.z);
+  const glm::dvec3 n = x / std::sqrt(x.x * x.x + x.y * x.y + x.z * x.z);
+  const double mu = -std::sqrt(std::max(0.0, rTop * rTop - b * b)) / rTop;
+  const double muS = n.x * s.x + n.y * s.y;
+  const double nu = w.x * s.x + w.y * s.y;
+  cosine = std::max(nu, 0.0);
+  const std::vector<double> L = atmosphere::skyRadiance(*m.tables, *m.atmosphere, rTop, mu, muS, nu);
+  std::copy(L.begin(), L.end(), out);
+}
+
+/// The Sun seen through row i of a view: its chord (empty when the row sees no Sun) and,
+/// per channel, transmittance x terrain / (the Sun's solid angle) in `weight`.
+SunRow sunThroughRow(const AtmosphericShadowModel& m, const LimbPosition& p, const RowGeometry& g, int i,
+                     double* weight) {
+  double dev = 0.0, contact = 0.0;
+  m.rays.at(g.impactM[i], dev, contact, weight);
+  const double terrain = m.terrain.transmission(contact);
+  if (terrain <= 0.0) return {};
+  const double scale = terrain / (4.0 * kPi * sq(std::sin(0.5 * p.sunAngularRadiusRad)));
+  for (int c = 0; c < m.rays.channels; ++c) weight[c] *= scale;
+  return sunRow(g.theta[i] - dev, p, g.theta[i], m.limbDarkening);
+}
+
+void checkLimbParams(const LimbViewParams& p) {
+  if (p.columns < 1 || p.rows < 1 || p.scatteringColumns < 1 || p.scatteringRows < 1)
+    throw std::invalid_argument("limb view sizes must be at least 1");
+}
+
+bool useScattering(const AtmosphericShadowModel& m) {
+  return m.scattering && m.tables != nullptr && m.atmosphere != nullptr;
+}
+
+/// Runs body(k) for k in [0, total) over OpenMP threads (dynamic schedule), reporting
+/// progress from the calling thread; false when the callback cancelled.
+template <class Body>
+bool forEachTexel(int total, const Progress& progress, const Body& body) {
+  std::atomic<bool> cancelled{false};
+  std::atomic<int> done{0};
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int k = 0; k < total; ++k) {
+    if (cancelled.load()) continue;
+    body(k);
+    const int n = ++done;
+    if (progress) {
+#pragma omp critical(umbra_progress)
+      if (!progress(static_cast<double>(n) / total)) cancelled = true;
+    }
+  }
+  return !cancelled;
+}
+
+} // namespace
+
+double TerrainModel::transmission(double contactAltitudeM) const {
+  if (meanElevationM <= 0.0) return contactAltitudeM >= 0.0 ? 1.0 : 0.0;
+  return std::clamp(contactAltitudeM / (2.0 * meanElevationM), 0.0, 1.0);
+}
+
+TerrainModel defaultTerrain(const std::string& occluderName) {
+  TerrainModel t;
+  std::string name = occluderName;
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (name == "earth") t.meanElevationM = 240.0;
+  return t;
+}
+
+void LimbRayProfile::at(double b, double& dev, double& contact, double* T) const {
+  const int n = samples();
+  const double x = std::clamp((b - occluderRadiusM) / (atmosphereRadiusM - occluderRadiusM), 0.0, 1.0) * (n - 1);
+  const int k0 = std::min(static_cast<int>(x), n - 2);
+  const double f = x - k0;
+  dev = (1 - f) * deviationRad[k0] + f * deviationRad[k0 + 1];
+  contact = (1 - f) * contactAltitudeM[k0] + f * contactAltitudeM[k0 + 1];
+  const double* t0 = transmittance.data() + static_cast<std::size_t>(k0) * channels;
+  for (int c = 0; c < channels; ++c) T[c] = (1 - f) * t0[c] + f * t0[c + channels];
+}
+
+LimbRayProfile limbRayProfile(const atmosphere::AtmosphereTables& tables,
+                              const atmosphere::RefractionTable* refraction, int samples) {
+  if (samples < 2) throw std::invalid_argument("limb ray profile needs at least 2 samples");
+  LimbRayProfile p;
+  p.occluderRadiusM = tables.bottomRadiusM;
+  p.atmosphereRadiusM = tables.topRadiusM;
+  p.wavelengthsNm = tables.wavelengthsNm;
+  p.channels = static_cast<int>(tables.wavelengthCount());
+  p.deviationRad.resize(samples), p.contactAltitudeM.resize(samples);
+  p.transmittance.resize(static_cast<std::size_t>(samples) * p.channels);
+  const double rTop = tables.topRadiusM, rBottom = tables.bottomRadiusM;
+  for (int k = 0; k < samples; ++k) {
+    const double b = rBottom + (rTop - rBottom) * k / (samples - 1);
+    double dev = 0.0, contact = b - rBottom;
+    if (refraction) {
+      // The ray enters at the top with sin(z) = b / r_top, heading down.
+      const double mu = -std::sqrt(std::max(0.0, rTop * rTop - b * b)) / rTop;
+      const atmosphere::RefractionSample s = refraction->sample(rTop, mu);
+      dev = s.deviationRad, contact = s.contactAltitudeM;
+    }
+    p.deviationRad[k] = dev, p.contactAltitudeM[k] = contact;
+    double* T = p.transmittance.data() + static_cast<std::size_t>(k) * p.channels;
+    if (contact < 0.0) {
+      std::fill(T, T + p.channels, 0.0);
+      continue;
+    }
+    // Symmetric about the periapsis: the way out from it, twice.
+    atmosphere::transmittanceToTop(tables, std::min(rBottom + contact, rTop), 0.0, T);
+    for (int c = 0; c < p.channels; ++c) T[c] *= T[c];
+  }
+  return p;
+}
+
+LimbRayProfile transparentLimbProfile(double rOcc, double rAtmo, const std::vector<double>& wavelengthsNm) {
+  LimbRayProfile p;
+  p.occluderRadiusM = rOcc, p.atmosphereRadiusM = rAtmo;
+  p.wavelengthsNm = wavelengthsNm;
+  p.channels = static_cast<int>(wavelengthsNm.size());
+  const int n = 2;
+  p.deviationRad.assign(n, 0.0);
+  p.contactAltitudeM = {0.0, rAtmo - rOcc};
+  p.transmittance.assign(static_cast<std::size_t>(n) * p.channels, 1.0);
+  return p;
+}
+
+std::string AtmosphericShadowModel::validate() const {
+  if (!(system.sunRadiusM > 0 && system.occluderRadiusM > 0 && system.sunOccluderDistanceM > 0))
+    return "Sun radius, occluder radius and distance must be positive";
+  if (rays.samples() < 2 || rays.channels < 1) return "limb ray profile is empty";
+  if (!(rays.atmosphereRadiusM > rays.occluderRadiusM)) return "atmosphere top must be above the ground";
+  if (std::abs(rays.occluderRadiusM - system.occluderRadiusM) > 1e-6 * system.occluderRadiusM)
+    return "occluder radius differs from the atmosphere's bottom radius";
+  if (system.sunOccluderDistanceM <= system.sunRadiusM + rays.atmosphereRadiusM)
+    return "Sun and occluder overlap";
+  if (scattering && tables && tables->wavelengthCount() != static_cast<std::size_t>(rays.channels))
+    return "atmosphere tables and ray profile have different wavelengths";
+  return {};
+}
+
+/// Completes a position: a point inside the atmosphere (u -> 0) is seen from just above
+/// its top, at the same v.
+LimbPosition finishPosition(const AtmosphericShadowModel& m, LimbPosition p) {
+  const double rTop = m.atmosphereRadiusM();
+  if (p.occluderDistanceM < rTop * (1.0 + 1e-9)) {
+    const double v = p.separationRad / (p.occluderAngularRadiusRad + p.sunAngularRadiusRad);
+    p.occluderDistanceM = rTop * (1.0 + 1e-9);
+    p.occluderAngularRadiusRad = angularRadiusRad(m.system.occluderRadiusM, p.occluderDistanceM);
+    p.separationRad = v * (p.occluderAngularRadiusRad + p.sunAngularRadiusRad);
+  }
+  p.atmosphereAngularRadiusRad = angularRadiusRad(rTop, p.occluderDistanceM);
+  return p;
+}
+
+LimbPosition limbPosition(const AtmosphericShadowModel& m, const LutCoords& coords) {
+  const InverseMapping inv = inverseLutCoords(coords, m.system);
+  LimbPosition p;
+  p.sunAngularRadiusRad = inv.angles.sunAngularRadiusRad;
+  p.occluderAngularRadiusRad = inv.angles.occluderAngularRadiusRad;
+  p.separationRad = inv.angles.separationRad;
+  p.occluderDistanceM = inv.occluderDistanceM;
+  return finishPosition(m, p);
+}
+
+LimbPosition limbPositionBehind(const AtmosphericShadowModel& m, double distanceBehindM, double offsetM) {
+  const glm::dvec3 sun(-m.system.sunOccluderDistanceM, 0.0, 0.0), occ(0.0);
+  const glm::dvec3 point(distanceBehindM, offsetM, 0.0);
+  const ShadowAngles a = shadowAngles(point, sun, m.system.sunRadiusM, occ, m.system.occluderRadiusM);
+  LimbPosition p;
+  p.sunAngularRadiusRad = a.sunAngularRadiusRad;
+  p.occluderAngularRadiusRad = a.occluderAngularRadiusRad;
+  p.separationRad = a.separationRad;
+  p.occluderDistanceM = std::hypot(distanceBehindM, offsetM);
+  return finishPosition(m, p);
+}
+
+LutCoords lutCoordsOf(const LimbPosition& p) {
+  return lutCoords(ShadowAngles{p.sunAngularRadiusRad, p.occluderAngularRadiusRad, p.separationRad});
+}
+
+std::vector<ProfileSample> atmosphericShadowProfile(const AtmosphericShadowModel& m, double distanceBehindM,
+                                                    double maxOffsetM, int samples, const ShadowLut* lut,
+                                                    const LimbViewParams& limb) {
+  if (samples < 2) throw std::invalid_argument("profile needs at least 2 samples");
+  if (const std::string e = m.validate(); !e.empty()) throw std::invalid_argument("atmospheric shadow: " + e);
+  std::vector<ProfileSample> out(samples);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int k = 0; k < samples; ++k) {
+    ProfileSample& s = out[k];
+    s.offsetM = maxOffsetM * k / (samples - 1);
+    const LimbPosition p = limbPositionBehind(m, distanceBehindM, s.offsetM);
+    const LutCoords c = lutCoordsOf(p);
+    if (lut) {
+      // The LuT ends at v = 1 (the solid body's penumbra), as the renderer reads it.
+      s.rgb = c.v >= 1.0 ? glm::dvec3(1.0) : lut->sample(c);
+    } else {  // directly: also past v = 1, where the atmosphere still dims the Sun
+      const std::vector<double> t = illuminanceAt(m, p, limb).total();
+      s.rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
+    }
+    s.luminance = luminance(s.rgb);
+  }
+  return out;
+}
+
+std::vector<double> Illuminance::total() const {
+  std::vector<double> t = indirect;
+  for (double& x : t) x += direct;
+  return t;
+}
+
+LimbView renderLimbView(const AtmosphericShadowModel& m, const LimbPosition& p, const LimbViewParams& params) {
+  checkLimbParams(params);
+  const int nc = m.rays.channels, R = params.rows, C = params.columns;
+  LimbView view;
+  view.columns = C, view.rows = R, view.channels = nc;
+  view.radiance.assign(static_cast<std::size_t>(R) * C * nc, 0.0);
+  view.solidAngleSr.resize(R);
+  const RowGeometry g = rowGeometry(p, R);
+  const double dBeta = kPi / C;
+  std::vector<double> T(nc);
+  for (int i = 0; i < R; ++i) {
+    view.solidAngleSr[i] = g.solidAnglePerBeta[i] * dBeta;
+    if (!m.refractedSun) continue;
+    const SunRow row = sunThroughRow(m, p, g, i, T.data());
+    if (row.empty()) continue;
+    const int j0 = std::max(0, static_cast<int>(row.betaBegin / dBeta));
+    const int j1 = std::min(C - 1, static_cast<int>(row.betaEnd / dBeta));
+    for (int j = j0; j <= j1; ++j) {
+      // The mean over the pixel's beta range; the cosine is divided back out (radiance).
+      const double mean = row.integral<4>(j * dBeta, (j + 1) * dBeta) / dBeta;
+      const double beta = (j + 0.5) * dBeta;
+      const double cosine = row.cosTheta * row.cosDelta + row.sinTheta * row.sinDelta * std::cos(beta);
+      const double L = mean / std::max(cosine, 1e-12);
+      for (int c = 0; c < nc; ++c) view.at(i, j, c) += L * T[c];
+    }
+  }
+  if (useScattering(m)) {
+    const int SC = params.scatteringColumns, SR = params.scatteringRows;
+    const double span = p.atmosphereAngularRadiusRad - p.occluderAngularRadiusRad;
+    std::vector<double> L(nc);
+    for (int r = 0; r < SR; ++r)
+      for (int q = 0; q < SC; ++q) {
+        double cosine = 0.0;
+        scatteredRadiance(m, p, p.occluderAngularRadiusRad + span * (r + 0.5) / SR, kPi * (q + 0.5) / SC, L.data(),
+                          cosine);
+        for (int i = r * R / SR; i < (r + 1) * R / SR; ++i)
+          for (int j = q * C / SC; j < (q + 1) * C / SC; ++j)
+            for (int c = 0; c < nc; ++c) view.at(i, j, c) += L[c];
+      }
+  }
+  return view;
+}
+
+Illuminance illuminanceAt(const AtmosphericShadowModel& m, const LimbPosition& p, const LimbViewParams& params) {
+  checkLimbParams(params);
+  const int nc = m.rays.channels;
+  Illuminance I;
+  I.indirect.assign(nc, 0.0);
+  std::vector<double> T(nc);
+  if (m.refractedSun) {
+    const RowGeometry g = rowGeometry(p, params.rows);
+    for (int i = 0; i < params.rows; ++i) {
+      const SunRow row = sunThroughRow(m, p, g, i, T.data());
+      if (row.empty()) continue;
+      const double e = 2.0 * g.solidAnglePerBeta[i] * row.integral<12>(row.betaBegin, row.betaEnd);
+      for (int c = 0; c < nc; ++c) I.indirect[c] += e * T[c];
+    }
+  }
+  if (useScattering(m)) {
+    const int SC = params.scatteringColumns, SR = params.scatteringRows;
+    const RowGeometry g = rowGeometry(p, SR);
+    std::vector<double> L(nc);
+    for (int r = 0; r < SR; ++r)
+      for (int q = 0; q < SC; ++q) {
+        double cosine = 0.0;
+        scatteredRadiance(m, p, g.theta[r], kPi * (q + 0.5) / SC, L.data(), cosine);
+        const double w = 2.0 * g.solidAnglePerBeta[r] * (kPi / SC) * cosine;
+        for (int c = 0; c < nc; ++c) I.indirect[c] += w * L[c];
+      }
+  }
+  const double delta = p.separationRad, phiS = p.sunAngularRadiusRad;
+  I.direct = delta >= p.atmosphereAngularRadiusRad + phiS
+                 ? 1.0
+                 : visibleFractionLimbDarkened(p.atmosphereAngularRadiusRad / phiS, delta / phiS, m.limbDarkening)
+                       .value;
+  return I;
+}
+
+glm::dvec3 rgbOfSpectralRatio(const std::vector<double>& nm, const double* ratio) {
+  const int n = static_cast<int>(nm.size());
+  auto at = [&](double lambda) {
+    if (n == 1) return ratio[0];
+    // Nearest bracketing pair in the set's own order (ascending, or R, G, B).
+    int best = -1;
+    double bestSpan = 1e300;
+    for (int a = 0; a < n; ++a) {
+      if (nm[a] == lambda) return ratio[a];
+      for (int b = 0; b < n; ++b)
+        if (nm[a] < lambda && lambda < nm[b] && nm[b] - nm[a] < bestSpan) best = a * n + b, bestSpan = nm[b] - nm[a];
+    }
+    if (best < 0) {  // outside the set: the nearest sample
+      int k = 0;
+      for (int a = 1; a < n; ++a)
+        if (std::abs(nm[a] - lambda) < std::abs(nm[k] - lambda)) k = a;
+      return ratio[k];
+    }
+    const int a = best / n, b = best % n;
+    const double f = (lambda - nm[a]) / (nm[b] - nm[a]);
+    return (1 - f) * ratio[a] + f * ratio[b];
+  };
+  return {at(680.0), at(550.0), at(440.0)};
+}
+
+ShadowLut buildAtmosphericShadowLut(const AtmosphericShadowModel& m, const AtmosphericShadowLutParams& params,
+                                    const LutExtent& requested, const Progress& progress) {
+  if (const std::string e = m.validate(); !e.empty()) throw std::invalid_argument("atmospheric shadow: " + e);
+  if (params.width < 2 || params.height < 2) throw std::invalid_argument("shadow LuT size must be at least 2x2");
+  checkLimbParams(params.limb);
+  LutExtent ext = requested.empty() ? LutExtent{0, params.width, 0, params.height} : requested;
+  if (ext.uBegin < 0 || ext.vBegin < 0 || ext.uEnd > params.width || ext.vEnd > params.height)
+    throw std::invalid_argument("shadow LuT extent outside the table");
+  ShadowLut lut;
+  lut.width = ext.uEnd - ext.uBegin;
+  lut.height = ext.vEnd - ext.vBegin;
+  lut.rgb.assign(static_cast<std::size_t>(lut.width) * lut.height * 3, 0.0f);
+  const bool finished = forEachTexel(lut.width * lut.height, progress, [&](int k) {
+    const int i = k % lut.width, j = k / lut.width;
+    const LutCoords c{(ext.uBegin + i + 0.5) / params.width, (ext.vBegin + j + 0.5) / params.height};
+    const std::vector<double> t = illuminanceAt(m, limbPosition(m, c), params.limb).total();
+    const glm::dvec3 rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
+    float* out = lut.rgb.data() + 3 * static_cast<std::size_t>(k);
+    for (int q = 0; q < 3; ++q) out[q] = static_cast<float>(rgb[q]);
+  });
+  if (!finished) return {};
+  return lut;
+}
+
+glm::dvec3 LimbLuminanceLut::texel(int i, int j, int k) const {
+  const std::size_t o = ((static_cast<std::size_t>(k) * height + j) * width + i) * 3;
+  return {rgb[o], rgb[o + 1], rgb[o + 2]};
+}
+
+LimbLuminanceLut buildLimbLuminanceLut(const AtmosphericShadowModel& m, const LimbLuminanceLutParams& params,
+                                       const Progress& progress) {
+  if (const std::string e = m.validate(); !e.empty()) throw std::invalid_argument("limb luminance: " + e);
+  if (params.width < 2 || params.height < 2 || params.columns < 1 || params.layers < 1 ||
+      params.layers > params.limb.rows)
+    throw std::invalid_argument("limb luminance LuT: sizes must be >= 2x2, columns >= 1, 1 <= layers <= limb rows");
+  LimbViewParams lp = params.limb;
+  lp.columns = params.columns;
+  checkLimbParams(lp);
+  LimbLuminanceLut lut;
+  lut.width = params.width, lut.height = params.height, lut.columns = params.columns, lut.layers = params.layers;
+  lut.rgb.assign(static_cast<std::size_t>(lut.width) * lut.height * lut.depth() * 3, 0.0f);
+  const bool finished = forEachTexel(lut.width * lut.height, progress, [&](int k) {
+    const int i = k % lut.width, j = k / lut.width;
+    const LutCoords c{(i + 0.5) / lut.width, (j + 0.5) / lut.height};
+    const LimbView view = renderLimbView(m, limbPosition(m, c), lp);
+    const int nc = view.channels;
+    std::vector<double> sum(nc);
+    for (int layer = 0; layer < lut.layers; ++layer) {
+      const int r0 = layer * view.rows / lut.layers, r1 = (layer + 1) * view.rows / lut.layers;
+      for (int col = 0; col < lut.columns; ++col) {
+        std::fill(sum.begin(), sum.end(), 0.0);
+        double omega = 0.0;
+        for (int r = r0; r < r1; ++r) {
+          omega += view.solidAngleSr[r];
+          for (int q = 0; q < nc; ++q) sum[q] += view.at(r, col, q) * view.solidAngleSr[r];
+        }
+        for (double& s : sum) s /= omega > 0.0 ? omega : 1.0;
+        const glm::dvec3 rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, sum.data());
+        const std::size_t o = ((static_cast<std::size_t>(layer * lut.columns + col) * lut.height + j) * lut.width + i) * 3;
+        for (int q = 0; q < 3; ++q) lut.rgb[o + q] = static_cast<float>(rgb[q]);
+      }
+    }
+  });
+  if (!finished) return {};
+  return lut;
+}
+
+} // namespace umbra::eclipse

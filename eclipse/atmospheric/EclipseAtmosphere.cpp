@@ -1,0 +1,73 @@
+#include "EclipseAtmosphere.hpp"
+
+#include "Describe.hpp"
+#include "SightLines.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace umbra::eclipse {
+
+std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::Atmosphere& atm,
+                                                            const std::string& occluderName,
+                                                            double sunOccluderDistanceM,
+                                                            const EclipseAtmosphereOptions& options,
+                                                            const EclipseProgress& progress) {
+  if (options.refractionWidth < 2 || options.refractionHeight < 2 || !(options.refractionStepM > 0.0) ||
+      options.profileSamples < 2)
+    throw std::invalid_argument("eclipse atmosphere: refraction table >= 2x2, step > 0, profile samples >= 2");
+  auto e = std::make_unique<EclipseAtmosphere>();
+  e->atmosphere = atm;
+  atmosphere::PrecomputeOptions po = options.tables;
+  po.refraction = options.refraction;
+  po.refractionStepM = options.refractionStepM;
+  // The Bruneton tables take most of the time; the refraction table about a tenth.
+  e->tables = atmosphere::precompute(e->atmosphere, po, [&](double f, const std::string& stage) {
+    return !progress || progress(0.9 * f, stage);
+  });
+  if (options.refraction) {
+    if (progress && !progress(0.9, "refraction")) throw atmosphere::PrecomputeCancelled();
+    e->refraction = atmosphere::buildRefractionTable(
+        atmosphere::refractiveMedium(e->atmosphere, e->atmosphere.refractivityReferenceWavelengthNm),
+        options.refractionWidth, options.refractionHeight, options.refractionStepM);
+  }
+  AtmosphericShadowModel& m = e->model;
+  m.system = {kSunRadiusM, atm.bottomRadiusM, sunOccluderDistanceM};
+  m.rays = limbRayProfile(e->tables, options.refraction ? &e->refraction : nullptr, options.profileSamples);
+  m.tables = &e->tables;
+  m.atmosphere = &e->atmosphere;
+  m.terrain = defaultTerrain(occluderName);
+  if (options.terrainMeanElevationM >= 0.0) m.terrain.meanElevationM = options.terrainMeanElevationM;
+  if (const std::string err = m.validate(); !err.empty()) throw std::invalid_argument("eclipse atmosphere: " + err);
+  if (progress) progress(1.0, "done");
+  return e;
+}
+
+std::map<std::string, std::string> eclipseAtmosphereParameters(const atmosphere::Atmosphere& atm,
+                                                               const std::string& occluderName,
+                                                               double sunOccluderDistanceM,
+                                                               const EclipseAtmosphereOptions& o) {
+  std::map<std::string, std::string> p = atmosphere::atmosphereParameters(atm);
+  const atmosphere::PrecomputeOptions& t = o.tables;
+  std::ostringstream s;
+  s << t.transmittanceWidth << "x" << t.transmittanceHeight << " " << t.scatteringR << "," << t.scatteringMu << ","
+    << t.scatteringMuS << "," << t.scatteringNu << " " << t.irradianceWidth << "x" << t.irradianceHeight << " orders "
+    << t.orders << " samples " << t.transmittanceSamples << " " << t.singleScatteringSamples << " "
+    << t.multipleScatteringSamples << " " << t.opticalDepthSubsamples << " " << t.sphereSamples << " "
+    << t.irradianceSamples << " muSMin " << atmosphere::formatNumber(t.muSMin) << " sun "
+    << atmosphere::formatNumber(t.sunAngularRadiusRad);
+  p["atmosphereTables"] = s.str();
+  p["refraction"] = o.refraction ? std::to_string(o.refractionWidth) + "x" + std::to_string(o.refractionHeight) +
+                                       " step " + atmosphere::formatNumber(o.refractionStepM)
+                                 : "off";
+  p["profileSamples"] = std::to_string(o.profileSamples);
+  const double terrain =
+      o.terrainMeanElevationM >= 0.0 ? o.terrainMeanElevationM : defaultTerrain(occluderName).meanElevationM;
+  p["terrainMeanElevationM"] = atmosphere::formatNumber(terrain);
+  p["sunRadiusM"] = atmosphere::formatNumber(kSunRadiusM);
+  p["occluderRadiusM"] = atmosphere::formatNumber(atm.bottomRadiusM);
+  p["sunOccluderDistanceM"] = atmosphere::formatNumber(sunOccluderDistanceM);
+  return p;
+}
+
+} // namespace umbra::eclipse

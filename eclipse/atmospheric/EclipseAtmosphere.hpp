@@ -1,0 +1,60 @@
+#pragma once
+// Everything an atmospheric eclipse table needs, made in one place: the atmosphere at the
+// wavelengths, its Bruneton tables along refracted paths, the deviation / contact table,
+// the limb ray profile and the shadow model that reads them.
+#include "AtmosphericShadow.hpp"
+
+#include "Atmosphere.hpp"
+#include "Precompute.hpp"
+#include "Refraction.hpp"
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace umbra::eclipse {
+
+struct EclipseAtmosphereOptions {
+  atmosphere::PrecomputeOptions tables;  ///< refraction on by default (see the constructor)
+  bool refraction = true;                ///< bend rays (the deviation table, refracted paths)
+  int refractionWidth = 512, refractionHeight = 256;
+  double refractionStepM = 10e3;
+  int profileSamples = 4096;             ///< impact parameters of the limb ray profile
+  double terrainMeanElevationM = -1.0;   ///< < 0: defaultTerrain(occluder)
+  EclipseAtmosphereOptions() { tables.refraction = true; }
+};
+
+/// The prepared atmosphere; `model` points into this object (not copyable).
+struct EclipseAtmosphere {
+  atmosphere::Atmosphere atmosphere;
+  atmosphere::AtmosphereTables tables;
+  atmosphere::RefractionTable refraction;
+  AtmosphericShadowModel model;
+  EclipseAtmosphere() = default;
+  EclipseAtmosphere(const EclipseAtmosphere&) = delete;
+  EclipseAtmosphere& operator=(const EclipseAtmosphere&) = delete;
+};
+
+/// Progress of the preparation: fraction in [0, 1] and the stage; false cancels
+/// (atmosphere::PrecomputeCancelled is thrown).
+using EclipseProgress = std::function<bool(double, const std::string&)>;
+
+/// Precomputes the tables of `atm` (already at its wavelengths) for the occluder `occluderName`
+/// ("earth", "mars", ...: picks the terrain) seen from a Sun `sunOccluderDistanceM` away.
+/// The occluder's radius is the atmosphere's bottom radius. Throws std::invalid_argument
+/// for bad options.
+std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::Atmosphere& atm,
+                                                            const std::string& occluderName,
+                                                            double sunOccluderDistanceM,
+                                                            const EclipseAtmosphereOptions& options,
+                                                            const EclipseProgress& progress = {});
+
+/// Every parameter that changes the prepared model's values, known before preparing it
+/// (for headers and cache keys): the atmosphere's, the options', the bodies'.
+std::map<std::string, std::string> eclipseAtmosphereParameters(const atmosphere::Atmosphere& atm,
+                                                               const std::string& occluderName,
+                                                               double sunOccluderDistanceM,
+                                                               const EclipseAtmosphereOptions& options);
+
+} // namespace umbra::eclipse

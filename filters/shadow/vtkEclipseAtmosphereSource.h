@@ -1,0 +1,132 @@
+#pragma once
+// vtkEclipseAtmosphereSource: what the eclipse tables of an occluder with an atmosphere
+// share (vtkEclipseShadowLutSource, vtkLimbLuminanceSource): the bodies, the atmosphere
+// (preset name or JSON file; empty = airless) and the options of its precomputation
+// (umbra::eclipse::EclipseAtmosphereOptions), the cache settings. The prepared atmosphere
+// (Bruneton tables, refraction table, limb ray profile) is made once per process for a
+// given set of parameters and shared by the sources that ask for it.
+#include "ShadowLut.hpp"
+
+#include <vtkImageAlgorithm.h>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace umbra::eclipse {
+struct AtmosphericShadowModel;
+struct EclipseAtmosphere;
+struct EclipseAtmosphereOptions;
+}
+
+class vtkEclipseAtmosphereSource : public vtkImageAlgorithm {
+public:
+  vtkTypeMacro(vtkEclipseAtmosphereSource, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The bodies, passed on in field data [m]. With an atmosphere the occluder's radius is
+  /// the atmosphere's bottom radius.
+  vtkSetStdStringFromCharMacro(OccluderName);
+  vtkGetCharFromStdStringMacro(OccluderName);
+  vtkSetMacro(OccluderRadiusM, double);
+  vtkGetMacro(OccluderRadiusM, double);
+  vtkSetMacro(SunRadiusM, double);
+  vtkGetMacro(SunRadiusM, double);
+  vtkSetMacro(SunOccluderDistanceM, double);
+  vtkGetMacro(SunOccluderDistanceM, double);
+
+  /// Preset name ("earth", "mars", "earth-2015-calbuco") or JSON file; empty (default): none.
+  vtkSetStdStringFromCharMacro(Atmosphere);
+  vtkGetCharFromStdStringMacro(Atmosphere);
+  /// Bruneton tables: orders, wavelengths (3 = 680, 550, 440 nm), sizes.
+  vtkSetClampMacro(Orders, int, 1, 64);
+  vtkGetMacro(Orders, int);
+  vtkSetClampMacro(Wavelengths, int, 1, 256);
+  vtkGetMacro(Wavelengths, int);
+  vtkSetVector2Macro(TransmittanceSize, int);
+  vtkGetVector2Macro(TransmittanceSize, int);
+  vtkSetVector4Macro(ScatteringSize, int);  ///< R, MU, MU_S, NU
+  vtkGetVector4Macro(ScatteringSize, int);
+  vtkSetVector2Macro(IrradianceSize, int);
+  vtkGetVector2Macro(IrradianceSize, int);
+  /// Refraction (default on): the deviation / contact table and refracted paths.
+  vtkSetMacro(Refraction, bool);
+  vtkGetMacro(Refraction, bool);
+  vtkBooleanMacro(Refraction, bool);
+  vtkSetVector2Macro(RefractionSize, int);
+  vtkGetVector2Macro(RefractionSize, int);
+  vtkSetClampMacro(RefractionStepM, double, 1.0, 1e6);
+  vtkGetMacro(RefractionStepM, double);
+  /// Mean terrain elevation [m] for the contact attenuation; < 0 (default): the body's.
+  vtkSetMacro(TerrainMeanElevationM, double);
+  vtkGetMacro(TerrainMeanElevationM, double);
+
+  vtkSetStdStringFromCharMacro(CacheDirectory);
+  vtkGetCharFromStdStringMacro(CacheDirectory);
+  vtkSetMacro(UseCache, bool);
+  vtkGetMacro(UseCache, bool);
+  vtkBooleanMacro(UseCache, bool);
+
+  /// The prepared atmosphere (tables, deviation table, the shadow model), made now if
+  /// needed, with progress events; for computations outside the tables, e.g. a profile
+  /// computed directly. Throws on a bad atmosphere or options.
+  std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> GetPreparedAtmosphere() {
+    return this->PrepareAtmosphere(0.0, 1.0);
+  }
+
+  /// After an update: whether the table came from the cache, and the cache file's path.
+  bool GetLastUpdateWasCacheHit() const { return this->LastCacheHit; }
+  const std::string& GetCachePath() const { return this->CachePath; }
+  /// After an update: a cache store that failed (the table is still produced), or empty.
+  const std::string& GetCacheWarning() const { return this->CacheWarning; }
+
+protected:
+  vtkEclipseAtmosphereSource();
+  ~vtkEclipseAtmosphereSource() override = default;
+
+  bool HasAtmosphere() const { return !this->Atmosphere.empty(); }
+  umbra::eclipse::EclipseAtmosphereOptions Options() const;
+  /// The parameters of the prepared atmosphere (loads the atmosphere file; throws its error).
+  std::map<std::string, std::string> AtmosphereParameters() const;
+  /// Prepared once per process and parameters; progress goes to this algorithm (from
+  /// `from` to `to`); throws on errors and when aborted.
+  std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> PrepareAtmosphere(double from, double to);
+  /// An RGB table of `kind` and `width` x `height` texels: read from the cache when there,
+  /// else `compute` runs with the prepared model (this limb darkening; its progress from
+  /// 0.5 to 1, empty result = aborted) and the result is stored. Sets the cache status.
+  using Compute = std::function<std::vector<float>(const umbra::eclipse::AtmosphericShadowModel&,
+                                                   const umbra::eclipse::Progress&)>;
+  std::vector<float> CachedOrComputed(const char* kind, const std::map<std::string, std::string>& parameters,
+                                      int width, int height, double limbDarkening, const Compute& compute);
+  /// Whole extent, spacing and origin of a LuT with texel centres at (i + 0.5) / width,
+  /// (j + 0.5) / height and `depth` slices.
+  static void SetLutInformation(vtkInformationVector* out, int width, int height, int depth);
+
+  std::string OccluderName;
+  double OccluderRadiusM = 6371.0084e3;
+  double SunRadiusM = umbra::eclipse::kSunRadiusM;
+  double SunOccluderDistanceM = 149597870700.0;
+  std::string Atmosphere;
+  int Orders = 4;
+  int Wavelengths = 3;
+  int TransmittanceSize[2] = {256, 64};
+  int ScatteringSize[4] = {32, 128, 32, 8};
+  int IrradianceSize[2] = {64, 16};
+  bool Refraction = true;
+  int RefractionSize[2] = {512, 256};
+  double RefractionStepM = 10e3;
+  double TerrainMeanElevationM = -1.0;
+  std::string CacheDirectory;
+  bool UseCache = true;
+
+  /// The atmosphere this source prepared last (keeps it shared while the source lives).
+  std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> Prepared;
+  bool LastCacheHit = false;
+  std::string CachePath;
+  std::string CacheWarning;
+
+private:
+  vtkEclipseAtmosphereSource(const vtkEclipseAtmosphereSource&) = delete;
+  void operator=(const vtkEclipseAtmosphereSource&) = delete;
+};

@@ -1,0 +1,70 @@
+#include "vtkLimbLuminanceSource.h"
+
+#include "EclipseAtmosphere.hpp"
+#include "ShadowLutData.h"
+
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+vtkStandardNewMacro(vtkLimbLuminanceSource);
+
+void vtkLimbLuminanceSource::PrintSelf(ostream& os, vtkIndent indent) {
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Size: " << this->Width << " x " << this->Height << " x (" << this->Columns << " x " << this->Layers
+     << ")\n";
+}
+
+int vtkLimbLuminanceSource::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) {
+  SetLutInformation(out, this->Width, this->Height, this->Columns * this->Layers);
+  return 1;
+}
+
+int vtkLimbLuminanceSource::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) {
+  using namespace umbra;
+  vtkImageData* output = vtkImageData::GetData(out);
+  try {
+    if (!this->HasAtmosphere()) throw std::invalid_argument("the limb-luminance LuT needs an atmosphere");
+    if (this->Layers > this->LimbRows) throw std::invalid_argument("more layers than limb-view rows");
+    eclipse::LimbLuminanceLutParams params;
+    params.width = this->Width, params.height = this->Height, params.columns = this->Columns;
+    params.layers = this->Layers;
+    params.limb = {this->Columns, this->LimbRows, this->ScatteringCells, this->ScatteringCells};
+    auto parameters = this->AtmosphereParameters();
+    parameters["kind"] = filters::kLimbLuminanceLutKind;
+    parameters["model"] = "limb views averaged to layers (eclipse paper 5.3); v1";
+    parameters["size"] = std::to_string(this->Width) + "x" + std::to_string(this->Height) + "x" +
+                         std::to_string(this->Columns) + "x" + std::to_string(this->Layers);
+    parameters["limbView"] = std::to_string(this->LimbRows) + " rows, scattering " +
+                             std::to_string(this->ScatteringCells) + "x" + std::to_string(this->ScatteringCells);
+    parameters["limbDarkening"] = filters::formatNumber(this->LimbDarkening);
+    parameters["occluder"] = this->OccluderName;
+    parameters["layout"] = "x = u index, y = v index + height * (layer * columns + column): the slices stacked";
+    parameters["values"] = "radiance per unit solar irradiance [1/sr], R, G, B = 680, 550, 440 nm";
+    const int depth = this->Columns * this->Layers;
+    const std::vector<float> rgb = this->CachedOrComputed(
+        filters::kLimbLuminanceLutKind, parameters, this->Width, this->Height * depth, this->LimbDarkening,
+        [&](const eclipse::AtmosphericShadowModel& model, const eclipse::Progress& progress) {
+          return eclipse::buildLimbLuminanceLut(model, params, progress).rgb;
+        });
+    output->SetDimensions(this->Width, this->Height, depth);
+    output->SetSpacing(1.0 / this->Width, 1.0 / this->Height, 1.0);
+    output->SetOrigin(0.5 / this->Width, 0.5 / this->Height, 0.0);
+    auto values = vtkSmartPointer<vtkFloatArray>::New();
+    values->SetName("L_over_Esun");
+    values->SetNumberOfComponents(3);
+    values->SetNumberOfTuples(static_cast<vtkIdType>(rgb.size() / 3));
+    std::copy(rgb.begin(), rgb.end(), values->GetPointer(0));
+    output->GetPointData()->SetScalars(values);
+    filters::setFieldParameters(output, parameters);
+  } catch (const std::exception& e) {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}

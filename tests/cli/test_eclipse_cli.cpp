@@ -1,0 +1,131 @@
+// `umbra precompute eclipse` and `umbra profile shadow --atmosphere`: the files and their
+// layout, the colour of Earth's umbra and of Mars' at Phobos, the Figure 12 plot, and
+// one-line errors without output for bad input. Small tables (--draft-tables).
+#include "CliRunner.hpp"
+
+#include "umbra/tables/Exr.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+using namespace umbra::test;
+
+namespace {
+
+std::vector<std::array<double, 5>> readRows(const std::string& path) {
+  std::ifstream f(path);
+  std::string line;
+  std::getline(f, line);
+  EXPECT_EQ(line, "offset_km,r,g,b,luminance");
+  std::vector<std::array<double, 5>> rows;
+  while (std::getline(f, line)) {
+    std::array<double, 5> row{};
+    std::stringstream s(line);
+    char comma;
+    s >> row[0] >> comma >> row[1] >> comma >> row[2] >> comma >> row[3] >> comma >> row[4];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+const std::vector<std::string> kSmall = {"--draft-tables", "--orders", "2", "--limb-size", "32", "--scattering-cells", "8"};
+
+std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+} // namespace
+
+TEST(EclipseCli, PrecomputeWritesTheShadowAndLimbLuminanceTables) {
+  TempDir dir;
+  const RunResult r = run(UMBRA_EXE,
+                          with({"precompute", "eclipse", "--occluder", "earth", "--atmosphere", "earth", "--size", "16",
+                                "--limb-lut-size", "8", "--layers", "2", "--output", dir / "out"},
+                               kSmall),
+                          {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const umbra::tables::Table shadow = umbra::tables::readExr(dir / "out/eclipse-shadow-atmosphere.exr", {"R", "G", "B"});
+  EXPECT_EQ(shadow.width, 16);
+  EXPECT_EQ(shadow.height, 16);
+  EXPECT_EQ(shadow.parameters.at("atmosphere"), "earth");
+  for (float x : shadow.data) {
+    ASSERT_TRUE(std::isfinite(x));
+    ASSERT_GE(x, 0.0f);
+    ASSERT_LE(x, 1.0f + 1e-5f);
+  }
+  // Bottom row (v near 0), u beyond the umbra's tip's half: umbra or antumbra, red first.
+  const int i = 6;  // u = 0.41: about 10^6 km
+  EXPECT_GT(shadow.at(i, 0, 0), shadow.at(i, 0, 2));
+  const umbra::tables::Table limb = umbra::tables::readExr(dir / "out/eclipse-limb-luminance.exr", {"R", "G", "B"});
+  EXPECT_EQ(limb.width, 8);
+  EXPECT_EQ(limb.height, 8 * 8 * 2);  // v x (columns x layers), slices stacked
+  EXPECT_EQ(limb.parameters.at("size"), "8x8x8x2");
+  for (float x : limb.data) ASSERT_TRUE(std::isfinite(x) && x >= 0.0f);
+}
+
+TEST(EclipseCli, EarthProfileAtTheMoonIsRedWithAFigure12Plot) {
+  TempDir dir;
+  const RunResult r = run(UMBRA_EXE,
+                          with({"profile", "shadow", "--occluder", "earth", "--atmosphere", "earth", "--size", "48",
+                                "--distance", "384400km", "--samples", "21", "--csv", dir / "p.csv", "--plot",
+                                dir / "p.svg"},
+                               kSmall),
+                          {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = readRows(dir / "p.csv");
+  ASSERT_EQ(rows.size(), 21u);
+  const auto& centre = rows[0];
+  EXPECT_GT(centre[1], centre[2]);
+  EXPECT_GT(centre[2], centre[3]);
+  EXPECT_GT(centre[1], 1e-6);
+  EXPECT_LT(centre[1], 1e-2);
+  EXPECT_GT(rows.back()[4], 0.99);  // 1.25 x the penumbra's radius: sunlit
+  const std::string svg = readAll(dir / "p.svg");
+  EXPECT_NE(svg.find(">umbra<"), std::string::npos);
+  EXPECT_NE(svg.find(">penumbra<"), std::string::npos);
+  EXPECT_NE(svg.find(">1e-05<"), std::string::npos);  // log axis down to the blue umbra
+}
+
+// Phobos lies in the first texels of the LuT's u axis, so its profile is computed directly
+// (--exact): red over blue in the umbra, as from the LuT at the axis.
+TEST(EclipseCli, MarsProfileAtPhobosIsRedderThanBlue) {
+  TempDir dir;
+  for (const std::string mode : {"--exact", "--log"}) {
+    const RunResult r = run(UMBRA_EXE,
+                            with({"profile", "shadow", "--occluder", "mars", "--atmosphere", "mars", "--size", "32",
+                                  "--distance", "9376km", "--samples", "5", "--csv", dir / "p.csv", mode},
+                                 kSmall),
+                            {"UMBRA_CACHE_DIR=" + dir / "cache"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto rows = readRows(dir / "p.csv");
+    ASSERT_EQ(rows.size(), 5u);
+    EXPECT_GT(rows[0][1], 1.05 * rows[0][3]) << mode;
+    EXPECT_LT(rows[0][1], 1e-2) << mode;
+    EXPECT_GT(rows[0][1], 1e-6) << mode;
+  }
+}
+
+TEST(EclipseCli, BadInputIsOneLineAndWritesNothing) {
+  TempDir dir;
+  const std::vector<std::vector<std::string>> cases = {
+      {"precompute", "eclipse", "--occluder", "earth", "--atmosphere", "nosuch", "--output", dir / "a"},
+      {"precompute", "eclipse", "--occluder", "earth", "--output", dir / "b"},
+      {"precompute", "eclipse", "--occluder", "earth", "--atmosphere", "earth", "--limb-size", "4", "--layers", "8",
+       "--output", dir / "c"},
+      {"precompute", "eclipse", "--occluder", "earth", "--atmosphere", "earth", "--output", dir / "no/such/dir"},
+      {"profile", "shadow", "--occluder", "earth", "--atmosphere", "nosuch", "--distance", "384400km", "--csv",
+       dir / "d.csv"},
+      {"profile", "shadow", "--occluder", "earth", "--atmosphere", "earth", "--no-atmosphere", "--distance",
+       "384400km", "--csv", dir / "e.csv"},
+  };
+  for (const auto& args : cases) {
+    const RunResult r = run(UMBRA_EXE, args, {"UMBRA_CACHE_DIR=" + dir / "cache"});
+    EXPECT_NE(r.exitCode, 0) << args[5];
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_EQ(dir.fileCount(), 0);
+}

@@ -1,0 +1,301 @@
+// Eclipse shadows through an atmosphere (eclipse paper, 5.2-5.3, 6.1): the decomposition
+// I = I_indirect + I_direct against the airless LuT, a transparent shell against the
+// airless occluder, Earth's umbra colour and brightness at the Moon's distance (Fig. 12),
+// ozone (Fig. 13), Calbuco, Mars at Phobos (Fig. 12 right), the ends u -> 0 and u -> 1,
+// and finite tables at every preset. Small tables throughout.
+#include "AtmosphericShadow.hpp"
+#include "EclipseAtmosphere.hpp"
+
+#include "Atmosphere.hpp"
+#include "PrecomputeTestSupport.hpp"
+#include "Spectrum.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+
+using namespace umbra;
+using eclipse::AtmosphericShadowModel;
+
+namespace {
+
+constexpr double kMoonDistanceM = 384400e3;
+constexpr double kPhobosDistanceM = 9376e3;
+
+/// One prepared atmosphere per preset (or JSON text), shared by the tests of a process.
+const eclipse::EclipseAtmosphere& body(const std::string& preset, const std::string& json = {}) {
+  static std::map<std::string, std::unique_ptr<eclipse::EclipseAtmosphere>> cache;
+  auto& slot = cache[preset + json];
+  if (slot) return *slot;
+  const std::vector<double> nm = atmosphere::WavelengthSet::rgb().nm;
+  const atmosphere::Atmosphere atm =
+      json.empty() ? atmosphere::loadAtmosphere(preset, nm)
+                   : atmosphere::parseAtmosphere(json, "test.json", nm, atmosphere::presetDirectory());
+  eclipse::EclipseAtmosphereOptions o;
+  o.tables = test::smallPrecomputeOptions();
+  o.tables.orders = 2;
+  o.refractionWidth = 128, o.refractionHeight = 64;
+  o.profileSamples = 2048;
+  const bool mars = preset == "mars";
+  slot = eclipse::prepareEclipseAtmosphere(atm, mars ? "mars" : "earth", mars ? 2.2794e11 : 1.496e11, o);
+  return *slot;
+}
+
+eclipse::LimbViewParams smallLimb() { return {64, 128, 8, 16}; }
+
+glm::dvec3 rgbAt(const AtmosphericShadowModel& m, double distanceM, double offsetM,
+                 const eclipse::LimbViewParams& limb = smallLimb()) {
+  const std::vector<double> t = eclipse::illuminanceAt(m, eclipse::limbPositionBehind(m, distanceM, offsetM), limb).total();
+  return eclipse::rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
+}
+
+double umbraRadiusM(const AtmosphericShadowModel& m, double distanceM) {
+  return eclipse::shadowConeRadii(m.system, distanceM).umbraRadiusM;
+}
+
+} // namespace
+
+TEST(AtmosphericShadow, TerrainIsLinearBetweenZeroAndTwiceTheMeanElevation) {
+  const eclipse::TerrainModel earth = eclipse::defaultTerrain("earth");
+  EXPECT_DOUBLE_EQ(earth.meanElevationM, 240.0);
+  EXPECT_DOUBLE_EQ(earth.transmission(-10.0), 0.0);
+  EXPECT_DOUBLE_EQ(earth.transmission(120.0), 0.25);
+  EXPECT_DOUBLE_EQ(earth.transmission(240.0), 0.5);
+  EXPECT_DOUBLE_EQ(earth.transmission(480.0), 1.0);
+  const eclipse::TerrainModel flat = eclipse::defaultTerrain("mars");
+  EXPECT_DOUBLE_EQ(flat.transmission(-1e-3), 0.0);
+  EXPECT_DOUBLE_EQ(flat.transmission(0.0), 1.0);
+}
+
+TEST(AtmosphericShadow, SpectralRatioToRgbPicksTheRgbWavelengths) {
+  const std::vector<double> rgbNm = atmosphere::WavelengthSet::rgb().nm;
+  const double r[3] = {0.3, 0.2, 0.1};
+  const glm::dvec3 c = eclipse::rgbOfSpectralRatio(rgbNm, r);
+  EXPECT_DOUBLE_EQ(c.r, 0.3);
+  EXPECT_DOUBLE_EQ(c.g, 0.2);
+  EXPECT_DOUBLE_EQ(c.b, 0.1);
+  const std::vector<double> ascending = {400.0, 500.0, 600.0, 700.0};
+  const double lin[4] = {4.0, 5.0, 6.0, 7.0};  // ratio = lambda / 100
+  const glm::dvec3 d = eclipse::rgbOfSpectralRatio(ascending, lin);
+  EXPECT_NEAR(d.r, 6.8, 1e-12);
+  EXPECT_NEAR(d.g, 5.5, 1e-12);
+  EXPECT_NEAR(d.b, 4.4, 1e-12);
+}
+
+// Must show: with scattering and refraction off, the LuT is the airless LuT of r_atmo.
+TEST(AtmosphericShadow, WithoutScatteringAndRefractionItIsTheAirlessLutOfTheAtmosphereRadius) {
+  AtmosphericShadowModel m = body("earth").model;
+  m.scattering = false;
+  m.refractedSun = false;
+  eclipse::AtmosphericShadowLutParams p;
+  p.width = 12, p.height = 10;
+  p.limb = smallLimb();
+  const eclipse::ShadowLut lut = eclipse::buildAtmosphericShadowLut(m, p);
+  ASSERT_EQ(lut.width, 12);
+  double worst = 0.0;
+  for (int j = 0; j < p.height; ++j)
+    for (int i = 0; i < p.width; ++i) {
+      const eclipse::LutCoords c{(i + 0.5) / p.width, (j + 0.5) / p.height};
+      const eclipse::LimbPosition pos = eclipse::limbPosition(m, c);
+      // The same point with the atmosphere's top as the occluder, Eq. 4.
+      const eclipse::LutCoords ca = eclipse::lutCoords(
+          {pos.sunAngularRadiusRad, pos.atmosphereAngularRadiusRad, pos.separationRad});
+      const double airless = eclipse::airlessShadow(ca);
+      const glm::dvec3 t = lut.texel(i, j);
+      for (int q = 0; q < 3; ++q) worst = std::max(worst, std::abs(t[q] - airless));
+    }
+  EXPECT_LT(worst, 1e-5);
+}
+
+// A transparent, non-refracting shell: the Sun seen through the ring plus the direct light
+// past r_atmo is the airless occluder of radius r_occ (checks the limb-view solid angles).
+TEST(AtmosphericShadow, TransparentShellGivesTheAirlessOccluder) {
+  AtmosphericShadowModel m = body("earth").model;
+  m.rays = eclipse::transparentLimbProfile(m.system.occluderRadiusM, m.rays.atmosphereRadiusM, m.rays.wavelengthsNm);
+  m.scattering = false;
+  m.terrain = {};
+  const eclipse::LimbViewParams limb{16, 1024, 1, 1};
+  for (double u : {0.02, 0.2, 0.45, 0.6, 0.9})
+    for (double v : {0.0, 0.3, 0.7, 0.9, 0.97}) {
+      const eclipse::LimbPosition pos = eclipse::limbPosition(m, {u, v});
+      const eclipse::Illuminance I = eclipse::illuminanceAt(m, pos, limb);
+      const double airless = eclipse::airlessShadow(eclipse::lutCoordsOf(pos));
+      EXPECT_NEAR(I.indirect[1] + I.direct, airless, 2e-4 + 1e-3 * airless) << "u " << u << " v " << v;
+      EXPECT_DOUBLE_EQ(I.indirect[0], I.indirect[2]);
+    }
+}
+
+// The shadow LuT is the sum over the limb view, pixel by pixel (the view is half the ring).
+TEST(AtmosphericShadow, LimbViewSumsToTheIlluminance) {
+  const AtmosphericShadowModel& m = body("earth").model;
+  const eclipse::LimbViewParams limb{64, 128, 8, 16};
+  for (double offset : {0.0, 3e6, 4.6e6}) {
+    const eclipse::LimbPosition pos = eclipse::limbPositionBehind(m, kMoonDistanceM, offset);
+    const eclipse::LimbView view = eclipse::renderLimbView(m, pos, limb);
+    const eclipse::Illuminance I = eclipse::illuminanceAt(m, pos, limb);
+    std::vector<double> sum(3, 0.0);
+    // The view holds radiance; the illuminance also weighs by the cosine towards the Sun,
+    // which is 1 - O(1e-4) here.
+    for (int r = 0; r < view.rows; ++r)
+      for (int c = 0; c < view.columns; ++c)
+        for (int q = 0; q < 3; ++q) sum[q] += 2.0 * view.at(r, c, q) * view.solidAngleSr[r];
+    for (int q = 0; q < 3; ++q) EXPECT_NEAR(sum[q], I.indirect[q], 1e-3 * I.indirect[q]) << offset << " " << q;
+  }
+}
+
+// Must show: Earth's umbra at the Moon's mean distance is red-dominant and its centre
+// between 1e-6 and 1e-2 of I_sun in red (Fig. 12 left).
+TEST(AtmosphericShadow, EarthUmbraAtTheMoonIsRed) {
+  const AtmosphericShadowModel& m = body("earth").model;
+  const glm::dvec3 centre = rgbAt(m, kMoonDistanceM, 0.0);
+  EXPECT_GT(centre.r, centre.g);
+  EXPECT_GT(centre.g, centre.b);
+  EXPECT_GT(centre.r, 1e-6);
+  EXPECT_LT(centre.r, 1e-2);
+  // The penumbra outside is far brighter and nearly grey.
+  const double umbra = umbraRadiusM(m, kMoonDistanceM);
+  const glm::dvec3 penumbra = rgbAt(m, kMoonDistanceM, umbra + 2.5e6);
+  EXPECT_GT(penumbra.g, 100 * centre.g);
+  EXPECT_NEAR(penumbra.b / penumbra.r, 1.0, 0.1);
+}
+
+// Must show: the Calbuco preset (twice the aerosols, 3 km scale height) darkens the umbra.
+TEST(AtmosphericShadow, CalbucoDarkensTheUmbra) {
+  const glm::dvec3 clear = rgbAt(body("earth").model, kMoonDistanceM, 0.0);
+  const glm::dvec3 calbuco = rgbAt(body("earth-2015-calbuco").model, kMoonDistanceM, 0.0);
+  EXPECT_LT(calbuco.r, 0.8 * clear.r);
+  EXPECT_LT(eclipse::luminance(calbuco), 0.8 * eclipse::luminance(clear));
+}
+
+// Must show: ozone absorbs green-orange (Chappuis band) and leaves blue: with ozone the
+// umbra is less green relative to red, and its rim bluer (Fig. 13: the turquoise fringe).
+TEST(AtmosphericShadow, OzoneChangesTheUmbraColour) {
+  const std::string none = R"({"extends": "earth", "name": "no-ozone", "components": {"ozone": null}})";
+  const std::string peak6 = R"({"extends": "earth", "name": "ozone-6e18",
+      "components": {"ozone": {"optics": {"numberDensityPerM3": 6e18}}}})";
+  const AtmosphericShadowModel& mNone = body("earth", none).model;
+  const AtmosphericShadowModel& mDef = body("earth").model;
+  const AtmosphericShadowModel& m6 = body("earth", peak6).model;
+  const double rim = 0.9 * umbraRadiusM(mDef, kMoonDistanceM);
+  const glm::dvec3 cNone = rgbAt(mNone, kMoonDistanceM, 0.0), cDef = rgbAt(mDef, kMoonDistanceM, 0.0),
+                   c6 = rgbAt(m6, kMoonDistanceM, 0.0);
+  const glm::dvec3 rNone = rgbAt(mNone, kMoonDistanceM, rim), rDef = rgbAt(mDef, kMoonDistanceM, rim),
+                   r6 = rgbAt(m6, kMoonDistanceM, rim);
+  EXPECT_GT(cNone.g / cNone.r, cDef.g / cDef.r);
+  EXPECT_GT(cDef.g / cDef.r, c6.g / c6.r);
+  EXPECT_LT(rNone.b / rNone.g, rDef.b / rDef.g);
+  EXPECT_LT(rDef.b / rDef.g, r6.b / r6.g);
+  EXPECT_GT(cNone.r, cDef.r);  // ozone absorbs some red too
+}
+
+// Must show: Mars at Phobos' distance is red in most of the shadow, grey near the
+// penumbra's outer boundary (Fig. 12 right). Red against blue: the mars preset's dust phase
+// function at 550 nm (Costa Table 1 parameters) is far more forward-peaked than at 680 and
+// 440 nm, so green leads in the umbra's scattered light (see the report of issue 4).
+TEST(AtmosphericShadow, MarsShadowAtPhobosIsRedThenGrey) {
+  const AtmosphericShadowModel& m = body("mars").model;
+  const eclipse::ShadowConeRadii cone = eclipse::shadowConeRadii(m.system, kPhobosDistanceM);
+  const int n = 10;
+  int red = 0;
+  for (int k = 0; k < n; ++k) {
+    const glm::dvec3 c = rgbAt(m, kPhobosDistanceM, cone.penumbraRadiusM * k / n);
+    ASSERT_TRUE(std::isfinite(c.r) && std::isfinite(c.b));
+    if (c.r > 1.05 * c.b) ++red;
+  }
+  EXPECT_GE(red, n * 6 / 10);
+  // At the boundary the Sun is seen through the thin upper atmosphere: nearly grey.
+  const glm::dvec3 edge = rgbAt(m, kPhobosDistanceM, 0.999 * cone.penumbraRadiusM);
+  EXPECT_NEAR(edge.b / edge.r, 1.0, 0.1);
+  EXPECT_GT(edge.r, 100 * rgbAt(m, kPhobosDistanceM, 0.0).r);
+}
+
+// Must show: positions at the occluder's surface (u -> 0) and far beyond the umbra (u -> 1).
+TEST(AtmosphericShadow, EndsOfTheLutAreFiniteAndSensible) {
+  const AtmosphericShadowModel& m = body("earth").model;
+  for (double v : {0.0, 0.5, 0.999}) {
+    const glm::dvec3 nearSurface = [&] {
+      const std::vector<double> t = eclipse::illuminanceAt(m, eclipse::limbPosition(m, {1e-9, v}), smallLimb()).total();
+      return eclipse::rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
+    }();
+    for (int q = 0; q < 3; ++q) {
+      EXPECT_TRUE(std::isfinite(nearSurface[q]));
+      EXPECT_GE(nearSurface[q], 0.0);
+      EXPECT_LT(nearSurface[q], 1.0);
+    }
+    // Far away the occluder is a speck in front of the Sun: almost all light arrives.
+    const eclipse::LimbPosition far = eclipse::limbPosition(m, {1.0 - 1e-9, v});
+    const std::vector<double> t = eclipse::illuminanceAt(m, far, smallLimb()).total();
+    for (double x : t) {
+      EXPECT_TRUE(std::isfinite(x));
+      EXPECT_GT(x, 0.99);
+      EXPECT_LE(x, 1.0 + 1e-6);
+    }
+  }
+}
+
+// Must show: no NaN anywhere, in either table, at any preset.
+TEST(AtmosphericShadow, TablesAreFiniteAtEveryPreset) {
+  for (const std::string preset : {"earth", "earth-2015-calbuco", "mars"}) {
+    const AtmosphericShadowModel& m = body(preset).model;
+    eclipse::AtmosphericShadowLutParams sp;
+    sp.width = 10, sp.height = 8;
+    sp.limb = smallLimb();
+    const eclipse::ShadowLut s = eclipse::buildAtmosphericShadowLut(m, sp);
+    ASSERT_EQ(s.rgb.size(), 10u * 8u * 3u);
+    for (float x : s.rgb) {
+      ASSERT_TRUE(std::isfinite(x)) << preset;
+      ASSERT_GE(x, 0.0f) << preset;
+      ASSERT_LE(x, 1.0f + 1e-5f) << preset;
+    }
+    eclipse::LimbLuminanceLutParams lp;
+    lp.width = 6, lp.height = 5, lp.columns = 8, lp.layers = 2;
+    lp.limb = {8, 32, 4, 8};
+    const eclipse::LimbLuminanceLut l = eclipse::buildLimbLuminanceLut(m, lp);
+    ASSERT_EQ(l.depth(), 16);
+    ASSERT_EQ(l.rgb.size(), 6u * 5u * 16u * 3u);
+    float brightest = 0.0f;
+    for (float x : l.rgb) {
+      ASSERT_TRUE(std::isfinite(x)) << preset;
+      ASSERT_GE(x, 0.0f) << preset;
+      brightest = std::max(brightest, x);
+    }
+    EXPECT_GT(brightest, 0.0f) << preset;
+  }
+}
+
+// The limb-luminance LuT is the limb view averaged over each layer's rows by solid angle.
+TEST(AtmosphericShadow, LimbLuminanceIsTheLayerAverageOfTheLimbView) {
+  const AtmosphericShadowModel& m = body("earth").model;
+  eclipse::LimbLuminanceLutParams lp;
+  lp.width = 4, lp.height = 4, lp.columns = 8, lp.layers = 2;
+  lp.limb = {8, 32, 4, 8};
+  const eclipse::LimbLuminanceLut l = eclipse::buildLimbLuminanceLut(m, lp);
+  const int i = 2, j = 1;
+  const eclipse::LimbView view = eclipse::renderLimbView(m, eclipse::limbPosition(m, {(i + 0.5) / 4, (j + 0.5) / 4}), lp.limb);
+  for (int layer = 0; layer < 2; ++layer)
+    for (int col = 0; col < 8; ++col) {
+      double s = 0.0, w = 0.0;
+      for (int r = layer * 16; r < (layer + 1) * 16; ++r) s += view.at(r, col, 0) * view.solidAngleSr[r], w += view.solidAngleSr[r];
+      EXPECT_NEAR(l.texel(i, j, layer * 8 + col).r, s / w, 1e-6 * s / w + 1e-30);
+    }
+}
+
+// A requested extent computes exactly those texels of the full table.
+TEST(AtmosphericShadow, ExtentComputesThatPartOfTheLut) {
+  const AtmosphericShadowModel& m = body("earth").model;
+  eclipse::AtmosphericShadowLutParams p;
+  p.width = 8, p.height = 6;
+  p.limb = smallLimb();
+  const eclipse::ShadowLut full = eclipse::buildAtmosphericShadowLut(m, p);
+  const eclipse::ShadowLut part = eclipse::buildAtmosphericShadowLut(m, p, {3, 6, 1, 5});
+  ASSERT_EQ(part.width, 3);
+  ASSERT_EQ(part.height, 4);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(part.texel(i, j), full.texel(3 + i, 1 + j));
+  EXPECT_THROW(eclipse::buildAtmosphericShadowLut(m, p, {0, 9, 0, 2}), std::invalid_argument);
+  int calls = 0;
+  const eclipse::ShadowLut cancelled = eclipse::buildAtmosphericShadowLut(m, p, {}, [&](double) { return ++calls < 0; });
+  EXPECT_TRUE(cancelled.rgb.empty());
+}

@@ -1,0 +1,192 @@
+// The eclipse tables of an occluder with an atmosphere through the filters: the shadow-LuT
+// source with an atmosphere (same values as the library, cache, update extents), the
+// limb-luminance source, and the profile filter on an atmospheric LuT (R, G, B).
+#include "EclipseAtmosphere.hpp"
+#include "ShadowLutData.h"
+#include "Spectrum.hpp"
+#include "vtkEclipseShadowLutSource.h"
+#include "vtkLimbLuminanceSource.h"
+#include "vtkShadowProfileFilter.h"
+
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkTable.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace fs = std::filesystem;
+using namespace umbra;
+
+namespace {
+struct CacheDir {
+  fs::path path = fs::temp_directory_path() / ("umbra-eclipse-atmo-test-" + std::to_string(::getpid()));
+  ~CacheDir() { fs::remove_all(path); }
+};
+
+/// Small tables: a second or two.
+template <class Source>
+void configure(Source* s, const CacheDir& cache) {
+  s->SetOccluderName("earth");
+  s->SetOccluderRadiusM(6371008.4);
+  s->SetSunOccluderDistanceM(1.496e11);
+  s->SetAtmosphere("earth");
+  s->SetOrders(2);
+  s->SetTransmittanceSize(64, 16);
+  s->SetScatteringSize(8, 32, 8, 4);
+  s->SetIrradianceSize(16, 4);
+  s->SetRefractionSize(128, 64);
+  s->SetCacheDirectory(cache.path.c_str());
+}
+
+vtkSmartPointer<vtkEclipseShadowLutSource> shadowSource(const CacheDir& cache) {
+  auto s = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
+  configure(s.Get(), cache);
+  s->SetWidth(8);
+  s->SetHeight(6);
+  s->SetLimbSize(32);
+  s->SetScatteringCells(4);
+  return s;
+}
+
+vtkFloatArray* scalars(vtkImageData* image) { return vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars()); }
+} // namespace
+
+TEST(EclipseAtmosphereFilters, ShadowLutSourceWithAnAtmosphereIsTheLibrarysLut) {
+  CacheDir cache;
+  auto source = shadowSource(cache);
+  source->Update();
+  vtkImageData* image = source->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  ASSERT_EQ(dims[0], 8);
+  ASSERT_EQ(dims[1], 6);
+  EXPECT_FALSE(source->GetLastUpdateWasCacheHit());
+
+  eclipse::EclipseAtmosphereOptions o;
+  o.tables.orders = 2;
+  o.tables.transmittanceWidth = 64, o.tables.transmittanceHeight = 16;
+  o.tables.scatteringR = 8, o.tables.scatteringMu = 32, o.tables.scatteringMuS = 8, o.tables.scatteringNu = 4;
+  o.tables.irradianceWidth = 16, o.tables.irradianceHeight = 4;
+  o.refractionWidth = 128, o.refractionHeight = 64;
+  const auto prepared = eclipse::prepareEclipseAtmosphere(
+      atmosphere::loadAtmosphere("earth", atmosphere::WavelengthSet::rgb().nm), "earth", 1.496e11, o);
+  eclipse::AtmosphericShadowLutParams p;
+  p.width = 8, p.height = 6;
+  p.limb = {32, 32, 4, 4};
+  const eclipse::ShadowLut reference = eclipse::buildAtmosphericShadowLut(prepared->model, p);
+  vtkFloatArray* values = scalars(image);
+  ASSERT_NE(values, nullptr);
+  ASSERT_EQ(values->GetNumberOfTuples(), 48);
+  for (vtkIdType k = 0; k < 48; ++k)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(values->GetComponent(k, c), reference.rgb[3 * k + c]);
+  // Umbra texel (small v, u past the Moon's distance): red through the atmosphere.
+  const auto fields = filters::fieldParameters(image);
+  EXPECT_EQ(fields.at("kind"), filters::kAtmosphereShadowLutKind);
+  EXPECT_EQ(fields.at("atmosphere"), "earth");
+
+  auto again = shadowSource(cache);
+  again->Update();
+  EXPECT_TRUE(again->GetLastUpdateWasCacheHit());
+  for (vtkIdType k = 0; k < 48; ++k) EXPECT_EQ(scalars(again->GetOutput())->GetComponent(k, 0), values->GetComponent(k, 0));
+  EXPECT_TRUE(fs::exists(again->GetCachePath()));
+}
+
+TEST(EclipseAtmosphereFilters, UpdateExtentComputesOnlyThatPart) {
+  CacheDir cache;
+  auto full = shadowSource(cache);
+  full->SetUseCache(false);
+  full->Update();
+  auto part = shadowSource(cache);
+  const int extent[6] = {2, 5, 1, 4, 0, 0};  // u texels 2..5, v texels 1..4
+  part->UpdateExtent(extent);
+  vtkImageData* image = part->GetOutput();
+  int ext[6];
+  image->GetExtent(ext);
+  EXPECT_EQ(ext[0], 2);
+  EXPECT_EQ(ext[1], 5);
+  EXPECT_EQ(ext[2], 1);
+  EXPECT_EQ(ext[3], 4);
+  double point[3];
+  int ijk[3] = {3, 2, 0};
+  image->GetPoint(image->ComputePointId(ijk), point);
+  EXPECT_DOUBLE_EQ(point[0], 3.5 / 8);
+  EXPECT_DOUBLE_EQ(point[1], 2.5 / 6);
+  for (int j = 1; j <= 4; ++j)
+    for (int i = 2; i <= 5; ++i) {
+      int at[3] = {i, j, 0};
+      EXPECT_EQ(scalars(image)->GetComponent(image->ComputePointId(at), 1),
+                scalars(full->GetOutput())->GetComponent(j * 8 + i, 1));
+    }
+}
+
+TEST(EclipseAtmosphereFilters, LimbLuminanceSourceIsA3dRgbTexture) {
+  CacheDir cache;
+  auto source = vtkSmartPointer<vtkLimbLuminanceSource>::New();
+  configure(source.Get(), cache);
+  source->SetWidth(4);
+  source->SetHeight(3);
+  source->SetColumns(8);
+  source->SetLayers(2);
+  source->SetLimbRows(16);
+  source->SetScatteringCells(4);
+  source->Update();
+  int dims[3];
+  source->GetOutput()->GetDimensions(dims);
+  EXPECT_EQ(dims[0], 4);
+  EXPECT_EQ(dims[1], 3);
+  EXPECT_EQ(dims[2], 16);
+  vtkFloatArray* values = scalars(source->GetOutput());
+  ASSERT_NE(values, nullptr);
+  double brightest = 0.0;
+  for (vtkIdType k = 0; k < values->GetNumberOfTuples(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_TRUE(std::isfinite(values->GetComponent(k, c)));
+      ASSERT_GE(values->GetComponent(k, c), 0.0);
+      brightest = std::max(brightest, values->GetComponent(k, c));
+    }
+  EXPECT_GT(brightest, 0.0);
+  EXPECT_FALSE(source->GetLastUpdateWasCacheHit());
+  auto again = vtkSmartPointer<vtkLimbLuminanceSource>::New();
+  configure(again.Get(), cache);
+  again->SetWidth(4);
+  again->SetHeight(3);
+  again->SetColumns(8);
+  again->SetLayers(2);
+  again->SetLimbRows(16);
+  again->SetScatteringCells(4);
+  again->Update();
+  EXPECT_TRUE(again->GetLastUpdateWasCacheHit());
+  EXPECT_EQ(scalars(again->GetOutput())->GetComponent(7, 0), values->GetComponent(7, 0));
+
+  auto airless = vtkSmartPointer<vtkLimbLuminanceSource>::New();
+  airless->SetAtmosphere("");
+  airless->Update();  // an error, no crash
+  EXPECT_EQ(scalars(airless->GetOutput()), nullptr);
+}
+
+TEST(EclipseAtmosphereFilters, ProfileOfTheAtmosphericLutIsRedInTheUmbra) {
+  CacheDir cache;
+  auto source = shadowSource(cache);
+  source->SetWidth(48);
+  source->SetHeight(32);
+  auto profile = vtkSmartPointer<vtkShadowProfileFilter>::New();
+  profile->SetInputConnection(source->GetOutputPort());
+  profile->SetReceiverDistanceM(384400e3);
+  profile->SetSamples(11);
+  profile->Update();
+  vtkTable* t = profile->GetOutput();
+  ASSERT_EQ(t->GetNumberOfRows(), 11);
+  const double r = t->GetValueByName(0, "r").ToDouble(), g = t->GetValueByName(0, "g").ToDouble(),
+               b = t->GetValueByName(0, "b").ToDouble(), lum = t->GetValueByName(0, "luminance").ToDouble();
+  EXPECT_GT(r, g);
+  EXPECT_GT(g, b);
+  EXPECT_GT(r, 1e-6);
+  EXPECT_LT(r, 1e-2);
+  EXPECT_NEAR(lum, 0.2126 * r + 0.7152 * g + 0.0722 * b, 1e-12);
+}
