@@ -15,6 +15,13 @@
 #include <emmintrin.h>
 #endif
 
+// Kernels compiled twice (AVX2 and the baseline), chosen at load time by the CPU.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define UMBRA_KERNEL __attribute__((target_clones("avx2", "default")))
+#else
+#define UMBRA_KERNEL
+#endif
+
 namespace umbra::atmosphere {
 
 namespace {
@@ -105,14 +112,20 @@ struct ScatterGeometry {
     return 0.5 + 0.5 * texCoord(x, MU / 2);
   }
   double uMuS(double muS) const {
-    // distance from the ground to the top along mu_s (inline: the hot path of the lookups)
+    // distance from the ground to the top along mu_s (inline: the hot path of the lookups;
+    // branch-free so that loops over it vectorise)
     muS = clampCosine(muS);
     const double root = std::sqrt(b * b * muS * muS + H * H);
-    const double d = muS > 0.0 ? H * H / (b * muS + root) : root - b * muS;
+    const double q = muS > 0.0 ? b * muS + root : root - b * muS;
+    const double qInverse = H * H / q;
+    const double d = muS > 0.0 ? qInverse : q;
     const double a = (d - (t - b)) / (H - (t - b));
     return texCoord(std::max(1.0 - a / A, 0.0) / (1.0 + a), MUS);
   }
   static double uNu(double nu) { return 0.5 * (clampCosine(nu) + 1.0); }
+  /// Continuous texel coordinates: mu_s in [0, MU_S - 1], nu in [0, NU - 1].
+  double muSTexel(double muS) const { return std::min(std::max(uMuS(muS) * MUS - 0.5, 0.0), MUS - 1.0); }
+  double nuTexel(double nu) const { return std::min(std::max(uNu(nu) * (NU - 1), 0.0), NU - 1.0); }
 
   double rFromU(double u) const {
     const double rho = H * std::clamp(unitRangeFromTextureCoord(u, R), 0.0, 1.0);
@@ -177,19 +190,33 @@ inline RMuCell rMuCell(const ScatterGeometry& g, double r, double mu, bool groun
   return c;
 }
 
-inline SNuCell sNuCell(const ScatterGeometry& g, double muS, double nu) {
-  int is, in;
-  double ws, wn;
-  texelLerp(g.uMuS(muS), g.MUS, 0, g.MUS - 1, is, ws);
-  double fn = std::clamp(ScatterGeometry::uNu(nu) * (g.NU - 1), 0.0, static_cast<double>(g.NU - 1));
+/// The cell at continuous texel coordinates (ScatterGeometry::muSTexel, nuTexel).
+inline SNuCell sNuCellAt(const ScatterGeometry& g, double fs, double fn) {
+  const int is = std::min(static_cast<int>(fs), g.MUS - 2);  // fs >= 0: truncation is floor
+  const double ws = fs - is;
   const double nearest = std::round(fn);
   if (std::abs(fn - nearest) < 1e-12) fn = nearest;  // on a slice: one slice to read
-  in = std::min(static_cast<int>(std::floor(fn)), g.NU - 2);
-  wn = fn - in;
+  const int in = std::min(static_cast<int>(fn), g.NU - 2);
+  const double wn = fn - in;
   SNuCell c;
   c.x00 = in * g.MUS + is, c.x01 = c.x00 + 1, c.x10 = c.x00 + g.MUS, c.x11 = c.x10 + 1;
   c.w00 = (1 - wn) * (1 - ws), c.w01 = (1 - wn) * ws, c.w10 = wn * (1 - ws), c.w11 = wn * ws;
   return c;
+}
+
+inline SNuCell sNuCell(const ScatterGeometry& g, double muS, double nu) {
+  return sNuCellAt(g, g.muSTexel(muS), g.nuTexel(nu));
+}
+
+/// The sun's (mu_s, nu) at a view-ray sample for n texels of a row, as texel coordinates:
+/// mu_s = xr sx + yr muS0, nu = tx sx + ty muS0 (sx, muS0: the sun in the ray's frame).
+UMBRA_KERNEL void sNuTexels(const ScatterGeometry& geometry, double xr, double yr, double tx, double ty,
+                            const double* sx, const double* muS0, int n, double* fs, double* fn) {
+  const ScatterGeometry g = geometry;  // a local copy: the outputs cannot alias it
+  for (int x = 0; x < n; ++x) {
+    fs[x] = g.muSTexel(xr * sx[x] + yr * muS0[x]);
+    fn[x] = g.nuTexel(tx * sx[x] + ty * muS0[x]);
+  }
 }
 
 /// out[0..channels) += scale * table(r, mu, mu_s, nu).
@@ -212,6 +239,24 @@ inline void accumulate4(const Table3D& T, const RMuCell& a, const SNuCell& s, do
       } else {
         for (int l = 0; l < nc; ++l) out[l] += w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l];
       }
+    }
+  }
+}
+
+/// out[0..width * channels) = the (r, mu) interpolation of a 4D table: the cell's four
+/// rows of (mu_s, nu) texels blended with their weights.
+inline void blendRows(const Table3D& T, const RMuCell& a, double* out) {
+  const std::size_t n = static_cast<std::size_t>(T.width) * T.channels;
+  std::fill(out, out + n, 0.0);
+  for (int dz = 0; dz < 2; ++dz) {
+    const double wz = dz ? a.wz : 1.0 - a.wz;
+    if (wz == 0.0) continue;
+    for (int dy = 0; dy < 2; ++dy) {
+      const double wzy = wz * (dy ? a.wy : 1.0 - a.wy);
+      if (wzy == 0.0) continue;
+      const double* row = T.at(0, a.iy + dy, a.iz + dz);
+#pragma omp simd
+      for (std::size_t i = 0; i < n; ++i) out[i] += wzy * row[i];
     }
   }
 }
@@ -1046,9 +1091,11 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       std::vector<RMuCell> cells(N + 1);
       for (int k = 0; k <= N; ++k)
         cells[k] = rMuCell(g, s.r[k], s.mu[k], rayIntersectsGround(b, s.r[k], s.mu[k]));
-      // Samples outer, texels inner: the four (r, mu) rows of a sample stay in cache
-      // while the row's (mu_s, nu) texels sweep them.
-      std::vector<double> sxA(W), muSA(W), acc(static_cast<std::size_t>(W) * nl, 0.0), Jv(nl);
+      // Samples outer, texels inner. J is linear in the (r, mu) weights, which depend on
+      // the sample only: the sample's four (r, mu) rows are blended once into one row of
+      // (mu_s, nu) texels, and each texel reads that row bilinearly (4 reads, not 16).
+      const std::size_t rowSize = static_cast<std::size_t>(W) * nl;
+      std::vector<double> sxA(W), muSA(W), fsA(W), fnA(W), acc(rowSize, 0.0), blend(rowSize);
       for (int x = 0; x < W; ++x) {
         const ScatteringPoint p = g.texel(x, y, z);
         sxA[x] = sunX(p), muSA[x] = p.muS;
@@ -1056,15 +1103,22 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       for (int k = 0; k <= N && s.ds > 0.0; ++k) {
         const double w = s.ds * ((k == 0 || k == N) ? 0.5 : 1.0);
         const double* T = &s.T[static_cast<std::size_t>(k) * nl];
-        const RMuCell& cell = cells[k];
+        blendRows(density, cells[k], blend.data());
         const double xr = s.xr[k], yr = s.yr[k], tx = s.tx[k], ty = s.ty[k];
+        sNuTexels(g, xr, yr, tx, ty, sxA.data(), muSA.data(), W, fsA.data(), fnA.data());
         for (int x = 0; x < W; ++x) {
-          const double muS = clampCosine(xr * sxA[x] + yr * muSA[x]);
-          const double nu = clampCosine(tx * sxA[x] + ty * muSA[x]);
-          std::fill(Jv.begin(), Jv.end(), 0.0);
-          accumulate4(density, cell, sNuCell(g, muS, nu), 1.0, Jv.data());
+          const SNuCell c = sNuCellAt(g, fsA[x], fnA[x]);
+          const double* p00 = &blend[static_cast<std::size_t>(c.x00) * nl];
+          const double* p01 = &blend[static_cast<std::size_t>(c.x01) * nl];
+          const double* p10 = &blend[static_cast<std::size_t>(c.x10) * nl];
+          const double* p11 = &blend[static_cast<std::size_t>(c.x11) * nl];
           double* a = &acc[static_cast<std::size_t>(x) * nl];
-          for (int l = 0; l < nl; ++l) a[l] += w * T[l] * Jv[l];
+          const double w00 = w * c.w00, w01 = w * c.w01, w10 = w * c.w10, w11 = w * c.w11;
+          if (c.w10 == 0.0 && c.w11 == 0.0) {
+            for (int l = 0; l < nl; ++l) a[l] += T[l] * (w00 * p00[l] + w01 * p01[l]);
+          } else {
+            for (int l = 0; l < nl; ++l) a[l] += T[l] * (w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l]);
+          }
         }
       }
       for (int x = 0; x < W; ++x) {

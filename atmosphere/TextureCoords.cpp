@@ -5,10 +5,6 @@
 
 namespace umbra::atmosphere {
 
-double safeSqrt(double a) { return std::sqrt(std::max(0.0, a)); }
-
-double clampCosine(double mu) { return std::clamp(mu, -1.0, 1.0); }
-
 double distanceToTopBoundaryM(double topRadiusM, double r, double mu) {
   // disc = r^2 (mu^2 - 1) + top^2, written without cancellation for r <= top.
   const double t = topRadiusM;

@@ -10,6 +10,9 @@
 // coordinates put the texel centres on x = 0 and x = 1 (GetTextureCoordFromUnitRange).
 // All lengths in metres; mu is the cosine of the view-zenith angle.
 
+#include <algorithm>
+#include <cmath>
+
 namespace umbra::atmosphere {
 
 /// The radii that bound an atmosphere.
@@ -19,9 +22,9 @@ struct ShellRadii {
 };
 
 /// sqrt(max(0, a)).
-double safeSqrt(double a);
-/// mu clamped to [-1, 1].
-double clampCosine(double mu);
+inline double safeSqrt(double a) { return std::sqrt(std::max(0.0, a)); }
+/// mu clamped to [-1, 1] (inline: the precomputation's inner loops call it).
+inline double clampCosine(double mu) { return std::min(std::max(mu, -1.0), 1.0); }
 
 /// Distance from radius r along mu to the sphere of radius `topRadiusM` (r <= top), the
 /// far intersection; stable for mu near +-1 and for r near the top.
