@@ -11,8 +11,8 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-#if defined(__SSE2__)
-#include <emmintrin.h>
+#if defined(__x86_64__)
+#include <immintrin.h>
 #endif
 
 // Kernels compiled twice (AVX2 and the baseline), chosen at load time by the CPU.
@@ -31,10 +31,10 @@ constexpr double kPi = 3.14159265358979323846;
 /// Bruneton's GetTextureCoordFromUnitRange, inline for the lookups' hot path.
 inline double texCoord(double x, int n) { return (0.5 + x * (n - 1.0)) / n; }
 
-double smoothstep(double e0, double e1, double x) {
-  if (!(e1 > e0)) return x < e0 ? 0.0 : 1.0;
-  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
+inline double smoothstep(double e0, double e1, double x) {
+  const double t = std::min(std::max((x - e0) / (e1 - e0), 0.0), 1.0);
+  const double step = x < e0 ? 0.0 : 1.0;
+  return e1 > e0 ? t * t * (3.0 - 2.0 * t) : step;
 }
 
 /// Linear texel coordinate in [0, n - 1] from a texture coordinate (centres at (i + 0.5) / n).
@@ -290,25 +290,65 @@ inline double sunVisibility(double b, double alpha, double r, double muS) {
   return smoothstep(-sinH * alpha, sinH * alpha, muS - cosH);
 }
 
-/// p_j = A (1 + B c_j^2) / (1 + g^2 - 2 g c_j)^{3/2} for j < n: the density's inner loop
-/// (SSE2 where available: the compiler does not vectorise sqrt under -fmath-errno).
-void lobeValues(double A, double B, double g, const double* c, double* p, int n) {
-  const double g2 = 1.0 + g * g, twoG = 2.0 * g;
-  int j = 0;
-#if defined(__SSE2__)
-  const __m128d Av = _mm_set1_pd(A), Bv = _mm_set1_pd(B), g2v = _mm_set1_pd(g2), twoGv = _mm_set1_pd(twoG),
-                one = _mm_set1_pd(1.0);
-  for (; j + 2 <= n; j += 2) {
-    const __m128d cc = _mm_loadu_pd(c + j);
-    const __m128d d = _mm_sub_pd(g2v, _mm_mul_pd(twoGv, cc));
-    const __m128d num = _mm_mul_pd(Av, _mm_add_pd(one, _mm_mul_pd(Bv, _mm_mul_pd(cc, cc))));
-    _mm_storeu_pd(p + j, _mm_div_pd(num, _mm_mul_pd(d, _mm_sqrt_pd(d))));
+/// The sun at a view-ray sample (radius r, frame xr, yr) for n texels of a row (the sun
+/// sx, muS0 in the ray's frame): its visibility (sunVisibility) and the column coordinate
+/// in [0, columns - 1] of its transmittance in a table of that many columns.
+UMBRA_KERNEL void sunTexels(const ShellRadii& shell, double alpha, double r, double xr, double yr, const double* sx,
+                            const double* muS0, int n, int columns, double* vis, double* fx) {
+  const double b = shell.bottomRadiusM, t = shell.topRadiusM;
+  const double rc = std::clamp(r, b, t), H = std::sqrt((t - b) * (t + b)), rho = safeSqrt((rc - b) * (rc + b));
+  for (int x = 0; x < n; ++x) {
+    const double muS = clampCosine(xr * sx[x] + yr * muS0[x]);
+    vis[x] = sunVisibility(b, alpha, r, muS);
+    fx[x] = transmittanceXMu(t, rc, rho, H, muS) * (columns - 1);
   }
-#endif
-  for (; j < n; ++j) {
+}
+
+/// p_j = A (1 + B c_j^2) / (1 + g^2 - 2 g c_j)^{3/2} for j < n: the density's inner loop.
+/// With AVX-512, (.)^{-3/2} is y^3 with y the reciprocal square root from vrsqrt14pd (14
+/// bits) refined by two Newton steps (56 bits: the same double to a few ulps), which avoids
+/// the divider; elsewhere a plain loop (vectorised: Precompute.cpp has no math errno).
+UMBRA_KERNEL void lobeValuesPlain(double A, double B, double g, const double* c, double* p, int n) {
+  const double g2 = 1.0 + g * g, twoG = 2.0 * g;
+  for (int j = 0; j < n; ++j) {
     const double d = g2 - twoG * c[j];
     p[j] = A * (1.0 + B * c[j] * c[j]) / (d * std::sqrt(d));
   }
+}
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+__attribute__((target("avx512f"))) void lobeValuesAvx512(double A, double B, double g, const double* c, double* p,
+                                                         int n) {
+  const __m512d Av = _mm512_set1_pd(A), Bv = _mm512_set1_pd(B), g2 = _mm512_set1_pd(1.0 + g * g),
+                twoG = _mm512_set1_pd(2.0 * g), one = _mm512_set1_pd(1.0), half = _mm512_set1_pd(0.5),
+                threeHalves = _mm512_set1_pd(1.5);
+  int j = 0;
+  for (; j + 8 <= n; j += 8) {
+    const __m512d cc = _mm512_loadu_pd(c + j);
+    const __m512d d = _mm512_fnmadd_pd(twoG, cc, g2);
+    const __m512d hd = _mm512_mul_pd(half, d);
+    __m512d y = _mm512_maskz_rsqrt14_pd(0xFF, d);
+    y = _mm512_mul_pd(y, _mm512_fnmadd_pd(hd, _mm512_mul_pd(y, y), threeHalves));
+    y = _mm512_mul_pd(y, _mm512_fnmadd_pd(hd, _mm512_mul_pd(y, y), threeHalves));
+    const __m512d num = _mm512_mul_pd(Av, _mm512_fmadd_pd(Bv, _mm512_mul_pd(cc, cc), one));
+    _mm512_storeu_pd(p + j, _mm512_mul_pd(num, _mm512_mul_pd(y, _mm512_mul_pd(y, y))));
+  }
+  lobeValuesPlain(A, B, g, c + j, p + j, n - j);
+}
+void lobeValues(double A, double B, double g, const double* c, double* p, int n) {
+  static const bool avx512 = __builtin_cpu_supports("avx512f");
+  if (avx512) lobeValuesAvx512(A, B, g, c, p, n);
+  else lobeValuesPlain(A, B, g, c, p, n);
+}
+#else
+void lobeValues(double A, double B, double g, const double* c, double* p, int n) { lobeValuesPlain(A, B, g, c, p, n); }
+#endif
+
+/// sum_j a_j b_j.
+UMBRA_KERNEL double dot(const double* a, const double* b, int n) {
+  double s = 0.0;
+#pragma omp simd reduction(+ : s)
+  for (int j = 0; j < n; ++j) s += a[j] * b[j];
+  return s;
 }
 
 // ---- paths ---------------------------------------------------------------------------------
@@ -875,24 +915,39 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
           const std::size_t idx = (static_cast<std::size_t>(k) * ns + q) * nl + l;
           A[idx] = m.sca[q * nl + l] * s.rhoT[idx];
         }
-    std::vector<double> Tsun(nl), acc(static_cast<std::size_t>(ns) * nl);
+    // Samples outer, texels inner: the sample's radius fixes the transmittance row
+    // (blended once) and the horizon; the texels' sun cosines are computed together.
+    std::vector<double> sxA(W), muSA(W), visA(W), fxA(W), Trow(static_cast<std::size_t>(TW) * nl);
+    std::vector<double> acc(static_cast<std::size_t>(W) * ns * nl, 0.0);
     for (int x = 0; x < W; ++x) {
       const ScatteringPoint p = g.texel(x, y, z);
-      const double sx = sunX(p);
-      std::fill(acc.begin(), acc.end(), 0.0);
-      if (s.ds > 0.0) {
-        for (int k = 0; k <= N; ++k) {
-          const double muS = clampCosine(s.xr[k] * sx + s.yr[k] * p.muS);
-          const double vis = sunVisibility(b, alpha, s.r[k], muS);
-          if (vis == 0.0) continue;
-          lookupTransmittance(Ttab, shell, s.r[k], muS, Tsun.data());
-          const double* a = &A[static_cast<std::size_t>(k) * ns * nl];
-          for (int q = 0; q < ns; ++q)
-            for (int l = 0; l < nl; ++l) acc[q * nl + l] += a[q * nl + l] * Tsun[l] * vis;
-        }
-      }
-      for (int q = 0; q < ns; ++q) std::copy_n(&acc[q * nl], nl, out.single[q].at(x, y, z));
+      sxA[x] = sunX(p), muSA[x] = p.muS;
     }
+    for (int k = 0; k <= N && s.ds > 0.0; ++k) {
+      const TransmittanceCoords rc = transmittanceCoordsFromRMu(shell, s.r[k], 1.0);
+      const double fy = rc.xR * (TH - 1);
+      const int iy = std::min(static_cast<int>(fy), TH - 2);
+      const double wy = fy - iy;
+      const double* row0 = Ttab.at(0, iy);
+      const double* row1 = Ttab.at(0, iy + 1);
+      for (std::size_t i = 0; i < Trow.size(); ++i) Trow[i] = (1 - wy) * row0[i] + wy * row1[i];
+      sunTexels(shell, alpha, s.r[k], s.xr[k], s.yr[k], sxA.data(), muSA.data(), W, TW, visA.data(), fxA.data());
+      const double* a = &A[static_cast<std::size_t>(k) * ns * nl];
+      for (int x = 0; x < W; ++x) {
+        const double vis = visA[x];
+        if (vis == 0.0) continue;
+        const int ix = std::min(static_cast<int>(fxA[x]), TW - 2);
+        const double wx = fxA[x] - ix;
+        const double* T0 = &Trow[static_cast<std::size_t>(ix) * nl];
+        const double* T1 = T0 + nl;
+        double* ax = &acc[static_cast<std::size_t>(x) * ns * nl];
+        for (int q = 0; q < ns; ++q)
+          for (int l = 0; l < nl; ++l) ax[q * nl + l] += a[q * nl + l] * ((1 - wx) * T0[l] + wx * T1[l]) * vis;
+      }
+    }
+    for (int x = 0; x < W; ++x)
+      for (int q = 0; q < ns; ++q)
+        std::copy_n(&acc[(static_cast<std::size_t>(x) * ns + q) * nl], nl, out.single[q].at(x, y, z));
   });
 
   auto meanOf = [&](auto&& texelValue) {
@@ -1030,11 +1085,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
               for (int j = 0; j < nDir; ++j) pj[j] = Model::evalLobe(lobe, cj[j]);
             }
             for (int l : m.lobeUsers[li]) {
-              const double* L = &Lw[static_cast<std::size_t>(l) * nDir];
-              double s = 0.0;
-#pragma omp simd reduction(+ : s)
-              for (int j = 0; j < nDir; ++j) s += pj[j] * L[j];
-              lobeSum[li * nl + l] = s;
+              lobeSum[li * nl + l] = dot(pj.data(), &Lw[static_cast<std::size_t>(l) * nDir], nDir);
             }
           }
           std::fill(J.begin(), J.end(), 0.0);

@@ -65,17 +65,25 @@ struct PeakMemory {
   }
 };
 
+double cpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 struct Run {
-  double seconds = 0.0, peakBytes = 0.0;
+  double seconds = 0.0, cpu = 0.0, peakBytes = 0.0;
   AtmosphereTables tables;
 };
 
 Run timed(const Atmosphere& atm, const PrecomputeOptions& o) {
   Run r;
   PeakMemory::reset();
+  const double c0 = cpuSeconds();
   const auto t0 = std::chrono::steady_clock::now();
   r.tables = precompute(atm, o);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.cpu = cpuSeconds() - c0;
   r.peakBytes = PeakMemory::bytes();
   return r;
 }
@@ -168,10 +176,10 @@ int main(int argc, char** argv) {
   }
 
   const char* header =
-      "| total [s] | transmittance | single | density | multiple | tables [MiB] | peak memory [MiB] ";
-  const char* rule = "|---|---:|---:|---:|---:|---:|---:|---:";
+      "| total [s] | CPU [s] | transmittance | single | density | multiple | tables [MiB] | peak memory [MiB] ";
+  const char* rule = "|---|---:|---:|---:|---:|---:|---:|---:|---:";
   auto row = [&](const std::string& name, const Run& r) {
-    std::printf("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.0f ", name.c_str(), r.seconds,
+    std::printf("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.0f ", name.c_str(), r.seconds, r.cpu,
                 stage(r.tables, "transmittance"), stage(r.tables, "single"), stage(r.tables, "density"),
                 stage(r.tables, "multiple"), r.tables.bytes() / 1048576.0, r.peakBytes / 1048576.0);
   };
