@@ -190,33 +190,32 @@ inline RMuCell rMuCell(const ScatterGeometry& g, double r, double mu, bool groun
   return c;
 }
 
-/// The cell at continuous texel coordinates (ScatterGeometry::muSTexel, nuTexel).
-inline SNuCell sNuCellAt(const ScatterGeometry& g, double fs, double fn) {
+/// The lower corner (x = nu * MU_S + mu_s) and the weights of the cell at continuous texel
+/// coordinates (ScatterGeometry::muSTexel, nuTexel).
+inline void sNuCorner(const ScatterGeometry& g, double fs, double fn, int& x00, double& ws, double& wn) {
   const int is = std::min(static_cast<int>(fs), g.MUS - 2);  // fs >= 0: truncation is floor
-  const double ws = fs - is;
   const double nearest = std::round(fn);
-  if (std::abs(fn - nearest) < 1e-12) fn = nearest;  // on a slice: one slice to read
+  fn = std::abs(fn - nearest) < 1e-12 ? nearest : fn;  // on a slice: one slice to read
   const int in = std::min(static_cast<int>(fn), g.NU - 2);
-  const double wn = fn - in;
+  x00 = in * g.MUS + is, ws = fs - is, wn = fn - in;
+}
+
+inline SNuCell sNuCell(const ScatterGeometry& g, double muS, double nu) {
+  double ws, wn;
   SNuCell c;
-  c.x00 = in * g.MUS + is, c.x01 = c.x00 + 1, c.x10 = c.x00 + g.MUS, c.x11 = c.x10 + 1;
+  sNuCorner(g, g.muSTexel(muS), g.nuTexel(nu), c.x00, ws, wn);
+  c.x01 = c.x00 + 1, c.x10 = c.x00 + g.MUS, c.x11 = c.x10 + 1;
   c.w00 = (1 - wn) * (1 - ws), c.w01 = (1 - wn) * ws, c.w10 = wn * (1 - ws), c.w11 = wn * ws;
   return c;
 }
 
-inline SNuCell sNuCell(const ScatterGeometry& g, double muS, double nu) {
-  return sNuCellAt(g, g.muSTexel(muS), g.nuTexel(nu));
-}
-
-/// The sun's (mu_s, nu) at a view-ray sample for n texels of a row, as texel coordinates:
+/// The sun's (mu_s, nu) at a view-ray sample for n texels of a row, as cells (sNuCorner):
 /// mu_s = xr sx + yr muS0, nu = tx sx + ty muS0 (sx, muS0: the sun in the ray's frame).
 UMBRA_KERNEL void sNuTexels(const ScatterGeometry& geometry, double xr, double yr, double tx, double ty,
-                            const double* sx, const double* muS0, int n, double* fs, double* fn) {
+                            const double* sx, const double* muS0, int n, int* x00, double* ws, double* wn) {
   const ScatterGeometry g = geometry;  // a local copy: the outputs cannot alias it
-  for (int x = 0; x < n; ++x) {
-    fs[x] = g.muSTexel(xr * sx[x] + yr * muS0[x]);
-    fn[x] = g.nuTexel(tx * sx[x] + ty * muS0[x]);
-  }
+  for (int x = 0; x < n; ++x)
+    sNuCorner(g, g.muSTexel(xr * sx[x] + yr * muS0[x]), g.nuTexel(tx * sx[x] + ty * muS0[x]), x00[x], ws[x], wn[x]);
 }
 
 /// out[0..channels) += scale * table(r, mu, mu_s, nu).
@@ -244,21 +243,16 @@ inline void accumulate4(const Table3D& T, const RMuCell& a, const SNuCell& s, do
 }
 
 /// out[0..width * channels) = the (r, mu) interpolation of a 4D table: the cell's four
-/// rows of (mu_s, nu) texels blended with their weights.
-inline void blendRows(const Table3D& T, const RMuCell& a, double* out) {
+/// rows of (mu_s, nu) texels blended with their weights, in one pass.
+UMBRA_KERNEL void blendRows(const Table3D& T, const RMuCell& a, double* out) {
   const std::size_t n = static_cast<std::size_t>(T.width) * T.channels;
-  std::fill(out, out + n, 0.0);
-  for (int dz = 0; dz < 2; ++dz) {
-    const double wz = dz ? a.wz : 1.0 - a.wz;
-    if (wz == 0.0) continue;
-    for (int dy = 0; dy < 2; ++dy) {
-      const double wzy = wz * (dy ? a.wy : 1.0 - a.wy);
-      if (wzy == 0.0) continue;
-      const double* row = T.at(0, a.iy + dy, a.iz + dz);
-#pragma omp simd
-      for (std::size_t i = 0; i < n; ++i) out[i] += wzy * row[i];
-    }
-  }
+  const double* r00 = T.at(0, a.iy, a.iz);
+  const double* r01 = T.at(0, a.iy + 1, a.iz);
+  const double* r10 = T.at(0, a.iy, std::min(a.iz + 1, T.depth - 1));
+  const double* r11 = T.at(0, a.iy + 1, std::min(a.iz + 1, T.depth - 1));
+  const double w00 = (1.0 - a.wz) * (1.0 - a.wy), w01 = (1.0 - a.wz) * a.wy, w10 = a.wz * (1.0 - a.wy),
+               w11 = a.wz * a.wy;
+  for (std::size_t i = 0; i < n; ++i) out[i] = w00 * r00[i] + w01 * r01[i] + w10 * r10[i] + w11 * r11[i];
 }
 
 /// Bilinear lookup in a 2D table of unit-range coordinates (texel centres on the ends).
@@ -1146,7 +1140,8 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       // the sample only: the sample's four (r, mu) rows are blended once into one row of
       // (mu_s, nu) texels, and each texel reads that row bilinearly (4 reads, not 16).
       const std::size_t rowSize = static_cast<std::size_t>(W) * nl;
-      std::vector<double> sxA(W), muSA(W), fsA(W), fnA(W), acc(rowSize, 0.0), blend(rowSize);
+      std::vector<double> sxA(W), muSA(W), wsA(W), wnA(W), acc(rowSize, 0.0), blend(rowSize);
+      std::vector<int> x00A(W);
       for (int x = 0; x < W; ++x) {
         const ScatteringPoint p = g.texel(x, y, z);
         sxA[x] = sunX(p), muSA[x] = p.muS;
@@ -1156,20 +1151,17 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
         const double* T = &s.T[static_cast<std::size_t>(k) * nl];
         blendRows(density, cells[k], blend.data());
         const double xr = s.xr[k], yr = s.yr[k], tx = s.tx[k], ty = s.ty[k];
-        sNuTexels(g, xr, yr, tx, ty, sxA.data(), muSA.data(), W, fsA.data(), fnA.data());
+        sNuTexels(g, xr, yr, tx, ty, sxA.data(), muSA.data(), W, x00A.data(), wsA.data(), wnA.data());
+        const std::size_t up = static_cast<std::size_t>(MUS) * nl;
         for (int x = 0; x < W; ++x) {
-          const SNuCell c = sNuCellAt(g, fsA[x], fnA[x]);
-          const double* p00 = &blend[static_cast<std::size_t>(c.x00) * nl];
-          const double* p01 = &blend[static_cast<std::size_t>(c.x01) * nl];
-          const double* p10 = &blend[static_cast<std::size_t>(c.x10) * nl];
-          const double* p11 = &blend[static_cast<std::size_t>(c.x11) * nl];
+          const double* p00 = &blend[static_cast<std::size_t>(x00A[x]) * nl];
+          const double* p01 = p00 + nl;
+          const double* p10 = p00 + up;
+          const double* p11 = p10 + nl;
+          const double ws = wsA[x], wn = wnA[x];
+          const double w00 = w * (1 - wn) * (1 - ws), w01 = w * (1 - wn) * ws, w10 = w * wn * (1 - ws), w11 = w * wn * ws;
           double* a = &acc[static_cast<std::size_t>(x) * nl];
-          const double w00 = w * c.w00, w01 = w * c.w01, w10 = w * c.w10, w11 = w * c.w11;
-          if (c.w10 == 0.0 && c.w11 == 0.0) {
-            for (int l = 0; l < nl; ++l) a[l] += T[l] * (w00 * p00[l] + w01 * p01[l]);
-          } else {
-            for (int l = 0; l < nl; ++l) a[l] += T[l] * (w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l]);
-          }
+          for (int l = 0; l < nl; ++l) a[l] += T[l] * (w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l]);
         }
       }
       for (int x = 0; x < W; ++x) {
