@@ -990,8 +990,11 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     }
   };
 
-  // Sphere of directions for the density: midpoint rule in theta and phi.
-  const int nTh = o.sphereSamples, nPh = 2 * o.sphereSamples, nDir = nTh * nPh;
+  // Sphere of directions for the density: midpoint rule in theta and phi (n x 2n). The
+  // incoming radiance is symmetric about the plane of the zenith and the sun (phi -> -phi:
+  // the same (mu, mu_s, nu)), so only phi in (0, pi) is looked up, each direction standing
+  // for itself and its mirror (wy -> -wy) with twice the solid angle.
+  const int nTh = o.sphereSamples, nPh = o.sphereSamples, nDir = nTh * nPh;
   const double dA = kPi / o.sphereSamples;
   std::vector<double> wx(nDir), wy(nDir), wz(nDir), wdo(nDir);
   for (int lt = 0; lt < nTh; ++lt)
@@ -999,7 +1002,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       const double th = (lt + 0.5) * dA, ph = (mp + 0.5) * dA;
       const int j = lt * nPh + mp;
       wx[j] = std::cos(ph) * std::sin(th), wy[j] = std::sin(ph) * std::sin(th), wz[j] = std::cos(th);
-      wdo[j] = dA * dA * std::sin(th);
+      wdo[j] = 2.0 * dA * dA * std::sin(th);
     }
   // Transmittance from (r_z, theta_l) to the ground along straight rays (for the ground term).
   std::vector<double> groundT(static_cast<std::size_t>(R) * nTh * nl, 0.0), groundD(static_cast<std::size_t>(R) * nTh, -1.0);
@@ -1053,13 +1056,15 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
           Lw[static_cast<std::size_t>(l) * nDir + j] = L;
           M0[l] += L;
           double* M = &M2[l * 6];
+          // xy and yz cancel with the mirror (M[3] = M[5] = 0)
           M[0] += wx[j] * wx[j] * L, M[1] += wy[j] * wy[j] * L, M[2] += wz[j] * wz[j] * L;
-          M[3] += wx[j] * wy[j] * L, M[4] += wx[j] * wz[j] * L, M[5] += wy[j] * wz[j] * L;
+          M[4] += wx[j] * wz[j] * L;
         }
       }
       std::vector<double> rho(ns);
       for (int q = 0; q < ns; ++q) rho[q] = m.density(m.scatterers[q], alt);
-      std::vector<double> cj(nDir), pj(nDir), lobeSum(m.lobes.size() * nl), J(nl);
+      // cj: the cosines with the view of the directions [0, nDir) and of their mirrors.
+      std::vector<double> cj(2 * nDir), pj(2 * nDir), pPair(nDir), lobeSum(m.lobes.size() * nl), J(nl);
       for (int y = 0; y < MU; ++y) {
         for (int k = 0; k < o.scatteringNu; ++k) {
           const int x = k * MUS + is;
@@ -1069,17 +1074,22 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
           const double vy = std::sqrt(std::max(0.0, sz * sz - vx * vx)), vz = p.mu;
           if (!m.lobes.empty()) {
 #pragma omp simd
-            for (int j = 0; j < nDir; ++j) cj[j] = wx[j] * vx + wy[j] * vy + wz[j] * vz;
+            for (int j = 0; j < nDir; ++j) {
+              cj[j] = wx[j] * vx + wy[j] * vy + wz[j] * vz;
+              cj[nDir + j] = wx[j] * vx - wy[j] * vy + wz[j] * vz;
+            }
           }
           for (std::size_t li = 0; li < m.lobes.size(); ++li) {
             const Lobe& lobe = m.lobes[li];
             if (lobe.table.empty()) {
-              lobeValues(lobe.A, lobe.B, lobe.g, cj.data(), pj.data(), nDir);
+              lobeValues(lobe.A, lobe.B, lobe.g, cj.data(), pj.data(), 2 * nDir);
             } else {
-              for (int j = 0; j < nDir; ++j) pj[j] = Model::evalLobe(lobe, cj[j]);
+              for (int j = 0; j < 2 * nDir; ++j) pj[j] = Model::evalLobe(lobe, cj[j]);
             }
+#pragma omp simd
+            for (int j = 0; j < nDir; ++j) pPair[j] = 0.5 * (pj[j] + pj[nDir + j]);
             for (int l : m.lobeUsers[li]) {
-              lobeSum[li * nl + l] = dot(pj.data(), &Lw[static_cast<std::size_t>(l) * nDir], nDir);
+              lobeSum[li * nl + l] = dot(pPair.data(), &Lw[static_cast<std::size_t>(l) * nDir], nDir);
             }
           }
           std::fill(J.begin(), J.end(), 0.0);
