@@ -967,6 +967,9 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     }
   }));
 
+  // The single-scattering weights are spent: free them before the working tables.
+  for (std::vector<RaySamples>* rays : {&singleRays, &multipleRays})
+    for (RaySamples& s : *rays) std::vector<double>().swap(s.rhoT);
   out.multiple.resize(W, MU, R, nl);
   if (o.orders < 2) return out;
 
