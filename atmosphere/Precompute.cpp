@@ -218,25 +218,26 @@ UMBRA_KERNEL void sNuTexels(const ScatterGeometry& geometry, double xr, double y
     sNuCorner(g, g.muSTexel(xr * sx[x] + yr * muS0[x]), g.nuTexel(tx * sx[x] + ty * muS0[x]), x00[x], ws[x], wn[x]);
 }
 
-/// out[0..channels) += scale * table(r, mu, mu_s, nu).
-inline void accumulate4(const Table3D& T, const RMuCell& a, const SNuCell& s, double scale, double* out) {
-  const int nc = T.channels;
+/// out[0..n) += scale * table(r, mu, mu_s, nu) for the channels l0 .. l0 + n (n < 0: all).
+inline void accumulate4(const Table3D& T, const RMuCell& a, const SNuCell& s, double scale, double* out, int l0 = 0,
+                        int n = -1) {
+  const int nc = T.channels, nr = n < 0 ? nc : n;
   for (int dz = 0; dz < 2; ++dz) {
     const double wz = (dz ? a.wz : 1.0 - a.wz) * scale;
     if (wz == 0.0) continue;
     for (int dy = 0; dy < 2; ++dy) {
       const double wzy = wz * (dy ? a.wy : 1.0 - a.wy);
       if (wzy == 0.0) continue;
-      const double* row = T.at(0, a.iy + dy, a.iz + dz);
+      const double* row = T.at(0, a.iy + dy, a.iz + dz) + l0;
       const double* p00 = row + static_cast<std::size_t>(s.x00) * nc;
       const double* p01 = row + static_cast<std::size_t>(s.x01) * nc;
       const double* p10 = row + static_cast<std::size_t>(s.x10) * nc;
       const double* p11 = row + static_cast<std::size_t>(s.x11) * nc;
       const double w00 = wzy * s.w00, w01 = wzy * s.w01, w10 = wzy * s.w10, w11 = wzy * s.w11;
       if (s.w10 == 0.0 && s.w11 == 0.0) {
-        for (int l = 0; l < nc; ++l) out[l] += w00 * p00[l] + w01 * p01[l];
+        for (int l = 0; l < nr; ++l) out[l] += w00 * p00[l] + w01 * p01[l];
       } else {
-        for (int l = 0; l < nc; ++l) out[l] += w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l];
+        for (int l = 0; l < nr; ++l) out[l] += w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l];
       }
     }
   }
@@ -719,14 +720,16 @@ struct RaySamples {
   std::vector<double> rhoT;  // [(i * ns + q) * nl + l]: int rho_q T_view hat_i ds
 };
 
+/// The 2D tables of a batch; its 3D tables go straight into the final ones (single, multiple:
+/// all wavelengths wide, the batch's channels from l0 on), so that no batch-wide copy of
+/// them is ever held.
 struct BatchResult {
   Table2D transmittance, directIrradiance, irradiance;
-  std::vector<Table3D> single;
-  Table3D multiple;
   std::vector<std::vector<double>> orderMean;
 };
 
-BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runner& run) {
+BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runner& run, std::vector<Table3D>& single,
+                         Table3D& multiple, int l0) {
   const Model m(atm, o);
   const int nl = m.nl, nc = m.nc, ns = static_cast<int>(m.scatterers.size());
   const ShellRadii shell{atm.bottomRadiusM, atm.topRadiusM};
@@ -895,8 +898,6 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
   };
 
   // ---- single scattering -------------------------------------------------------------------
-  out.single.assign(ns, Table3D{});
-  for (Table3D& T : out.single) T.resize(W, MU, R, nl);
   run.run("single scattering", 1.0, R * MU, [&](int i) {
     const int y = i % MU, z = i / MU;
     const RaySamples& s = singleRays[i];
@@ -941,7 +942,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     }
     for (int x = 0; x < W; ++x)
       for (int q = 0; q < ns; ++q)
-        std::copy_n(&acc[(static_cast<std::size_t>(x) * ns + q) * nl], nl, out.single[q].at(x, y, z));
+        std::copy_n(&acc[(static_cast<std::size_t>(x) * ns + q) * nl], nl, single[q].at(x, y, z) + l0);
   });
 
   auto meanOf = [&](auto&& texelValue) {
@@ -962,7 +963,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     std::fill(v, v + nl, 0.0);
     for (int q = 0; q < ns; ++q) {
       const Component& comp = atm.components[m.scatterers[q]];
-      const double* S = out.single[q].at(x, y, z);
+      const double* S = single[q].at(x, y, z) + l0;
       for (int l = 0; l < nl; ++l) v[l] += S[l] * comp.phase(l)(p.nu);
     }
   }));
@@ -970,7 +971,6 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
   // The single-scattering weights are spent: free them before the working tables.
   for (std::vector<RaySamples>* rays : {&singleRays, &multipleRays})
     for (RaySamples& s : *rays) std::vector<double>().swap(s.rhoT);
-  out.multiple.resize(W, MU, R, nl);
   if (o.orders < 2) return out;
 
   // L_{k-1}(r, mu, mu_s, nu) added into v: order 1 from the single tables, else delta.
@@ -984,7 +984,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       std::vector<double> tmp(nl);
       for (int q = 0; q < ns; ++q) {
         std::fill(tmp.begin(), tmp.end(), 0.0);
-        accumulate4(out.single[q], a, c, 1.0, tmp.data());
+        accumulate4(single[q], a, c, 1.0, tmp.data(), l0, nl);
         const Component& comp = atm.components[m.scatterers[q]];
         for (int l = 0; l < nl; ++l) v[l] += tmp[l] * comp.phase(l)(nu);
       }
@@ -1180,7 +1180,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       for (int x = 0; x < W; ++x) {
         const double* a = &acc[static_cast<std::size_t>(x) * nl];
         std::copy_n(a, nl, delta.at(x, y, z));
-        double* sum = out.multiple.at(x, y, z);
+        double* sum = multiple.at(x, y, z) + l0;
         for (int l = 0; l < nl; ++l) sum[l] += a[l];
       }
     });
@@ -1214,12 +1214,6 @@ void copyChannels2D(const Table2D& from, Table2D& to, const std::vector<int>& ls
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t k = 0; k < ls.size(); ++k) to.values[i * to.channels + ls[k]] = from.values[i * from.channels + k];
 }
-void copyChannels3D(const Table3D& from, Table3D& to, const std::vector<int>& ls) {
-  const std::size_t n = static_cast<std::size_t>(from.width) * from.height * from.depth;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t k = 0; k < ls.size(); ++k) to.values[i * to.channels + ls[k]] = from.values[i * from.channels + k];
-}
-
 }  // namespace
 
 ScatteringCoords scatteringCoordsFromRMuMuSNu(const ShellRadii& shell, const ScatteringTableSize& size,
@@ -1270,37 +1264,33 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
   const int orders = options.orders;
   const double weight = 1.0 + 0.05 + 0.3 * (options.multipleScatteringSamples != options.singleScatteringSamples ? 2 : 1) +
                         1.0 + (orders - 1) * (2.0 + 0.1 + 1.0);
+  const int W = options.scatteringNu * options.scatteringMuS;
+  tables.singleScattering.resize(tables.scatteringComponents.size());
+  for (Table3D& T : tables.singleScattering) T.resize(W, options.scatteringMu, options.scatteringR, nl);
+  tables.multipleScattering.resize(W, options.scatteringMu, options.scatteringR, nl);
   for (int bi = 0; bi < batches; ++bi) {
     std::vector<int> ls;
     for (int l = bi * batch; l < std::min(nl, (bi + 1) * batch); ++l) ls.push_back(l);
     Runner runner(progress, options.threads, static_cast<double>(bi) / batches, static_cast<double>(bi + 1) / batches);
     runner.setStages(weight);
-    BatchResult r = batches == 1 ? computeBatch(atmosphere, options, runner)
-                                 : computeBatch(subAtmosphere(atmosphere, ls), options, runner);
+    BatchResult r = computeBatch(batches == 1 ? atmosphere : subAtmosphere(atmosphere, ls), options, runner,
+                                 tables.singleScattering, tables.multipleScattering, ls.front());
     if (batches == 1) {
       tables.transmittance = std::move(r.transmittance);
       tables.directIrradiance = std::move(r.directIrradiance);
       tables.irradiance = std::move(r.irradiance);
-      tables.singleScattering = std::move(r.single);
-      tables.multipleScattering = std::move(r.multiple);
       tables.orderMeanRadiance = std::move(r.orderMean);
     } else {
       if (bi == 0) {
         auto size2 = [&](Table2D& d, const Table2D& s) { d.resize(s.width, s.height, nl); };
-        auto size3 = [&](Table3D& d, const Table3D& s) { d.resize(s.width, s.height, s.depth, nl); };
         size2(tables.transmittance, r.transmittance);
         size2(tables.directIrradiance, r.directIrradiance);
         size2(tables.irradiance, r.irradiance);
-        size3(tables.multipleScattering, r.multiple);
-        tables.singleScattering.resize(r.single.size());
-        for (std::size_t q = 0; q < r.single.size(); ++q) size3(tables.singleScattering[q], r.single[q]);
         tables.orderMeanRadiance.assign(r.orderMean.size(), std::vector<double>(nl, 0.0));
       }
       copyChannels2D(r.transmittance, tables.transmittance, ls);
       copyChannels2D(r.directIrradiance, tables.directIrradiance, ls);
       copyChannels2D(r.irradiance, tables.irradiance, ls);
-      copyChannels3D(r.multiple, tables.multipleScattering, ls);
-      for (std::size_t q = 0; q < r.single.size(); ++q) copyChannels3D(r.single[q], tables.singleScattering[q], ls);
       for (std::size_t k = 0; k < r.orderMean.size(); ++k)
         for (std::size_t i = 0; i < ls.size(); ++i) tables.orderMeanRadiance[k][ls[i]] = r.orderMean[k][i];
     }
