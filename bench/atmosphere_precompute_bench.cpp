@@ -223,9 +223,11 @@ int main(int argc, char** argv) {
       row("1.25 km (the reference)", ref);
       std::printf("| - | - |\n");
     }
-    const Run off = timed(atm, scaled(1.0, 4, false));
-    row("no refraction", off);
-    errorCells(sky(off.tables), fineSky);
+    {
+      const Run off = timed(atm, scaled(1.0, 4, false));
+      row("no refraction", off);
+      errorCells(sky(off.tables), fineSky);
+    }
     for (double km : {40.0, 20.0, 10.0, 5.0}) {
       PrecomputeOptions o = scaled(1.0, 4, true);
       o.refractionStepM = km * 1e3;
