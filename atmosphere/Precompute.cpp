@@ -11,8 +11,15 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-#if defined(__SSE2__)
-#include <emmintrin.h>
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+// Kernels compiled twice (AVX2 and the baseline), chosen at load time by the CPU.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define UMBRA_KERNEL __attribute__((target_clones("avx2", "default")))
+#else
+#define UMBRA_KERNEL
 #endif
 
 namespace umbra::atmosphere {
@@ -24,10 +31,10 @@ constexpr double kPi = 3.14159265358979323846;
 /// Bruneton's GetTextureCoordFromUnitRange, inline for the lookups' hot path.
 inline double texCoord(double x, int n) { return (0.5 + x * (n - 1.0)) / n; }
 
-double smoothstep(double e0, double e1, double x) {
-  if (!(e1 > e0)) return x < e0 ? 0.0 : 1.0;
-  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
+inline double smoothstep(double e0, double e1, double x) {
+  const double t = std::min(std::max((x - e0) / (e1 - e0), 0.0), 1.0);
+  const double step = x < e0 ? 0.0 : 1.0;
+  return e1 > e0 ? t * t * (3.0 - 2.0 * t) : step;
 }
 
 /// Linear texel coordinate in [0, n - 1] from a texture coordinate (centres at (i + 0.5) / n).
@@ -105,14 +112,20 @@ struct ScatterGeometry {
     return 0.5 + 0.5 * texCoord(x, MU / 2);
   }
   double uMuS(double muS) const {
-    // distance from the ground to the top along mu_s (inline: the hot path of the lookups)
+    // distance from the ground to the top along mu_s (inline: the hot path of the lookups;
+    // branch-free so that loops over it vectorise)
     muS = clampCosine(muS);
     const double root = std::sqrt(b * b * muS * muS + H * H);
-    const double d = muS > 0.0 ? H * H / (b * muS + root) : root - b * muS;
+    const double q = muS > 0.0 ? b * muS + root : root - b * muS;
+    const double qInverse = H * H / q;
+    const double d = muS > 0.0 ? qInverse : q;
     const double a = (d - (t - b)) / (H - (t - b));
     return texCoord(std::max(1.0 - a / A, 0.0) / (1.0 + a), MUS);
   }
   static double uNu(double nu) { return 0.5 * (clampCosine(nu) + 1.0); }
+  /// Continuous texel coordinates: mu_s in [0, MU_S - 1], nu in [0, NU - 1].
+  double muSTexel(double muS) const { return std::min(std::max(uMuS(muS) * MUS - 0.5, 0.0), MUS - 1.0); }
+  double nuTexel(double nu) const { return std::min(std::max(uNu(nu) * (NU - 1), 0.0), NU - 1.0); }
 
   double rFromU(double u) const {
     const double rho = H * std::clamp(unitRangeFromTextureCoord(u, R), 0.0, 1.0);
@@ -177,43 +190,70 @@ inline RMuCell rMuCell(const ScatterGeometry& g, double r, double mu, bool groun
   return c;
 }
 
-inline SNuCell sNuCell(const ScatterGeometry& g, double muS, double nu) {
-  int is, in;
-  double ws, wn;
-  texelLerp(g.uMuS(muS), g.MUS, 0, g.MUS - 1, is, ws);
-  double fn = std::clamp(ScatterGeometry::uNu(nu) * (g.NU - 1), 0.0, static_cast<double>(g.NU - 1));
+/// The lower corner (x = nu * MU_S + mu_s) and the weights of the cell at continuous texel
+/// coordinates (ScatterGeometry::muSTexel, nuTexel).
+inline void sNuCorner(const ScatterGeometry& g, double fs, double fn, int& x00, double& ws, double& wn) {
+  const int is = std::min(static_cast<int>(fs), g.MUS - 2);  // fs >= 0: truncation is floor
   const double nearest = std::round(fn);
-  if (std::abs(fn - nearest) < 1e-12) fn = nearest;  // on a slice: one slice to read
-  in = std::min(static_cast<int>(std::floor(fn)), g.NU - 2);
-  wn = fn - in;
+  fn = std::abs(fn - nearest) < 1e-12 ? nearest : fn;  // on a slice: one slice to read
+  const int in = std::min(static_cast<int>(fn), g.NU - 2);
+  x00 = in * g.MUS + is, ws = fs - is, wn = fn - in;
+}
+
+inline SNuCell sNuCell(const ScatterGeometry& g, double muS, double nu) {
+  double ws, wn;
   SNuCell c;
-  c.x00 = in * g.MUS + is, c.x01 = c.x00 + 1, c.x10 = c.x00 + g.MUS, c.x11 = c.x10 + 1;
+  sNuCorner(g, g.muSTexel(muS), g.nuTexel(nu), c.x00, ws, wn);
+  c.x01 = c.x00 + 1, c.x10 = c.x00 + g.MUS, c.x11 = c.x10 + 1;
   c.w00 = (1 - wn) * (1 - ws), c.w01 = (1 - wn) * ws, c.w10 = wn * (1 - ws), c.w11 = wn * ws;
   return c;
 }
 
-/// out[0..channels) += scale * table(r, mu, mu_s, nu).
-inline void accumulate4(const Table3D& T, const RMuCell& a, const SNuCell& s, double scale, double* out) {
-  const int nc = T.channels;
+/// The sun's (mu_s, nu) at a view-ray sample for n texels of a row, as cells (sNuCorner):
+/// mu_s = xr sx + yr muS0, nu = tx sx + ty muS0 (sx, muS0: the sun in the ray's frame).
+UMBRA_KERNEL void sNuTexels(const ScatterGeometry& geometry, double xr, double yr, double tx, double ty,
+                            const double* sx, const double* muS0, int n, int* x00, double* ws, double* wn) {
+  const ScatterGeometry g = geometry;  // a local copy: the outputs cannot alias it
+  for (int x = 0; x < n; ++x)
+    sNuCorner(g, g.muSTexel(xr * sx[x] + yr * muS0[x]), g.nuTexel(tx * sx[x] + ty * muS0[x]), x00[x], ws[x], wn[x]);
+}
+
+/// out[0..n) += scale * table(r, mu, mu_s, nu) for the channels l0 .. l0 + n (n < 0: all).
+inline void accumulate4(const Table3D& T, const RMuCell& a, const SNuCell& s, double scale, double* out, int l0 = 0,
+                        int n = -1) {
+  const int nc = T.channels, nr = n < 0 ? nc : n;
   for (int dz = 0; dz < 2; ++dz) {
     const double wz = (dz ? a.wz : 1.0 - a.wz) * scale;
     if (wz == 0.0) continue;
     for (int dy = 0; dy < 2; ++dy) {
       const double wzy = wz * (dy ? a.wy : 1.0 - a.wy);
       if (wzy == 0.0) continue;
-      const double* row = T.at(0, a.iy + dy, a.iz + dz);
+      const double* row = T.at(0, a.iy + dy, a.iz + dz) + l0;
       const double* p00 = row + static_cast<std::size_t>(s.x00) * nc;
       const double* p01 = row + static_cast<std::size_t>(s.x01) * nc;
       const double* p10 = row + static_cast<std::size_t>(s.x10) * nc;
       const double* p11 = row + static_cast<std::size_t>(s.x11) * nc;
       const double w00 = wzy * s.w00, w01 = wzy * s.w01, w10 = wzy * s.w10, w11 = wzy * s.w11;
       if (s.w10 == 0.0 && s.w11 == 0.0) {
-        for (int l = 0; l < nc; ++l) out[l] += w00 * p00[l] + w01 * p01[l];
+        for (int l = 0; l < nr; ++l) out[l] += w00 * p00[l] + w01 * p01[l];
       } else {
-        for (int l = 0; l < nc; ++l) out[l] += w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l];
+        for (int l = 0; l < nr; ++l) out[l] += w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l];
       }
     }
   }
+}
+
+/// out[0..width * channels) = the (r, mu) interpolation of a 4D table: the cell's four
+/// rows of (mu_s, nu) texels blended with their weights, in one pass.
+UMBRA_KERNEL void blendRows(const Table3D& T, const RMuCell& a, double* out) {
+  const std::size_t n = static_cast<std::size_t>(T.width) * T.channels;
+  const double* r00 = T.at(0, a.iy, a.iz);
+  const double* r01 = T.at(0, a.iy + 1, a.iz);
+  const double* r10 = T.at(0, a.iy, std::min(a.iz + 1, T.depth - 1));
+  const double* r11 = T.at(0, a.iy + 1, std::min(a.iz + 1, T.depth - 1));
+  const double w00 = (1.0 - a.wz) * (1.0 - a.wy), w01 = (1.0 - a.wz) * a.wy, w10 = a.wz * (1.0 - a.wy),
+               w11 = a.wz * a.wy;
+  for (std::size_t i = 0; i < n; ++i) out[i] = w00 * r00[i] + w01 * r01[i] + w10 * r10[i] + w11 * r11[i];
 }
 
 /// Bilinear lookup in a 2D table of unit-range coordinates (texel centres on the ends).
@@ -245,25 +285,65 @@ inline double sunVisibility(double b, double alpha, double r, double muS) {
   return smoothstep(-sinH * alpha, sinH * alpha, muS - cosH);
 }
 
-/// p_j = A (1 + B c_j^2) / (1 + g^2 - 2 g c_j)^{3/2} for j < n: the density's inner loop
-/// (SSE2 where available: the compiler does not vectorise sqrt under -fmath-errno).
-void lobeValues(double A, double B, double g, const double* c, double* p, int n) {
-  const double g2 = 1.0 + g * g, twoG = 2.0 * g;
-  int j = 0;
-#if defined(__SSE2__)
-  const __m128d Av = _mm_set1_pd(A), Bv = _mm_set1_pd(B), g2v = _mm_set1_pd(g2), twoGv = _mm_set1_pd(twoG),
-                one = _mm_set1_pd(1.0);
-  for (; j + 2 <= n; j += 2) {
-    const __m128d cc = _mm_loadu_pd(c + j);
-    const __m128d d = _mm_sub_pd(g2v, _mm_mul_pd(twoGv, cc));
-    const __m128d num = _mm_mul_pd(Av, _mm_add_pd(one, _mm_mul_pd(Bv, _mm_mul_pd(cc, cc))));
-    _mm_storeu_pd(p + j, _mm_div_pd(num, _mm_mul_pd(d, _mm_sqrt_pd(d))));
+/// The sun at a view-ray sample (radius r, frame xr, yr) for n texels of a row (the sun
+/// sx, muS0 in the ray's frame): its visibility (sunVisibility) and the column coordinate
+/// in [0, columns - 1] of its transmittance in a table of that many columns.
+UMBRA_KERNEL void sunTexels(const ShellRadii& shell, double alpha, double r, double xr, double yr, const double* sx,
+                            const double* muS0, int n, int columns, double* vis, double* fx) {
+  const double b = shell.bottomRadiusM, t = shell.topRadiusM;
+  const double rc = std::clamp(r, b, t), H = std::sqrt((t - b) * (t + b)), rho = safeSqrt((rc - b) * (rc + b));
+  for (int x = 0; x < n; ++x) {
+    const double muS = clampCosine(xr * sx[x] + yr * muS0[x]);
+    vis[x] = sunVisibility(b, alpha, r, muS);
+    fx[x] = transmittanceXMu(t, rc, rho, H, muS) * (columns - 1);
   }
-#endif
-  for (; j < n; ++j) {
+}
+
+/// p_j = A (1 + B c_j^2) / (1 + g^2 - 2 g c_j)^{3/2} for j < n: the density's inner loop.
+/// With AVX-512, (.)^{-3/2} is y^3 with y the reciprocal square root from vrsqrt14pd (14
+/// bits) refined by two Newton steps (56 bits: the same double to a few ulps), which avoids
+/// the divider; elsewhere a plain loop (vectorised: Precompute.cpp has no math errno).
+UMBRA_KERNEL void lobeValuesPlain(double A, double B, double g, const double* c, double* p, int n) {
+  const double g2 = 1.0 + g * g, twoG = 2.0 * g;
+  for (int j = 0; j < n; ++j) {
     const double d = g2 - twoG * c[j];
     p[j] = A * (1.0 + B * c[j] * c[j]) / (d * std::sqrt(d));
   }
+}
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+__attribute__((target("avx512f"))) void lobeValuesAvx512(double A, double B, double g, const double* c, double* p,
+                                                         int n) {
+  const __m512d Av = _mm512_set1_pd(A), Bv = _mm512_set1_pd(B), g2 = _mm512_set1_pd(1.0 + g * g),
+                twoG = _mm512_set1_pd(2.0 * g), one = _mm512_set1_pd(1.0), half = _mm512_set1_pd(0.5),
+                threeHalves = _mm512_set1_pd(1.5);
+  int j = 0;
+  for (; j + 8 <= n; j += 8) {
+    const __m512d cc = _mm512_loadu_pd(c + j);
+    const __m512d d = _mm512_fnmadd_pd(twoG, cc, g2);
+    const __m512d hd = _mm512_mul_pd(half, d);
+    __m512d y = _mm512_maskz_rsqrt14_pd(0xFF, d);
+    y = _mm512_mul_pd(y, _mm512_fnmadd_pd(hd, _mm512_mul_pd(y, y), threeHalves));
+    y = _mm512_mul_pd(y, _mm512_fnmadd_pd(hd, _mm512_mul_pd(y, y), threeHalves));
+    const __m512d num = _mm512_mul_pd(Av, _mm512_fmadd_pd(Bv, _mm512_mul_pd(cc, cc), one));
+    _mm512_storeu_pd(p + j, _mm512_mul_pd(num, _mm512_mul_pd(y, _mm512_mul_pd(y, y))));
+  }
+  lobeValuesPlain(A, B, g, c + j, p + j, n - j);
+}
+void lobeValues(double A, double B, double g, const double* c, double* p, int n) {
+  static const bool avx512 = __builtin_cpu_supports("avx512f");
+  if (avx512) lobeValuesAvx512(A, B, g, c, p, n);
+  else lobeValuesPlain(A, B, g, c, p, n);
+}
+#else
+void lobeValues(double A, double B, double g, const double* c, double* p, int n) { lobeValuesPlain(A, B, g, c, p, n); }
+#endif
+
+/// sum_j a_j b_j.
+UMBRA_KERNEL double dot(const double* a, const double* b, int n) {
+  double s = 0.0;
+#pragma omp simd reduction(+ : s)
+  for (int j = 0; j < n; ++j) s += a[j] * b[j];
+  return s;
 }
 
 // ---- paths ---------------------------------------------------------------------------------
@@ -640,14 +720,16 @@ struct RaySamples {
   std::vector<double> rhoT;  // [(i * ns + q) * nl + l]: int rho_q T_view hat_i ds
 };
 
+/// The 2D tables of a batch; its 3D tables go straight into the final ones (single, multiple:
+/// all wavelengths wide, the batch's channels from l0 on), so that no batch-wide copy of
+/// them is ever held.
 struct BatchResult {
   Table2D transmittance, directIrradiance, irradiance;
-  std::vector<Table3D> single;
-  Table3D multiple;
   std::vector<std::vector<double>> orderMean;
 };
 
-BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runner& run) {
+BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runner& run, std::vector<Table3D>& single,
+                         Table3D& multiple, int l0) {
   const Model m(atm, o);
   const int nl = m.nl, nc = m.nc, ns = static_cast<int>(m.scatterers.size());
   const ShellRadii shell{atm.bottomRadiusM, atm.topRadiusM};
@@ -816,8 +898,6 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
   };
 
   // ---- single scattering -------------------------------------------------------------------
-  out.single.assign(ns, Table3D{});
-  for (Table3D& T : out.single) T.resize(W, MU, R, nl);
   run.run("single scattering", 1.0, R * MU, [&](int i) {
     const int y = i % MU, z = i / MU;
     const RaySamples& s = singleRays[i];
@@ -830,24 +910,39 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
           const std::size_t idx = (static_cast<std::size_t>(k) * ns + q) * nl + l;
           A[idx] = m.sca[q * nl + l] * s.rhoT[idx];
         }
-    std::vector<double> Tsun(nl), acc(static_cast<std::size_t>(ns) * nl);
+    // Samples outer, texels inner: the sample's radius fixes the transmittance row
+    // (blended once) and the horizon; the texels' sun cosines are computed together.
+    std::vector<double> sxA(W), muSA(W), visA(W), fxA(W), Trow(static_cast<std::size_t>(TW) * nl);
+    std::vector<double> acc(static_cast<std::size_t>(W) * ns * nl, 0.0);
     for (int x = 0; x < W; ++x) {
       const ScatteringPoint p = g.texel(x, y, z);
-      const double sx = sunX(p);
-      std::fill(acc.begin(), acc.end(), 0.0);
-      if (s.ds > 0.0) {
-        for (int k = 0; k <= N; ++k) {
-          const double muS = clampCosine(s.xr[k] * sx + s.yr[k] * p.muS);
-          const double vis = sunVisibility(b, alpha, s.r[k], muS);
-          if (vis == 0.0) continue;
-          lookupTransmittance(Ttab, shell, s.r[k], muS, Tsun.data());
-          const double* a = &A[static_cast<std::size_t>(k) * ns * nl];
-          for (int q = 0; q < ns; ++q)
-            for (int l = 0; l < nl; ++l) acc[q * nl + l] += a[q * nl + l] * Tsun[l] * vis;
-        }
-      }
-      for (int q = 0; q < ns; ++q) std::copy_n(&acc[q * nl], nl, out.single[q].at(x, y, z));
+      sxA[x] = sunX(p), muSA[x] = p.muS;
     }
+    for (int k = 0; k <= N && s.ds > 0.0; ++k) {
+      const TransmittanceCoords rc = transmittanceCoordsFromRMu(shell, s.r[k], 1.0);
+      const double fy = rc.xR * (TH - 1);
+      const int iy = std::min(static_cast<int>(fy), TH - 2);
+      const double wy = fy - iy;
+      const double* row0 = Ttab.at(0, iy);
+      const double* row1 = Ttab.at(0, iy + 1);
+      for (std::size_t i = 0; i < Trow.size(); ++i) Trow[i] = (1 - wy) * row0[i] + wy * row1[i];
+      sunTexels(shell, alpha, s.r[k], s.xr[k], s.yr[k], sxA.data(), muSA.data(), W, TW, visA.data(), fxA.data());
+      const double* a = &A[static_cast<std::size_t>(k) * ns * nl];
+      for (int x = 0; x < W; ++x) {
+        const double vis = visA[x];
+        if (vis == 0.0) continue;
+        const int ix = std::min(static_cast<int>(fxA[x]), TW - 2);
+        const double wx = fxA[x] - ix;
+        const double* T0 = &Trow[static_cast<std::size_t>(ix) * nl];
+        const double* T1 = T0 + nl;
+        double* ax = &acc[static_cast<std::size_t>(x) * ns * nl];
+        for (int q = 0; q < ns; ++q)
+          for (int l = 0; l < nl; ++l) ax[q * nl + l] += a[q * nl + l] * ((1 - wx) * T0[l] + wx * T1[l]) * vis;
+      }
+    }
+    for (int x = 0; x < W; ++x)
+      for (int q = 0; q < ns; ++q)
+        std::copy_n(&acc[(static_cast<std::size_t>(x) * ns + q) * nl], nl, single[q].at(x, y, z) + l0);
   });
 
   auto meanOf = [&](auto&& texelValue) {
@@ -868,12 +963,14 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     std::fill(v, v + nl, 0.0);
     for (int q = 0; q < ns; ++q) {
       const Component& comp = atm.components[m.scatterers[q]];
-      const double* S = out.single[q].at(x, y, z);
+      const double* S = single[q].at(x, y, z) + l0;
       for (int l = 0; l < nl; ++l) v[l] += S[l] * comp.phase(l)(p.nu);
     }
   }));
 
-  out.multiple.resize(W, MU, R, nl);
+  // The single-scattering weights are spent: free them before the working tables.
+  for (std::vector<RaySamples>* rays : {&singleRays, &multipleRays})
+    for (RaySamples& s : *rays) std::vector<double>().swap(s.rhoT);
   if (o.orders < 2) return out;
 
   // L_{k-1}(r, mu, mu_s, nu) added into v: order 1 from the single tables, else delta.
@@ -887,7 +984,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       std::vector<double> tmp(nl);
       for (int q = 0; q < ns; ++q) {
         std::fill(tmp.begin(), tmp.end(), 0.0);
-        accumulate4(out.single[q], a, c, 1.0, tmp.data());
+        accumulate4(single[q], a, c, 1.0, tmp.data(), l0, nl);
         const Component& comp = atm.components[m.scatterers[q]];
         for (int l = 0; l < nl; ++l) v[l] += tmp[l] * comp.phase(l)(nu);
       }
@@ -896,8 +993,11 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     }
   };
 
-  // Sphere of directions for the density: midpoint rule in theta and phi.
-  const int nTh = o.sphereSamples, nPh = 2 * o.sphereSamples, nDir = nTh * nPh;
+  // Sphere of directions for the density: midpoint rule in theta and phi (n x 2n). The
+  // incoming radiance is symmetric about the plane of the zenith and the sun (phi -> -phi:
+  // the same (mu, mu_s, nu)), so only phi in (0, pi) is looked up, each direction standing
+  // for itself and its mirror (wy -> -wy) with twice the solid angle.
+  const int nTh = o.sphereSamples, nPh = o.sphereSamples, nDir = nTh * nPh;
   const double dA = kPi / o.sphereSamples;
   std::vector<double> wx(nDir), wy(nDir), wz(nDir), wdo(nDir);
   for (int lt = 0; lt < nTh; ++lt)
@@ -905,7 +1005,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       const double th = (lt + 0.5) * dA, ph = (mp + 0.5) * dA;
       const int j = lt * nPh + mp;
       wx[j] = std::cos(ph) * std::sin(th), wy[j] = std::sin(ph) * std::sin(th), wz[j] = std::cos(th);
-      wdo[j] = dA * dA * std::sin(th);
+      wdo[j] = 2.0 * dA * dA * std::sin(th);
     }
   // Transmittance from (r_z, theta_l) to the ground along straight rays (for the ground term).
   std::vector<double> groundT(static_cast<std::size_t>(R) * nTh * nl, 0.0), groundD(static_cast<std::size_t>(R) * nTh, -1.0);
@@ -959,13 +1059,15 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
           Lw[static_cast<std::size_t>(l) * nDir + j] = L;
           M0[l] += L;
           double* M = &M2[l * 6];
+          // xy and yz cancel with the mirror (M[3] = M[5] = 0)
           M[0] += wx[j] * wx[j] * L, M[1] += wy[j] * wy[j] * L, M[2] += wz[j] * wz[j] * L;
-          M[3] += wx[j] * wy[j] * L, M[4] += wx[j] * wz[j] * L, M[5] += wy[j] * wz[j] * L;
+          M[4] += wx[j] * wz[j] * L;
         }
       }
       std::vector<double> rho(ns);
       for (int q = 0; q < ns; ++q) rho[q] = m.density(m.scatterers[q], alt);
-      std::vector<double> cj(nDir), pj(nDir), lobeSum(m.lobes.size() * nl), J(nl);
+      // cj: the cosines with the view of the directions [0, nDir) and of their mirrors.
+      std::vector<double> cj(2 * nDir), pj(2 * nDir), pPair(nDir), lobeSum(m.lobes.size() * nl), J(nl);
       for (int y = 0; y < MU; ++y) {
         for (int k = 0; k < o.scatteringNu; ++k) {
           const int x = k * MUS + is;
@@ -975,21 +1077,22 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
           const double vy = std::sqrt(std::max(0.0, sz * sz - vx * vx)), vz = p.mu;
           if (!m.lobes.empty()) {
 #pragma omp simd
-            for (int j = 0; j < nDir; ++j) cj[j] = wx[j] * vx + wy[j] * vy + wz[j] * vz;
+            for (int j = 0; j < nDir; ++j) {
+              cj[j] = wx[j] * vx + wy[j] * vy + wz[j] * vz;
+              cj[nDir + j] = wx[j] * vx - wy[j] * vy + wz[j] * vz;
+            }
           }
           for (std::size_t li = 0; li < m.lobes.size(); ++li) {
             const Lobe& lobe = m.lobes[li];
             if (lobe.table.empty()) {
-              lobeValues(lobe.A, lobe.B, lobe.g, cj.data(), pj.data(), nDir);
+              lobeValues(lobe.A, lobe.B, lobe.g, cj.data(), pj.data(), 2 * nDir);
             } else {
-              for (int j = 0; j < nDir; ++j) pj[j] = Model::evalLobe(lobe, cj[j]);
+              for (int j = 0; j < 2 * nDir; ++j) pj[j] = Model::evalLobe(lobe, cj[j]);
             }
+#pragma omp simd
+            for (int j = 0; j < nDir; ++j) pPair[j] = 0.5 * (pj[j] + pj[nDir + j]);
             for (int l : m.lobeUsers[li]) {
-              const double* L = &Lw[static_cast<std::size_t>(l) * nDir];
-              double s = 0.0;
-#pragma omp simd reduction(+ : s)
-              for (int j = 0; j < nDir; ++j) s += pj[j] * L[j];
-              lobeSum[li * nl + l] = s;
+              lobeSum[li * nl + l] = dot(pPair.data(), &Lw[static_cast<std::size_t>(l) * nDir], nDir);
             }
           }
           std::fill(J.begin(), J.end(), 0.0);
@@ -1046,9 +1149,12 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       std::vector<RMuCell> cells(N + 1);
       for (int k = 0; k <= N; ++k)
         cells[k] = rMuCell(g, s.r[k], s.mu[k], rayIntersectsGround(b, s.r[k], s.mu[k]));
-      // Samples outer, texels inner: the four (r, mu) rows of a sample stay in cache
-      // while the row's (mu_s, nu) texels sweep them.
-      std::vector<double> sxA(W), muSA(W), acc(static_cast<std::size_t>(W) * nl, 0.0), Jv(nl);
+      // Samples outer, texels inner. J is linear in the (r, mu) weights, which depend on
+      // the sample only: the sample's four (r, mu) rows are blended once into one row of
+      // (mu_s, nu) texels, and each texel reads that row bilinearly (4 reads, not 16).
+      const std::size_t rowSize = static_cast<std::size_t>(W) * nl;
+      std::vector<double> sxA(W), muSA(W), wsA(W), wnA(W), acc(rowSize, 0.0), blend(rowSize);
+      std::vector<int> x00A(W);
       for (int x = 0; x < W; ++x) {
         const ScatteringPoint p = g.texel(x, y, z);
         sxA[x] = sunX(p), muSA[x] = p.muS;
@@ -1056,21 +1162,25 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       for (int k = 0; k <= N && s.ds > 0.0; ++k) {
         const double w = s.ds * ((k == 0 || k == N) ? 0.5 : 1.0);
         const double* T = &s.T[static_cast<std::size_t>(k) * nl];
-        const RMuCell& cell = cells[k];
+        blendRows(density, cells[k], blend.data());
         const double xr = s.xr[k], yr = s.yr[k], tx = s.tx[k], ty = s.ty[k];
+        sNuTexels(g, xr, yr, tx, ty, sxA.data(), muSA.data(), W, x00A.data(), wsA.data(), wnA.data());
+        const std::size_t up = static_cast<std::size_t>(MUS) * nl;
         for (int x = 0; x < W; ++x) {
-          const double muS = clampCosine(xr * sxA[x] + yr * muSA[x]);
-          const double nu = clampCosine(tx * sxA[x] + ty * muSA[x]);
-          std::fill(Jv.begin(), Jv.end(), 0.0);
-          accumulate4(density, cell, sNuCell(g, muS, nu), 1.0, Jv.data());
+          const double* p00 = &blend[static_cast<std::size_t>(x00A[x]) * nl];
+          const double* p01 = p00 + nl;
+          const double* p10 = p00 + up;
+          const double* p11 = p10 + nl;
+          const double ws = wsA[x], wn = wnA[x];
+          const double w00 = w * (1 - wn) * (1 - ws), w01 = w * (1 - wn) * ws, w10 = w * wn * (1 - ws), w11 = w * wn * ws;
           double* a = &acc[static_cast<std::size_t>(x) * nl];
-          for (int l = 0; l < nl; ++l) a[l] += w * T[l] * Jv[l];
+          for (int l = 0; l < nl; ++l) a[l] += T[l] * (w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l]);
         }
       }
       for (int x = 0; x < W; ++x) {
         const double* a = &acc[static_cast<std::size_t>(x) * nl];
         std::copy_n(a, nl, delta.at(x, y, z));
-        double* sum = out.multiple.at(x, y, z);
+        double* sum = multiple.at(x, y, z) + l0;
         for (int l = 0; l < nl; ++l) sum[l] += a[l];
       }
     });
@@ -1104,12 +1214,6 @@ void copyChannels2D(const Table2D& from, Table2D& to, const std::vector<int>& ls
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t k = 0; k < ls.size(); ++k) to.values[i * to.channels + ls[k]] = from.values[i * from.channels + k];
 }
-void copyChannels3D(const Table3D& from, Table3D& to, const std::vector<int>& ls) {
-  const std::size_t n = static_cast<std::size_t>(from.width) * from.height * from.depth;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t k = 0; k < ls.size(); ++k) to.values[i * to.channels + ls[k]] = from.values[i * from.channels + k];
-}
-
 }  // namespace
 
 ScatteringCoords scatteringCoordsFromRMuMuSNu(const ShellRadii& shell, const ScatteringTableSize& size,
@@ -1160,37 +1264,33 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
   const int orders = options.orders;
   const double weight = 1.0 + 0.05 + 0.3 * (options.multipleScatteringSamples != options.singleScatteringSamples ? 2 : 1) +
                         1.0 + (orders - 1) * (2.0 + 0.1 + 1.0);
+  const int W = options.scatteringNu * options.scatteringMuS;
+  tables.singleScattering.resize(tables.scatteringComponents.size());
+  for (Table3D& T : tables.singleScattering) T.resize(W, options.scatteringMu, options.scatteringR, nl);
+  tables.multipleScattering.resize(W, options.scatteringMu, options.scatteringR, nl);
   for (int bi = 0; bi < batches; ++bi) {
     std::vector<int> ls;
     for (int l = bi * batch; l < std::min(nl, (bi + 1) * batch); ++l) ls.push_back(l);
     Runner runner(progress, options.threads, static_cast<double>(bi) / batches, static_cast<double>(bi + 1) / batches);
     runner.setStages(weight);
-    BatchResult r = batches == 1 ? computeBatch(atmosphere, options, runner)
-                                 : computeBatch(subAtmosphere(atmosphere, ls), options, runner);
+    BatchResult r = computeBatch(batches == 1 ? atmosphere : subAtmosphere(atmosphere, ls), options, runner,
+                                 tables.singleScattering, tables.multipleScattering, ls.front());
     if (batches == 1) {
       tables.transmittance = std::move(r.transmittance);
       tables.directIrradiance = std::move(r.directIrradiance);
       tables.irradiance = std::move(r.irradiance);
-      tables.singleScattering = std::move(r.single);
-      tables.multipleScattering = std::move(r.multiple);
       tables.orderMeanRadiance = std::move(r.orderMean);
     } else {
       if (bi == 0) {
         auto size2 = [&](Table2D& d, const Table2D& s) { d.resize(s.width, s.height, nl); };
-        auto size3 = [&](Table3D& d, const Table3D& s) { d.resize(s.width, s.height, s.depth, nl); };
         size2(tables.transmittance, r.transmittance);
         size2(tables.directIrradiance, r.directIrradiance);
         size2(tables.irradiance, r.irradiance);
-        size3(tables.multipleScattering, r.multiple);
-        tables.singleScattering.resize(r.single.size());
-        for (std::size_t q = 0; q < r.single.size(); ++q) size3(tables.singleScattering[q], r.single[q]);
         tables.orderMeanRadiance.assign(r.orderMean.size(), std::vector<double>(nl, 0.0));
       }
       copyChannels2D(r.transmittance, tables.transmittance, ls);
       copyChannels2D(r.directIrradiance, tables.directIrradiance, ls);
       copyChannels2D(r.irradiance, tables.irradiance, ls);
-      copyChannels3D(r.multiple, tables.multipleScattering, ls);
-      for (std::size_t q = 0; q < r.single.size(); ++q) copyChannels3D(r.single[q], tables.singleScattering[q], ls);
       for (std::size_t k = 0; k < r.orderMean.size(); ++k)
         for (std::size_t i = 0; i < ls.size(); ++i) tables.orderMeanRadiance[k][ls[i]] = r.orderMean[k][i];
     }

@@ -5,21 +5,6 @@
 
 namespace umbra::atmosphere {
 
-double safeSqrt(double a) { return std::sqrt(std::max(0.0, a)); }
-
-double clampCosine(double mu) { return std::clamp(mu, -1.0, 1.0); }
-
-double distanceToTopBoundaryM(double topRadiusM, double r, double mu) {
-  // disc = r^2 (mu^2 - 1) + top^2, written without cancellation for r <= top.
-  const double t = topRadiusM;
-  const double outside = (t - r) * (t + r);  // top^2 - r^2
-  const double disc = std::max(0.0, outside + r * r * mu * mu);
-  if (mu < 0.0) return std::max(0.0, -r * mu + std::sqrt(disc));
-  const double denominator = r * mu + std::sqrt(disc);
-  if (outside <= 0.0 || denominator <= 0.0) return 0.0;  // at (or above) the top, upwards
-  return outside / denominator;                          // = -r mu + sqrt(disc)
-}
-
 double distanceToBottomBoundaryM(double bottomRadiusM, double r, double mu) {
   const double b = bottomRadiusM;
   const double above = (r - b) * (r + b);  // r^2 - bottom^2
@@ -52,13 +37,9 @@ double unitRangeFromTextureCoord(double u, int textureSize) {
 TransmittanceCoords transmittanceCoordsFromRMu(const ShellRadii& shell, double radiusM, double mu) {
   const double b = shell.bottomRadiusM, t = shell.topRadiusM;
   const double r = std::clamp(radiusM, b, t);
-  mu = clampCosine(mu);
   const double H = std::sqrt((t - b) * (t + b));
   const double rho = safeSqrt((r - b) * (r + b));
-  const double d = distanceToTopBoundaryM(t, r, mu);
-  const double dMin = t - r, dMax = rho + H;
-  const double xMu = std::clamp((d - dMin) / (dMax - dMin), 0.0, 1.0);
-  return {xMu, std::clamp(rho / H, 0.0, 1.0)};
+  return {transmittanceXMu(t, r, rho, H, mu), std::clamp(rho / H, 0.0, 1.0)};
 }
 
 RadiusMu rMuFromTransmittanceCoords(const ShellRadii& shell, const TransmittanceCoords& c) {

@@ -10,6 +10,9 @@
 // coordinates put the texel centres on x = 0 and x = 1 (GetTextureCoordFromUnitRange).
 // All lengths in metres; mu is the cosine of the view-zenith angle.
 
+#include <algorithm>
+#include <cmath>
+
 namespace umbra::atmosphere {
 
 /// The radii that bound an atmosphere.
@@ -19,13 +22,23 @@ struct ShellRadii {
 };
 
 /// sqrt(max(0, a)).
-double safeSqrt(double a);
-/// mu clamped to [-1, 1].
-double clampCosine(double mu);
+inline double safeSqrt(double a) { return std::sqrt(std::max(0.0, a)); }
+/// mu clamped to [-1, 1] (inline: the precomputation's inner loops call it).
+inline double clampCosine(double mu) { return std::min(std::max(mu, -1.0), 1.0); }
 
 /// Distance from radius r along mu to the sphere of radius `topRadiusM` (r <= top), the
 /// far intersection; stable for mu near +-1 and for r near the top.
-double distanceToTopBoundaryM(double topRadiusM, double radiusM, double mu);
+inline double distanceToTopBoundaryM(double topRadiusM, double r, double mu) {
+  // disc = r^2 (mu^2 - 1) + top^2, written without cancellation for r <= top; inline and
+  // free of early returns so that loops over mu vectorise.
+  const double t = topRadiusM;
+  const double outside = (t - r) * (t + r);  // top^2 - r^2
+  const double root = std::sqrt(std::max(0.0, outside + r * r * mu * mu));
+  const double down = std::max(0.0, -r * mu + root);
+  const double denominator = r * mu + root;
+  const double up = (outside <= 0.0 || denominator <= 0.0) ? 0.0 : outside / denominator;  // = -r mu + root
+  return mu < 0.0 ? down : up;
+}
 /// Distance from radius r along mu to the ground sphere (near intersection); only
 /// meaningful where rayIntersectsGround().
 double distanceToBottomBoundaryM(double bottomRadiusM, double radiusM, double mu);
@@ -53,6 +66,13 @@ struct RadiusMu {
 /// Eq. 2 for bottom <= r <= top and mu at or above the horizon (r is clamped to the
 /// shell, x_mu to [0, 1]). At r = top every upward ray has x_mu = 0.
 TransmittanceCoords transmittanceCoordsFromRMu(const ShellRadii& shell, double radiusM, double mu);
+/// Its x_mu for a radius r already clamped to [bottom, top], rho = sqrt(r^2 - bottom^2) and
+/// H = sqrt(top^2 - bottom^2) (inline, for loops over mu at one radius).
+inline double transmittanceXMu(double topRadiusM, double r, double rho, double H, double mu) {
+  const double d = distanceToTopBoundaryM(topRadiusM, r, std::min(std::max(mu, -1.0), 1.0));
+  const double dMin = topRadiusM - r, dMax = rho + H;
+  return std::min(std::max((d - dMin) / (dMax - dMin), 0.0), 1.0);
+}
 /// Inverse of Eq. 2; x_mu = 1 gives exactly the horizon, x_mu = 0 exactly the zenith.
 RadiusMu rMuFromTransmittanceCoords(const ShellRadii& shell, const TransmittanceCoords& coords);
 

@@ -1,9 +1,14 @@
 // Speed against accuracy of the atmosphere tables (Bruneton 2017 scheme, issue #3):
-// time per stage and in total for table sizes, scattering orders and refraction, and the
-// error of the sky radiance looked up in each against a reference configuration.
-// Prints Markdown for docs/accuracy-vs-speed.md.
+// time per stage and in total against table sizes, scattering orders, the refraction step
+// and the number of wavelengths, with the error of the sky radiance looked up in each
+// against a reference configuration, and the peak memory. Prints Markdown for
+// docs/accuracy-vs-speed.md.
 //
-//   build/bench/umbra-bench-atmosphere [--preset earth] [--wavelengths 3] [--skip-reference]
+//   build/bench/umbra-bench-atmosphere [--preset earth] [--wavelengths 3] [--probes 2000]
+//       [--sections sizes,orders,refraction,wavelengths] [--reference-cache FILE]
+//
+// --reference-cache keeps the reference's sky radiances in FILE (written when missing, read
+// when present), so that a changed precomputation is compared with the same reference.
 #include "Atmosphere.hpp"
 #include "Precompute.hpp"
 #include "Spectrum.hpp"
@@ -11,21 +16,19 @@
 #include <CLI/CLI.hpp>
 
 #include <omp.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <random>
+#include <sstream>
 
 using namespace umbra::atmosphere;
 
 namespace {
-
-struct Config {
-  const char* name;
-  PrecomputeOptions options;
-};
 
 PrecomputeOptions scaled(double f, int orders, bool refraction) {
   PrecomputeOptions o;
@@ -45,20 +48,99 @@ PrecomputeOptions scaled(double f, int orders, bool refraction) {
 struct Probe {
   double r, mu, muS, nu;
 };
+using Sky = std::vector<std::vector<double>>;
 
-} // namespace
+/// Resident-memory high-water mark of this process [bytes]; reset() starts a new one
+/// (Linux: /proc/self/clear_refs "5"); where that is refused the peak stays process-wide.
+struct PeakMemory {
+  static void reset() { std::ofstream("/proc/self/clear_refs") << "5"; }
+  static double bytes() {
+    std::ifstream f("/proc/self/status");
+    std::string line;
+    while (std::getline(f, line))
+      if (line.rfind("VmHWM:", 0) == 0) return 1024.0 * std::stod(line.substr(6));
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return 1024.0 * static_cast<double>(u.ru_maxrss);
+  }
+};
+
+double cpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+struct Run {
+  double seconds = 0.0, cpu = 0.0, peakBytes = 0.0;
+  AtmosphereTables tables;
+};
+
+Run timed(const Atmosphere& atm, const PrecomputeOptions& o) {
+  Run r;
+  PeakMemory::reset();
+  const double c0 = cpuSeconds();
+  const auto t0 = std::chrono::steady_clock::now();
+  r.tables = precompute(atm, o);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.cpu = cpuSeconds() - c0;
+  r.peakBytes = PeakMemory::bytes();
+  return r;
+}
+
+double stage(const AtmosphereTables& t, const char* name) {
+  double sum = 0.0;
+  for (const auto& st : t.timings)
+    if (st.stage.find(name) != std::string::npos) sum += st.seconds;
+  return sum;
+}
+
+/// Median and 95th percentile of |s / ref - 1| over probes and wavelengths.
+std::pair<double, double> errorOf(const Sky& s, const Sky& ref) {
+  std::vector<double> e;
+  for (std::size_t k = 0; k < s.size(); ++k)
+    for (std::size_t i = 0; i < s[k].size(); ++i)
+      if (ref[k][i] > 1e-12) e.push_back(std::abs(s[k][i] / ref[k][i] - 1.0));
+  if (e.empty()) return {NAN, NAN};
+  std::sort(e.begin(), e.end());
+  return {e[e.size() / 2], e[e.size() * 95 / 100]};
+}
+
+bool readSky(const std::string& path, std::size_t probes, std::size_t channels, Sky& out) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return false;
+  out.assign(probes, std::vector<double>(channels));
+  for (auto& v : out) f.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(channels * sizeof(double)));
+  return static_cast<bool>(f) && f.peek() == std::char_traits<char>::eof();
+}
+
+void writeSky(const std::string& path, const Sky& s) {
+  std::ofstream f(path, std::ios::binary);
+  for (const auto& v : s) f.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(double)));
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Atmosphere tables: time and error per configuration"};
-  std::string preset = "earth";
-  int wavelengths = 3, probes = 3000;
+  std::string preset = "earth", sectionList = "sizes,orders,refraction,wavelengths", referenceCache;
+  int wavelengths = 3, probes = 2000, referenceOrders = 6;
+  double referenceScale = 1.5;
   app.add_option("--preset", preset)->capture_default_str();
   app.add_option("--wavelengths", wavelengths, "3 (680/550/440 nm) or N between 360 and 830 nm")->capture_default_str();
   app.add_option("--probes", probes, "Random view/sun geometries compared")->capture_default_str();
+  app.add_option("--sections", sectionList,
+                 "Comma-separated: default (default sizes, 4 orders only), sizes, orders, refraction, wavelengths")
+      ->capture_default_str();
+  app.add_option("--reference-cache", referenceCache, "File of the reference's sky radiances (read, else written)");
+  app.add_option("--reference-scale", referenceScale, "Reference table sizes relative to the defaults")->capture_default_str();
+  app.add_option("--reference-orders", referenceOrders, "Reference scattering orders")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  auto want = [&](const std::string& s) { return ("," + sectionList + ",").find("," + s + ",") != std::string::npos; };
 
-  const WavelengthSet set = wavelengths == 3 ? WavelengthSet::rgb() : WavelengthSet::uniform(wavelengths);
-  const Atmosphere atm = loadAtmosphere(preset, set.nm);
+  const auto wavelengthSet = [](int n) { return n == 3 ? WavelengthSet::rgb() : WavelengthSet::uniform(n); };
+  const Atmosphere atm = loadAtmosphere(preset, wavelengthSet(wavelengths).nm);
+  const std::size_t nl = atm.wavelengthsNm.size();
 
   // Observers from the ground to 60 km, every view direction, the Sun above -10 degrees.
   std::mt19937_64 rng(3);
@@ -71,51 +153,107 @@ int main(int argc, char** argv) {
     const double phi = M_PI * unit(rng);
     p.nu = p.mu * p.muS + std::cos(phi) * std::sqrt((1 - p.mu * p.mu) * (1 - p.muS * p.muS));
   }
-
-  const Config reference{"reference: 1.5x sizes, 6 orders", scaled(1.5, 6, false)};
-  const Config configs[] = {{"0.5x sizes, 4 orders", scaled(0.5, 4, false)},
-                            {"default sizes, 2 orders", scaled(1.0, 2, false)},
-                            {"default sizes, 4 orders", scaled(1.0, 4, false)},
-                            {"default sizes, 4 orders, refraction (10 km)", scaled(1.0, 4, true)}};
-
   auto sky = [&](const AtmosphereTables& t) {
-    std::vector<std::vector<double>> out(probes);
+    Sky out(probes);
     for (int k = 0; k < probes; ++k) out[k] = skyRadiance(t, atm, geometry[k].r, geometry[k].mu, geometry[k].muS, geometry[k].nu);
     return out;
   };
-  auto timeIt = [&](const PrecomputeOptions& o, double& seconds, AtmosphereTables& t) {
-    const auto t0 = std::chrono::steady_clock::now();
-    t = precompute(atm, o);
-    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  std::printf("%s, %zu wavelengths, %d threads\n\n", preset.c_str(), nl, omp_get_max_threads());
+  const bool errorsWanted = want("default") || want("sizes") || want("orders");
+  Sky refSky;
+  if (errorsWanted) {
+    std::ostringstream name;
+    name << "reference: " << referenceScale << "x sizes, " << referenceOrders << " orders";
+    if (!referenceCache.empty() && readSky(referenceCache, probes, nl, refSky)) {
+      std::printf("%s, read from %s\n\n", name.str().c_str(), referenceCache.c_str());
+    } else {
+      const Run ref = timed(atm, scaled(referenceScale, referenceOrders, false));
+      refSky = sky(ref.tables);
+      if (!referenceCache.empty()) writeSky(referenceCache, refSky);
+      std::printf("%s took %.1f s\n\n", name.str().c_str(), ref.seconds);
+    }
+  }
+
+  const char* header =
+      "| total [s] | CPU [s] | transmittance | single | density | multiple | tables [MiB] | peak memory [MiB] ";
+  const char* rule = "|---|---:|---:|---:|---:|---:|---:|---:|---:";
+  auto row = [&](const std::string& name, const Run& r) {
+    std::printf("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.0f ", name.c_str(), r.seconds, r.cpu,
+                stage(r.tables, "transmittance"), stage(r.tables, "single"), stage(r.tables, "density"),
+                stage(r.tables, "multiple"), r.tables.bytes() / 1048576.0, r.peakBytes / 1048576.0);
+  };
+  auto errorCells = [&](const Sky& s, const Sky& ref) {
+    const auto [median, p95] = errorOf(s, ref);
+    std::printf("| %.2f %% | %.2f %% |\n", 100.0 * median, 100.0 * p95);
   };
 
-  double refSeconds = 0.0;
-  AtmosphereTables refTables;
-  timeIt(reference.options, refSeconds, refTables);
-  const auto refSky = sky(refTables);
-  std::printf("%s, %zu wavelengths, %d threads; reference (%s) took %.1f s\n\n", preset.c_str(), set.nm.size(),
-              omp_get_max_threads(), reference.name, refSeconds);
-  std::printf("| configuration | total [s] | transmittance | single | density | multiple | memory [MiB] "
-              "| sky radiance error vs reference: median | 95th pct |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-  for (const Config& c : configs) {
-    double seconds = 0.0;
-    AtmosphereTables t;
-    timeIt(c.options, seconds, t);
-    const auto s = sky(t);
-    std::vector<double> errors;
-    for (int k = 0; k < probes; ++k)
-      for (std::size_t i = 0; i < s[k].size(); ++i)
-        if (refSky[k][i] > 1e-12) errors.push_back(std::abs(s[k][i] / refSky[k][i] - 1.0));
-    std::sort(errors.begin(), errors.end());
-    auto stage = [&](const char* name) {
-      double sum = 0.0;
-      for (const auto& st : t.timings)
-        if (st.stage.find(name) != std::string::npos) sum += st.seconds;
-      return sum;
-    };
-    std::printf("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f | %.2f %% | %.2f %% |\n", c.name, seconds,
-                stage("transmittance"), stage("single"), stage("density"), stage("multiple"),
-                t.bytes() / 1048576.0, 100.0 * errors[errors.size() / 2], 100.0 * errors[errors.size() * 95 / 100]);
+  // Sizes and orders against the reference.
+  std::vector<std::pair<std::string, PrecomputeOptions>> configs;
+  if (want("default") && !want("sizes") && !want("orders")) configs.push_back({"default sizes, 4 orders", scaled(1.0, 4, false)});
+  if (want("sizes"))
+    for (double f : {0.5, 0.75, 1.0}) {
+      std::ostringstream n;
+      n << f << "x sizes, 4 orders";
+      configs.push_back({n.str(), scaled(f, 4, false)});
+    }
+  if (want("orders"))
+    for (int k : {1, 2, 3, 5}) configs.push_back({"default sizes, " + std::to_string(k) + " orders", scaled(1.0, k, false)});
+  if (!configs.empty()) {
+    std::printf("| configuration %s| sky radiance error: median | 95th pct |\n%s|---:|---:|\n", header, rule);
+    for (const auto& [name, o] : configs) {
+      const Run r = timed(atm, o);
+      row(name, r);
+      errorCells(sky(r.tables), refSky);
+    }
+    std::printf("\n");
+  }
+
+  // Refraction: default sizes and 4 orders; the error is against the finest step.
+  if (want("refraction")) {
+    const double finestM = 1250.0;
+    PrecomputeOptions fine = scaled(1.0, 4, true);
+    fine.refractionStepM = finestM;
+    std::printf("| refraction step %s| error vs %.2f km step: median | 95th pct |\n%s|---:|---:|\n", header,
+                finestM / 1e3, rule);
+    Sky fineSky;
+    {
+      const Run ref = timed(atm, fine);
+      fineSky = sky(ref.tables);
+      row("1.25 km (the reference)", ref);
+      std::printf("| - | - |\n");
+    }
+    {
+      const Run off = timed(atm, scaled(1.0, 4, false));
+      row("no refraction", off);
+      errorCells(sky(off.tables), fineSky);
+    }
+    for (double km : {40.0, 20.0, 10.0, 5.0}) {
+      PrecomputeOptions o = scaled(1.0, 4, true);
+      o.refractionStepM = km * 1e3;
+      const Run r = timed(atm, o);
+      std::ostringstream n;
+      n << km << " km";
+      row(n.str(), r);
+      errorCells(sky(r.tables), fineSky);
+    }
+    std::printf("\n");
+  }
+
+  // Wavelengths: default sizes, 4 orders.
+  if (want("wavelengths")) {
+    std::printf("| wavelengths %s|\n%s|\n", header, rule);
+    for (int n : {3, 15, 47}) {
+      const Atmosphere a = loadAtmosphere(preset, wavelengthSet(n).nm);
+      for (int batch : {0, 8}) {
+        if (batch >= n) continue;
+        PrecomputeOptions o = scaled(1.0, 4, false);
+        o.wavelengthBatch = batch;
+        row(std::to_string(n) + (batch > 0 ? ", " + std::to_string(batch) + " at a time" : ""), timed(a, o));
+        std::printf("|\n");
+      }
+    }
+    std::printf("\n");
   }
   return 0;
 }
