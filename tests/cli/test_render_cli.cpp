@@ -112,6 +112,22 @@ TEST(RenderCli, SunsetExampleHasARedSunUnderABluerSky) {
   EXPECT_LT(ground.g, beside.g);
 }
 
+// The Martian sunset example: the Sun (at the centre) sits in a blue glow, the sky 25 deg
+// from it is grey-red (redder still 90 deg away, where the CPU test looks) (Curiosity's and Spirit's sunset images; tests/atmosphere/test_sky.cpp
+// has the same on the CPU).
+TEST(RenderCli, MarsSunsetExampleHasABlueGlowInAReddishSky) {
+  TempDir dir;
+  const tables::Table img = renderExr(dir, UMBRA_SOURCE_DIR "/examples/scenes/mars-sunset.json", "160x90");
+  const int w = img.width, h = img.height;
+  const glm::dvec3 glow = pixel(img, w / 2, h / 2 - 6);  // 2.7 deg above the Sun (40 deg / 90 px)
+  const glm::dvec3 away = pixel(img, 2, 2);              // 25 deg from it
+  std::printf("  Mars sunset: glow rgb %.3g %.3g %.3g, away %.3g %.3g %.3g\n", glow.r, glow.g, glow.b, away.r, away.g,
+              away.b);
+  EXPECT_GT(glow.b, 1.5 * glow.r);
+  EXPECT_GT(glow.b / glow.r, 1.5 * away.b / away.r);  // measured: 1.99 against 0.97
+  EXPECT_GT(glow.g, 2.0 * away.g);  // the glow is bright
+}
+
 // Earth from 150 000 km: the disc is lit, space around it black.
 TEST(RenderCli, EarthFrom150000kmExampleShowsALitDisc) {
   TempDir dir;
@@ -140,7 +156,7 @@ TEST(RenderCli, UnknownAtmosphereNamesTheFileAndField) {
 // of the Sun's disc and the horizon may move by a pixel between rasterisers), and the
 // mean relative difference below 1 %.
 TEST(RenderCli, AtmosphereExamplesMatchTheirBaselines) {
-  for (const std::string name : {"earth-sunset", "earth-from-150000km"}) {
+  for (const std::string name : {"earth-sunset", "earth-from-150000km", "mars-sunset"}) {
     TempDir dir;
     const tables::Table img =
         renderExr(dir, UMBRA_SOURCE_DIR "/examples/scenes/" + name + ".json", "96x54");
