@@ -1,4 +1,4 @@
-// umbra render SCENE [--time ISO8601] [--size WxH] [--exposure EV] [--atmosphere-tables default|small] [--refraction]
+// umbra render SCENE [--time ISO8601] [--size WxH] [--exposure EV] [--glare S] [--atmosphere-tables default|small] [--refraction]
 //   --output FILE.png|FILE.exr
 // A body with "atmosphere" in the scene is drawn with it (AtmosphereRendering); its tables
 // come from vtkAtmosphereTablesSource through the cache (the first render of an atmosphere
@@ -9,6 +9,7 @@
 #include "SceneInputs.h"
 #include "ShadowCommon.hpp"
 #include "SolarDisc.hpp"
+#include "vtkUmbraRenderPass.h"
 #include "vtkAtmosphereTablesSource.h"
 #include "vtkEclipseShadowLutSource.h"
 
@@ -47,6 +48,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
   struct Options {
     std::string scene, time, size, output;
     std::optional<double> exposure;
+    double glare = 0.0;
     std::string atmosphereTables = "default";
     bool refraction = false;
     CacheOptions cache;
@@ -56,6 +58,10 @@ void addRenderCommand(CLI::App& app, Action& action) {
   render->add_option("--time", o->time, "UTC time, ISO 8601 (default: the scene's)");
   render->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default: the scene's)");
   render->add_option("--exposure", o->exposure, "Exposure in EV (default: the scene's)");
+  render->add_option("--glare", o->glare,
+                     "Glare strength in [0, 10] (default 0: none): halos of 0.03, 0.15, 0.75 deg around bright "
+                     "pixels holding 4, 2, 1 % of their light per unit; the frame's total radiance is kept")
+      ->check(CLI::Range(0.0, 10.0));
   render->add_option("--output,-o", o->output, "Image to write: FILE.png or FILE.exr")->required();
   render->add_option("--atmosphere-tables", o->atmosphereTables,
                      "Atmosphere table sizes: default (vtkAtmosphereTablesSource's: 256x64, 32,128,32,8, 64x16, "
@@ -102,6 +108,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
       }
       view.SetCamera(in.camera);
       view.SetExposureEV(s.exposureEv);
+      view.GetRenderPass()->SetGlareStrength(o->glare);
       view.Render();
 
       if (output::extensionOf(o->output) == ".exr") {
@@ -112,7 +119,8 @@ void addRenderCommand(CLI::App& app, Action& action) {
                         {"units", "W m^-2 sr^-1 (linear, per channel)"},
                         {"scene", o->scene},
                         {"time", scene::formatUtc(s.time)},
-                        {"exposureEV", std::to_string(s.exposureEv)}};
+                        {"exposureEV", std::to_string(s.exposureEv)},
+                        {"glare", std::to_string(o->glare)}};
         tables::writeExr(o->output, t);
       } else {
         view.WritePng(o->output);

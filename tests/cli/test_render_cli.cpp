@@ -128,6 +128,38 @@ TEST(RenderCli, MarsSunsetExampleHasABlueGlowInAReddishSky) {
   EXPECT_GT(glow.g, 2.0 * away.g);  // the glow is bright
 }
 
+// EXR output keeps the HDR frame: FLOAT channels hold the reddened Sun's radiance (some
+// 270 W m^-2 sr^-1 per channel at 96x54), the same whatever the exposure; --glare moves
+// light into halos (at 1.8 px per degree mostly the 0.75 deg one) and keeps the frame's
+// total radiance.
+TEST(RenderCli, ExrKeepsHdrValuesAndGlareKeepsTheEnergy) {
+  TempDir dir;
+  const std::string scene = UMBRA_SOURCE_DIR "/examples/scenes/earth-sunset.json";
+  auto render = [&](const std::string& name, std::vector<std::string> extra) {
+    std::vector<std::string> args{"render", scene, "--size", "96x54", "--atmosphere-tables", "small", "--output",
+                                  dir / name};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult r = run(UMBRA_EXE, args, {"UMBRA_CACHE_DIR=" + dir / "cache"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return tables::readExr(dir / name, {"R", "G", "B"});
+  };
+  const tables::Table dark = render("dark.exr", {"--exposure", "-12"});
+  const tables::Table bright = render("bright.exr", {"--exposure", "3"});
+  const tables::Table glare = render("glare.exr", {"--glare", "3"});
+  EXPECT_EQ(dark.data, bright.data);
+  const float peak = *std::max_element(dark.data.begin(), dark.data.end());
+  EXPECT_GT(peak, 100.0f);
+  double sum[2] = {0, 0};
+  for (std::size_t i = 0; i < dark.data.size(); ++i) sum[0] += dark.data[i], sum[1] += glare.data[i];
+  EXPECT_NEAR(sum[1] / sum[0], 1.0, 1e-4);
+  EXPECT_LT(*std::max_element(glare.data.begin(), glare.data.end()), 0.99f * peak);
+
+  const RunResult bad = run(UMBRA_EXE, {"render", scene, "--glare", "11", "--output", dir / "x.exr"});
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_NE(bad.err.find("--glare"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "x.exr"));
+}
+
 // Earth from 150 000 km: the disc is lit, space around it black.
 TEST(RenderCli, EarthFrom150000kmExampleShowsALitDisc) {
   TempDir dir;
