@@ -82,6 +82,61 @@ TEST(RenderCli, ProfilePlotAsPng) {
   EXPECT_GT(std::filesystem::file_size(dir.path / "p.png"), 2000u);
 }
 
+// An animation: --from/--to/--step writes one frame per step, each the same image as a
+// single render at its time; the Moon darkens as it enters the umbra (partial phase from
+// 01:07 UTC, total from 02:11). Bad animation options name the option and write nothing.
+TEST(RenderCli, AnimationWritesOneFramePerStep) {
+  TempDir dir;
+  const std::vector<std::string> env{"UMBRA_CACHE_DIR=" + dir / "cache"};
+  std::filesystem::create_directory(dir.path / "frames");
+  const RunResult r = run(UMBRA_EXE, {"render", kScene, "--size", "48x36", "--from", "2015-09-28T01:00:00Z", "--to",
+                                      "2015-09-28T02:30:00Z", "--step", "45min", "--output",
+                                      dir / "frames/frame-%02d.exr"},
+                          env);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir.path / "frames")) names.push_back(e.path().filename());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"frame-00.exr", "frame-01.exr", "frame-02.exr"}));
+  double moon[3];
+  for (int k = 0; k < 3; ++k) {
+    const tables::Table t = tables::readExr(dir / ("frames/frame-0" + std::to_string(k) + ".exr"), {"R", "G", "B"});
+    moon[k] = 0.0;
+    for (float v : t.data) moon[k] += v;
+  }
+  EXPECT_LT(moon[1], 0.8 * moon[0]);
+  EXPECT_LT(moon[2], 0.1 * moon[0]);
+  ASSERT_EQ(run(UMBRA_EXE, {"render", kScene, "--size", "48x36", "--time", "2015-09-28T01:45:00Z", "--output",
+                            dir / "single.exr"},
+                env).exitCode,
+            0);
+  EXPECT_EQ(tables::readExr(dir / "single.exr", {"R", "G", "B"}).data,
+            tables::readExr(dir / "frames/frame-01.exr", {"R", "G", "B"}).data);
+
+  struct Bad {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::string from = "2015-09-28T01:00:00Z", to = "2015-09-28T02:00:00Z";
+  for (const Bad& b : {Bad{{"--from", from, "--to", to, "--step", "1h", "--output", dir / "bad.png"},
+                           "--output: an animation needs one frame number"},
+                       Bad{{"--from", from, "--to", to, "--output", dir / "bad-%d.png"}, "--from, --to and --step go together"},
+                       Bad{{"--from", to, "--to", from, "--step", "1h", "--output", dir / "bad-%d.png"}, "is before --from"},
+                       Bad{{"--from", from, "--to", to, "--step", "-1h", "--output", dir / "bad-%d.png"}, "--step: must be positive"},
+                       Bad{{"--from", from, "--to", to, "--step", "1 fortnight", "--output", dir / "bad-%d.png"}, "--step: invalid duration"},
+                       Bad{{"--time", from, "--from", from, "--to", to, "--step", "1h", "--output", dir / "bad-%d.png"},
+                           "--time: not with --from"}}) {
+    std::vector<std::string> args{"render", kScene};
+    args.insert(args.end(), b.args.begin(), b.args.end());
+    const RunResult bad = run(UMBRA_EXE, args, env);
+    EXPECT_NE(bad.exitCode, 0) << b.message;
+    EXPECT_NE(bad.err.find(b.message), std::string::npos) << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  }
+  for (const auto& e : std::filesystem::directory_iterator(dir.path))
+    EXPECT_EQ(e.path().filename().string().rfind("bad", 0), std::string::npos) << e.path();
+}
+
 // ---- scenes with an atmosphere (small tables: --atmosphere-tables small) ----------------
 
 namespace {
