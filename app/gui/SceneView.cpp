@@ -2,6 +2,8 @@
 
 #include "BodyView.h"
 #include "SceneInputs.h"
+#include "vtkAtmosphereTablesSource.h"
+#include "vtkUmbraRenderPass.h"
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkGenericOpenGLRenderWindow.h>
@@ -25,6 +27,7 @@ struct SceneView::Impl {
   QVTKOpenGLNativeWidget* widget = nullptr;
   std::unique_ptr<render::BodyView> bodies;
   vtkSmartPointer<vtkRenderer> renderer;
+  vtkSmartPointer<vtkAtmosphereTablesSource> tables;
 };
 
 SceneView::SceneView(QVTKOpenGLNativeWidget* widget) : impl(std::make_unique<Impl>()) {
@@ -50,8 +53,15 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
   const render::SceneInputs in = render::sceneInputs(s);
   impl->bodies->GetRenderWindow()->SetSize(std::max(1, impl->widget->width()), std::max(1, impl->widget->height()));
   impl->bodies->SetBodies(in.sun, in.bodies, shadowLut);
+  const bool drawn = impl->tables && in.atmosphere && impl->tables->GetAtmosphere() == in.atmosphere->model;
+  if (drawn) render::applySceneAtmosphere(*impl->bodies, in, impl->tables, /*refraction=*/false);
+  else impl->bodies->GetAtmosphere().ClearAtmosphere();
   impl->bodies->SetCamera(in.camera);
 }
+
+void SceneView::setGlareStrength(double strength) { impl->bodies->GetRenderPass()->SetGlareStrength(strength); }
+
+void SceneView::setAtmosphereTables(vtkAtmosphereTablesSource* tables) { impl->tables = tables; }
 
 void SceneView::setExposureEV(double ev) { impl->bodies->SetExposureEV(ev); }
 

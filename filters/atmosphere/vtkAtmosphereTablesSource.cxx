@@ -294,8 +294,11 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
       ++block;
     }
   } catch (const atmosphere::PrecomputeCancelled& e) {
-    this->Error = e.what();  // asked for: no error message
-    return 0;
+    // Asked for: no message, and success for the executive (which would print one);
+    // the output is empty.
+    this->Error = e.what();
+    output->Initialize();
+    return 1;
   } catch (const std::exception& e) {
     this->Error = e.what();
     vtkErrorMacro(<< e.what());

@@ -31,7 +31,8 @@
 //
 // Progress: ProgressEvent through the precomputation; SetAbortExecute(1) (from any
 // thread, e.g. a GUI's cancel button while Update runs in a worker) stops it at the next
-// chunk: the update fails with GetLastError() "precomputation cancelled" and no message.
+// chunk: the output is empty, GetLastError() says "precomputation cancelled", nothing is
+// printed; call Modified() (and clear the flag) before updating again.
 //
 // Arrays: one float array per wavelength, named "L<nm>nm" (e.g. "L680nm"; a fractional
 // wavelength writes '.' as 'p': "L393p57nm" — formatNumber digits), the same names as the

@@ -312,7 +312,7 @@ TEST(AtmosphereTablesSource, OneOrderGivesZeroMultipleScatteringAndIndirectIrrad
 }
 
 // Cancel: SetAbortExecute(1) during the precomputation (here from a progress observer; the
-// GUI does it from its thread) stops it, fails the update quietly and caches nothing; the
+// GUI does it from its thread) stops it quietly with an empty output and caches nothing; the
 // next update after clearing the flag computes the tables.
 TEST(AtmosphereTablesSource, AbortExecuteCancelsThePrecomputation) {
   CacheDir cache;
@@ -328,6 +328,7 @@ TEST(AtmosphereTablesSource, AbortExecuteCancelsThePrecomputation) {
   source->AddObserver(vtkCommand::ProgressEvent, onProgress);
   source->Update();
   EXPECT_EQ(source->GetLastError(), "precomputation cancelled");
+  EXPECT_EQ(source->GetOutput()->GetNumberOfBlocks(), 0u);
   EXPECT_LT(lastProgress, 0.5);
   EXPECT_TRUE(cachedKinds(cache).empty());
   source->RemoveObserver(onProgress);
