@@ -1,6 +1,6 @@
 // Frame time of the atmosphere in the render pass (issue #6; eclipse paper Tables 1-2:
 // refraction +20 %): the earth-sunset example rendered without the atmosphere, with it,
-// and with refraction, interleaved frame by frame, timed with GL timer queries
+// with refraction, and with the atmosphere and glare (strength 1), interleaved frame by frame, timed with GL timer queries
 // (GL_TIME_ELAPSED around the frame) and with the wall clock (after glFinish); prints the
 // medians. Tables from vtkAtmosphereTablesSource through the cache (the first run at
 // default sizes precomputes them). Needs an X display (xvfb-run -a); on llvmpipe the
@@ -10,6 +10,7 @@
 //       [--tables default|small]
 #include "BodyView.h"
 #include "SceneInputs.h"
+#include "vtkUmbraRenderPass.h"
 #include "ShadowLut.hpp"
 #include "ShadowLutData.h"
 #include "scene/Scene.hpp"
@@ -49,9 +50,10 @@ int main(int argc, char** argv) {
     return 1;
   }
   const auto lut = filters::toImageData(eclipse::buildAirlessShadowLut({64, 64}));
-  const char* names[3] = {"no atmosphere", "atmosphere", "atmosphere + refraction"};
+  constexpr int kConfigs = 4;
+  const char* names[kConfigs] = {"no atmosphere", "atmosphere", "atmosphere + refraction", "atmosphere + glare 1"};
   std::vector<std::unique_ptr<render::BodyView>> views;
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < kConfigs; ++k) {
     views.push_back(std::make_unique<render::BodyView>(width, height, true));
     render::BodyView& v = *views.back();
     v.SetBodies(in.sun, in.bodies, lut);
@@ -62,16 +64,17 @@ int main(int argc, char** argv) {
     }
     v.SetCamera(in.camera);
     v.SetExposureEV(s.exposureEv);
+    if (k == 3) v.GetRenderPass()->SetGlareStrength(1.0);
     v.Render();  // warm up: shaders, textures
   }
-  std::vector<double> gpu[3], wall[3];
-  std::vector<GLuint> queries(3, 0);
-  for (int k = 0; k < 3; ++k) {
+  std::vector<double> gpu[kConfigs], wall[kConfigs];
+  std::vector<GLuint> queries(kConfigs, 0);
+  for (int k = 0; k < kConfigs; ++k) {
     views[k]->GetRenderWindow()->MakeCurrent();
     glGenQueries(1, &queries[k]);
   }
   for (int f = 0; f < frames; ++f) {
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < kConfigs; ++k) {
       vtkRenderWindow* w = views[k]->GetRenderWindow();
       w->MakeCurrent();
       const auto t0 = std::chrono::steady_clock::now();
@@ -93,10 +96,11 @@ int main(int argc, char** argv) {
   std::printf("| %dx%d, %d frames, %s tables, median | GL timer [ms] | wall [ms] | GL time vs no atmosphere |\n",
               width, height, frames, tables.c_str());
   std::printf("|---|---:|---:|---:|\n");
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < kConfigs; ++k)
     std::printf("| %s | %.2f | %.2f | %+.1f %% |\n", names[k], median(gpu[k]), median(wall[k]),
                 100.0 * (median(gpu[k]) / median(gpu[0]) - 1.0));
   const double atm = median(gpu[1]);
   std::printf("\nrefraction vs atmosphere without it: %+.1f %%\n", 100.0 * (median(gpu[2]) / atm - 1.0));
+  std::printf("glare vs atmosphere without it: %+.1f %%\n", 100.0 * (median(gpu[3]) / atm - 1.0));
   return 0;
 }

@@ -1,5 +1,7 @@
-// umbra render SCENE [--time ISO8601] [--size WxH] [--exposure EV] [--atmosphere-tables default|small] [--refraction]
+// umbra render SCENE [--time ISO8601] [--size WxH] [--exposure EV] [--glare S] [--atmosphere-tables default|small] [--refraction]
 //   --output FILE.png|FILE.exr
+// umbra render SCENE --from ISO8601 --to ISO8601 --step DURATION [...] --output DIR/frame-%04d.png
+//   an animation: one frame per step from --from to --to (inclusive), numbered from 0
 // A body with "atmosphere" in the scene is drawn with it (AtmosphereRendering); its tables
 // come from vtkAtmosphereTablesSource through the cache (the first render of an atmosphere
 // at default sizes precomputes them: about a minute on 2 cores).
@@ -9,16 +11,20 @@
 #include "SceneInputs.h"
 #include "ShadowCommon.hpp"
 #include "SolarDisc.hpp"
+#include "vtkUmbraRenderPass.h"
 #include "vtkAtmosphereTablesSource.h"
 #include "vtkEclipseShadowLutSource.h"
 
 #include "scene/Scene.hpp"
 #include "scene/Time.hpp"
+#include "scene/Units.hpp"
 #include "umbra/tables/Exr.h"
 
 #include <vtkImageData.h>
 #include <vtkNew.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -38,6 +44,53 @@ void parseSize(const std::string& text, int& width, int& height) {
     throw CommandError("--size: width and height must be within 16..16384, got '" + text + "'");
 }
 
+/// The frames of an animation: --from, --to, --step and an --output with one %d / %0Nd.
+struct Frame {
+  scene::UtcTime time;
+  std::string path;
+};
+
+std::vector<Frame> animationFrames(const std::string& from, const std::string& to, const std::string& step,
+                                   const std::string& pattern) {
+  if (from.empty() || to.empty() || step.empty())
+    throw CommandError("--from, --to and --step go together (an animation), got only some of them");
+  scene::UtcTime t0, t1;
+  double stepS = 0.0;
+  try {
+    t0 = scene::parseUtc(from);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("--from: ") + e.what());
+  }
+  try {
+    t1 = scene::parseUtc(to);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("--to: ") + e.what());
+  }
+  try {
+    stepS = scene::parseDurationS(step);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("--step: ") + e.what());
+  }
+  if (!(stepS > 0.0)) throw CommandError("--step: must be positive, got '" + step + "'");
+  const double spanS = scene::secondsBetween(t0, t1);
+  if (spanS < 0.0) throw CommandError("--to: " + to + " is before --from " + from);
+  const double count = std::floor(spanS / stepS + 1e-9) + 1.0;
+  constexpr double kMaxFrames = 100000.0;
+  if (count > kMaxFrames)
+    throw CommandError("--step: " + std::to_string(static_cast<long long>(count)) + " frames, more than " +
+                       std::to_string(static_cast<int>(kMaxFrames)));
+  if (!std::regex_match(pattern, std::regex(R"([^%]*%0?\d{0,2}d[^%]*)")))
+    throw CommandError("--output: an animation needs one frame number in the name (e.g. frames/frame-%04d.png), got '" +
+                       pattern + "'");
+  std::vector<Frame> frames;
+  for (int k = 0; k < static_cast<int>(count); ++k) {
+    char path[4096];
+    std::snprintf(path, sizeof path, pattern.c_str(), k);
+    frames.push_back({scene::addSeconds(t0, k * stepS), path});
+  }
+  return frames;
+}
+
 } // namespace
 
 void addRenderCommand(CLI::App& app, Action& action) {
@@ -45,8 +98,9 @@ void addRenderCommand(CLI::App& app, Action& action) {
       "render", "Render a scene offscreen: PNG (tone-mapped) or EXR (linear radiance, W m^-2 sr^-1). Needs an X "
                 "display: run under xvfb-run -a on a headless machine");
   struct Options {
-    std::string scene, time, size, output;
+    std::string scene, time, size, output, from, to, step;
     std::optional<double> exposure;
+    double glare = 0.0;
     std::string atmosphereTables = "default";
     bool refraction = false;
     CacheOptions cache;
@@ -56,7 +110,17 @@ void addRenderCommand(CLI::App& app, Action& action) {
   render->add_option("--time", o->time, "UTC time, ISO 8601 (default: the scene's)");
   render->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default: the scene's)");
   render->add_option("--exposure", o->exposure, "Exposure in EV (default: the scene's)");
-  render->add_option("--output,-o", o->output, "Image to write: FILE.png or FILE.exr")->required();
+  render->add_option("--glare", o->glare,
+                     "Glare strength in [0, 10] (default 0: none): halos of 0.03, 0.15, 0.75 deg around bright "
+                     "pixels holding 4, 2, 1 % of their light per unit; the frame's total radiance is kept")
+      ->check(CLI::Range(0.0, 10.0));
+  render->add_option("--output,-o", o->output,
+                     "Image to write: FILE.png or FILE.exr; for an animation a name with a frame number, "
+                     "e.g. frames/frame-%04d.png")
+      ->required();
+  render->add_option("--from", o->from, "Animation: UTC time of the first frame, ISO 8601");
+  render->add_option("--to", o->to, "Animation: UTC time of the last frame at most, ISO 8601");
+  render->add_option("--step", o->step, "Animation: time between frames, e.g. 30min (units s, min, h, d)");
   render->add_option("--atmosphere-tables", o->atmosphereTables,
                      "Atmosphere table sizes: default (vtkAtmosphereTablesSource's: 256x64, 32,128,32,8, 64x16, "
                      "4 orders) or small (64x16, 8,32,8,4, 16x4, 3 orders: quick looks and tests)")
@@ -68,7 +132,11 @@ void addRenderCommand(CLI::App& app, Action& action) {
 
   render->callback([&action, o] {
     action = [o] {
-      output::checkWritable(o->output, {".png", ".exr"});
+      const bool animation = !o->from.empty() || !o->to.empty() || !o->step.empty();
+      if (animation && !o->time.empty()) throw CommandError("--time: not with --from/--to/--step");
+      const std::vector<Frame> frames =
+          animation ? animationFrames(o->from, o->to, o->step, o->output) : std::vector<Frame>{{{}, o->output}};
+      for (const Frame& f : frames) output::checkWritable(f.path, {".png", ".exr"});
       scene::Scene s = scene::loadScene(o->scene);
       if (!o->time.empty()) {
         try {
@@ -83,42 +151,65 @@ void addRenderCommand(CLI::App& app, Action& action) {
         throw CommandError("--atmosphere-tables: expected default or small, got '" + o->atmosphereTables + "'");
       if (!std::getenv("DISPLAY")) throw CommandError("rendering needs an X display: run under xvfb-run -a");
 
-      const render::SceneInputs in = render::sceneInputs(s);
       auto lut = updateShadowLut(s.shadowLutSize, eclipse::kDefaultLimbDarkening, o->cache);
-
       render::BodyView view(s.width, s.height, /*offscreen=*/true);
-      view.SetBodies(in.sun, in.bodies, lut->GetOutput());
-      if (in.atmosphere) {
-        vtkNew<vtkAtmosphereTablesSource> tables;
-        tables->SetCacheDirectory(o->cache.directory.c_str());
-        tables->SetUseCache(!o->cache.disabled);
-        if (o->atmosphereTables == "small") render::useSmallAtmosphereTables(tables);
-        try {
-          render::applySceneAtmosphere(view, in, tables, o->refraction);
-        } catch (const std::runtime_error& e) {
-          throw CommandError(e.what());
+      vtkNew<vtkAtmosphereTablesSource> tables;
+      tables->SetCacheDirectory(o->cache.directory.c_str());
+      tables->SetUseCache(!o->cache.disabled);
+      if (o->atmosphereTables == "small") render::useSmallAtmosphereTables(tables);
+      std::optional<ProgressLine> progress;
+      if (animation) progress.emplace("frames (" + std::to_string(frames.size()) + ")");
+      for (std::size_t k = 0; k < frames.size(); ++k) {
+        const Frame& f = frames[k];
+        if (animation) {
+          try {
+            scene::setTime(s, f.time);
+          } catch (const scene::SceneError& e) {
+            throw CommandError("--from/--to: at " + scene::formatUtc(f.time) + ": " + e.what());
+          }
         }
-        if (tables->GetLastCacheHits() > 0) std::cerr << "atmosphere tables: cache hit\n";
-      }
-      view.SetCamera(in.camera);
-      view.SetExposureEV(s.exposureEv);
-      view.Render();
+        const render::SceneInputs in = render::sceneInputs(s);
+        view.SetBodies(in.sun, in.bodies, lut->GetOutput());
+        if (in.atmosphere) {
+          try {
+            render::applySceneAtmosphere(view, in, tables, o->refraction);
+          } catch (const std::runtime_error& e) {
+            throw CommandError(e.what());
+          }
+          if (k == 0 && tables->GetLastCacheHits() > 0) std::cerr << "atmosphere tables: cache hit\n";
+        }
+        view.SetCamera(in.camera);
+        view.SetExposureEV(s.exposureEv);
+        view.GetRenderPass()->SetGlareStrength(o->glare);
+        view.Render();
 
-      if (output::extensionOf(o->output) == ".exr") {
-        tables::Table t;
-        t.channels = {"R", "G", "B"};
-        view.ReadHdr(t.data, t.width, t.height);
-        t.parameters = {{"kind", "radiance-image"},
-                        {"units", "W m^-2 sr^-1 (linear, per channel)"},
-                        {"scene", o->scene},
-                        {"time", scene::formatUtc(s.time)},
-                        {"exposureEV", std::to_string(s.exposureEv)}};
-        tables::writeExr(o->output, t);
-      } else {
-        view.WritePng(o->output);
+        if (output::extensionOf(f.path) == ".exr") {
+          tables::Table t;
+          t.channels = {"R", "G", "B"};
+          view.ReadHdr(t.data, t.width, t.height);
+          t.parameters = {{"kind", "radiance-image"},
+                          {"units", "W m^-2 sr^-1 (linear, per channel)"},
+                          {"scene", o->scene},
+                          {"time", scene::formatUtc(s.time)},
+                          {"exposureEV", std::to_string(s.exposureEv)},
+                          {"glare", std::to_string(o->glare)}};
+          tables::writeExr(f.path, t);
+        } else {
+          view.WritePng(f.path);
+        }
+        if (progress) {
+          progress->update(static_cast<double>(k + 1) / frames.size());
+        } else {
+          std::cout << "wrote " << f.path << " (" << s.width << "x" << s.height << ", " << s.name
+                    << (s.hasTime ? ", " + scene::formatUtc(s.time) : std::string()) << ")\n";
+        }
       }
-      std::cout << "wrote " << o->output << " (" << s.width << "x" << s.height << ", " << s.name
-                << (s.hasTime ? ", " + scene::formatUtc(s.time) : std::string()) << ")\n";
+      if (progress) {
+        progress.reset();  // clears the progress line
+        std::cout << "wrote " << frames.size() << " frames " << frames.front().path << " .. " << frames.back().path
+                  << " (" << s.width << "x" << s.height << ", " << s.name << ", " << o->from << " .. "
+                  << scene::formatUtc(frames.back().time) << " every " << o->step << ")\n";
+      }
       return 0;
     };
   });

@@ -2,11 +2,20 @@
 
 #include "OutputFile.hpp"
 #include "ProfilePanel.hpp"
+#include "SceneInputs.h"
 #include "SceneView.hpp"
 #include "scene/Time.hpp"
+#include "vtkAtmosphereTablesSource.h"
+
+#include "Atmosphere.hpp"
+#include "Spectrum.hpp"
 
 #include <QAction>
 #include <QApplication>
+#include <QComboBox>
+#include <QMetaObject>
+#include <QProgressBar>
+#include <QPushButton>
 #include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -24,7 +33,12 @@
 #include <QStatusBar>
 #include <QVBoxLayout>
 #include <QVTKOpenGLNativeWidget.h>
+#include <vtkCallbackCommand.h>
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
 
+#include <atomic>
+#include <thread>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -38,7 +52,25 @@ QString qs(const std::string& s) { return QString::fromStdString(s); }
 
 QString km(double m) { return QString::number(m / 1e3, 'f', 0) + " km"; }
 
+void checkAtmosphere(const std::string& model) {
+  if (model.empty()) return;
+  try {
+    atmosphere::loadAtmosphere(model, atmosphere::WavelengthSet::rgb().nm);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("atmosphere: ") + e.what());
+  }
+}
+
 } // namespace
+
+/// Atmosphere tables being made in a worker thread: the source is only touched by the
+/// worker until it has finished (then by the GUI thread), except SetAbortExecute.
+struct MainWindow::AtmosphereJob {
+  vtkSmartPointer<vtkAtmosphereTablesSource> source;
+  vtkNew<vtkCallbackCommand> onProgress;
+  std::thread thread;
+  std::atomic<bool> cancelled{false};
+};
 
 MainWindow::MainWindow() {
   this->setWindowTitle("umbra-gui");
@@ -94,6 +126,38 @@ MainWindow::MainWindow() {
     this->view->render();
   });
 
+  this->glare = new QDoubleSpinBox;
+  this->glare->setRange(0.0, 10.0);
+  this->glare->setSingleStep(0.5);
+  this->glare->setDecimals(1);
+  this->glare->setToolTip("Glare: halos around bright pixels that keep the frame's total light (0: none)");
+  connect(this->glare, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this](double g) { this->setGlare(g); });
+
+  this->atmosphereChoice = new QComboBox;
+  this->atmosphereChoice->addItem("none", QString());
+  for (const std::string& name : atmosphere::presetNames()) this->atmosphereChoice->addItem(qs(name), qs(name));
+  this->atmosphereChoice->setEnabled(false);
+  this->atmosphereChoice->setToolTip("The atmosphere drawn on the scene's planet (its tables are computed on change)");
+  connect(this->atmosphereChoice, qOverload<int>(&QComboBox::activated), this, [this](int index) {
+    try {
+      this->setAtmosphere(this->atmosphereChoice->itemData(index).toString().toStdString());
+    } catch (const std::exception& e) {
+      this->setStatus(QString("error: ") + e.what());
+    }
+  });
+  this->atmosphereProgress = new QProgressBar;
+  this->atmosphereProgress->setRange(0, 100);
+  this->atmosphereProgress->setMaximumWidth(160);
+  this->atmosphereProgress->setVisible(false);
+  this->atmosphereCancel = new QPushButton("Cancel");
+  this->atmosphereCancel->setVisible(false);
+  connect(this->atmosphereCancel, &QPushButton::clicked, this, [this] {
+    if (this->job) {
+      this->job->cancelled = true;
+      this->job->source->SetAbortExecute(1);
+    }
+  });
+
   auto* controls = new QHBoxLayout;
   controls->addWidget(new QLabel("Time (UTC)"));
   controls->addWidget(this->slider, 1);
@@ -101,6 +165,13 @@ MainWindow::MainWindow() {
   controls->addSpacing(16);
   controls->addWidget(new QLabel("Exposure"));
   controls->addWidget(this->exposure);
+  controls->addWidget(new QLabel("Glare"));
+  controls->addWidget(this->glare);
+  controls->addSpacing(16);
+  controls->addWidget(new QLabel("Atmosphere"));
+  controls->addWidget(this->atmosphereChoice);
+  controls->addWidget(this->atmosphereProgress);
+  controls->addWidget(this->atmosphereCancel);
 
   auto* central = new QWidget;
   auto* layout = new QVBoxLayout(central);
@@ -113,7 +184,105 @@ MainWindow::MainWindow() {
   this->resize(1200, 720);
 }
 
-MainWindow::~MainWindow() = default;
+MainWindow::~MainWindow() { this->cancelAtmosphere(); }
+
+void MainWindow::setGlare(double strength) {
+  {
+    const QSignalBlocker block(this->glare);
+    this->glare->setValue(strength);
+  }
+  this->view->setGlareStrength(strength);
+  this->view->render();
+}
+
+void MainWindow::setExposure(double ev) { this->exposure->setValue(ev); }
+
+void MainWindow::overrideAtmosphere(const std::string& model) {
+  checkAtmosphere(model);
+  this->atmosphereOverride = model;
+}
+
+bool MainWindow::atmosphereBusy() const { return this->job != nullptr; }
+
+void MainWindow::cancelAtmosphere() {
+  if (!this->job) return;
+  this->job->cancelled = true;
+  this->job->source->SetAbortExecute(1);
+  if (this->job->thread.joinable()) this->job->thread.join();
+  this->job.reset();
+  ++this->jobGeneration;  // a queued "finished" of that job is ignored
+  this->atmosphereProgress->setVisible(false);
+  this->atmosphereCancel->setVisible(false);
+}
+
+void MainWindow::setAtmosphere(const std::string& model) {
+  if (!this->current) throw std::runtime_error("atmosphere: no scene loaded");
+  if (this->atmosphereBody.empty()) throw std::runtime_error("atmosphere: the scene has no body to put it on");
+  checkAtmosphere(model);
+  this->cancelAtmosphere();
+  int index = this->atmosphereChoice->findData(qs(model));
+  if (index < 0) {
+    this->atmosphereChoice->addItem(QFileInfo(qs(model)).fileName(), qs(model));
+    index = this->atmosphereChoice->count() - 1;
+  }
+  this->atmosphereChoice->setCurrentIndex(index);
+  for (scene::Body& b : this->current->bodies)
+    b.atmosphereModel = b.name == this->atmosphereBody ? model : std::string();
+  this->view->setAtmosphereTables(nullptr);
+  if (model.empty()) {
+    this->refresh();
+    return;
+  }
+
+  // The source is configured as render::applySceneAtmosphere configures it, so that its
+  // Update there (GUI thread) finds it up to date.
+  this->job = std::make_unique<AtmosphereJob>();
+  AtmosphereJob& j = *this->job;
+  j.source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
+  j.source->SetAtmosphere(model.c_str());
+  j.source->SetWavelengths(3);
+  j.source->SetTables(vtkAtmosphereTablesSource::Bruneton);
+  j.source->SetRefractedPaths(false);
+  if (this->smallTables) render::useSmallAtmosphereTables(j.source);
+  QProgressBar* bar = this->atmosphereProgress;
+  j.onProgress->SetClientData(bar);
+  j.onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
+    auto* progress = static_cast<QProgressBar*>(client);
+    const int percent = static_cast<int>(100.0 * *static_cast<double*>(data));
+    QMetaObject::invokeMethod(progress, [progress, percent] { progress->setValue(percent); }, Qt::QueuedConnection);
+  });
+  j.source->AddObserver(vtkCommand::ProgressEvent, j.onProgress);
+  bar->setValue(0);
+  bar->setVisible(true);
+  this->atmosphereCancel->setVisible(true);
+  this->setStatus(qs("computing the " + model + " atmosphere tables..."));
+  const int generation = ++this->jobGeneration;
+  vtkAtmosphereTablesSource* source = j.source;
+  j.thread = std::thread([this, source, generation] {
+    source->Update();
+    QMetaObject::invokeMethod(this, [this, generation] { this->atmosphereFinished(generation); }, Qt::QueuedConnection);
+  });
+  this->refresh();  // meanwhile: the scene without the atmosphere
+}
+
+void MainWindow::atmosphereFinished(int generation) {
+  if (!this->job || generation != this->jobGeneration) return;
+  this->job->thread.join();
+  const std::unique_ptr<AtmosphereJob> done = std::move(this->job);
+  this->atmosphereProgress->setVisible(false);
+  this->atmosphereCancel->setVisible(false);
+  const std::string error = done->source->GetLastError();
+  if (!error.empty()) {
+    for (scene::Body& b : this->current->bodies) b.atmosphereModel.clear();
+    this->atmosphereChoice->setCurrentIndex(0);
+    this->refresh();
+    this->setStatus(qs("atmosphere: " + (done->cancelled ? std::string("cancelled") : error)));
+    return;
+  }
+  done->source->RemoveObserver(done->onProgress);
+  this->view->setAtmosphereTables(done->source);
+  this->refresh();
+}
 
 void MainWindow::loadScene(const std::string& path, std::optional<scene::UtcTime> time) {
   scene::Scene s = scene::loadScene(path);
@@ -144,6 +313,26 @@ void MainWindow::loadScene(const std::string& path, std::optional<scene::UtcTime
     }
     const std::string what = e.what();
     throw std::runtime_error(what.rfind(path, 0) == 0 ? what : path + ": " + what);
+  }
+
+  // The atmosphere: the scene's own, on its body; else none, on the observer's or the
+  // target body.
+  this->cancelAtmosphere();
+  this->view->setAtmosphereTables(nullptr);
+  const scene::Scene& c = *this->current;
+  std::string model;
+  this->atmosphereBody.clear();
+  for (const scene::Body& b : c.bodies)
+    if (!b.atmosphereModel.empty() && this->atmosphereBody.empty()) this->atmosphereBody = b.name, model = b.atmosphereModel;
+  if (this->atmosphereBody.empty() && c.camera.observer) this->atmosphereBody = c.camera.observer->body;
+  if (this->atmosphereBody.empty() && !c.camera.targetBody.empty() && c.camera.targetBody != c.sun().name)
+    this->atmosphereBody = c.camera.targetBody;
+  this->atmosphereChoice->setEnabled(!this->atmosphereBody.empty());
+  if (this->atmosphereOverride) model = *this->atmosphereOverride;
+  if (this->atmosphereBody.empty()) {
+    this->atmosphereChoice->setCurrentIndex(0);
+  } else {
+    this->setAtmosphere(model);
   }
 }
 

@@ -1,8 +1,10 @@
 #pragma once
 // umbra-gui's main window: the 3D view of a scene (left), the cross-section of the shadow
 // the camera's target lies in (right), a time slider (+-6 h around the scene time, 1-minute
-// steps) and an exposure control (below), and a status bar with the receiver's place in
-// the shadow.
+// steps), exposure and glare controls, the atmosphere (none or a preset, drawn on the
+// scene's body with an atmosphere, else the observer's or target body) with a progress
+// bar and a cancel button while its tables are computed in a worker thread (below), and a
+// status bar with the receiver's place in the shadow.
 #include "scene/ReceiverShadow.hpp"
 #include "scene/Scene.hpp"
 
@@ -14,8 +16,11 @@
 #include <optional>
 #include <string>
 
+class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
+class QProgressBar;
+class QPushButton;
 class QSlider;
 class QVTKOpenGLNativeWidget;
 
@@ -36,6 +41,23 @@ public:
   /// Moves the loaded scene to `time` (the slider follows; it is re-centred on `time`
   /// when that lies outside its range). Throws like loadScene.
   void showTime(scene::UtcTime time);
+  /// Draws this atmosphere (a preset name or a file; "" for none) on the atmosphere body:
+  /// its tables are computed (or read from the cache) in a worker thread; the view shows
+  /// it when they are ready. Throws std::runtime_error when no scene is loaded or the
+  /// scene has no body to put an atmosphere on.
+  void setAtmosphere(const std::string& model);
+  /// The atmosphere later loadScene calls draw instead of the scene's ("" : none).
+  /// Throws std::runtime_error for an unknown preset or a bad file.
+  void overrideAtmosphere(const std::string& model);
+  /// True while atmosphere tables are being computed.
+  bool atmosphereBusy() const;
+  /// Small tables (useSmallAtmosphereTables) for the next setAtmosphere: quick looks, tests.
+  void useSmallAtmosphereTables(bool small) { this->smallTables = small; }
+  /// Exposure of the 3D view in EV (the spin box follows).
+  void setExposure(double ev);
+  /// Glare strength of the 3D view (0..10).
+  void setGlare(double strength);
+
   /// Renders both views now.
   void renderViews();
 
@@ -57,6 +79,8 @@ private:
   void showCurrent(double exposureEv);  // a newly loaded scene: controls, then refresh
   void refresh();  // the current scene: 3D view, profile, labels, status
   void setStatus(const QString& text);
+  void cancelAtmosphere();  // stops and joins the worker, if any
+  void atmosphereFinished(int generation);
 
   QVTKOpenGLNativeWidget* viewWidget = nullptr;
   QVTKOpenGLNativeWidget* plotWidget = nullptr;
@@ -64,6 +88,10 @@ private:
   QLabel* timeLabel = nullptr;
   QDoubleSpinBox* exposure = nullptr;
   QLabel* statusLabel = nullptr;
+  QComboBox* atmosphereChoice = nullptr;
+  QProgressBar* atmosphereProgress = nullptr;
+  QPushButton* atmosphereCancel = nullptr;
+  QDoubleSpinBox* glare = nullptr;
 
   std::unique_ptr<SceneView> view;
   std::unique_ptr<ProfilePanel> plot;
@@ -72,6 +100,13 @@ private:
   scene::UtcTime sliderCentre;  // the time at slider value 0
   scene::ReceiverShadow shadow;
   double shadowFactor = 1.0;
+
+  std::string atmosphereBody;  // the body the atmosphere goes on ("" : none possible)
+  std::optional<std::string> atmosphereOverride;
+  bool smallTables = false;
+  struct AtmosphereJob;
+  std::unique_ptr<AtmosphereJob> job;
+  int jobGeneration = 0;
 };
 
 } // namespace umbra::gui

@@ -1,7 +1,10 @@
 #include "SceneView.hpp"
 
+#include "AtmosphereRendering.h"
 #include "BodyView.h"
 #include "SceneInputs.h"
+#include "vtkAtmosphereTablesSource.h"
+#include "vtkUmbraRenderPass.h"
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkGenericOpenGLRenderWindow.h>
@@ -25,6 +28,8 @@ struct SceneView::Impl {
   QVTKOpenGLNativeWidget* widget = nullptr;
   std::unique_ptr<render::BodyView> bodies;
   vtkSmartPointer<vtkRenderer> renderer;
+  vtkSmartPointer<vtkAtmosphereTablesSource> tables;
+  vtkAtmosphereTablesSource* applied = nullptr;  // the tables the view's atmosphere holds
 };
 
 SceneView::SceneView(QVTKOpenGLNativeWidget* widget) : impl(std::make_unique<Impl>()) {
@@ -50,7 +55,28 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
   const render::SceneInputs in = render::sceneInputs(s);
   impl->bodies->GetRenderWindow()->SetSize(std::max(1, impl->widget->width()), std::max(1, impl->widget->height()));
   impl->bodies->SetBodies(in.sun, in.bodies, shadowLut);
+  const bool drawn = impl->tables && in.atmosphere && impl->tables->GetAtmosphere() == in.atmosphere->model;
+  render::AtmosphereRendering& atmosphere = impl->bodies->GetAtmosphere();
+  const auto body = in.atmosphere ? std::find_if(in.bodies.begin(), in.bodies.end(),
+                                                 [&](const render::SphereBody& b) { return b.name == in.atmosphere->body; })
+                                  : in.bodies.end();
+  if (drawn && impl->applied == impl->tables && atmosphere.HasAtmosphere() && body != in.bodies.end()) {
+    atmosphere.SetCentre(body->centreM);  // the time moved: the same tables, no upload
+  } else if (drawn) {
+    render::applySceneAtmosphere(*impl->bodies, in, impl->tables, /*refraction=*/false);
+    impl->applied = impl->tables;
+  } else {
+    atmosphere.ClearAtmosphere();
+    impl->applied = nullptr;
+  }
   impl->bodies->SetCamera(in.camera);
+}
+
+void SceneView::setGlareStrength(double strength) { impl->bodies->GetRenderPass()->SetGlareStrength(strength); }
+
+void SceneView::setAtmosphereTables(vtkAtmosphereTablesSource* tables) {
+  impl->tables = tables;
+  impl->applied = nullptr;  // applied again on the next setScene
 }
 
 void SceneView::setExposureEV(double ev) { impl->bodies->SetExposureEV(ev); }

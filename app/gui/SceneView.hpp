@@ -7,6 +7,7 @@
 #include <memory>
 
 class QVTKOpenGLNativeWidget;
+class vtkAtmosphereTablesSource;
 class vtkImageData;
 class vtkRenderer;
 
@@ -23,6 +24,12 @@ public:
   /// shadow LuT is the table the render library samples (not recomputed here).
   void setScene(const scene::Scene& scene, vtkImageData* shadowLut);
   void setExposureEV(double ev);
+  /// Glare strength (vtkUmbraRenderPass::SetGlareStrength), 0..10.
+  void setGlareStrength(double strength);
+  /// Tables (already updated) for the atmosphere the scene asks for; nullptr: none. The
+  /// atmosphere is drawn while the scene's atmosphere is the one the tables were made for
+  /// (they are applied again on every setScene, as the body moves). Call setScene next.
+  void setAtmosphereTables(vtkAtmosphereTablesSource* tables);
   void render();
   vtkRenderer* renderer() const;
 

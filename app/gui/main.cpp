@@ -1,4 +1,5 @@
-// umbra-gui [SCENE.json] [--time ISO] [--screenshot FILE.png] [--quit-after-screenshot]
+// umbra-gui [SCENE.json] [--time ISO] [--atmosphere NAME|none] [--atmosphere-tables default|small]
+//           [--exposure EV] [--glare S] [--screenshot FILE.png] [--quit-after-screenshot]
 //
 // The desktop GUI: a scene's bodies in 3D, a time slider that moves them, and the
 // cross-section of the shadow the camera's target lies in. With --screenshot it saves
@@ -80,6 +81,16 @@ int main(int argc, char** argv) {
       "screenshot", "Once the window is shown, save it as this PNG (batch mode: errors exit 1) and print the status.",
       "FILE.png");
   const QCommandLineOption quitOption("quit-after-screenshot", "Exit (0) once the screenshot is written.");
+  const QCommandLineOption atmosphereOption(
+      "atmosphere", "Draw this atmosphere (a preset, a file, or none) instead of the scene's.", "NAME");
+  const QCommandLineOption tablesOption(
+      "atmosphere-tables", "Atmosphere table sizes: default, or small (quick looks and tests).", "SIZES", "default");
+  const QCommandLineOption exposureOption("exposure", "Exposure in EV (default: the scene's).", "EV");
+  const QCommandLineOption glareOption("glare", "Glare strength, 0..10 (default 0).", "S");
+  parser.addOption(atmosphereOption);
+  parser.addOption(tablesOption);
+  parser.addOption(exposureOption);
+  parser.addOption(glareOption);
   parser.addOption(timeOption);
   parser.addOption(screenshotOption);
   parser.addOption(quitOption);
@@ -103,8 +114,31 @@ int main(int argc, char** argv) {
         throw std::runtime_error(std::string("--time: ") + e.what());
       }
     }
+    const QString tables = parser.value(tablesOption);
+    if (tables != "default" && tables != "small")
+      throw std::runtime_error("--atmosphere-tables: expected default or small, got '" + tables.toStdString() + "'");
+    window.useSmallAtmosphereTables(tables == "small");
+    auto number = [&](const QCommandLineOption& option, double lo, double hi) {
+      bool ok = false;
+      const double v = parser.value(option).toDouble(&ok);
+      if (!ok || !(v >= lo && v <= hi))
+        throw std::runtime_error("--" + option.names().first().toStdString() + ": expected a number in [" +
+                                 std::to_string(lo) + ", " + std::to_string(hi) + "], got '" +
+                                 parser.value(option).toStdString() + "'");
+      return v;
+    };
+    if (parser.isSet(atmosphereOption)) {
+      const std::string name = parser.value(atmosphereOption).toStdString();
+      try {
+        window.overrideAtmosphere(name == "none" ? std::string() : name);
+      } catch (const std::exception& e) {
+        throw std::runtime_error(std::string("--atmosphere: ") + e.what());
+      }
+    }
     if (!positional.isEmpty()) window.loadScene(positional.first().toStdString(), time);
-    else if (time) throw std::runtime_error("--time needs a scene file");
+    else if (time || parser.isSet(atmosphereOption)) throw std::runtime_error("--time and --atmosphere need a scene file");
+    if (parser.isSet(exposureOption)) window.setExposure(number(exposureOption, -40.0, 40.0));
+    if (parser.isSet(glareOption)) window.setGlare(number(glareOption, 0.0, 10.0));
   } catch (const std::exception& e) {
     if (batch) return fail(e.what());
     error = e.what();
@@ -123,6 +157,7 @@ int main(int argc, char** argv) {
     QObject::connect(poll, &QTimer::timeout, &window, [&window, poll, clock, screenshot, quit] {
       const bool exposed = window.windowHandle() && window.windowHandle()->isExposed();
       if (!exposed && clock->elapsed() < 10000) return;
+      if (window.atmosphereBusy() && clock->elapsed() < 120000) return;  // the atmosphere tables
       poll->stop();
       delete clock;
       int code = 0;

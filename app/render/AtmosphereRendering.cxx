@@ -306,6 +306,10 @@ void AtmosphereRendering::ClearAtmosphere() { impl_->has = false; }
 const atmosphere::Atmosphere& AtmosphereRendering::GetModel() const { return impl_->model; }
 const atmosphere::AtmosphereTables& AtmosphereRendering::GetTables() const { return impl_->tables; }
 const glm::dvec3& AtmosphereRendering::GetCentre() const { return impl_->centre; }
+void AtmosphereRendering::SetCentre(const glm::dvec3& centreM) {
+  if (!finite(centreM)) throw std::invalid_argument("atmosphere centre must be finite");
+  impl_->centre = centreM;
+}
 void AtmosphereRendering::SetSun(const SunLight& sun) {
   validateSun(sun);
   impl_->sun = sun;

@@ -101,6 +101,9 @@ class AtmosphereRendering {
   const atmosphere::Atmosphere& GetModel() const;
   const atmosphere::AtmosphereTables& GetTables() const;
   const glm::dvec3& GetCentre() const;
+  /// Moves the atmosphere's body (model and tables kept: nothing is uploaded again).
+  /// Throws std::invalid_argument for a non-finite centre.
+  void SetCentre(const glm::dvec3& centreM);
 
   void SetSun(const SunLight& sun);
   /// World position of the VTK scene's origin (BodyView: the camera position).

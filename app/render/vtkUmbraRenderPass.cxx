@@ -1,6 +1,7 @@
 #include "vtkUmbraRenderPass.h"
 
 #include "AtmosphereRendering.h"
+#include "Glare.h"
 #include "RenderGlsl.hpp"
 
 #include <vtkObjectFactory.h>
@@ -11,6 +12,7 @@
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLShaderCache.h>
 #include <vtkOpenGLState.h>
+#include <vtkCamera.h>
 #include <vtkRenderState.h>
 #include <vtkRenderStepsPass.h>
 #include <vtkRenderer.h>
@@ -32,6 +34,7 @@ vtkUmbraRenderPass::~vtkUmbraRenderPass() = default;
 void vtkUmbraRenderPass::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ExposureEV: " << this->ExposureEV << "\n";
+  os << indent << "GlareStrength: " << this->GlareStrength << "\n";
   os << indent << "ToneMapping: " << (this->ToneMapping == Linear ? "Linear" : "Reinhard") << "\n";
   os << indent << "HDR frame: " << this->HdrWidth << "x" << this->HdrHeight
      << (this->HdrValid ? "" : " (none)") << "\n";
@@ -41,20 +44,7 @@ namespace {
 // An RGBA32F colour buffer of w x h (re)allocated as needed; Nearest: the quads read each
 // texel at its own pixel centre, unfiltered.
 bool prepareColour(vtkSmartPointer<vtkTextureObject>& t, vtkOpenGLRenderWindow* renWin, int w, int h) {
-  if (!t) {
-    t = vtkSmartPointer<vtkTextureObject>::New();
-    t->SetContext(renWin);
-    t->SetMinificationFilter(vtkTextureObject::Nearest);
-    t->SetMagnificationFilter(vtkTextureObject::Nearest);
-    t->SetWrapS(vtkTextureObject::ClampToEdge);
-    t->SetWrapT(vtkTextureObject::ClampToEdge);
-    t->SetInternalFormat(GL_RGBA32F);
-    t->SetFormat(GL_RGBA);
-    t->SetDataType(GL_FLOAT);
-    return t->Allocate2D(w, h, 4, VTK_FLOAT);
-  }
-  if (t->GetWidth() != static_cast<unsigned>(w) || t->GetHeight() != static_cast<unsigned>(h)) t->Resize(w, h);
-  return true;
+  return umbra::render::prepareFloatTexture(t, renWin, w, h);
 }
 } // namespace
 
@@ -168,6 +158,20 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
     this->HdrComposed = true;
   }
 
+  // 1c. Glare.
+  this->HdrGlared = false;
+  if (this->GlareStrength > 0.0) {
+    if (!this->Glare) this->Glare = std::make_unique<umbra::render::GlareRendering>();
+    const double fovDeg = r->GetActiveCamera()->GetViewAngle();
+    const auto kernels = umbra::render::glareKernels(this->GlareStrength, h / fovDeg);
+    if (!this->Glare->Apply(renWin, hdr, w, h, kernels)) {
+      vtkErrorMacro("cannot apply the glare.");
+      return;
+    }
+    hdr = this->Glare->Output();
+    this->HdrGlared = true;
+  }
+
   // 2. Tone-map onto the current framebuffer.
   if (!this->QuadHelper) {
     std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
@@ -217,6 +221,7 @@ bool vtkUmbraRenderPass::ReadHdrPixels(std::vector<float>& rgba, int& width, int
   rgba.resize(static_cast<std::size_t>(this->HdrWidth) * this->HdrHeight * 4);
   ostate->PushReadFramebufferBinding();
   vtkOpenGLFramebufferObject* fbo = this->HdrComposed ? this->ComposedFrameBuffer.Get() : this->FrameBufferObject.Get();
+  if (this->HdrGlared) fbo = this->Glare->OutputFramebuffer();
   fbo->Bind(GL_READ_FRAMEBUFFER);
   fbo->ActivateReadBuffer(0);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
@@ -257,6 +262,7 @@ void vtkUmbraRenderPass::ReleaseGraphicsResources(vtkWindow* w) {
     this->ComposedTexture->ReleaseGraphicsResources(w);
     this->ComposedTexture = nullptr;
   }
+  if (this->Glare) this->Glare->ReleaseGraphicsResources(w);
   if (this->Atmosphere) this->Atmosphere->ReleaseGraphicsResources(vtkOpenGLRenderWindow::SafeDownCast(w));
   this->HdrValid = false;
   this->LastWindow = nullptr;

@@ -13,6 +13,10 @@
 // (AtmosphereRendering::Draw) into a second float buffer between the delegate and the tone
 // map; that composed frame is the HDR frame.
 //
+// With GlareStrength > 0 (Glare.h), the HDR frame then gets an energy-preserving glare
+// (halos of 0.03, 0.15 and 0.75 deg around bright pixels); the glared frame is the HDR
+// frame that is tone-mapped and read back.
+//
 // Usage: renderer->SetPass(pass). The default delegate is a vtkRenderStepsPass (which is
 // itself a vtkCameraPass around the usual lights/opaque/translucent/volume/overlay
 // sequence); SetDelegatePass replaces it.
@@ -33,6 +37,7 @@ class vtkOpenGLRenderWindow;
 class vtkTextureObject;
 namespace umbra::render {
 class AtmosphereRendering;
+class GlareRendering;
 }
 
 class vtkUmbraRenderPass : public vtkImageProcessingPass {
@@ -53,6 +58,11 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
   /// Tone curve, Linear (clamp) or Reinhard (default).
   vtkSetClampMacro(ToneMapping, int, Linear, Reinhard);
   vtkGetMacro(ToneMapping, int);
+
+  /// Glare strength in [0, 10]: 0 (default) none, 1 moves 7 % of the light into halos
+  /// (Glare.h); the frame's total radiance is kept.
+  vtkSetClampMacro(GlareStrength, double, 0.0, 10.0);
+  vtkGetMacro(GlareStrength, double);
 
   /// The float colour buffer of the last frame, RGBA, 4 floats per pixel, row 0 = bottom
   /// row (as in GL). False (and empty) when nothing has been rendered since the last
@@ -77,6 +87,9 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
   vtkSmartPointer<vtkOpenGLFramebufferObject> ComposedFrameBuffer;  // the atmosphere's output
   vtkSmartPointer<vtkTextureObject> ComposedTexture;
   bool HdrComposed = false;
+  double GlareStrength = 0.0;
+  std::unique_ptr<umbra::render::GlareRendering> Glare;
+  bool HdrGlared = false;
 
   vtkWeakPointer<vtkOpenGLRenderWindow> LastWindow;
   int HdrWidth = 0;

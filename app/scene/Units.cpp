@@ -3,46 +3,65 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <initializer_list>
 #include <stdexcept>
 
 namespace umbra::scene {
 
 namespace {
 
-[[noreturn]] void throwBadLength(const std::string& text) {
-  throw std::invalid_argument("invalid length '" + text +
-                              "': expected a number with unit m, km or au");
-}
-
 bool isSpace(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
 
-} // namespace
-
-double parseLengthM(const std::string& text) {
+/// A plain decimal number and its unit (trimmed); false for anything else.
+bool splitQuantity(const std::string& text, double& value, std::string& unit) {
   std::size_t begin = 0;
   while (begin < text.size() && isSpace(text[begin])) ++begin;
   // strtod accepts "inf", "nan" and hex floats: insist on a plain decimal number.
-  if (begin == text.size()) throwBadLength(text);
+  if (begin == text.size()) return false;
   const char first = text[begin];
   if (!(std::isdigit(static_cast<unsigned char>(first)) || first == '+' || first == '-' ||
         first == '.'))
-    throwBadLength(text);
+    return false;
   for (std::size_t i = begin; i < text.size(); ++i)
-    if (text[i] == 'x' || text[i] == 'X') throwBadLength(text);
+    if (text[i] == 'x' || text[i] == 'X') return false;
 
   const char* start = text.c_str() + begin;
   char* end = nullptr;
-  const double value = std::strtod(start, &end);
-  if (end == start || !std::isfinite(value)) throwBadLength(text);
+  value = std::strtod(start, &end);
+  if (end == start || !std::isfinite(value)) return false;
 
-  std::string unit(end);
+  unit = end;
   while (!unit.empty() && isSpace(unit.front())) unit.erase(unit.begin());
   while (!unit.empty() && isSpace(unit.back())) unit.pop_back();
+  return true;
+}
 
-  if (unit.empty() || unit == "m") return value;
-  if (unit == "km") return value * 1000.0;
-  if (unit == "au") return value * kAuM;
-  throwBadLength(text);
+} // namespace
+
+struct UnitFactor {
+  const char* unit;  ///< "" for a bare number
+  double factor;
+};
+
+double parseQuantity(const std::string& text, std::initializer_list<UnitFactor> units, const char* what,
+                     const char* expected) {
+  double value = 0.0;
+  std::string unit;
+  if (splitQuantity(text, value, unit)) {
+    for (const UnitFactor& u : units)
+      if (unit == u.unit) return value * u.factor;
+  }
+  throw std::invalid_argument(std::string("invalid ") + what + " '" + text + "': expected a number with unit " +
+                              expected);
+}
+
+double parseLengthM(const std::string& text) {
+  return parseQuantity(text, {{"", 1.0}, {"m", 1.0}, {"km", 1000.0}, {"au", kAuM}}, "length", "m, km or au");
+}
+
+double parseDurationS(const std::string& text) {
+  return parseQuantity(text, {{"", 1.0}, {"s", 1.0}, {"min", 60.0}, {"h", 3600.0}, {"d", 86400.0}}, "duration",
+                       "s, min, h or d");
 }
 
 } // namespace umbra::scene

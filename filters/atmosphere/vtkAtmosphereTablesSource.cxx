@@ -216,7 +216,7 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
         ++this->PrecomputeCalls;
         const atmosphere::AtmosphereTables result = atmosphere::precompute(atm, run, [this](double f, const std::string&) {
           this->UpdateProgress(0.95 * f);
-          return true;
+          return !this->GetAbortExecute();  // SetAbortExecute(1) from another thread cancels
         });
         const int nc = static_cast<int>(channels.size());
         for (auto& [bit, t] : all) {
@@ -293,6 +293,12 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
       output->GetMetaData(block)->Set(vtkCompositeDataSet::NAME(), "refraction");
       ++block;
     }
+  } catch (const atmosphere::PrecomputeCancelled& e) {
+    // Asked for: no message, and success for the executive (which would print one);
+    // the output is empty.
+    this->Error = e.what();
+    output->Initialize();
+    return 1;
   } catch (const std::exception& e) {
     this->Error = e.what();
     vtkErrorMacro(<< e.what());

@@ -29,6 +29,11 @@
 // samples, refracted paths and step, muSMin, sun radius) and the table's own "layout" /
 // "depth" entries.
 //
+// Progress: ProgressEvent through the precomputation; SetAbortExecute(1) (from any
+// thread, e.g. a GUI's cancel button while Update runs in a worker) stops it at the next
+// chunk: the output is empty, GetLastError() says "precomputation cancelled", nothing is
+// printed; call Modified() (and clear the flag) before updating again.
+//
 // Arrays: one float array per wavelength, named "L<nm>nm" (e.g. "L680nm"; a fractional
 // wavelength writes '.' as 'p': "L393p57nm" — formatNumber digits), the same names as the
 // EXR channels; parameter "wavelengthsNm" lists the exact values. Wavelengths: 3 = the

@@ -2,6 +2,7 @@
 // extinction (Eq. 19-20) and absorption, the Earth and Mars presets' particles.
 #include "Atmosphere.hpp"
 #include "Components.hpp"
+#include "Mie.hpp"
 #include "ModelTestSupport.hpp"
 
 #include <gtest/gtest.h>
@@ -85,11 +86,18 @@ TEST(ModelAerosols, MarsDustFollowsCostaTable1) {
   EXPECT_NEAR(omega680, 0.98, 0.01);
   EXPECT_NEAR(omega550, 0.87, 0.01);
   EXPECT_NEAR(omega440, 0.74, 0.02);
-  // double Henyey-Greenstein with Costa's (g1, g2, alpha) per wavelength
-  EXPECT_EQ(dust.phase(0).kind(), PhaseFunction::Kind::DoubleHenyeyGreenstein);
-  EXPECT_DOUBLE_EQ(dust.phase(0).g(), 0.03);
-  EXPECT_DOUBLE_EQ(dust.phase(1).g2(), 0.89);
-  EXPECT_DOUBLE_EQ(dust.phase(2).alpha(), 0.01);
+  // Henyey-Greenstein whose asymmetry is Lorenz-Mie theory's for the same sphere
+  // (r = 1.6 um, m = 1.52 + ik): forward-peaked at every wavelength, blue the most. Costa's
+  // Table 1 double Henyey-Greenstein has mean cosines 0.10, 0.87, 0.05 at 440, 550, 680 nm
+  // (only green forward-peaked: a yellow-green day sky and a green sunset glow).
+  const double k[3] = {0.001, 0.006, 0.013};
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(dust.phase(i).kind(), PhaseFunction::Kind::HenyeyGreenstein);
+    const double x = 2.0 * kPi * 1.6e-6 / (mars.wavelengthsNm[i] * 1e-9);
+    EXPECT_NEAR(dust.phase(i).asymmetry(), mieSphere(x, {1.52, k[i]}).g, 0.002) << mars.wavelengthsNm[i];
+  }
+  EXPECT_GT(dust.phase(2).asymmetry(), dust.phase(1).asymmetry());
+  EXPECT_GT(dust.phase(1).asymmetry(), dust.phase(0).asymmetry());
 }
 
 TEST(ModelAerosols, TabulatedComponentIsTheMieHook) {

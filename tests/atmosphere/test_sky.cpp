@@ -74,9 +74,10 @@ TEST(Sky, SolarIlluminanceAtOneAu) {
 
 class EarthSky : public ::testing::Test {
 protected:
-  static void SetUpTestSuite() {
+  static void SetUpTestSuite() { setUpPreset("earth"); }
+  static void setUpPreset(const char* preset) {
     wavelengths = std::make_unique<WavelengthSet>(WavelengthSet::rgb());
-    atmosphere = std::make_unique<Atmosphere>(loadAtmosphere("earth", wavelengths->nm));
+    atmosphere = std::make_unique<Atmosphere>(loadAtmosphere(preset, wavelengths->nm));
     PrecomputeOptions o = umbra::test::smallPrecomputeOptions();
     o.orders = 3;
     tables = std::make_unique<AtmosphereTables>(precompute(*atmosphere, o));
@@ -134,6 +135,38 @@ TEST_F(EarthSky, ZenithIsBlueForAHighSun) {
     EXPECT_GT(c.g, c.r) << zs;
     EXPECT_GT(c.r, 0.0) << zs;
   }
+}
+
+// ---- the Mars preset (small tables, 3 wavelengths, 3 orders) ---------------------------
+// Published colours of the Martian sky (Mars Pathfinder, Spirit and Curiosity imaging;
+// Ehlers et al. 2014): by day a butterscotch sky, reddest and brightest near the horizon;
+// at sunset a blue glow around the Sun within a reddish sky. Costa's Table 1 dust phase
+// function (only green forward-peaked) gave a yellow-green day sky (G > B away from the
+// Sun fails) and a green glow.
+
+class MarsSky : public EarthSky {
+protected:
+  static void SetUpTestSuite() { setUpPreset("mars"); }
+};
+
+TEST_F(MarsSky, DaySkyNearTheHorizonIsButterscotch) {
+  const SkyGrid g = grid(45.0);  // Sun 45 deg high
+  for (int ia = 0; ia < g.azimuthCount; ++ia) {
+    const glm::dvec3 c = g.at(17, ia).linearSrgb;  // 85 deg from the zenith
+    EXPECT_GT(c.r, 1.2 * c.g) << "azimuth " << g.at(17, ia).azimuthRad / kDeg;
+    EXPECT_GT(c.g, 1.2 * c.b) << "azimuth " << g.at(17, ia).azimuthRad / kDeg;
+  }
+}
+
+TEST_F(MarsSky, SunsetGlowAroundTheSunIsBlue) {
+  const SkyGrid g = grid(88.0);  // Sun 2 deg high
+  const glm::dvec3 glow = g.at(17, 0).linearSrgb;   // 3 deg from the Sun
+  const glm::dvec3 away = g.at(17, 9).linearSrgb;   // 90 deg from it in azimuth
+  std::printf("Mars sunset: glow rgb %.0f %.0f %.0f, away %.0f %.0f %.0f cd/m^2\n", glow.r, glow.g, glow.b, away.r,
+              away.g, away.b);
+  EXPECT_GT(glow.b, glow.r);
+  EXPECT_GT(away.r, away.b);
+  EXPECT_GT(glow.b / glow.r, 3.0 * away.b / away.r);
 }
 
 void printComparison(const char* what, const SkyGrid& g) {

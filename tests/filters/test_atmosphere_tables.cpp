@@ -3,6 +3,7 @@
 #include "FieldParameters.h"
 #include "vtkAtmosphereTablesSource.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkMultiBlockDataSet.h>
@@ -308,4 +309,32 @@ TEST(AtmosphereTablesSource, OneOrderGivesZeroMultipleScatteringAndIndirectIrrad
   }
   auto* direct = vtkFloatArray::SafeDownCast(block(source, "direct-irradiance")->GetPointData()->GetArray("L550nm"));
   EXPECT_GT(direct->GetRange()[1], 0.5);
+}
+
+// Cancel: SetAbortExecute(1) during the precomputation (here from a progress observer; the
+// GUI does it from its thread) stops it quietly with an empty output and caches nothing; the
+// next update after clearing the flag computes the tables.
+TEST(AtmosphereTablesSource, AbortExecuteCancelsThePrecomputation) {
+  CacheDir cache;
+  vtkNew<vtkAtmosphereTablesSource> source;
+  configure(source, cache, "earth", vtkAtmosphereTablesSource::Bruneton);
+  double lastProgress = 0.0;
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&lastProgress);
+  onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
+    *static_cast<double*>(client) = *static_cast<double*>(data);
+    if (*static_cast<double*>(data) > 0.2) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+  });
+  source->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  source->Update();
+  EXPECT_EQ(source->GetLastError(), "precomputation cancelled");
+  EXPECT_EQ(source->GetOutput()->GetNumberOfBlocks(), 0u);
+  EXPECT_LT(lastProgress, 0.5);
+  EXPECT_TRUE(cachedKinds(cache).empty());
+  source->RemoveObserver(onProgress);
+  source->SetAbortExecute(0);
+  source->Modified();
+  source->Update();
+  EXPECT_TRUE(source->GetLastError().empty()) << source->GetLastError();
+  EXPECT_EQ(blockNames(source).size(), 6u);
 }

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -42,10 +43,11 @@ QRect rectAfter(const std::string& out, const std::string& key) {
   return QRect(std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3]), std::stoi(m[4]));
 }
 
-Shot screenshot(const TempDir& dir, const std::string& name, std::vector<std::string> extra = {}) {
+Shot screenshotOf(const std::string& scene, const TempDir& dir, const std::string& name,
+                 std::vector<std::string> extra = {}) {
   Shot s;
   const std::string png = dir / name;
-  std::vector<std::string> args{kExample, "--screenshot", png, "--quit-after-screenshot"};
+  std::vector<std::string> args{scene, "--screenshot", png, "--quit-after-screenshot"};
   args.insert(args.end(), extra.begin(), extra.end());
   // A private table cache: the test neither reads nor fills the user's.
   s.run = umbra::test::run(UMBRA_GUI_EXE, args, {"UMBRA_CACHE_DIR=" + (dir / "cache")});
@@ -60,6 +62,10 @@ Shot screenshot(const TempDir& dir, const std::string& name, std::vector<std::st
   if (std::regex_search(s.status, m, std::regex("shadow factor ([0-9.]+)"))) s.shadowFactor = std::stod(m[1]);
   s.image.load(QString::fromStdString(png));
   return s;
+}
+
+Shot screenshot(const TempDir& dir, const std::string& name, std::vector<std::string> extra = {}) {
+  return screenshotOf(kExample, dir, name, std::move(extra));
 }
 
 double luma(QRgb c) { return 0.2126 * qRed(c) + 0.7152 * qGreen(c) + 0.0722 * qBlue(c); }
@@ -181,10 +187,45 @@ TEST(GuiScreenshot, BadSceneIsOneLineAndExitOne) {
   EXPECT_EQ(dir.fileCount(), 1);  // bad.json only
 }
 
+// The atmosphere, computed in the worker thread before the batch screenshot: the sunset
+// scene's sky is lit with it and black without it (--atmosphere none); the Martian sunset
+// has its blue glow around the Sun (the view's centre). An unknown preset is one line.
+TEST(GuiScreenshot, AtmosphereOnOffAndPreset) {
+  TempDir dir;
+  const std::string sunset = std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/earth-sunset.json";
+  const Shot on = screenshotOf(sunset, dir, "on.png", {"--atmosphere-tables", "small"});
+  const Shot off = screenshotOf(sunset, dir, "off.png", {"--atmosphere", "none"});
+  ASSERT_EQ(on.run.exitCode, 0) << on.run.err;
+  ASSERT_EQ(off.run.exitCode, 0) << off.run.err;
+  // 10 % below the top of the view, away from the Sun: the sky.
+  const QPoint sky(on.view.left() + on.view.width() / 4, on.view.top() + on.view.height() / 10);
+  std::printf("  sky with the atmosphere %d %d %d, without %d %d %d\n", qRed(on.image.pixel(sky)),
+              qGreen(on.image.pixel(sky)), qBlue(on.image.pixel(sky)), qRed(off.image.pixel(sky)),
+              qGreen(off.image.pixel(sky)), qBlue(off.image.pixel(sky)));
+  EXPECT_GT(luma(on.image.pixel(sky)), 25.0);
+  EXPECT_LT(luma(off.image.pixel(sky)), 3.0);
+
+  const Shot mars = screenshotOf(std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/mars-sunset.json", dir, "mars.png",
+                                 {"--atmosphere-tables", "small"});
+  ASSERT_EQ(mars.run.exitCode, 0) << mars.run.err;
+  const QRgb glow = mars.image.pixel(mars.view.center() - QPoint(0, mars.view.height() / 20));
+  std::printf("  Mars glow %d %d %d\n", qRed(glow), qGreen(glow), qBlue(glow));
+  EXPECT_GT(qBlue(glow), qRed(glow) + 10);
+
+  const RunResult bad = umbra::test::run(UMBRA_GUI_EXE, {sunset, "--atmosphere", "venus", "--screenshot", dir / "x.png"},
+                                         {"UMBRA_CACHE_DIR=" + (dir / "cache")});
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_NE(bad.err.find("--atmosphere: atmosphere: "), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("venus"), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
 TEST(GuiScreenshot, Help) {
   const RunResult r = umbra::test::run(UMBRA_GUI_EXE, {"--help"});
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("--screenshot"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--quit-after-screenshot"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--time"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--atmosphere"), std::string::npos) << r.out;
 }

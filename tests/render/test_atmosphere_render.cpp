@@ -294,3 +294,29 @@ TEST(AtmosphereRender, RefractionShowsTheSunThroughTheLimbFromTheMoon) {
   std::printf("  brightest limb pixel: %.4g with refraction, %.4g without (W m^-2 sr^-1)\n", bent, straight);
   EXPECT_GT(bent, 10.0 * straight);
 }
+
+// SetCentre (the GUI's time slider: the body moves, the tables stay) draws the same frame
+// as SetAtmosphere with the new centre, and not the frame of the old one.
+TEST(AtmosphereRender, SetCentreMovesTheAtmosphereLikeSetAtmosphere) {
+  const ViewCamera cam = groundCamera(2.0, 5.0, 60.0);
+  const glm::dvec3 sunDir = directionFromAngles(20.0, 0.0);
+  const AtmosphereFixture& f = atmosphereFixture();
+  auto frame = [&](bool viaSetCentre, const glm::dvec3& centre) {
+    AtmosphereScene scene(48, cam, sunDir);
+    SphereBody moved = scene.earth;
+    moved.centreM = centre;
+    scene.view.SetBodies(scene.sun, {moved}, testLutImage());
+    if (viaSetCentre) scene.view.GetAtmosphere().SetCentre(centre);
+    else scene.view.GetAtmosphere().SetAtmosphere(f.model, f.tables, centre, moved.albedoRgb);
+    scene.view.SetCamera(cam);
+    scene.view.Render();
+    Frame out;
+    scene.view.ReadHdr(out.rgb, out.w, out.h);
+    return out;
+  };
+  const glm::dvec3 down(0.0, 0.0, -10e3);  // the camera 10 km higher above the ground
+  const Frame a = frame(true, down), b = frame(false, down), still = frame(false, glm::dvec3(0.0));
+  EXPECT_EQ(a.rgb, b.rgb);
+  EXPECT_NE(a.rgb, still.rgb);
+  EXPECT_THROW(AtmosphereRendering().SetCentre(glm::dvec3(NAN, 0.0, 0.0)), std::invalid_argument);
+}

@@ -47,3 +47,20 @@ TEST(Units, RejectsGarbage) {
                            "12 k m", "12 km km", "0x10", "1,5km", "abc", "12 KM", "1..2m"})
     EXPECT_THROW(parseLengthM(text), std::invalid_argument) << "'" << text << "'";
 }
+
+TEST(Units, ParsesDurations) {
+  using umbra::scene::parseDurationS;
+  EXPECT_DOUBLE_EQ(parseDurationS("30min"), 1800.0);
+  EXPECT_DOUBLE_EQ(parseDurationS("1.5 h"), 5400.0);
+  EXPECT_DOUBLE_EQ(parseDurationS("2d"), 172800.0);
+  EXPECT_DOUBLE_EQ(parseDurationS("90"), 90.0);
+  EXPECT_DOUBLE_EQ(parseDurationS("90 s"), 90.0);
+  for (const char* text : {"", "min", "nan s", "1 week", "30 mins", "0x10"})
+    EXPECT_THROW(parseDurationS(text), std::invalid_argument) << "'" << text << "'";
+  try {
+    parseDurationS("3 fortnights");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "invalid duration '3 fortnights': expected a number with unit s, min, h or d");
+  }
+}
