@@ -7,6 +7,7 @@
 #include "Commands.hpp"
 #include "OutputFile.hpp"
 #include "SceneInputs.h"
+#include "AtmosphereShadow.h"
 #include "ShadowCommon.hpp"
 #include "SolarDisc.hpp"
 #include "vtkAtmosphereTablesSource.h"
@@ -99,6 +100,16 @@ void addRenderCommand(CLI::App& app, Action& action) {
           throw CommandError(e.what());
         }
         if (tables->GetLastCacheHits() > 0) std::cerr << "atmosphere tables: cache hit\n";
+        // The other bodies in its shadow: the atmospheric shadow LuT (their columns only).
+        vtkNew<vtkEclipseShadowLutSource> shadow;
+        shadow->SetCacheDirectory(o->cache.directory.c_str());
+        shadow->SetUseCache(!o->cache.disabled);
+        if (o->atmosphereTables == "small") render::useSmallEclipseShadowTables(shadow);
+        try {
+          render::applySceneAtmosphereShadow(view.GetShading(), in, shadow);
+        } catch (const std::runtime_error& e) {
+          throw CommandError(e.what());
+        }
       }
       view.SetCamera(in.camera);
       view.SetExposureEV(s.exposureEv);
