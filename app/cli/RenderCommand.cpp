@@ -1,4 +1,5 @@
 // umbra render SCENE [--time ISO8601] [--size WxH] [--exposure EV] [--atmosphere-tables default|small] [--refraction]
+//   [--limb-ring-threshold PX]
 //   --output FILE.png|FILE.exr
 // A body with "atmosphere" in the scene is drawn with it (AtmosphereRendering); its tables
 // come from vtkAtmosphereTablesSource through the cache (the first render of an atmosphere
@@ -12,6 +13,7 @@
 #include "SolarDisc.hpp"
 #include "vtkAtmosphereTablesSource.h"
 #include "vtkEclipseShadowLutSource.h"
+#include "vtkLimbLuminanceSource.h"
 
 #include "scene/Scene.hpp"
 #include "scene/Time.hpp"
@@ -50,6 +52,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
     std::optional<double> exposure;
     std::string atmosphereTables = "default";
     bool refraction = false;
+    double limbRingThresholdPx = 5.0;
     CacheOptions cache;
   };
   auto o = std::make_shared<Options>();
@@ -65,6 +68,11 @@ void addRenderCommand(CLI::App& app, Action& action) {
   render->add_flag("--refraction", o->refraction,
                    "Bend the rays through the atmosphere (eclipse paper, 4.2): a lifted, flattened Sun at the "
                    "horizon; the tables then follow refracted paths");
+  render->add_option("--limb-ring-threshold", o->limbRingThresholdPx,
+                     "Draw an atmosphere's ring from the limb-luminance LuT when it is thinner than this on screen "
+                     "(pixels; eclipse paper, 5.4); 0: always ray march")
+      ->check(CLI::Range(0.0, 1.0e6))
+      ->capture_default_str();
   o->cache.addTo(render);
 
   render->callback([&action, o] {
@@ -105,8 +113,15 @@ void addRenderCommand(CLI::App& app, Action& action) {
         shadow->SetCacheDirectory(o->cache.directory.c_str());
         shadow->SetUseCache(!o->cache.disabled);
         if (o->atmosphereTables == "small") render::useSmallEclipseShadowTables(shadow);
+        // Its ring, when thin on screen: the limb-luminance LuT (eclipse paper, 5.4).
+        vtkNew<vtkLimbLuminanceSource> limb;
+        limb->SetCacheDirectory(o->cache.directory.c_str());
+        limb->SetUseCache(!o->cache.disabled);
+        if (o->atmosphereTables == "small") render::useSmallLimbLuminanceTables(limb);
+        view.GetAtmosphere().SetLimbRingThresholdPixels(o->limbRingThresholdPx);
         try {
           render::applySceneAtmosphereShadow(view.GetShading(), in, shadow);
+          if (o->limbRingThresholdPx > 0.0) render::applySceneLimbLuminance(view.GetAtmosphere(), in, limb);
         } catch (const std::runtime_error& e) {
           throw CommandError(e.what());
         }

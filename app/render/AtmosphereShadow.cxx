@@ -3,6 +3,7 @@
 #include "SceneInputs.h"
 #include "ShadowMapping.hpp"
 #include "vtkEclipseShadowLutSource.h"
+#include "vtkLimbLuminanceSource.h"
 
 #include <vtkImageData.h>
 
@@ -19,6 +20,29 @@ double lutU(double sunRadiusM, double sunDistanceM, double occRadiusM, double oc
   const double phiSun = eclipse::angularRadiusRad(sunRadiusM, sunDistanceM);
   const double phiOcc = eclipse::angularRadiusRad(occRadiusM, occDistanceM);
   return phiSun / (phiOcc + phiSun);
+}
+
+// The body with the scene's atmosphere, and `source` set up for it (bodies, Sun, model).
+const SphereBody& setUpFor(vtkEclipseAtmosphereSource* source, const SceneInputs& in) {
+  if (!source) throw std::invalid_argument("no eclipse table source for the atmosphere");
+  const auto occ = std::find_if(in.bodies.begin(), in.bodies.end(),
+                                [&](const SphereBody& b) { return b.name == in.atmosphere->body; });
+  if (occ == in.bodies.end()) throw std::invalid_argument("atmosphere of '" + in.atmosphere->body + "': no such body");
+  source->SetOccluderName(occ->name.c_str());
+  source->SetOccluderRadiusM(occ->radiusM);
+  source->SetSunRadiusM(in.sun.radiusM);
+  source->SetSunOccluderDistanceM(glm::length(occ->centreM - in.sun.positionM));
+  source->SetAtmosphere(in.atmosphere->model.c_str());
+  return *occ;
+}
+
+// The tables of the atmosphere shared by the small shadow and limb-luminance LuTs.
+void useSmallEclipseAtmosphere(vtkEclipseAtmosphereSource* s) {
+  s->SetOrders(2);
+  s->SetTransmittanceSize(64, 16);
+  s->SetScatteringSize(8, 32, 8, 4);
+  s->SetIrradianceSize(16, 4);
+  s->SetRefractionSize(128, 64);
 }
 } // namespace
 
@@ -44,15 +68,7 @@ void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, 
     shading.SetAtmosphereShadowLut("", nullptr);
     return;
   }
-  if (!source) throw std::invalid_argument("no shadow LuT source for the atmosphere's shadow");
-  const auto occ = std::find_if(in.bodies.begin(), in.bodies.end(),
-                                [&](const SphereBody& b) { return b.name == in.atmosphere->body; });
-  if (occ == in.bodies.end()) throw std::invalid_argument("atmosphere of '" + in.atmosphere->body + "': no such body");
-  source->SetOccluderName(occ->name.c_str());
-  source->SetOccluderRadiusM(occ->radiusM);
-  source->SetSunRadiusM(in.sun.radiusM);
-  source->SetSunOccluderDistanceM(glm::length(occ->centreM - in.sun.positionM));
-  source->SetAtmosphere(in.atmosphere->model.c_str());
+  const SphereBody* occ = &setUpFor(source, in);
   int first = source->GetWidth(), last = -1;
   for (const SphereBody& b : in.bodies) {
     if (b.name == occ->name) continue;
@@ -83,16 +99,38 @@ void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, 
   shading.SetAtmosphereShadowLut(occ->name, lut);
 }
 
+void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs& in, vtkLimbLuminanceSource* source) {
+  if (!in.atmosphere) {
+    atmosphere.SetLimbLuminance(nullptr);
+    return;
+  }
+  const SphereBody& occ = setUpFor(source, in);
+  try {
+    source->Update();
+  } catch (const std::exception& e) {
+    throw std::runtime_error("limb luminance of the atmosphere of '" + occ.name + "': " + e.what());
+  }
+  vtkImageData* lut = source->GetOutput();
+  if (!lut || lut->GetNumberOfPoints() == 0)
+    throw std::runtime_error("limb luminance of the atmosphere of '" + occ.name + "': the table could not be made");
+  atmosphere.SetLimbLuminance(lut);
+}
+
 void useSmallEclipseShadowTables(vtkEclipseShadowLutSource* s) {
+  useSmallEclipseAtmosphere(s);
   s->SetWidth(64);
   s->SetHeight(32);
   s->SetLimbSize(32);
   s->SetScatteringCells(4);
-  s->SetOrders(2);
-  s->SetTransmittanceSize(64, 16);
-  s->SetScatteringSize(8, 32, 8, 4);
-  s->SetIrradianceSize(16, 4);
-  s->SetRefractionSize(128, 64);
+}
+
+void useSmallLimbLuminanceTables(vtkLimbLuminanceSource* s) {
+  useSmallEclipseAtmosphere(s);
+  s->SetWidth(16);
+  s->SetHeight(16);
+  s->SetColumns(16);
+  s->SetLimbRows(32);
+  s->SetScatteringCells(4);
 }
 
 } // namespace umbra::render

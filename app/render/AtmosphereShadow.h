@@ -4,11 +4,14 @@
 // (vtkEclipseShadowLutSource with an atmosphere; EclipseShading::SetAtmosphereShadowLut),
 // computed only for the u columns the scene's receivers can be in (the source's update
 // extent; the source caches each extent it computes).
+#include "AtmosphereRendering.h"
 #include "EclipseShading.h"
 
 #include <array>
 
+class vtkEclipseAtmosphereSource;
 class vtkEclipseShadowLutSource;
+class vtkLimbLuminanceSource;
 
 namespace umbra::render {
 
@@ -28,9 +31,17 @@ std::array<int, 2> shadowLutColumns(const SunLight& sun, const SphereBody& occlu
 /// std::runtime_error naming the body when the table cannot be made.
 void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, vtkEclipseShadowLutSource* source);
 
+/// When `in` has an atmosphere, sets `source` up for it as applySceneAtmosphereShadow
+/// does, updates it and hands the limb-luminance LuT to `atmosphere`
+/// (AtmosphereRendering::SetLimbLuminance: the ring drawn from it when thin on screen).
+/// Without an atmosphere, removes any. Throws std::runtime_error naming the body.
+void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs& in, vtkLimbLuminanceSource* source);
+
 /// Small tables for quick looks and tests (about a second): Bruneton tables as
-/// useSmallAtmosphereTables with 2 orders, a 128x64 deviation table, a 64x32 LuT with limb
-/// views of 32 rows and 4x4 scattering cells.
+/// useSmallAtmosphereTables with 2 orders, a 128x64 deviation table; the shadow LuT 64x32
+/// with limb views of 32 rows and 4x4 scattering cells; the limb-luminance LuT 16x16x16
+/// with views of 32 rows and 4x4 cells.
 void useSmallEclipseShadowTables(vtkEclipseShadowLutSource* source);
+void useSmallLimbLuminanceTables(vtkLimbLuminanceSource* source);
 
 } // namespace umbra::render
