@@ -126,8 +126,8 @@ void useSmallEclipseShadowTables(vtkEclipseShadowLutSource* s) {
 
 void useSmallLimbLuminanceTables(vtkLimbLuminanceSource* s) {
   useSmallEclipseAtmosphere(s);
-  s->SetWidth(16);
-  s->SetHeight(16);
+  s->SetWidth(8);
+  s->SetHeight(8);
   s->SetColumns(16);
   s->SetLimbRows(32);
   s->SetScatteringCells(4);

@@ -39,7 +39,7 @@ void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs&
 
 /// Small tables for quick looks and tests (about a second): Bruneton tables as
 /// useSmallAtmosphereTables with 2 orders, a 128x64 deviation table; the shadow LuT 64x32
-/// with limb views of 32 rows and 4x4 scattering cells; the limb-luminance LuT 16x16x16
+/// with limb views of 32 rows and 4x4 scattering cells; the limb-luminance LuT 8x8x16
 /// with views of 32 rows and 4x4 cells.
 void useSmallEclipseShadowTables(vtkEclipseShadowLutSource* source);
 void useSmallLimbLuminanceTables(vtkLimbLuminanceSource* source);
