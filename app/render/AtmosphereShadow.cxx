@@ -1,6 +1,8 @@
 #include "AtmosphereShadow.h"
 
+#include "Atmosphere.hpp"
 #include "SceneInputs.h"
+#include "Spectrum.hpp"
 #include "ShadowMapping.hpp"
 #include "vtkEclipseShadowLutSource.h"
 #include "vtkLimbLuminanceSource.h"
@@ -101,6 +103,19 @@ void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, 
 
 void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs& in, vtkLimbLuminanceSource* source) {
   if (!in.atmosphere) {
+    atmosphere.SetLimbLuminance(nullptr);
+    return;
+  }
+  // Only a camera in the shadow, outside the atmosphere, can use it (AtmosphereRendering).
+  const SphereBody& body = *std::find_if(in.bodies.begin(), in.bodies.end(),
+                                         [&](const SphereBody& b) { return b.name == in.atmosphere->body; });
+  const double topM =
+      atmosphere::loadAtmosphere(in.atmosphere->model, atmosphere::WavelengthSet::rgb().nm).topRadiusM;
+  const glm::dvec3 cam = in.camera.positionM;
+  const bool inShadow =
+      eclipse::occluderInFront(cam, in.sun.positionM, body.centreM) &&
+      eclipse::lutCoords(eclipse::shadowAngles(cam, in.sun.positionM, in.sun.radiusM, body.centreM, body.radiusM)).v < 1.0;
+  if (glm::length(cam - body.centreM) <= topM || !inShadow) {
     atmosphere.SetLimbLuminance(nullptr);
     return;
   }

@@ -31,10 +31,11 @@ std::array<int, 2> shadowLutColumns(const SunLight& sun, const SphereBody& occlu
 /// std::runtime_error naming the body when the table cannot be made.
 void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, vtkEclipseShadowLutSource* source);
 
-/// When `in` has an atmosphere, sets `source` up for it as applySceneAtmosphereShadow
-/// does, updates it and hands the limb-luminance LuT to `atmosphere`
+/// When `in` has an atmosphere and its camera is in that body's shadow (v < 1) outside the
+/// atmosphere, sets `source` up for it as applySceneAtmosphereShadow does, updates it and
+/// hands the limb-luminance LuT to `atmosphere`
 /// (AtmosphereRendering::SetLimbLuminance: the ring drawn from it when thin on screen).
-/// Without an atmosphere, removes any. Throws std::runtime_error naming the body.
+/// Otherwise removes any (nothing computed). Throws std::runtime_error naming the body.
 void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs& in, vtkLimbLuminanceSource* source);
 
 /// Small tables for quick looks and tests (about a second): Bruneton tables as
