@@ -1,4 +1,5 @@
 // umbra render SCENE [--time ISO8601] [--size WxH] [--exposure EV] [--glare S] [--atmosphere-tables default|small] [--refraction]
+//   [--limb-ring-threshold PX]
 //   --output FILE.png|FILE.exr
 // umbra render SCENE --from ISO8601 --to ISO8601 --step DURATION [...] --output DIR/frame-%04d.png
 //   an animation: one frame per step from --from to --to (inclusive), numbered from 0
@@ -9,11 +10,13 @@
 #include "Commands.hpp"
 #include "OutputFile.hpp"
 #include "SceneInputs.h"
+#include "AtmosphereShadow.h"
 #include "ShadowCommon.hpp"
 #include "SolarDisc.hpp"
 #include "vtkUmbraRenderPass.h"
 #include "vtkAtmosphereTablesSource.h"
 #include "vtkEclipseShadowLutSource.h"
+#include "vtkLimbLuminanceSource.h"
 
 #include "scene/Scene.hpp"
 #include "scene/Time.hpp"
@@ -103,6 +106,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
     double glare = 0.0;
     std::string atmosphereTables = "default";
     bool refraction = false;
+    double limbRingThresholdPx = 5.0;
     CacheOptions cache;
   };
   auto o = std::make_shared<Options>();
@@ -128,6 +132,11 @@ void addRenderCommand(CLI::App& app, Action& action) {
   render->add_flag("--refraction", o->refraction,
                    "Bend the rays through the atmosphere (eclipse paper, 4.2): a lifted, flattened Sun at the "
                    "horizon; the tables then follow refracted paths");
+  render->add_option("--limb-ring-threshold", o->limbRingThresholdPx,
+                     "Draw an atmosphere's ring from the limb-luminance LuT when it is thinner than this on screen "
+                     "(pixels; eclipse paper, 5.4); 0: always ray march")
+      ->check(CLI::Range(0.0, 1.0e6))
+      ->capture_default_str();
   o->cache.addTo(render);
 
   render->callback([&action, o] {
@@ -157,6 +166,15 @@ void addRenderCommand(CLI::App& app, Action& action) {
       tables->SetCacheDirectory(o->cache.directory.c_str());
       tables->SetUseCache(!o->cache.disabled);
       if (o->atmosphereTables == "small") render::useSmallAtmosphereTables(tables);
+      vtkNew<vtkEclipseShadowLutSource> shadow;
+      shadow->SetCacheDirectory(o->cache.directory.c_str());
+      shadow->SetUseCache(!o->cache.disabled);
+      if (o->atmosphereTables == "small") render::useSmallEclipseShadowTables(shadow);
+      vtkNew<vtkLimbLuminanceSource> limb;
+      limb->SetCacheDirectory(o->cache.directory.c_str());
+      limb->SetUseCache(!o->cache.disabled);
+      if (o->atmosphereTables == "small") render::useSmallLimbLuminanceTables(limb);
+      view.GetAtmosphere().SetLimbRingThresholdPixels(o->limbRingThresholdPx);
       std::optional<ProgressLine> progress;
       if (animation) progress.emplace("frames (" + std::to_string(frames.size()) + ")");
       for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -173,6 +191,10 @@ void addRenderCommand(CLI::App& app, Action& action) {
         if (in.atmosphere) {
           try {
             render::applySceneAtmosphere(view, in, tables, o->refraction);
+            // The other bodies in its shadow: the atmospheric shadow LuT (their columns only);
+            // its ring, when thin on screen: the limb-luminance LuT (eclipse paper, 5.4).
+            render::applySceneAtmosphereShadow(view.GetShading(), in, shadow);
+            if (o->limbRingThresholdPx > 0.0) render::applySceneLimbLuminance(view.GetAtmosphere(), in, limb);
           } catch (const std::runtime_error& e) {
             throw CommandError(e.what());
           }

@@ -3,6 +3,7 @@
 #include "AtmosphereGlsl.hpp"
 #include "FieldParameters.h"
 #include "RenderGlsl.hpp"
+#include "ShadowMapping.hpp"
 #include "Spectrum.hpp"
 
 #include <vtkCamera.h>
@@ -244,6 +245,14 @@ struct AtmosphereRendering::Impl {
   int refractionSize[2] = {0, 0};
   std::unique_ptr<vtkOpenGLQuadHelper> quad;
   vtkOpenGLRenderWindow* context = nullptr;
+  // The limb-luminance LuT (SetLimbLuminance): values, size, texture, its program.
+  std::vector<float> limbValues;
+  int limbSize[3] = {0, 0, 0};
+  vtkSmartPointer<vtkTextureObject> limb;
+  std::unique_ptr<vtkOpenGLQuadHelper> limbQuad;
+  double limbThresholdPx = 5.0;
+  double lastRingWidthPx = 0.0;
+  bool lastUsedLimb = false;
 
   void upload(vtkOpenGLRenderWindow* window) {
     const atmosphere::AtmosphereTables& t = tables;
@@ -260,6 +269,8 @@ struct AtmosphereRendering::Impl {
     const bool on = !refractionValues.empty();
     refraction = floatTexture(window, on ? refractionSize[0] : 2, on ? refractionSize[1] : 2, 1,
                               on ? refractionValues : none, 2);
+    limb = limbValues.empty() ? nullptr
+                              : floatTexture(window, limbSize[0], limbSize[1], limbSize[2], limbValues);
     texturesStale = false;
   }
 };
@@ -338,6 +349,38 @@ void AtmosphereRendering::SetRefraction(vtkImageData* table) {
   m.refractionSize[1] = dims[1];
 }
 
+void AtmosphereRendering::SetLimbLuminance(vtkImageData* lut) {
+  Impl& m = *impl_;
+  m.texturesStale = true;
+  if (!lut) {
+    m.limbValues.clear();
+    return;
+  }
+  int dims[3];
+  lut->GetDimensions(dims);
+  vtkDataArray* values = lut->GetPointData()->GetScalars();
+  const vtkIdType n = lut->GetNumberOfPoints();
+  if (!values || values->GetNumberOfComponents() != 3 || values->GetNumberOfTuples() != n || dims[0] < 2 ||
+      dims[1] < 2 || dims[2] < 2)
+    throw std::invalid_argument("limb-luminance LuT: expected a 3D image (at least 2x2x2) of RGB point scalars");
+  std::vector<float> v(3 * static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) {
+      v[3 * i + c] = static_cast<float>(values->GetComponent(i, c));
+      if (!std::isfinite(v[3 * i + c])) throw std::invalid_argument("limb-luminance LuT has a non-finite value");
+    }
+  m.limbValues = std::move(v);
+  for (int k = 0; k < 3; ++k) m.limbSize[k] = dims[k];
+}
+bool AtmosphereRendering::HasLimbLuminance() const { return !impl_->limbValues.empty(); }
+void AtmosphereRendering::SetLimbRingThresholdPixels(double px) {
+  if (!(std::isfinite(px) && px >= 0.0)) throw std::invalid_argument("limb ring threshold must be finite and >= 0 px");
+  impl_->limbThresholdPx = px;
+}
+double AtmosphereRendering::GetLimbRingThresholdPixels() const { return impl_->limbThresholdPx; }
+double AtmosphereRendering::GetLastRingWidthPixels() const { return impl_->lastRingWidthPx; }
+bool AtmosphereRendering::GetLastDrawUsedLimbLuminance() const { return impl_->lastUsedLimb; }
+
 bool AtmosphereRendering::HasRefraction() const { return !impl_->refractionValues.empty(); }
 
 void AtmosphereRendering::SetOrigin(const glm::dvec3& originM) { impl_->origin = originM; }
@@ -354,25 +397,44 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     m.texturesStale = true;
   }
   if (m.texturesStale) m.upload(window);
-  if (!m.quad) {
+
+  // The ring's width on screen: the limb-luminance LuT draws it when thin (5.4).
+  vtkCamera* cam = renderer->GetActiveCamera();
+  const bool parallel = cam->GetParallelProjection() != 0;
+  const double pixelAngle = 2.0 * std::tan(0.5 * cam->GetViewAngle() * kPi / 180.0) / height;
+  glm::dvec3 pos;
+  cam->GetPosition(&pos.x);
+  const double camDist = glm::length(m.centre - (m.origin + pos));
+  const double phiOcc = std::asin(std::min(1.0, m.tables.bottomRadiusM / camDist));
+  const double phiAtmo = std::asin(std::min(1.0, m.tables.topRadiusM / camDist));
+  m.lastRingWidthPx = parallel ? 0.0 : (phiAtmo - phiOcc) / pixelAngle;
+  // The LuT holds the ring as seen from the shadow (v < 1: umbra, penumbra, antumbra).
+  const eclipse::LutCoords limbUv = eclipse::lutCoords(
+      eclipse::shadowAngles(m.origin + pos, m.sun.positionM, m.sun.radiusM, m.centre, m.tables.bottomRadiusM));
+  m.lastUsedLimb = m.limb && !parallel && camDist > m.tables.topRadiusM && limbUv.v < 1.0 &&
+                   eclipse::occluderInFront(m.origin + pos, m.sun.positionM, m.centre) &&
+                   m.lastRingWidthPx < m.limbThresholdPx;
+
+  std::unique_ptr<vtkOpenGLQuadHelper>& quad = m.lastUsedLimb ? m.limbQuad : m.quad;
+  if (!quad) {
     std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
-    vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl",
-                                 std::string(atmosphere::kAtmosphereGlsl) + "\n" + glsl::kAtmosphereComposite +
-                                     "\n//VTK::FSQ::Decl");
+    std::string decl = std::string(atmosphere::kAtmosphereGlsl) + "\n" + glsl::kAtmosphereComposite + "\n";
+    if (m.lastUsedLimb) decl += std::string(glsl::kLimbRing) + "\n";
+    vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl", decl + "//VTK::FSQ::Decl");
     vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
-                                 "  gl_FragData[0] = vec4(umbraAtmosphereComposite(texCoord), 1.0);\n//VTK::FSQ::Impl");
-    m.quad = std::make_unique<vtkOpenGLQuadHelper>(window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
-                                                   fs.c_str(), "");
+                                 std::string("  gl_FragData[0] = vec4(") +
+                                     (m.lastUsedLimb ? "umbraLimbRing" : "umbraAtmosphereComposite") +
+                                     "(texCoord), 1.0);\n//VTK::FSQ::Impl");
+    quad = std::make_unique<vtkOpenGLQuadHelper>(window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+                                                 fs.c_str(), "");
   } else {
-    window->GetShaderCache()->ReadyShaderProgram(m.quad->Program);
+    window->GetShaderCache()->ReadyShaderProgram(quad->Program);
   }
-  vtkShaderProgram* p = m.quad->Program;
+  vtkShaderProgram* p = quad->Program;
   if (!p || !p->GetCompiled()) return false;
 
   // The camera (double): world position, basis, projection.
-  vtkCamera* cam = renderer->GetActiveCamera();
-  glm::dvec3 pos, focal, up;
-  cam->GetPosition(&pos.x);
+  glm::dvec3 focal, up;
   cam->GetFocalPoint(&focal.x);
   cam->GetViewUp(&up.x);
   const glm::dvec3 fwd = glm::normalize(focal - pos);
@@ -382,7 +444,6 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   const glm::dvec3 cameraWorld = m.origin + pos;
   const glm::dvec3 toCentre = m.centre - cameraWorld;
   const double camRadius = glm::length(toCentre);
-  const bool parallel = cam->GetParallelProjection() != 0;
   setVec3(p, "umbraPlanetFromCamera", toCentre);
   setVec3(p, "umbraCameraUp", camRadius > 0.0 ? -toCentre / camRadius : glm::dvec3(0.0, 0.0, 1.0));
   p->SetUniformf("umbraCameraRadius", static_cast<float>(camRadius));
@@ -443,7 +504,21 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   p->SetUniformi("umbraAtmScatteringTable", m.scattering->GetTextureUnit());
   p->SetUniformi("umbraAtmIrradianceTable", m.irradiance->GetTextureUnit());
   p->SetUniformi("umbraAtmDirectIrradianceTable", m.direct->GetTextureUnit());
-  m.quad->Render();
+  if (m.lastUsedLimb) {
+    // The camera's (u, v) of Eq. 4 for this occluder (its ground), in double.
+    const float uv[2] = {static_cast<float>(limbUv.u), static_cast<float>(limbUv.v)};
+    p->SetUniform2f("umbraLimbUv", uv);
+    p->SetUniformf("umbraLimbOccluder", static_cast<float>(phiOcc));
+    p->SetUniformf("umbraLimbAtmosphere", static_cast<float>(phiAtmo));
+    p->SetUniformf("umbraLimbDistance",
+                   static_cast<float>(std::sqrt(std::max(camRadius * camRadius - t.topRadiusM * t.topRadiusM, 0.0))));
+    p->SetUniformf("umbraPixelAngle", static_cast<float>(pixelAngle));
+    setVec3(p, "umbraSunFromCamera", glm::normalize(m.sun.positionM - cameraWorld));
+    m.limb->Activate();
+    p->SetUniformi("umbraLimbLuminance", m.limb->GetTextureUnit());
+  }
+  quad->Render();
+  if (m.lastUsedLimb) m.limb->Deactivate();
   m.refraction->Deactivate();
   m.direct->Deactivate();
   m.irradiance->Deactivate();
@@ -456,11 +531,13 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
 
 void AtmosphereRendering::ReleaseGraphicsResources(vtkOpenGLRenderWindow* window) {
   Impl& m = *impl_;
-  if (m.quad) {
-    m.quad->ReleaseGraphicsResources(window);
-    m.quad.reset();
+  for (auto* q : {&m.quad, &m.limbQuad}) {
+    if (*q) {
+      (*q)->ReleaseGraphicsResources(window);
+      q->reset();
+    }
   }
-  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.direct, &m.refraction}) {
+  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.direct, &m.refraction, &m.limb}) {
     if (*t && window) (*t)->ReleaseGraphicsResources(window);
     *t = nullptr;
   }

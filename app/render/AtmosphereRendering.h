@@ -120,6 +120,22 @@ class AtmosphereRendering {
   void SetRefraction(vtkImageData* table);
   bool HasRefraction() const;
 
+  /// The limb-luminance LuT of this atmosphere's body (vtkLimbLuminanceSource, one layer:
+  /// W x H x columns, RGB radiance per unit solar irradiance): when the ring of the
+  /// atmosphere is thinner than the threshold on screen, the ring is drawn from it
+  /// instead of ray marching (eclipse paper, 5.4; app/render/glsl/LimbRing.glsl), at the
+  /// camera's (u, v) of Eq. 4 for this occluder (its ground radius, the Sun), when the
+  /// camera is in its shadow (v < 1) outside the atmosphere. Perspective views only. nullptr: none (always ray marching). Throws std::invalid_argument.
+  void SetLimbLuminance(vtkImageData* lut);
+  bool HasLimbLuminance() const;
+  /// Ring width on screen below which the LuT draws the ring (default 5 px; 0: never).
+  void SetLimbRingThresholdPixels(double px);
+  double GetLimbRingThresholdPixels() const;
+  /// After Draw: the ring's width on screen (phi_atmo - phi_occ over the pixel angle), and
+  /// whether the LuT drew it.
+  double GetLastRingWidthPixels() const;
+  bool GetLastDrawUsedLimbLuminance() const;
+
   /// Limb darkening of the Sun's disc (eclipse/SolarDisc.hpp's Eq. 1 coefficient).
   void SetLimbDarkening(double u);
 

@@ -5,7 +5,9 @@
 
 #include <vtkActor.h>
 #include <vtkCommand.h>
+#include <vtkNew.h>
 #include <vtkDataArray.h>
+#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkOpenGLPolyDataMapper.h>
 #include <vtkOpenGLVertexBufferObject.h>
@@ -19,6 +21,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -28,6 +31,9 @@ namespace {
 
 constexpr const char* kLutSamplerName = "umbraShadowLut";
 constexpr const char* kLutSamplerDecl = "uniform sampler2D umbraShadowLut;";
+constexpr const char* kAtmosphereLutSamplerName = "umbraAtmosphereShadowLut";
+
+vtkSmartPointer<vtkTexture> lutTexture();
 
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -87,6 +93,12 @@ struct EclipseShading::Impl {
   std::vector<SphereBody> occluders;
   std::vector<std::unique_ptr<Receiver>> receivers;
   glm::dvec3 origin{0.0};
+  // The atmospheric shadow LuT of one occluder (SetAtmosphereShadowLut); without one the
+  // receivers still bind a 2x2 table of ones under its name (their shader samples it).
+  std::string atmosphereOccluder;
+  vtkSmartPointer<vtkTexture> atmosphereTexture;
+  vtkSmartPointer<vtkImageData> atmosphereNone;
+  std::array<float, 4> atmosphereMap{0.25f, 0.5f, 0.25f, 0.5f};
 
   std::vector<const SphereBody*> occludersOf(const SphereBody& receiver) const {
     std::vector<const SphereBody*> out;
@@ -124,8 +136,10 @@ struct EclipseShading::Impl {
     program.SetUniformf("umbraSunIrradiance", float(sun.irradianceAt1AuWm2));
     float occ[kMaxOccluders][4] = {};
     int n = 0;
+    int atmosphere = -1;
     for (const SphereBody* o : occludersOf(b)) {
       if (n == kMaxOccluders) break;  // checked when set; never silently reached
+      if (!atmosphereOccluder.empty() && o->name == atmosphereOccluder) atmosphere = n;
       const glm::dvec3 rel = o->centreM - b.centreM;
       occ[n][0] = float(rel.x);
       occ[n][1] = float(rel.y);
@@ -135,6 +149,8 @@ struct EclipseShading::Impl {
     }
     program.SetUniformi("umbraOccluderCount", n);
     program.SetUniform4fv("umbraOccluders", kMaxOccluders, occ);
+    program.SetUniformi("umbraAtmosphereOccluder", atmosphere);
+    program.SetUniform4f("umbraAtmosphereLutMap", atmosphereMap.data());
   }
 
   void detach(Receiver& r) const {
@@ -143,6 +159,7 @@ struct EclipseShading::Impl {
     for (const Replacement& rep : {kVsDec, kVsImpl}) sp->ClearVertexShaderReplacement(rep.tag, true);
     for (const Replacement& rep : {kFsDec, kFsImpl}) sp->ClearFragmentShaderReplacement(rep.tag, true);
     r.actor->GetProperty()->RemoveTexture(kLutSamplerName);
+    r.actor->GetProperty()->RemoveTexture(kAtmosphereLutSamplerName);
   }
 };
 
@@ -159,11 +176,24 @@ class ReceiverUniformsCommand : public vtkCommand {
 };
 } // namespace
 
-EclipseShading::EclipseShading() : impl_(std::make_unique<Impl>()) {}
+EclipseShading::EclipseShading() : impl_(std::make_unique<Impl>()) {
+  auto none = vtkSmartPointer<vtkImageData>::New();
+  none->SetDimensions(2, 2, 1);
+  vtkNew<vtkFloatArray> ones;
+  ones->SetNumberOfComponents(3);
+  ones->SetNumberOfTuples(4);
+  for (int k = 0; k < 12; ++k) ones->SetValue(k, 1.0f);
+  none->GetPointData()->SetScalars(ones);
+  impl_->atmosphereNone = none;
+  impl_->atmosphereTexture = lutTexture();
+  impl_->atmosphereTexture->SetInputData(none);
+}
 
 EclipseShading::~EclipseShading() { ClearReceivers(); }
 
-void EclipseShading::SetShadowLut(vtkImageData* lut) {
+namespace {
+// Checks a shadow LuT image (2D, >= 2x2, float RGB, finite) and returns a copy.
+vtkSmartPointer<vtkImageData> checkedLutCopy(vtkImageData* lut) {
   if (!lut) throw std::invalid_argument("shadow LuT image is null");
   int dims[3];
   lut->GetDimensions(dims);
@@ -190,20 +220,58 @@ void EclipseShading::SetShadowLut(vtkImageData* lut) {
   }
   auto copy = vtkSmartPointer<vtkImageData>::New();
   copy->DeepCopy(lut);
+  return copy;
+}
+
+// A float RGB LuT texture: values as they are, linear, clamp-to-edge, no mipmaps.
+vtkSmartPointer<vtkTexture> lutTexture() {
+  auto tex = vtkSmartPointer<vtkTexture>::New();
+  tex->SetColorModeToDirectScalars();  // float values as they are: no lookup table
+  tex->InterpolateOn();                // GL_LINEAR
+  tex->MipmapOff();
+  tex->SetWrap(vtkTexture::ClampToEdge);
+  tex->UseSRGBColorSpaceOff();
+  return tex;
+}
+} // namespace
+
+void EclipseShading::SetShadowLut(vtkImageData* lut) {
+  auto copy = checkedLutCopy(lut);
   copy->SetOrigin(0.0, 0.0, 0.0);
   copy->SetSpacing(1.0, 1.0, 1.0);
-  if (!impl_->lutTexture) {
-    auto tex = vtkSmartPointer<vtkTexture>::New();
-    tex->SetColorModeToDirectScalars();  // float values as they are: no lookup table
-    tex->InterpolateOn();                // GL_LINEAR
-    tex->MipmapOff();
-    tex->SetWrap(vtkTexture::ClampToEdge);
-    tex->UseSRGBColorSpaceOff();
-    impl_->lutTexture = tex;
-  }
+  if (!impl_->lutTexture) impl_->lutTexture = lutTexture();
   impl_->lutTexture->SetInputData(copy);
   for (auto& r : impl_->receivers) r->actor->GetProperty()->SetTexture(kLutSamplerName, impl_->lutTexture);
 }
+
+void EclipseShading::SetAtmosphereShadowLut(const std::string& occluderName, vtkImageData* lut) {
+  Impl& m = *impl_;
+  if (occluderName.empty() || !lut) {
+    m.atmosphereOccluder.clear();
+    m.atmosphereTexture->SetInputData(m.atmosphereNone);
+    m.atmosphereMap = {0.25f, 0.5f, 0.25f, 0.5f};
+    return;
+  }
+  auto copy = checkedLutCopy(lut);
+  // The place of the part in the whole table: its first texel's (u, v) and the steps.
+  double first[3], spacing[3];
+  copy->GetPoint(0, first);
+  copy->GetSpacing(spacing);
+  if (!(spacing[0] > 0.0 && spacing[1] > 0.0 && std::isfinite(first[0]) && std::isfinite(first[1]))) {
+    throw std::invalid_argument("atmospheric shadow LuT of '" + occluderName +
+                                "' needs texel coordinates (u, v) with spacing > 0");
+  }
+  m.atmosphereMap = {float(first[0]), float(spacing[0]), float(first[1]), float(spacing[1])};
+  int ext[6];
+  copy->GetExtent(ext);
+  copy->SetExtent(0, ext[1] - ext[0], 0, ext[3] - ext[2], 0, 0);
+  copy->SetOrigin(0.0, 0.0, 0.0);
+  copy->SetSpacing(1.0, 1.0, 1.0);
+  m.atmosphereOccluder = occluderName;
+  m.atmosphereTexture->SetInputData(copy);
+}
+
+const std::string& EclipseShading::GetAtmosphereOccluder() const { return impl_->atmosphereOccluder; }
 
 bool EclipseShading::HasShadowLut() const { return impl_->lutTexture != nullptr; }
 
@@ -281,6 +349,7 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   vtkProperty* prop = actor->GetProperty();
   prop->BackfaceCullingOn();  // a convex mesh: no self-overlap, depth only orders bodies
   prop->SetTexture(kLutSamplerName, impl_->lutTexture);
+  prop->SetTexture(kAtmosphereLutSamplerName, impl_->atmosphereTexture);
 
   if (fresh) {
     vtkShaderProperty* sp = actor->GetShaderProperty();

@@ -67,6 +67,17 @@ class EclipseShading {
   /// The texture every receiver samples as "umbraShadowLut" (nullptr before SetShadowLut).
   vtkTexture* GetShadowLutTexture() const;
 
+  /// The atmospheric shadow LuT of occluder `occluderName` (vtkEclipseShadowLutSource with
+  /// an atmosphere: I / I_sun per channel R, G, B): receivers take that occluder's shadow
+  /// from it (per channel) instead of the airless LuT, with the same Eq. 4 lookup. `lut`
+  /// may hold only part of the table (an update extent: texels [i0, i1] x [j0, j1]); its
+  /// origin and spacing place it in the whole (texel centres (i + .5) / W, as the source
+  /// writes them), and outside that part the edge texels are used. One occluder at a
+  /// time; an empty name or a null image removes it. A copy is kept. Throws
+  /// std::invalid_argument as SetShadowLut does.
+  void SetAtmosphereShadowLut(const std::string& occluderName, vtkImageData* lut);
+  const std::string& GetAtmosphereOccluder() const;
+
   /// The Sun (the light). Throws std::invalid_argument on non-finite / non-positive values.
   void SetSun(const SunLight& sun);
   /// Bodies that cast shadows. Each receiver uses all of them except the one with its own

@@ -17,16 +17,34 @@ float umbraAngularRadius(float radius, float dist) {
   return dist <= radius ? 1.5707963 : asin(radius / dist);
 }
 
-// Fraction of sunlight per channel reaching p past one occluder (Eq. 3-4 + LuT lookup).
-vec3 umbraEclipseFactor(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float occRadius) {
+// Eq. 3-4: the LuT coordinates (u, v) of p for one occluder; v >= 1 where p gets all the
+// light (outside the penumbra, or the occluder behind the Sun).
+vec2 umbraShadowUv(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float occRadius) {
   vec3 toSun = sunPos - p;
   vec3 toOcc = occPos - p;
-  if (length(toOcc) >= length(toSun)) return vec3(1.0);   // occluder behind the Sun
+  if (length(toOcc) >= length(toSun)) return vec2(0.0, 2.0);   // occluder behind the Sun
   float phiSun = umbraAngularRadius(sunRadius, length(toSun));
   float phiOcc = umbraAngularRadius(occRadius, length(toOcc));
   float delta = umbraAngleBetween(toSun, toOcc);
-  float u = phiSun / (phiOcc + phiSun);
-  float v = delta / (phiOcc + phiSun);
-  if (v >= 1.0) return vec3(1.0);
-  return texture(umbraShadowLut, vec2(u, v)).rgb;
+  return vec2(phiSun / (phiOcc + phiSun), delta / (phiOcc + phiSun));
+}
+
+// Fraction of sunlight per channel reaching p past one occluder (Eq. 3-4 + LuT lookup).
+vec3 umbraEclipseFactor(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float occRadius) {
+  vec2 uv = umbraShadowUv(p, sunPos, sunRadius, occPos, occRadius);
+  if (uv.y >= 1.0) return vec3(1.0);
+  return texture(umbraShadowLut, uv).rgb;
+}
+
+// The same lookup in `lut`, a part of a table (an update extent, e.g. the u range a
+// receiver can be in): `map` = (u of its first texel, u step, v of its first texel, v step)
+// of the whole table, whose texel centres are at (i + 0.5) * step. Outside the part the
+// edge texels are used (clamp to edge). With the whole table, the texture coordinate is
+// (u, v) itself.
+vec3 umbraEclipseFactorIn(sampler2D lut, vec4 map, vec3 p, vec3 sunPos, float sunRadius, vec3 occPos,
+                          float occRadius) {
+  vec2 uv = umbraShadowUv(p, sunPos, sunRadius, occPos, occRadius);
+  if (uv.y >= 1.0) return vec3(1.0);
+  vec2 texel = (uv - map.xz) / map.yw + 0.5;
+  return texture(lut, texel / vec2(textureSize(lut, 0))).rgb;
 }

@@ -1,6 +1,7 @@
 // `umbra render` on the example scene (needs an X display: runs under xvfb-run).
 // The frame must be finite and not black, and the Moon darker on its umbral side.
 #include "CliRunner.hpp"
+#include "RenderCliSupport.hpp"
 
 #include "scene/Scene.hpp"
 #include "umbra/tables/Exr.h"
@@ -139,18 +140,6 @@ TEST(RenderCli, AnimationWritesOneFramePerStep) {
 
 // ---- scenes with an atmosphere (small tables: --atmosphere-tables small) ----------------
 
-namespace {
-tables::Table renderExr(const TempDir& dir, const std::string& scene, const std::string& size) {
-  const RunResult r = run(UMBRA_EXE, {"render", scene, "--size", size, "--atmosphere-tables", "small", "--output",
-                                      dir / "frame.exr"},
-                          {"UMBRA_CACHE_DIR=" + dir / "cache"});
-  EXPECT_EQ(r.exitCode, 0) << r.err;
-  tables::Table img = tables::readExr(dir / "frame.exr", {"R", "G", "B"});
-  for (float v : img.data) EXPECT_TRUE(std::isfinite(v));
-  return img;
-}
-glm::dvec3 pixel(const tables::Table& t, int x, int y) { return {t.at(x, y, 0), t.at(x, y, 1), t.at(x, y, 2)}; }
-} // namespace
 
 // The sunset example: the Sun (the camera's target, at the centre) is reddened, the sky
 // above it is lit and bluer high up than beside the Sun, the ground below is darker.

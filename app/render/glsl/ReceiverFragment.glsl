@@ -17,6 +17,11 @@ uniform float umbraSunRadius;      // m
 uniform float umbraSunIrradiance;  // W m^-2 at 1 au
 uniform int umbraOccluderCount;    // 0..4
 uniform vec4 umbraOccluders[4];    // xyz: centre relative to the body's centre (m), w: radius (m)
+// The occluder whose shadow comes from the atmospheric shadow LuT (umbraAtmosphereShadowLut,
+// declared by VTK; RGB through its atmosphere), -1: none; the part of the table held and
+// its place in the whole (umbraEclipseFactorIn).
+uniform int umbraAtmosphereOccluder;
+uniform vec4 umbraAtmosphereLutMap;
 
 const float umbraAuM = 1.495978707e11;
 const float umbraInvPi = 0.31830988618;
@@ -48,8 +53,13 @@ void umbraReceiverShade() {
   vec3 shadow = vec3(1.0);
   for (int i = 0; i < 4; ++i) {
     if (i >= umbraOccluderCount) break;
-    shadow *= umbraEclipseFactor(p, umbraSunPos, umbraSunRadius, umbraOccluders[i].xyz,
-                                 umbraOccluders[i].w);
+    if (i == umbraAtmosphereOccluder) {
+      shadow *= umbraEclipseFactorIn(umbraAtmosphereShadowLut, umbraAtmosphereLutMap, p, umbraSunPos,
+                                     umbraSunRadius, umbraOccluders[i].xyz, umbraOccluders[i].w);
+    } else {
+      shadow *= umbraEclipseFactor(p, umbraSunPos, umbraSunRadius, umbraOccluders[i].xyz,
+                                   umbraOccluders[i].w);
+    }
   }
   vec3 radiance = umbraAlbedo * (umbraInvPi * eSun * cosi) * shadow;
   fragOutput0 = vec4(radiance, 1.0);

@@ -1,0 +1,143 @@
+// Frame time of the eclipse through an atmosphere in the render pass (issue #6, part 3;
+// eclipse paper 6.2): two scenes of the 2015-09-28 eclipse at 1920x1080, every
+// configuration interleaved frame by frame in one run, timed with GL timer queries
+// (GL_TIME_ELAPSED around the frame) and the wall clock (after glFinish); prints medians.
+//   The Moon from Earth (no sky drawn): shadow off (no occluder), airless shadow LuT,
+//     atmospheric shadow LuT (RGB, the Moon's columns only).
+//   Earth from the lunar north pole: atmosphere ray marched without refraction, with
+//     refraction, and with the ring from the limb-luminance LuT (5.4).
+// Tables from the cache (small sizes by default: the frame cost depends on the lookups,
+// not the table sizes). Needs an X display (xvfb-run -a); on llvmpipe the fragment work
+// runs on the CPU.
+//
+//   xvfb-run -a build/bench/umbra-bench-render-eclipse-atmosphere [--frames 10]
+//       [--width 1920 --height 1080] [--tables small|default]
+#include "AtmosphereShadow.h"
+#include "BodyView.h"
+#include "SceneInputs.h"
+#include "ShadowLut.hpp"
+#include "ShadowLutData.h"
+#include "scene/Scene.hpp"
+#include "vtkAtmosphereTablesSource.h"
+#include "vtkEclipseShadowLutSource.h"
+#include "vtkLimbLuminanceSource.h"
+
+#include <CLI/CLI.hpp>
+
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkRenderWindow.h>
+#include <vtk_glew.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+using namespace umbra;
+
+int main(int argc, char** argv) {
+  CLI::App app{"Frame time of the eclipse through an atmosphere: shadow on/off, refraction, limb-luminance LuT"};
+  int frames = 10, width = 1920, height = 1080;
+  std::string tables = "small";
+  app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
+  app.add_option("--width", width)->capture_default_str();
+  app.add_option("--height", height)->capture_default_str();
+  app.add_option("--tables", tables, "Table sizes: small or default")->check(CLI::IsMember({"small", "default"}))
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  const bool small = tables == "small";
+
+  const scene::Scene moonScene = scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28-moon.json");
+  const scene::Scene earthScene =
+      scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/earth-from-lunar-north-pole-2015-09-28.json");
+  const render::SceneInputs moon = render::sceneInputs(moonScene);
+  const render::SceneInputs earth = render::sceneInputs(earthScene);
+  const auto airless = filters::toImageData(eclipse::buildAirlessShadowLut({256, 256}));
+
+  struct Config {
+    const char* name;
+    const render::SceneInputs* in;
+    double exposureEv;
+    std::function<void(render::BodyView&)> setUp;
+  };
+  auto atmosphereShadow = [&](render::BodyView& v) {
+    vtkNew<vtkEclipseShadowLutSource> s;
+    if (small) render::useSmallEclipseShadowTables(s);
+    render::applySceneAtmosphereShadow(v.GetShading(), moon, s);
+  };
+  auto sky = [&](render::BodyView& v, bool refraction, double thresholdPx) {
+    vtkNew<vtkAtmosphereTablesSource> t;
+    if (small) render::useSmallAtmosphereTables(t);
+    render::applySceneAtmosphere(v, earth, t, refraction);
+    vtkNew<vtkLimbLuminanceSource> limb;
+    if (small) render::useSmallLimbLuminanceTables(limb);
+    render::applySceneLimbLuminance(v.GetAtmosphere(), earth, limb);
+    v.GetAtmosphere().SetLimbRingThresholdPixels(thresholdPx);
+  };
+  const std::vector<Config> configs = {
+      {"Moon: shadow off", &moon, moonScene.exposureEv, [](render::BodyView& v) { v.GetShading().SetOccluders({}); }},
+      {"Moon: airless shadow LuT", &moon, moonScene.exposureEv, [](render::BodyView&) {}},
+      {"Moon: atmospheric shadow LuT", &moon, moonScene.exposureEv, atmosphereShadow},
+      {"Earth ring: ray marched, no refraction", &earth, earthScene.exposureEv,
+       [&](render::BodyView& v) { sky(v, false, 0.0); }},
+      {"Earth ring: ray marched, refraction", &earth, earthScene.exposureEv,
+       [&](render::BodyView& v) { sky(v, true, 0.0); }},
+      // At 1920x1080 the ring is 6.7 px wide: above the default 5 px threshold, so the LuT
+      // is forced here (threshold 1000 px) to time it.
+      {"Earth ring: limb-luminance LuT", &earth, earthScene.exposureEv,
+       [&](render::BodyView& v) { sky(v, true, 1000.0); }},
+  };
+  const std::size_t n = configs.size();
+  std::vector<std::unique_ptr<render::BodyView>> views;
+  for (const Config& c : configs) {
+    views.push_back(std::make_unique<render::BodyView>(width, height, true));
+    render::BodyView& v = *views.back();
+    v.SetBodies(c.in->sun, c.in->bodies, airless);
+    c.setUp(v);
+    v.SetCamera(c.in->camera);
+    v.SetExposureEV(c.exposureEv);
+    v.Render();  // warm up: shaders, textures
+  }
+  std::printf("ring width on screen: %.2f px (limb-luminance LuT used: %s)\n",
+              views[5]->GetAtmosphere().GetLastRingWidthPixels(),
+              views[5]->GetAtmosphere().GetLastDrawUsedLimbLuminance() ? "yes" : "no");
+  std::vector<std::vector<double>> gpu(n), wall(n);
+  std::vector<GLuint> queries(n, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    views[k]->GetRenderWindow()->MakeCurrent();
+    glGenQueries(1, &queries[k]);
+  }
+  for (int f = 0; f < frames; ++f) {
+    for (std::size_t k = 0; k < n; ++k) {
+      vtkRenderWindow* w = views[k]->GetRenderWindow();
+      w->MakeCurrent();
+      const auto t0 = std::chrono::steady_clock::now();
+      glBeginQuery(GL_TIME_ELAPSED, queries[k]);
+      views[k]->Render();
+      w->MakeCurrent();
+      glEndQuery(GL_TIME_ELAPSED);
+      glFinish();
+      wall[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      GLuint64 ns = 0;
+      glGetQueryObjectui64v(queries[k], GL_QUERY_RESULT, &ns);
+      gpu[k].push_back(ns * 1e-6);
+    }
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  std::printf("| %dx%d, %d frames, %s tables, median | GL timer [ms] | wall [ms] | GL time ratio |\n", width,
+              height, frames, tables.c_str());
+  std::printf("|---|---:|---:|---:|\n");
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t base = k < 3 ? 0 : 3;  // vs shadow off / vs ray marching without refraction
+    std::printf("| %s | %.2f | %.2f | %.2f |\n", configs[k].name, median(gpu[k]), median(wall[k]),
+                median(gpu[k]) / median(gpu[base]));
+  }
+  return 0;
+}
