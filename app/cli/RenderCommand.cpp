@@ -7,6 +7,8 @@
 #include "Commands.hpp"
 #include "OutputFile.hpp"
 #include "SceneInputs.h"
+#include "SceneTerrain.h"
+#include "TerrainDem.hpp"
 #include "ShadowCommon.hpp"
 #include "SolarDisc.hpp"
 #include "vtkAtmosphereTablesSource.h"
@@ -101,6 +103,14 @@ void addRenderCommand(CLI::App& app, Action& action) {
         if (tables->GetLastCacheHits() > 0) std::cerr << "atmosphere tables: cache hit\n";
       }
       view.SetCamera(in.camera);
+      std::vector<std::unique_ptr<render::TerrainRendering>> terrains;  // (drawn by the view)
+      try {
+        terrains = render::addSceneTerrains(view, s, in, [](const std::string& path, double spacingM, double radiusM) {
+          return readDem(path, spacingM, radiusM).field;
+        });
+      } catch (const std::invalid_argument& e) {
+        throw CommandError(o->scene + ": " + e.what());
+      }
       view.SetExposureEV(s.exposureEv);
       view.Render();
 
