@@ -109,12 +109,13 @@ void umbraTerrainShade() {
   if (!hit || umbraAboveTerrain(umbraPosMC + tb * dir, g, h) >= 1e29) discard;  // a silhouette, or no data
   vec3 q = umbraPosMC + tb * dir;
 
-  float fraction = umbraTerrainShadowAt(g, h).x;
   // The bilinear surface's normal, by central differences over a texel.
   vec3 dx = umbraSurfacePoint(g + vec2(0.5, 0.0)) - umbraSurfacePoint(g - vec2(0.5, 0.0));
   vec3 dy = umbraSurfacePoint(g + vec2(0.0, 0.5)) - umbraSurfacePoint(g - vec2(0.0, 0.5));
   vec3 n = normalize(cross(dx, dy));
   float cosi = max(dot(n, umbraSunDirection), 0.0);
+  // A slope turned away from the Sun is dark whatever the horizon: no search.
+  float fraction = cosi > 0.0 || umbraTerrainOutput == 1 ? umbraTerrainShadowAt(g, h).x : 0.0;
   vec3 radiance = umbraTerrainAlbedo * (umbraInvPi * umbraTerrainIrradiance * cosi * fraction);
   fragOutput0 = umbraTerrainOutput == 1 ? vec4(g, fraction, 1.0) : vec4(radiance, 1.0);
 
