@@ -79,7 +79,6 @@ struct TerrainRendering::Impl {
   SunLight sun;
   glm::dvec3 origin{0.0};
   Output output = Output::Radiance;
-  double reachM = 0.0;
   unsigned long observerTag = 0;
 
   glm::dvec3 tangentPointM() const {
@@ -111,7 +110,6 @@ struct TerrainRendering::Impl {
     const float albedo[3] = {float(patch.albedoRgb.r), float(patch.albedoRgb.g), float(patch.albedoRgb.b)};
     program.SetUniform3f("umbraTerrainAlbedo", albedo);
     program.SetUniformf("umbraTerrainIrradiance", float(irradiance()));
-    program.SetUniformf("umbraTerrainReachM", float(reachM));
     program.SetUniformi("umbraTerrainOutput", output == Output::GridAndFraction ? 1 : 0);
     const glm::dvec3 eye = glm::transpose(patch.tangentToWorld) * (origin - tangentPointM());
     const float eyePatch[3] = {float(eye.x), float(eye.y), float(eye.z)};
@@ -132,7 +130,7 @@ public:
 
 // The pre-displaced mesh: (R + h) along the unit vector through each mesh sample, in
 // patch coordinates (tangent frame - (0, 0, R)) formed from small differences.
-vtkSmartPointer<vtkPolyData> displacedMesh(const terrain::HeightField& f, int step, double& reachM) {
+vtkSmartPointer<vtkPolyData> displacedMesh(const terrain::HeightField& f, int step) {
   std::vector<int> is, js;
   for (int i = 0; i < f.width - 1; i += step) is.push_back(i);
   is.push_back(f.width - 1);
@@ -159,20 +157,6 @@ vtkSmartPointer<vtkPolyData> displacedMesh(const terrain::HeightField& f, int st
       cells->InsertNextCell(3, t1);
       cells->InsertNextCell(3, t2);
     }
-  // The mesh interpolates the samples it keeps: within a mesh cell it stays between the
-  // lowest and highest sample of the cell, and so does the bilinear surface.
-  reachM = 0.0;
-  for (std::size_t b = 0; b + 1 < js.size(); ++b)
-    for (std::size_t a = 0; a + 1 < is.size(); ++a) {
-      double lo = 1e300, hi = -1e300;
-      for (int j = js[b]; j <= js[b + 1]; ++j)
-        for (int i = is[a]; i <= is[a + 1]; ++i)
-          if (f.valid(i, j)) lo = std::min(lo, f.at(i, j)), hi = std::max(hi, f.at(i, j));
-      if (hi >= lo) reachM = std::max(reachM, hi - lo);
-    }
-  // Plus the sagitta of a flat triangle over the sphere's curvature, and a margin.
-  const double cellM = step * f.spacingM * std::sqrt(2.0);
-  reachM += cellM * cellM / (8.0 * R) + 0.5;
   vtkNew<vtkPolyData> mesh;
   mesh->SetPoints(points);
   mesh->SetPolys(cells);
@@ -221,7 +205,7 @@ void TerrainRendering::SetTerrain(const TerrainPatch& patch) {
     cmd->owner = impl_.get();
     m.observerTag = m.mapper->AddObserver(vtkCommand::UpdateShaderEvent, cmd);
   }
-  m.mapper->SetInputData(displacedMesh(m.patch.field, m.patch.meshStep, m.reachM));
+  m.mapper->SetInputData(displacedMesh(m.patch.field, m.patch.meshStep));
   vtkProperty* prop = m.actor->GetProperty();
   prop->SetTexture("umbraHeights", floatTexture(m.patch.field.width, m.patch.field.height, m.textures.heights));
   prop->SetTexture("umbraMipAtlas", floatTexture(m.textures.atlasWidth, m.textures.atlasHeight, m.textures.atlas));
@@ -253,6 +237,5 @@ const terrain::MaximumMipmap& TerrainRendering::GetMipmap() const {
 }
 terrain::SunDisc TerrainRendering::GetSunDisc() const { return impl_->sunDisc(); }
 double TerrainRendering::GetSunIrradiance() const { return impl_->irradiance(); }
-double TerrainRendering::GetReachM() const { return impl_->reachM; }
 
 } // namespace umbra::render

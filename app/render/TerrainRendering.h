@@ -68,8 +68,6 @@ public:
   terrain::SunDisc GetSunDisc() const;
   /// The Sun's irradiance at the patch [W m^-2].
   double GetSunIrradiance() const;
-  /// Bound on the vertical gap between the mesh and the bilinear surface [m].
-  double GetReachM() const;
 
   struct Impl;
 

@@ -17,14 +17,13 @@ flat in int umbraParallel;
 
 uniform vec3 umbraTerrainAlbedo;       // linear RGB
 uniform float umbraTerrainIrradiance;  // W m^-2 of the Sun at the patch
-uniform float umbraTerrainReachM;      // bound on the vertical gap between mesh and surface
 uniform int umbraTerrainOutput;        // 0: radiance; 1: (grid x, grid y, visible fraction)
 uniform vec3 umbraTerrainEye;          // the camera (the origin), patch coordinates from doubles
 
 const float umbraInvPi = 0.31830988618;
 const float umbraLogDepthMinM = 1.0e-3;          // as ReceiverFragment.glsl
 const float umbraLogDepthOctaves = 53.150849518;
-const int umbraMarchSteps = 48;
+const int umbraMarchSteps = 64;     // half a sample each: 32 samples from the facet at most
 const int umbraBisections = 24;
 
 vec2 umbraGridOf(vec3 q) {
@@ -55,29 +54,6 @@ float umbraAboveTerrain(vec3 q, out vec2 g, out float h) {
   return h <= umbraNoData ? 1e30 : umbraAltitudeOf(q) - h;
 }
 
-// The first crossing below the surface of the ray o + t dir for t in [ta, tb]: equal
-// steps, then bisection; false if none (ta itself below: t = ta).
-bool umbraFirstHit(vec3 o, vec3 dir, float ta, float tb, out float t) {
-  vec2 g;
-  float h;
-  t = ta;
-  if (umbraAboveTerrain(o + ta * dir, g, h) <= 0.0) return true;
-  float tAbove = ta;
-  for (int k = 1; k <= umbraMarchSteps; ++k) {
-    float tk = ta + (tb - ta) * float(k) / float(umbraMarchSteps);
-    if (umbraAboveTerrain(o + tk * dir, g, h) <= 0.0) {
-      for (int b = 0; b < umbraBisections; ++b) {
-        float tm = 0.5 * (tAbove + tk);
-        if (umbraAboveTerrain(o + tm * dir, g, h) > 0.0) tAbove = tm; else tk = tm;
-      }
-      t = 0.5 * (tAbove + tk);
-      return true;
-    }
-    tAbove = tk;
-  }
-  return false;
-}
-
 // The surface point at grid coordinates g, height h, in patch coordinates.
 vec3 umbraSurfacePoint(vec2 g) {
   float h = umbraBilinearHeight(g);
@@ -94,19 +70,34 @@ void umbraTerrainShade() {
   vec3 eye = umbraTerrainEye;
   vec3 dir = umbraParallel == 1 ? umbraViewDirMC : normalize(umbraPosMC - eye);
   vec3 up = normalize(umbraPosMC + vec3(0.0, 0.0, umbraRadiusM));
-  // View-ray refinement: march from before the facet point to beyond it, over the stretch
-  // where the surface can be (the mesh is within umbraTerrainReachM of it vertically),
-  // then bisect the first step that goes below the surface. A grazing ray may already be
-  // under the surface there (it crossed a rim the mesh cuts): then search from the eye.
-  float reach = umbraTerrainReachM / max(abs(dot(dir, up)), 0.05);
-  float tEye = umbraParallel == 0 ? -0.999 * length(umbraPosMC - eye) : -20.0 * reach;
-  float t0 = max(-reach, tEye);
+  // View-ray refinement: from the facet point (on the mesh, near the surface) step along
+  // the ray, away from the eye if the point is above the surface, towards it if below,
+  // half a sample at a time across the ground, until the surface is crossed; then bisect.
+  // The crossing nearest the facet: the mesh's depth test orders the rest.
+  float horizontal = sqrt(max(0.0, 1.0 - dot(dir, up) * dot(dir, up)));
+  float step = 0.5 * umbraSpacingM / max(horizontal, 0.05);
+  float tEye = umbraParallel == 0 ? -0.999 * length(umbraPosMC - eye) : -1e30;
   vec2 g;
   float h;
-  float tb;
-  bool hit = umbraAboveTerrain(umbraPosMC + t0 * dir, g, h) > 0.0 ? umbraFirstHit(umbraPosMC, dir, t0, reach, tb)
-                                                                : umbraFirstHit(umbraPosMC, dir, tEye, t0, tb);
-  if (!hit || umbraAboveTerrain(umbraPosMC + tb * dir, g, h) >= 1e29) discard;  // a silhouette, or no data
+  float ta = 0.0, tb = 0.0;  // above, below the surface
+  bool above = umbraAboveTerrain(umbraPosMC, g, h) > 0.0;
+  bool hit = false;
+  float tPrev = 0.0;
+  for (int k = 1; k <= umbraMarchSteps && !hit; ++k) {
+    float t = above ? float(k) * step : max(-float(k) * step, tEye);
+    bool over = umbraAboveTerrain(umbraPosMC + t * dir, g, h) > 0.0;
+    if (above && !over) { hit = true; ta = tPrev; tb = t; }
+    else if (!above && over) { hit = true; ta = t; tb = tPrev; }
+    else if (!above && t <= tEye) break;
+    tPrev = t;
+  }
+  if (!hit) discard;  // the ray misses the surface here (a silhouette)
+  for (int k = 0; k < umbraBisections; ++k) {
+    float tm = 0.5 * (ta + tb);
+    if (umbraAboveTerrain(umbraPosMC + tm * dir, g, h) > 0.0) ta = tm; else tb = tm;
+  }
+  tb = 0.5 * (ta + tb);
+  if (umbraAboveTerrain(umbraPosMC + tb * dir, g, h) >= 1e29) discard;  // no data
   vec3 q = umbraPosMC + tb * dir;
 
   // The bilinear surface's normal, by central differences over a texel.
