@@ -137,22 +137,46 @@ vtkSmartPointer<vtkPolyData> displacedMesh(const terrain::HeightField& f, int st
   for (int j = 0; j < f.height - 1; j += step) js.push_back(j);
   js.push_back(f.height - 1);
   const double R = f.bodyRadiusM;
+  // Lowered so that the mesh stays below the bilinear surface (the paper starts its rays
+  // from a mesh on one side of the surface too): a camera above the ground is then always
+  // above the mesh, and every view ray that meets the ground meets the mesh first. Within
+  // a cell of one sample the surface rises at most |h00 - h10 - h01 + h11| / 4 above the
+  // triangles; over a coarser cell, at most its highest sample above its lowest corner.
+  const std::size_t nx = is.size(), ny = js.size();
+  std::vector<double> lower(nx * ny, 0.0);
+  const double cellM = step * f.spacingM * std::sqrt(2.0);
+  const double sagittaM = cellM * cellM / (8.0 * R);
+  for (std::size_t b = 0; b + 1 < ny; ++b)
+    for (std::size_t a = 0; a + 1 < nx; ++a) {
+      const double c00 = f.receiverHeight(is[a], js[b]), c10 = f.receiverHeight(is[a + 1], js[b]);
+      const double c01 = f.receiverHeight(is[a], js[b + 1]), c11 = f.receiverHeight(is[a + 1], js[b + 1]);
+      double rise = 0.25 * std::abs(c00 - c10 - c01 + c11);
+      if (is[a + 1] - is[a] > 1 || js[b + 1] - js[b] > 1) {
+        double hi = -1e300;
+        for (int j = js[b]; j <= js[b + 1]; ++j)
+          for (int i = is[a]; i <= is[a + 1]; ++i)
+            if (f.valid(i, j)) hi = std::max(hi, f.at(i, j));
+        rise = std::max(0.0, hi - std::min({c00, c10, c01, c11}));
+      }
+      rise += sagittaM + 0.01;
+      for (std::size_t v : {b * nx + a, b * nx + a + 1, (b + 1) * nx + a, (b + 1) * nx + a + 1})
+        lower[v] = std::max(lower[v], rise);
+    }
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(is.size() * js.size()));
+  points->SetNumberOfPoints(static_cast<vtkIdType>(nx * ny));
   vtkIdType id = 0;
   for (int j : js)
     for (int i : is) {
-      const double h = f.receiverHeight(i, j);
+      const double h = f.receiverHeight(i, j) - lower[static_cast<std::size_t>(id)];
       const glm::dvec2 p = f.planeM(i, j);
       const double p2 = glm::dot(p, p), n = std::sqrt(p2 + R * R);
       points->SetPoint(id++, (R + h) / n * p.x, (R + h) / n * p.y, (h * R - R * p2 / (n + R)) / n);
     }
   vtkNew<vtkCellArray> cells;
-  const vtkIdType nx = static_cast<vtkIdType>(is.size());
-  for (vtkIdType b = 0; b + 1 < static_cast<vtkIdType>(js.size()); ++b)
-    for (vtkIdType a = 0; a + 1 < nx; ++a) {
-      const vtkIdType p00 = b * nx + a, p10 = p00 + 1, p01 = p00 + nx, p11 = p01 + 1;
+  for (vtkIdType b = 0; b + 1 < static_cast<vtkIdType>(ny); ++b)
+    for (vtkIdType a = 0; a + 1 < static_cast<vtkIdType>(nx); ++a) {
+      const vtkIdType p00 = b * static_cast<vtkIdType>(nx) + a, p10 = p00 + 1, p01 = p00 + static_cast<vtkIdType>(nx), p11 = p01 + 1;
       const vtkIdType t1[3] = {p00, p10, p11}, t2[3] = {p00, p11, p01};
       cells->InsertNextCell(3, t1);
       cells->InsertNextCell(3, t2);

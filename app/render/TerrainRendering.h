@@ -3,7 +3,9 @@
 //
 // The height field (terrain::HeightField, a gnomonic grid on the body's sphere) becomes a
 // pre-displaced triangle mesh, one vertex every MeshStep samples at (R + h) times the unit
-// vector through the sample. Per fragment (glsl/TerrainFragment.glsl) the view ray through
+// vector through the sample, lowered just enough to stay below the bilinear surface (a
+// camera above the ground is then above the mesh, and every view ray that meets the
+// ground meets the mesh first). Per fragment (glsl/TerrainFragment.glsl) the view ray through
 // the rasterised mesh point is refined onto the bilinear height field, the visible
 // fraction of the solar disc is searched there with the GLSL twin of the DP search
 // (terrain/glsl/TerrainShadow.glsl, heights and maximum mipmap as float textures), and the

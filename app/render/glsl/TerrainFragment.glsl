@@ -70,10 +70,10 @@ void umbraTerrainShade() {
   vec3 eye = umbraTerrainEye;
   vec3 dir = umbraParallel == 1 ? umbraViewDirMC : normalize(umbraPosMC - eye);
   vec3 up = normalize(umbraPosMC + vec3(0.0, 0.0, umbraRadiusM));
-  // View-ray refinement: from the facet point (on the mesh, near the surface) step along
-  // the ray, away from the eye if the point is above the surface, towards it if below,
-  // half a sample at a time across the ground, until the surface is crossed; then bisect.
-  // The crossing nearest the facet: the mesh's depth test orders the rest.
+  // View-ray refinement: from the facet point (on the mesh, just below the surface) step
+  // back along the ray towards the eye (away from it should the point be above), half a
+  // sample at a time across the ground, until the surface is crossed; then bisect. The
+  // crossing nearest the facet: the mesh's depth test orders the rest.
   float horizontal = sqrt(max(0.0, 1.0 - dot(dir, up) * dot(dir, up)));
   float step = 0.5 * umbraSpacingM / max(horizontal, 0.05);
   float tEye = umbraParallel == 0 ? -0.999 * length(umbraPosMC - eye) : -1e30;
