@@ -23,10 +23,14 @@ constexpr double kStartTexels = 1e-3;
 class Profile {
 public:
   Profile(const HeightField& f, const MaximumMipmap& mip, int i, int j, glm::dvec3 towards, double lowerEdgeRad)
+      : Profile(f, mip, glm::dvec2(i, j), f.receiverHeight(i, j), towards, lowerEdgeRad) {}
+  /// A receiver at grid coordinates g (fractional) and height receiverHeightM.
+  Profile(const HeightField& f, const MaximumMipmap& mip, glm::dvec2 g, double receiverHeightM, glm::dvec3 towards,
+          double lowerEdgeRad)
       : f(f), mip(mip) {
     towards = glm::normalize(towards);
-    a = f.direction(i, j);
-    rp = f.bodyRadiusM + f.receiverHeight(i, j);
+    a = f.direction(g.x, g.y);
+    rp = f.bodyRadiusM + receiverHeightM;
     const glm::dvec3 horizontal = towards - glm::dot(towards, a) * a;
     const double len = glm::length(horizontal);
     sunElevation = std::atan2(glm::dot(towards, a), len);
@@ -35,7 +39,7 @@ public:
       return;
     }
     b = horizontal / len;
-    g0 = {double(i), double(j)};
+    g0 = g;
     // Derivative of the gnomonic projection along the great circle towards b.
     dir = glm::normalize(glm::dvec2(b.x * a.z - a.x * b.z, b.y * a.z - a.y * b.z));
     sEnd = std::min(gridExit(), volumeExit(lowerEdgeRad));
@@ -314,9 +318,14 @@ void ShadowOptions::validate() const {
 
 Horizon horizonTowardsSun(const HeightField& f, const MaximumMipmap& mip, int i, int j, const SunDisc& sun,
                           const ShadowOptions& o) {
+  return horizonTowardsSunAt(f, mip, glm::dvec2(i, j), f.receiverHeight(i, j), sun, o);
+}
+
+Horizon horizonTowardsSunAt(const HeightField& f, const MaximumMipmap& mip, glm::dvec2 grid, double heightM,
+                            const SunDisc& sun, const ShadowOptions& o) {
   const double r = sun.angularRadiusRad;
   // The lower edge decides where the search may stop; the Sun's elevation comes with the plane.
-  const Profile probe(f, mip, i, j, sun.direction, 0.0);
+  const Profile probe(f, mip, grid, heightM, sun.direction, 0.0);
   Horizon h;
   h.sunElevationRad = probe.sunElevation;
   if (probe.degenerate) {
@@ -325,7 +334,7 @@ Horizon horizonTowardsSun(const HeightField& f, const MaximumMipmap& mip, int i,
     return h;
   }
   const double lo = probe.sunElevation - r, hi = probe.sunElevation + r;
-  const Profile p(f, mip, i, j, sun.direction, lo);
+  const Profile p(f, mip, grid, heightM, sun.direction, lo);
   if (o.method == ShadowMethod::Uniform)
     h.horizonElevationRad = uniformSearch(p, o.uniformSteps, hi, h.samples);
   else

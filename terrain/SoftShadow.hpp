@@ -75,6 +75,12 @@ struct Horizon {
 Horizon horizonTowardsSun(const HeightField& field, const MaximumMipmap& mip, int i, int j, const SunDisc& sun,
                           const ShadowOptions& options);
 
+/// The same for a receiver anywhere on the grid: grid coordinates (fractional, as
+/// HeightField::planeM) and its height [m] (on the surface: field.bilinear(grid)). What
+/// the renderer's view ray meets between samples (app/render/TerrainRendering).
+Horizon horizonTowardsSunAt(const HeightField& field, const MaximumMipmap& mip, glm::dvec2 grid, double heightM,
+                            const SunDisc& sun, const ShadowOptions& options);
+
 /// Disc occlusion (Eq. 6-7): the visible fraction of the disc for a horizon, uniform or limb-darkened.
 double discFractionAboveHorizon(const Horizon& horizon, const SunDisc& sun);
 

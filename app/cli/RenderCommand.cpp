@@ -11,6 +11,8 @@
 #include "OutputFile.hpp"
 #include "SceneInputs.h"
 #include "AtmosphereShadow.h"
+#include "SceneTerrain.h"
+#include "TerrainDem.hpp"
 #include "ShadowCommon.hpp"
 #include "SolarDisc.hpp"
 #include "vtkUmbraRenderPass.h"
@@ -25,6 +27,7 @@
 
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkRenderer.h>
 
 #include <cmath>
 #include <cstdio>
@@ -175,6 +178,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
       limb->SetUseCache(!o->cache.disabled);
       if (o->atmosphereTables == "small") render::useSmallLimbLuminanceTables(limb);
       view.GetAtmosphere().SetLimbRingThresholdPixels(o->limbRingThresholdPx);
+      std::vector<std::unique_ptr<render::TerrainRendering>> terrains;  // (drawn by the view)
       std::optional<ProgressLine> progress;
       if (animation) progress.emplace("frames (" + std::to_string(frames.size()) + ")");
       for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -201,6 +205,14 @@ void addRenderCommand(CLI::App& app, Action& action) {
           if (k == 0 && tables->GetLastCacheHits() > 0) std::cerr << "atmosphere tables: cache hit\n";
         }
         view.SetCamera(in.camera);
+        for (const auto& t : terrains) view.GetRenderer()->RemoveActor(t->GetActor());  // the last frame's
+        try {
+          terrains = render::addSceneTerrains(view, s, in, [](const std::string& path, double spacingM, double radiusM) {
+            return readDem(path, spacingM, radiusM).field;
+          });
+        } catch (const std::invalid_argument& e) {
+          throw CommandError(o->scene + ": " + e.what());
+        }
         view.SetExposureEV(s.exposureEv);
         view.GetRenderPass()->SetGlareStrength(o->glare);
         view.Render();

@@ -39,34 +39,59 @@ vtkSmartPointer<vtkTextureObject> floatTexture(vtkOpenGLRenderWindow* w, int wid
 
 } // namespace
 
-GpuTerrainShadow terrainShadowGpu(vtkRenderWindow* window, const terrain::HeightField& f,
-                                  const terrain::MaximumMipmap& mip, const terrain::SunDisc& sun, int levels) {
-  auto* w = vtkOpenGLRenderWindow::SafeDownCast(window);
-  if (!w) throw std::runtime_error("terrain shadow (GPU): needs an OpenGL render window");
+TerrainShadowTextures terrainShadowTextures(const terrain::HeightField& f, const terrain::MaximumMipmap& mip) {
   if (mip.levels() > 16) throw std::runtime_error("terrain shadow (GPU): more than 16 mipmap levels");
-  w->Initialize();
-  w->MakeCurrent();
-
-  std::vector<float> heights(f.heightsM.size());
-  for (std::size_t k = 0; k < heights.size(); ++k)
-    heights[k] = std::isnan(f.heightsM[k]) ? kNoData : static_cast<float>(f.heightsM[k]);
-  const int atlasWidth = mip.width(0);
-  int rows[16] = {0}, widths[16] = {0}, heights16[16] = {0};
-  int atlasHeight = 0;
+  TerrainShadowTextures t;
+  t.heights.resize(f.heightsM.size());
+  for (std::size_t k = 0; k < t.heights.size(); ++k)
+    t.heights[k] = std::isnan(f.heightsM[k]) ? kNoData : static_cast<float>(f.heightsM[k]);
+  t.levels = mip.levels();
+  t.atlasWidth = mip.width(0);
   for (int m = 0; m < mip.levels(); ++m) {
-    rows[m] = atlasHeight;
-    widths[m] = mip.width(m), heights16[m] = mip.height(m);
-    atlasHeight += mip.height(m);
+    t.row[m] = t.atlasHeight;
+    t.width[m] = mip.width(m), t.height[m] = mip.height(m);
+    t.atlasHeight += mip.height(m);
   }
-  std::vector<float> atlas(static_cast<std::size_t>(atlasWidth) * atlasHeight, kNoData);
+  t.atlas.assign(static_cast<std::size_t>(t.atlasWidth) * t.atlasHeight, kNoData);
   for (int m = 0; m < mip.levels(); ++m)
     for (int j = 0; j < mip.height(m); ++j)
       for (int i = 0; i < mip.width(m); ++i) {
         const double v = mip.max(m, i, j);
-        atlas[static_cast<std::size_t>(rows[m] + j) * atlasWidth + i] = std::isinf(v) ? kNoData : static_cast<float>(v);
+        t.atlas[static_cast<std::size_t>(t.row[m] + j) * t.atlasWidth + i] = std::isinf(v) ? kNoData : static_cast<float>(v);
       }
-  auto heightTexture = floatTexture(w, f.width, f.height, heights.data());
-  auto atlasTexture = floatTexture(w, atlasWidth, atlasHeight, atlas.data());
+  return t;
+}
+
+void setTerrainShadowUniforms(vtkShaderProgram& program, const TerrainShadowTextures& t, const terrain::HeightField& f,
+                              const terrain::MaximumMipmap& mip, const terrain::SunDisc& sun, int levels) {
+  program.SetUniform1iv("umbraMipRow", 16, t.row);
+  program.SetUniform1iv("umbraMipWidth", 16, t.width);
+  program.SetUniform1iv("umbraMipHeight", 16, t.height);
+  program.SetUniformi("umbraMipLevels", t.levels);
+  const int grid[2] = {f.width, f.height};
+  program.SetUniform2i("umbraGridSize", grid);
+  program.SetUniformf("umbraSpacingM", static_cast<float>(f.spacingM));
+  program.SetUniformf("umbraRadiusM", static_cast<float>(f.bodyRadiusM));
+  program.SetUniformf("umbraGlobalMaxM", static_cast<float>(mip.globalMax()));
+  const glm::dvec3 L = glm::normalize(sun.direction);
+  const float direction[3] = {float(L.x), float(L.y), float(L.z)};
+  program.SetUniform3f("umbraSunDirection", direction);
+  program.SetUniformf("umbraSunRadius", static_cast<float>(sun.angularRadiusRad));
+  program.SetUniformf("umbraLimbDarkening", static_cast<float>(sun.limbDarkening));
+  program.SetUniformi("umbraLevels", levels);
+}
+
+
+GpuTerrainShadow terrainShadowGpu(vtkRenderWindow* window, const terrain::HeightField& f,
+                                  const terrain::MaximumMipmap& mip, const terrain::SunDisc& sun, int levels) {
+  auto* w = vtkOpenGLRenderWindow::SafeDownCast(window);
+  if (!w) throw std::runtime_error("terrain shadow (GPU): needs an OpenGL render window");
+  w->Initialize();
+  w->MakeCurrent();
+
+  const TerrainShadowTextures t = terrainShadowTextures(f, mip);
+  auto heightTexture = floatTexture(w, f.width, f.height, t.heights.data());
+  auto atlasTexture = floatTexture(w, t.atlasWidth, t.atlasHeight, t.atlas.data());
 
   auto colour = vtkSmartPointer<vtkTextureObject>::New();
   colour->SetContext(w);
@@ -94,21 +119,7 @@ GpuTerrainShadow terrainShadowGpu(vtkRenderWindow* window, const terrain::Height
   atlasTexture->Activate();
   program->SetUniformi("umbraHeights", heightTexture->GetTextureUnit());
   program->SetUniformi("umbraMipAtlas", atlasTexture->GetTextureUnit());
-  program->SetUniform1iv("umbraMipRow", 16, rows);
-  program->SetUniform1iv("umbraMipWidth", 16, widths);
-  program->SetUniform1iv("umbraMipHeight", 16, heights16);
-  program->SetUniformi("umbraMipLevels", mip.levels());
-  const int grid[2] = {f.width, f.height};
-  program->SetUniform2i("umbraGridSize", grid);
-  program->SetUniformf("umbraSpacingM", static_cast<float>(f.spacingM));
-  program->SetUniformf("umbraRadiusM", static_cast<float>(f.bodyRadiusM));
-  program->SetUniformf("umbraGlobalMaxM", static_cast<float>(mip.globalMax()));
-  const glm::dvec3 L = glm::normalize(sun.direction);
-  const float direction[3] = {float(L.x), float(L.y), float(L.z)};
-  program->SetUniform3f("umbraSunDirection", direction);
-  program->SetUniformf("umbraSunRadius", static_cast<float>(sun.angularRadiusRad));
-  program->SetUniformf("umbraLimbDarkening", static_cast<float>(sun.limbDarkening));
-  program->SetUniformi("umbraLevels", levels);
+  setTerrainShadowUniforms(*program, t, f, mip, sun, levels);
 
   vtkOpenGLState* state = w->GetState();
   state->PushFramebufferBindings();

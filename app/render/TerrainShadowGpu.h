@@ -9,8 +9,24 @@
 #include <vector>
 
 class vtkRenderWindow;
+class vtkShaderProgram;
 
 namespace umbra::render {
+
+/// What TerrainShadow.glsl reads: the heights (no data as -1e30) and the maximum mipmap
+/// as one atlas, level m at rows row[m] ... (float texture data, row-major).
+struct TerrainShadowTextures {
+  std::vector<float> heights, atlas;
+  int atlasWidth = 0, atlasHeight = 0;
+  int row[16] = {0}, width[16] = {0}, height[16] = {0};
+  int levels = 0;
+};
+/// Throws std::runtime_error for more than 16 mipmap levels.
+TerrainShadowTextures terrainShadowTextures(const terrain::HeightField& field, const terrain::MaximumMipmap& mip);
+/// Sets every uniform of TerrainShadow.glsl but the two samplers.
+void setTerrainShadowUniforms(vtkShaderProgram& program, const TerrainShadowTextures& textures,
+                              const terrain::HeightField& field, const terrain::MaximumMipmap& mip,
+                              const terrain::SunDisc& sun, int levels);
 
 struct GpuTerrainShadow {
   std::vector<float> fraction;  ///< per DEM sample, row-major like the heights

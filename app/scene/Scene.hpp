@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -16,6 +17,18 @@ namespace umbra::scene {
 class SceneError : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
+};
+
+/// A terrain patch on a body (`umbra render` draws it with soft horizon shadows): a
+/// height field on a gnomonic grid centred on (latDeg, lonDeg), from a DEM file or a
+/// synthetic crater field.
+struct Terrain {
+  std::string demPath;      ///< absolute path of a GeoTIFF DEM; "" for a synthetic field
+  std::uint64_t seed = 1;   ///< synthetic crater field
+  int size = 512;           ///< synthetic: samples a side
+  double spacingM = 30.0;   ///< synthetic; a DEM without a geotransform
+  double latDeg = 0.0;      ///< the grid's centre, planetocentric
+  double lonDeg = 0.0;
 };
 
 struct Body {
@@ -33,6 +46,7 @@ struct Body {
   std::string atmosphereModel;
   double albedo = 0.0;           ///< geometric albedo
   glm::dvec3 color{1.0};         ///< linear RGB display tint in [0, 1]
+  std::optional<Terrain> terrain;
 
   bool isSun() const { return preset == "Sun"; }
 };

@@ -167,10 +167,36 @@ std::string parseAtmosphereModel(const Reader& in, const json& value, const std:
   return model;
 }
 
+/// A body's "terrain": {"dem": FILE (relative to the scene) | "seed": N [, "size": N],
+/// ["spacing": LENGTH,] "latDeg": ..., "lonDeg": ...}.
+Terrain parseTerrain(const Reader& in, const json& value, const std::string& field, const std::string& sceneFile) {
+  in.object(value, field, {"dem", "seed", "size", "spacing", "latDeg", "lonDeg"});
+  const bool dem = value.contains("dem");
+  if (dem == value.contains("seed"))
+    in.fail(field, "expected either \"dem\" (a GeoTIFF file) or \"seed\" (a synthetic crater field)");
+  for (const char* key : {"latDeg", "lonDeg"})
+    if (!value.contains(key)) in.fail(field + "." + key, "required (the centre of the terrain)");
+  Terrain t;
+  if (dem) {
+    std::filesystem::path p(in.string(value["dem"], field + ".dem"));
+    if (p.is_relative()) p = std::filesystem::path(sceneFile).parent_path() / p;
+    t.demPath = p.lexically_normal().string();
+    if (!std::filesystem::is_regular_file(t.demPath)) in.fail(field + ".dem", "no such file: " + t.demPath);
+    if (value.contains("size")) in.fail(field + ".size", "only for a synthetic terrain (\"seed\")");
+  } else {
+    t.seed = static_cast<std::uint64_t>(in.integer(value["seed"], field + ".seed", 0, 2147483647));
+    if (value.contains("size")) t.size = in.integer(value["size"], field + ".size", 2, 4096);
+  }
+  if (value.contains("spacing")) t.spacingM = in.positiveLength(value["spacing"], field + ".spacing");
+  t.latDeg = in.number(value["latDeg"], field + ".latDeg", -90.0, 90.0, "a latitude in [-90, 90] degrees");
+  t.lonDeg = in.number(value["lonDeg"], field + ".lonDeg", -360.0, 360.0, "a longitude in [-360, 360] degrees");
+  return t;
+}
+
 Body parseBody(const Reader& in, const json& value, const std::string& field, const std::string& sceneFile) {
   in.object(value, field,
             {"preset", "name", "radius", "equatorialRadius", "polarRadius", "position",
-             "atmosphere", "albedo", "color"});
+             "atmosphere", "albedo", "color", "terrain"});
   Body body;
   const BodyPreset* preset = nullptr;
   if (value.contains("preset")) {
@@ -229,6 +255,11 @@ Body parseBody(const Reader& in, const json& value, const std::string& field, co
   if (value.contains("albedo"))
     body.albedo = in.number(value["albedo"], field + ".albedo", 0.0, 1.0, "a number in [0, 1]");
   if (value.contains("color")) body.color = in.color(value["color"], field + ".color");
+  if (value.contains("terrain")) {
+    if (preset == nullptr || !hasRotationModel(preset->name))
+      in.fail(field + ".terrain", "needs a body with a rotation model (a preset: Earth, Moon, Mars)");
+    body.terrain = parseTerrain(in, value["terrain"], field + ".terrain", sceneFile);
+  }
   return body;
 }
 

@@ -100,19 +100,19 @@ bool umbraClip(UmbraProfile p, vec2 lo, vec2 hi, inout float sa, inout float sb)
   return sb > sa;
 }
 
-// The vertical plane through receiver (i, j) towards the Sun; false at its zenith / nadir.
-bool umbraMakeProfile(ivec2 ij, out UmbraProfile p) {
+// The vertical plane through the receiver at grid coordinates g (fractional) and height
+// hp towards the Sun (SoftShadow.cpp Profile); false at its zenith / nadir.
+bool umbraMakeProfileAt(vec2 g, float hp, out UmbraProfile p) {
   vec2 centre = 0.5 * vec2(umbraGridSize - 1);
-  p.pa = (vec2(ij) - centre) * umbraSpacingM;
+  p.pa = (g - centre) * umbraSpacingM;
   p.normA = sqrt(dot(p.pa, p.pa) + umbraRadiusM * umbraRadiusM);
   p.a = vec3(p.pa, umbraRadiusM) / p.normA;
-  float h = texelFetch(umbraHeights, ij, 0).r;
-  p.hp = h > umbraNoData ? h : umbraHeightAt(vec2(ij), vec2(0.0), 0.0, 0.0);  // (the CPU uses the 3 x 3 mean; tests avoid it)
+  p.hp = hp;
   vec3 L = umbraSunDirection;
   vec3 horizontal = L - dot(L, p.a) * p.a;
   float len = length(horizontal);
   p.e = atan(dot(L, p.a), len);
-  p.g0 = vec2(ij);
+  p.g0 = g;
   p.b = vec3(0.0);
   p.dir = vec2(0.0);
   p.sEnd = 0.0;
@@ -140,6 +140,13 @@ bool umbraMakeProfile(ivec2 ij, out UmbraProfile p) {
   }
   p.sEnd = min(gridExit, volumeExit);
   return true;
+}
+
+// The receiver at DEM sample ij, at its own height.
+bool umbraMakeProfile(ivec2 ij, out UmbraProfile p) {
+  float h = texelFetch(umbraHeights, ij, 0).r;
+  h = h > umbraNoData ? h : umbraHeightAt(vec2(ij), vec2(0.0), 0.0, 0.0);  // (the CPU uses the 3 x 3 mean; tests avoid it)
+  return umbraMakeProfileAt(vec2(ij), h, p);
 }
 
 float umbraMipMax(int level, ivec2 block) {
@@ -259,10 +266,21 @@ float umbraDiscFraction(float d, float u) {
   return d <= 0.0 ? umbraCapFraction(1.0 + d, u) : 1.0 - umbraCapFraction(1.0 - d, u);
 }
 
+vec2 umbraShadowOfProfile(UmbraProfile p) {
+  float horizon = umbraHorizonDP(p);
+  return vec2(umbraDiscFraction((p.e - horizon) / umbraSunRadius, umbraLimbDarkening), horizon);
+}
+
 // The visible fraction of the Sun at DEM sample ij (vec2: fraction, horizon elevation).
 vec2 umbraTerrainShadow(ivec2 ij) {
   UmbraProfile p;
   if (!umbraMakeProfile(ij, p)) return vec2(p.e > 0.0 ? 1.0 : 0.0, -1e30);
-  float horizon = umbraHorizonDP(p);
-  return vec2(umbraDiscFraction((p.e - horizon) / umbraSunRadius, umbraLimbDarkening), horizon);
+  return umbraShadowOfProfile(p);
+}
+
+// The same for a receiver at grid coordinates g and height hp (terrain::horizonTowardsSunAt).
+vec2 umbraTerrainShadowAt(vec2 g, float hp) {
+  UmbraProfile p;
+  if (!umbraMakeProfileAt(g, hp, p)) return vec2(p.e > 0.0 ? 1.0 : 0.0, -1e30);
+  return umbraShadowOfProfile(p);
 }

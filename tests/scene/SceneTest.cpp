@@ -130,7 +130,7 @@ TEST(SceneValidation, MoreMessagesNameTheField) {
             "with unit m, km or au");
   EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "Moon", "albdo": 0.1})")),
             "examples/x.json: bodies[1].albdo: unknown key (expected one of: preset, name, "
-            "radius, equatorialRadius, polarRadius, position, atmosphere, albedo, color)");
+            "radius, equatorialRadius, polarRadius, position, atmosphere, albedo, color, terrain)");
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "image": {"width": 8})")),
             "examples/x.json: image.width: expected an integer in [16, 16384], got 8");
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "shadow": {"lutSize": 256.5})")),
@@ -140,6 +140,35 @@ TEST(SceneValidation, MoreMessagesNameTheField) {
             "ephemeris");
   EXPECT_EQ(errorFor(R"({"time": "2015-09-28T25:00Z", "bodies": [{"preset": "Sun"}]})"),
             "examples/x.json: time: invalid UTC time '2015-09-28T25:00Z': hour out of range");
+}
+
+// "terrain": a synthetic crater field or a DEM file relative to the scene, on a body
+// with a rotation model.
+TEST(SceneValidation, TerrainMessages) {
+  const auto moon = [](const std::string& terrain) {
+    return fixedScene(R"({"preset": "Sun", "position": [0, 0, 0]}, {"preset": "Moon", "position": [1e11, 0, 0], "terrain": )" +
+                      terrain + "}");
+  };
+  const Scene ok = parseScene(moon(R"({"seed": 3, "size": 64, "spacing": "20m", "latDeg": -89.5, "lonDeg": 10})"), kFile);
+  ASSERT_TRUE(ok.bodies[1].terrain.has_value());
+  EXPECT_EQ(ok.bodies[1].terrain->seed, 3u);
+  EXPECT_EQ(ok.bodies[1].terrain->size, 64);
+  EXPECT_DOUBLE_EQ(ok.bodies[1].terrain->spacingM, 20.0);
+  EXPECT_DOUBLE_EQ(ok.bodies[1].terrain->latDeg, -89.5);
+  EXPECT_TRUE(ok.bodies[1].terrain->demPath.empty());
+  EXPECT_EQ(errorFor(moon(R"({"latDeg": 0, "lonDeg": 0})")),
+            "examples/x.json: bodies[1].terrain: expected either \"dem\" (a GeoTIFF file) or \"seed\" (a synthetic "
+            "crater field)");
+  EXPECT_EQ(errorFor(moon(R"({"seed": 1, "lonDeg": 0})")),
+            "examples/x.json: bodies[1].terrain.latDeg: required (the centre of the terrain)");
+  EXPECT_EQ(errorFor(moon(R"({"seed": 1, "size": 1, "latDeg": 0, "lonDeg": 0})")),
+            "examples/x.json: bodies[1].terrain.size: expected an integer in [2, 4096], got 1");
+  EXPECT_EQ(errorFor(moon(R"({"dem": "nothere.tif", "latDeg": 0, "lonDeg": 0})")),
+            "examples/x.json: bodies[1].terrain.dem: no such file: examples/nothere.tif");
+  EXPECT_EQ(errorFor(moon(R"({"seed": 1, "latDeg": 0, "lonDeg": 0, "hieght": 2})")).substr(0, 58),
+            "examples/x.json: bodies[1].terrain.hieght: unknown key (ex");
+  EXPECT_EQ(errorFor(fixedScene(kSunAndRock.substr(0, kSunAndRock.size() - 1) + R"(, "terrain": {"seed": 1, "latDeg": 0, "lonDeg": 0}})")),
+            "examples/x.json: bodies[1].terrain: needs a body with a rotation model (a preset: Earth, Moon, Mars)");
 }
 
 // "atmosphere": true (the preset named after the body), false, a preset, a file relative

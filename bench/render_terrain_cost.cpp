@@ -1,0 +1,68 @@
+// Frame time of the terrain patch with soft horizon shadows (terrain paper, section 4):
+// the example scene examples/scenes/lunar-south-pole-landing-site.json (a 512 x 512
+// synthetic crater field at the lunar south pole, Sun 0.9 deg up, camera 2.5 km up
+// looking across it towards the Sun), rendered as `umbra render` does, once with the
+// terrain and once without it (the Moon's sphere only), interleaved; median frame times.
+// Needs an X display (xvfb-run -a); on llvmpipe the fragment work runs on the CPU.
+//
+//   xvfb-run -a build/bench/umbra-bench-render-terrain [--frames 5] [--width 1920 --height 1080]
+#include "BodyView.h"
+#include "SceneInputs.h"
+#include "SceneTerrain.h"
+#include "ShadowLut.hpp"
+#include "ShadowLutData.h"
+#include "scene/Scene.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <vtkImageData.h>
+#include <vtkRenderWindow.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+using namespace umbra;
+
+int main(int argc, char** argv) {
+  CLI::App app{"Frame time of the terrain patch with soft shadows"};
+  int frames = 5, width = 1920, height = 1080;
+  std::string scenePath = UMBRA_SOURCE_DIR "/examples/scenes/lunar-south-pole-landing-site.json";
+  app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
+  app.add_option("--width", width)->capture_default_str();
+  app.add_option("--height", height)->capture_default_str();
+  app.add_option("--scene", scenePath)->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  const scene::Scene s = scene::loadScene(scenePath);
+  const render::SceneInputs in = render::sceneInputs(s);
+  const auto lut = filters::toImageData(eclipse::buildAirlessShadowLut({64, 64}));
+  render::BodyView withTerrain(width, height, true), without(width, height, true);
+  std::vector<std::unique_ptr<render::TerrainRendering>> terrains;
+  for (render::BodyView* v : {&withTerrain, &without}) {
+    v->SetBodies(in.sun, in.bodies, lut);
+    v->SetCamera(in.camera);
+    v->SetExposureEV(s.exposureEv);
+    if (v == &withTerrain) terrains = render::addSceneTerrains(*v, s, in, {});
+    v->Render();  // warm up: shader compilation, textures
+  }
+  std::vector<double> times[2];
+  for (int f = 0; f < frames; ++f) {
+    for (int k = 0; k < 2; ++k) {
+      render::BodyView& v = k == 0 ? withTerrain : without;
+      const auto t0 = std::chrono::steady_clock::now();
+      v.Render();
+      v.GetRenderWindow()->WaitForCompletion();
+      times[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+  }
+  double median[2];
+  for (int k = 0; k < 2; ++k) {
+    std::sort(times[k].begin(), times[k].end());
+    median[k] = times[k][times[k].size() / 2];
+  }
+  std::printf("| frame | with the terrain [ms] | sphere only [ms] |\n|---|---:|---:|\n");
+  std::printf("| %dx%d, %d frames, median | %.0f | %.0f |\n", width, height, frames, median[0], median[1]);
+  return 0;
+}
