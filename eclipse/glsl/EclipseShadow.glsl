@@ -4,6 +4,10 @@
 // single precision keeps the angles accurate.
 
 uniform sampler2D umbraShadowLut;
+// The u and v ranges the LuT's width and height cover (eclipse::ShadowLut::uMin, uMax,
+// vMin, vMax); [0, 1] unless set.
+uniform vec2 umbraShadowLutURange = vec2(0.0, 1.0);
+uniform vec2 umbraShadowLutVRange = vec2(0.0, 1.0);
 
 // Angle between two directions without acos, accurate for tiny angles.
 float umbraAngleBetween(vec3 a, vec3 b) {
@@ -28,5 +32,7 @@ vec3 umbraEclipseFactor(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float
   float u = phiSun / (phiOcc + phiSun);
   float v = delta / (phiOcc + phiSun);
   if (v >= 1.0) return vec3(1.0);
+  u = (u - umbraShadowLutURange.x) / (umbraShadowLutURange.y - umbraShadowLutURange.x);
+  v = (v - umbraShadowLutVRange.x) / (umbraShadowLutVRange.y - umbraShadowLutVRange.x);
   return texture(umbraShadowLut, vec2(u, v)).rgb;
 }
