@@ -19,7 +19,7 @@ glm::dvec3 ShadowLut::texel(int i, int j) const {
 glm::dvec3 ShadowLut::sample(const LutCoords& c) const {
   // GL_LINEAR with GL_CLAMP_TO_EDGE: texel centres at (i + 0.5) / size.
   const double x = std::clamp((c.u - uMin) / (uMax - uMin) * width - 0.5, 0.0, width - 1.0);
-  const double y = std::clamp((c.v - vMin) / (vMax - vMin) * height - 0.5, 0.0, height - 1.0);
+  const double y = std::clamp(textureV(c.v) * height - 0.5, 0.0, height - 1.0);
   const int i0 = std::min(static_cast<int>(x), width - 1), j0 = std::min(static_cast<int>(y), height - 1);
   const int i1 = std::min(i0 + 1, width - 1), j1 = std::min(j0 + 1, height - 1);
   const double fx = x - i0, fy = y - j0;
@@ -33,9 +33,22 @@ double airlessShadow(const LutCoords& c, double limbDarkening, double tol) {
   return visibleFractionLimbDarkened(n.occluderRadius, n.separation, limbDarkening, tol).value;
 }
 
-void checkLutRange(double uMin, double uMax, double vMin, double vMax) {
-  if (!(uMin >= 0.0 && uMin < uMax && uMax <= 1.0 && vMin >= 0.0 && vMin < vMax && vMax <= 1.0))
-    throw std::invalid_argument("shadow LuT ranges must satisfy 0 <= min < max <= 1 in u and v");
+double ShadowLut::textureV(double v) const {
+  if (vLowFraction > 0.0 && v < vMin) return vLowFraction * v / vMin;
+  return vLowFraction + (1.0 - vLowFraction) * (v - vMin) / (vMax - vMin);
+}
+
+double ShadowLut::texelV(int j) const {
+  if (vLowFraction <= 0.0) return vMin + (vMax - vMin) * (j + 0.5) / height;
+  const double t = (j + 0.5) / height;
+  return t < vLowFraction ? vMin * t / vLowFraction : vMin + (vMax - vMin) * (t - vLowFraction) / (1.0 - vLowFraction);
+}
+
+void checkLutRange(double uMin, double uMax, double vMin, double vMax, double vLowFraction) {
+  if (!(uMin >= 0.0 && uMin < uMax && uMax <= 1.0 && vMin >= 0.0 && vMin < vMax && vMax <= 1.0 &&
+        vLowFraction >= 0.0 && vLowFraction < 1.0 && (vLowFraction == 0.0 || vMin > 0.0)))
+    throw std::invalid_argument("shadow LuT ranges must satisfy 0 <= min < max <= 1 in u and v, "
+                                "0 <= vLowFraction < 1 (> 0 only with vMin > 0)");
 }
 
 LutRange lutRangeForDistances(const SunOccluderSystem& s, double minDistanceM, double maxDistanceM, bool darkUmbra,
@@ -54,15 +67,19 @@ LutRange lutRangeForDistances(const SunOccluderSystem& s, double minDistanceM, d
   r.uMin = std::max(r.uMin, 0.0), r.uMax = std::min(r.uMax, 1.0);
   if (!(r.uMin < r.uMax)) r.uMax = std::min(1.0, r.uMin + 1e-9);
   r.vMax = 1.0;
-  // Row 0's centre vMin + (1 - vMin) / (2 height) at or below the umbra's edge 1 - 2 uMax.
   const double edge = 1.0 - 2.0 * r.uMax, half = 0.5 / std::max(height, 2);
-  r.vMin = darkUmbra && edge > half ? (edge - half) / (1.0 - half) : 0.0;
+  if (darkUmbra) {
+    // Row 0's centre vMin + (1 - vMin) / (2 height) at or below the umbra's edge.
+    r.vMin = edge > half ? (edge - half) / (1.0 - half) : 0.0;
+  } else if (edge > 0.0) {
+    r.vMin = edge, r.vLowFraction = 0.25;
+  }
   return r;
 }
 
 ShadowLut buildAirlessShadowLut(const ShadowLutParams& p, const Progress& progress) {
   if (p.width < 2 || p.height < 2) throw std::invalid_argument("shadow LuT size must be at least 2x2");
-  checkLutRange(p.uMin, p.uMax, p.vMin, p.vMax);
+  checkLutRange(p.uMin, p.uMax, p.vMin, p.vMax, p.vLowFraction);
   ShadowLut lut;
   lut.width = p.width;
   lut.height = p.height;
@@ -70,6 +87,7 @@ ShadowLut buildAirlessShadowLut(const ShadowLutParams& p, const Progress& progre
   lut.uMax = p.uMax;
   lut.vMin = p.vMin;
   lut.vMax = p.vMax;
+  lut.vLowFraction = p.vLowFraction;
   lut.rgb.assign(3 * static_cast<std::size_t>(p.width) * p.height, 0.0f);
   std::atomic<int> rowsDone{0};
   std::atomic<bool> cancelled{false};

@@ -167,6 +167,7 @@ struct AtmosphericShadowLutParams {
   int width = 256, height = 256;
   LimbViewParams limb;
   double uMin = 0.0, uMax = 1.0, vMin = 0.0, vMax = 1.0;  ///< ranges over the width and height, as ShadowLutParams'
+  double vLowFraction = 0.0;  ///< (a split v axis needs the whole v extent)
 };
 
 /// The shadow LuT (texel centres as the airless LuT's); only `extent` is computed: the

@@ -5,9 +5,11 @@
 
 uniform sampler2D umbraShadowLut;
 // The u and v ranges the LuT's width and height cover (eclipse::ShadowLut::uMin, uMax,
-// vMin, vMax); [0, 1] unless set.
+// vMin, vMax) and the fraction of the rows for v in [0, vMin] (vLowFraction: a split v
+// axis); [0, 1] and 0 unless set.
 uniform vec2 umbraShadowLutURange = vec2(0.0, 1.0);
 uniform vec2 umbraShadowLutVRange = vec2(0.0, 1.0);
+uniform float umbraShadowLutVLowFraction = 0.0;
 
 // Angle between two directions without acos, accurate for tiny angles.
 float umbraAngleBetween(vec3 a, vec3 b) {
@@ -33,6 +35,9 @@ vec3 umbraEclipseFactor(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float
   float v = delta / (phiOcc + phiSun);
   if (v >= 1.0) return vec3(1.0);
   u = (u - umbraShadowLutURange.x) / (umbraShadowLutURange.y - umbraShadowLutURange.x);
-  v = (v - umbraShadowLutVRange.x) / (umbraShadowLutVRange.y - umbraShadowLutVRange.x);
+  float f = umbraShadowLutVLowFraction;
+  v = (f > 0.0 && v < umbraShadowLutVRange.x)
+      ? f * v / umbraShadowLutVRange.x
+      : f + (1.0 - f) * (v - umbraShadowLutVRange.x) / (umbraShadowLutVRange.y - umbraShadowLutVRange.x);
   return texture(umbraShadowLut, vec2(u, v)).rgb;
 }

@@ -32,7 +32,8 @@ std::string formatNumber(double x);
 /// for every Sun and occluder.
 std::map<std::string, std::string> airlessLutParameters(const eclipse::ShadowLutParams& params);
 
-/// Records u and v ranges other than [0, 1] as "uMin", "uMax", "vMin", "vMax" (and the
+/// Records u and v ranges other than [0, 1] as "uMin", "uMax", "vMin", "vMax",
+/// "vLowFraction" (eclipse::ShadowLut; and the
 /// texel centres in "rangeCentres"); [0, 1]^2 adds nothing, so that such a LuT's header and
 /// key stay as before.
 void addLutRange(std::map<std::string, std::string>& parameters, const eclipse::LutRange& range);

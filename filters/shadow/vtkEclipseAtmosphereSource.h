@@ -102,8 +102,10 @@ protected:
   /// Whole extent, spacing and origin of a LuT with texel centres at
   /// uMin + (uMax - uMin)(i + 0.5) / width, vMin + (vMax - vMin)(j + 0.5) / height and
   /// `depth` slices.
+  /// A split v axis (vLowFraction > 0) has y = the texture coordinate (j + 0.5) / height.
   static void SetLutInformation(vtkInformationVector* out, int width, int height, int depth,
-                                const double uRange[2] = nullptr, const double vRange[2] = nullptr);
+                                const double uRange[2] = nullptr, const double vRange[2] = nullptr,
+                                double vLowFraction = 0.0);
 
   std::string OccluderName;
   double OccluderRadiusM = 6371.0084e3;

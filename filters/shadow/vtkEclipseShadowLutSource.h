@@ -46,6 +46,15 @@ public:
   vtkGetVector2Macro(URange, double);
   vtkSetVector2Macro(VRange, double);
   vtkGetVector2Macro(VRange, double);
+  /// Fraction of the rows for v in [0, VRange[0]] (default 0; eclipse::ShadowLut).
+  vtkSetMacro(VLowFraction, double);
+  vtkGetMacro(VLowFraction, double);
+  /// All of the above from umbra::eclipse::lutRangeForDistances.
+  void SetLutRange(const umbra::eclipse::LutRange& r) {
+    this->SetURange(r.uMin, r.uMax);
+    this->SetVRange(r.vMin, r.vMax);
+    this->SetVLowFraction(r.vLowFraction);
+  }
 
   /// Limb views (atmosphere only): rows = columns = LimbSize (default 256), the in-scattered
   /// light on ScatteringCells x ScatteringCells cells (default 16).
@@ -72,6 +81,7 @@ private:
   int ScatteringCells = 16;
   double URange[2] = {0.0, 1.0};
   double VRange[2] = {0.0, 1.0};
+  double VLowFraction = 0.0;
 
   int RequestAtmospheric(vtkInformation* outInfo, vtkImageData* output);
 };

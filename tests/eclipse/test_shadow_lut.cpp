@@ -151,6 +151,16 @@ TEST(ShadowLutURange, TexelsHoldTheShadowFunctionAtTheirCentresInTheRanges) {
       EXPECT_FLOAT_EQ(lut.texel(i, j).r, static_cast<float>(airlessShadow({u, v})));
       EXPECT_NEAR(lut.sample({u, v}).r, lut.texel(i, j).r, 1e-12);
     }
+  // A split v axis: rows [0, 4) over [0, 0.6], [4, 16) over [0.6, 1]; texels at the centres.
+  const ShadowLut split = buildAirlessShadowLut({16, 16, kDefaultLimbDarkening, 1e-10, 0.3, 0.4, 0.6, 1.0, 0.25});
+  for (int j = 0; j < 16; ++j) {
+    const double t = (j + 0.5) / 16, v = t < 0.25 ? 0.6 * t / 0.25 : 0.6 + 0.4 * (t - 0.25) / 0.75;
+    EXPECT_NEAR(split.texelV(j), v, 1e-15);
+    EXPECT_NEAR(split.textureV(v), t, 1e-15);
+    EXPECT_FLOAT_EQ(split.texel(3, j).r, static_cast<float>(airlessShadow({split.texelU(3), v})));
+    EXPECT_NEAR(split.sample({split.texelU(3), v}).r, split.texel(3, j).r, 1e-12);
+  }
+  EXPECT_THROW(buildAirlessShadowLut({8, 8, kDefaultLimbDarkening, 1e-10, 0.0, 1.0, 0.0, 1.0, 0.25}), std::invalid_argument);
 }
 
 namespace {
