@@ -18,9 +18,10 @@ float umbraAngleBetween(vec3 a, vec3 b) {
   return 2.0 * atan(length(na - nb), length(na + nb));
 }
 
-// Angular radius of a sphere (Eq. 3); pi/2 from inside it.
+// Angular radius of a sphere (Eq. 3); pi/2 from inside it. asin(r / d) as an atan: GLSL's
+// asin may be a coarse polynomial (Mesa: ~1e-4 rad near 0.4 rad, i.e. close to an occluder).
 float umbraAngularRadius(float radius, float dist) {
-  return dist <= radius ? 1.5707963 : asin(radius / dist);
+  return dist <= radius ? 1.5707963 : atan(radius, sqrt((dist - radius) * (dist + radius)));
 }
 
 // Fraction of sunlight per channel reaching p past one occluder (Eq. 3-4 + LuT lookup).
