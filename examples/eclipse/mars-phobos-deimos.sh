@@ -5,11 +5,10 @@
 source "$(dirname "$0")/common.sh"
 for moon in phobos:9376km deimos:23463km; do
   name="${moon%%:*}" distance="${moon#*:}"
-  # The moons sit where a whole LuT gives the penumbra a few rows: the profile command then
-  # builds one over this cross-section's distances only (docs/eclipse-shadows.md); 64^2
-  # is within 2e-4 of --exact inside the solid body's penumbra (docs/accuracy-vs-speed.md).
-  size=(--size 64)
-  [[ " ${extra[*]} " == *" --size "* ]] && size=()
-  "$UMBRA" profile shadow --occluder mars --atmosphere mars --distance "$distance" "${size[@]}" \
+  # --exact: past the solid body's penumbra (v >= 1) every shadow LuT reads 1, while Mars'
+  # atmosphere still dims the Sun there (the grey rim of the figure). Without --exact the
+  # profile reads a LuT over this cross-section's distances (within 2e-4 of --exact inside
+  # the solid penumbra at 64^2; docs/accuracy-vs-speed.md, "Scene-limited shadow LuTs").
+  "$UMBRA" profile shadow --occluder mars --atmosphere mars --distance "$distance" --exact \
     --csv "$out/mars-shadow-$name.csv" --plot "$out/mars-shadow-$name.svg" "${extra[@]}"
 done
