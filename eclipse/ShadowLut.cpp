@@ -18,8 +18,8 @@ glm::dvec3 ShadowLut::texel(int i, int j) const {
 
 glm::dvec3 ShadowLut::sample(const LutCoords& c) const {
   // GL_LINEAR with GL_CLAMP_TO_EDGE: texel centres at (i + 0.5) / size.
-  const double x = std::clamp(c.u * width - 0.5, 0.0, width - 1.0);
-  const double y = std::clamp(c.v * height - 0.5, 0.0, height - 1.0);
+  const double x = std::clamp((c.u - uMin) / (uMax - uMin) * width - 0.5, 0.0, width - 1.0);
+  const double y = std::clamp(textureV(c.v) * height - 0.5, 0.0, height - 1.0);
   const int i0 = std::min(static_cast<int>(x), width - 1), j0 = std::min(static_cast<int>(y), height - 1);
   const int i1 = std::min(i0 + 1, width - 1), j1 = std::min(j0 + 1, height - 1);
   const double fx = x - i0, fy = y - j0;
@@ -33,11 +33,61 @@ double airlessShadow(const LutCoords& c, double limbDarkening, double tol) {
   return visibleFractionLimbDarkened(n.occluderRadius, n.separation, limbDarkening, tol).value;
 }
 
+double ShadowLut::textureV(double v) const {
+  if (vLowFraction > 0.0 && v < vMin) return vLowFraction * v / vMin;
+  return vLowFraction + (1.0 - vLowFraction) * (v - vMin) / (vMax - vMin);
+}
+
+double ShadowLut::texelV(int j) const {
+  if (vLowFraction <= 0.0) return vMin + (vMax - vMin) * (j + 0.5) / height;
+  const double t = (j + 0.5) / height;
+  return t < vLowFraction ? vMin * t / vLowFraction : vMin + (vMax - vMin) * (t - vLowFraction) / (1.0 - vLowFraction);
+}
+
+void checkLutRange(double uMin, double uMax, double vMin, double vMax, double vLowFraction) {
+  if (!(uMin >= 0.0 && uMin < uMax && uMax <= 1.0 && vMin >= 0.0 && vMin < vMax && vMax <= 1.0 &&
+        vLowFraction >= 0.0 && vLowFraction < 1.0 && (vLowFraction == 0.0 || vMin > 0.0)))
+    throw std::invalid_argument("shadow LuT ranges must satisfy 0 <= min < max <= 1 in u and v, "
+                                "0 <= vLowFraction < 1 (> 0 only with vMin > 0)");
+}
+
+LutRange lutRangeForDistances(const SunOccluderSystem& s, double minDistanceM, double maxDistanceM, bool darkUmbra,
+                              int height) {
+  if (!(minDistanceM > 0.0 && minDistanceM <= maxDistanceM && std::isfinite(maxDistanceM)))
+    throw std::invalid_argument("distance range must satisfy 0 < min <= max");
+  if (!(maxDistanceM < s.sunOccluderDistanceM - s.sunRadiusM))
+    throw std::invalid_argument("distance range reaches the Sun");
+  // u = phi_sun / (phi_occ + phi_sun) grows with the distance from the occluder and with
+  // the Sun's apparent size, i.e. as the distance from the Sun shrinks.
+  auto u = [&](double occluderDistanceM, double sunDistanceM) {
+    const double phiSun = angularRadiusRad(s.sunRadiusM, sunDistanceM);
+    return phiSun / (angularRadiusRad(s.occluderRadiusM, occluderDistanceM) + phiSun);
+  };
+  LutRange r{u(minDistanceM, s.sunOccluderDistanceM + minDistanceM), u(maxDistanceM, s.sunOccluderDistanceM - maxDistanceM)};
+  r.uMin = std::max(r.uMin, 0.0), r.uMax = std::min(r.uMax, 1.0);
+  if (!(r.uMin < r.uMax)) r.uMax = std::min(1.0, r.uMin + 1e-9);
+  r.vMax = 1.0;
+  const double edge = 1.0 - 2.0 * r.uMax, half = 0.5 / std::max(height, 2);
+  if (darkUmbra) {
+    // Row 0's centre vMin + (1 - vMin) / (2 height) at or below the umbra's edge.
+    r.vMin = edge > half ? (edge - half) / (1.0 - half) : 0.0;
+  } else if (edge > 0.0) {
+    r.vMin = edge, r.vLowFraction = 0.25;
+  }
+  return r;
+}
+
 ShadowLut buildAirlessShadowLut(const ShadowLutParams& p, const Progress& progress) {
   if (p.width < 2 || p.height < 2) throw std::invalid_argument("shadow LuT size must be at least 2x2");
+  checkLutRange(p.uMin, p.uMax, p.vMin, p.vMax, p.vLowFraction);
   ShadowLut lut;
   lut.width = p.width;
   lut.height = p.height;
+  lut.uMin = p.uMin;
+  lut.uMax = p.uMax;
+  lut.vMin = p.vMin;
+  lut.vMax = p.vMax;
+  lut.vLowFraction = p.vLowFraction;
   lut.rgb.assign(3 * static_cast<std::size_t>(p.width) * p.height, 0.0f);
   std::atomic<int> rowsDone{0};
   std::atomic<bool> cancelled{false};
@@ -46,7 +96,7 @@ ShadowLut buildAirlessShadowLut(const ShadowLutParams& p, const Progress& progre
   for (int j = 0; j < p.height; ++j) {
     if (cancelled.load()) continue;
     for (int i = 0; i < p.width; ++i) {
-      const LutCoords c{(i + 0.5) / p.width, (j + 0.5) / p.height};
+      const LutCoords c{lut.texelU(i), lut.texelV(j)};
       const float value = static_cast<float>(airlessShadow(c, p.limbDarkening, p.relativeTolerance));
       float* t = &lut.rgb[3 * (static_cast<std::size_t>(j) * p.width + i)];
       t[0] = t[1] = t[2] = value;

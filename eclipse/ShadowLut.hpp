@@ -21,17 +21,41 @@ struct ShadowLutParams {
   int height = 256;                ///< texels along v
   double limbDarkening = kDefaultLimbDarkening;
   double relativeTolerance = 1e-10;  ///< of the per-texel quadrature
+  /// u and v ranges mapped onto the texture's width and height (default [0, 1]: the whole
+  /// of Eq. 4); narrower ones (lutRangeForDistances) give full resolution where a scene's
+  /// receivers are.
+  double uMin = 0.0, uMax = 1.0, vMin = 0.0, vMax = 1.0;
+  /// Fraction of the rows given to v in [0, vMin] (0: none, below vMin row 0 is read).
+  double vLowFraction = 0.0;
 };
 
 /// I / I_sun per texel, RGB (equal channels for an airless occluder). Texel (i, j) holds
-/// the value at its centre u = (i + 0.5) / width, v = (j + 0.5) / height, so that the
-/// GPU's linear filtering with clamp-to-edge samples it exactly as `sample` does.
+/// the value at its centre u = uMin + (uMax - uMin) (i + 0.5) / width, v = vMin + (vMax -
+/// vMin) (j + 0.5) / height, so that the GPU's linear filtering with clamp-to-edge of the
+/// texture coordinate ((u - uMin) / (uMax - uMin), (v - vMin) / (vMax - vMin)) samples it
+/// exactly as `sample` does. Outside the ranges the edge texels are used (a range-limited
+/// LuT is valid inside its ranges only). With vLowFraction f > 0 the v axis is split: the
+/// texture coordinate is t = f v / vMin below vMin, f + (1 - f)(v - vMin) / (vMax - vMin)
+/// above (the first f of the rows for [0, vMin], e.g. the umbra's inside, the rest for
+/// [vMin, vMax], e.g. a penumbra that is a few per cent of v wide).
 struct ShadowLut {
   int width = 0, height = 0;
   std::vector<float> rgb;  ///< row-major, row j = v index, 3 floats per texel
+  double uMin = 0.0, uMax = 1.0;  ///< the u range over the width (ShadowLutParams)
+  double vMin = 0.0, vMax = 1.0;  ///< the v range over the height
+  double vLowFraction = 0.0;      ///< of the rows, for v in [0, vMin]
   glm::dvec3 texel(int i, int j) const;
   glm::dvec3 sample(const LutCoords& c) const;
+  /// u of column i's centre, v of row j's.
+  double texelU(int i) const { return uMin + (uMax - uMin) * (i + 0.5) / width; }
+  double texelV(int j) const;
+  /// The texture coordinate along the height of v (before clamping).
+  double textureV(double v) const;
 };
+
+/// Checks a LuT's ranges: 0 <= min < max <= 1, 0 <= vLowFraction < 1 and vMin > 0 with a
+/// split (throws std::invalid_argument).
+void checkLutRange(double uMin, double uMax, double vMin, double vMax, double vLowFraction = 0.0);
 
 /// Value of the airless shadow function at (u, v): the visible fraction of the
 /// limb-darkened Sun (v >= 1: 1, no eclipse).
@@ -45,6 +69,21 @@ using Progress = std::function<bool(double)>;
 /// An airless LuT depends only on its size and the limb darkening: Eq. 4 makes the
 /// visible fraction a function of (u, v) alone, for every Sun and occluder.
 ShadowLut buildAirlessShadowLut(const ShadowLutParams& params, const Progress& progress = {});
+
+/// The ranges of a scene-limited LuT. u: that (Eq. 4) of every point at distance
+/// [minDistanceM, maxDistanceM] from the occluder's centre, for `system` (conservative: the
+/// Sun's distance taken from d - distance to d + distance). v: near the occluder the
+/// penumbra is v in [1 - 2u, 1], 2u of the height, so v is split at the umbra's edge
+/// 1 - 2 uMax (when > 0). With `darkUmbra` (an airless occluder: I = 0 wherever the occluder
+/// covers the whole Sun) all rows go to the penumbra, from where row 0's centre of a
+/// `height`-row LuT is in the umbra for every u of the range (clamping below it reads 0);
+/// without (an atmosphere lights the umbra's inside) a quarter of the rows go to [0, vMin].
+/// Throws std::invalid_argument when the distances are not 0 < min <= max < d - r_sun.
+struct LutRange {
+  double uMin = 0.0, uMax = 1.0, vMin = 0.0, vMax = 1.0, vLowFraction = 0.0;
+};
+LutRange lutRangeForDistances(const SunOccluderSystem& system, double minDistanceM, double maxDistanceM,
+                              bool darkUmbra = false, int height = 256);
 
 /// One occluder as the shadow sees it.
 struct Occluder {

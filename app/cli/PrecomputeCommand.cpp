@@ -1,6 +1,6 @@
-// umbra precompute shadow --occluder BODY [--size N] --output FILE.exr
+// umbra precompute shadow --occluder BODY [--size N] [--distance-range MIN:MAX] --output FILE.exr
 // umbra precompute eclipse --occluder earth|mars --atmosphere PRESET [--size N] [--limb-size N]
-//                          [--limb-lut-size N] [--layers N] [--draft-tables] --output DIR
+//                          [--limb-lut-size N] [--layers N] [--draft-tables] [--distance-range MIN:MAX] --output DIR
 //   writes DIR/eclipse-shadow-atmosphere.exr (the shadow LuT, R G B = I/I_sun) and
 //   DIR/eclipse-limb-luminance.exr (the limb-luminance LuT, slices stacked), both with their
 //   parameters in the header; DIR is created when its parent exists.
@@ -30,7 +30,7 @@ void addPrecomputeCommand(CLI::App& app, Action& action) {
       "shadow", "The eclipse-shadow lookup table of an occluder (I/I_sun over the LuT coordinates u, v of Eq. 4)");
 
   struct Options {
-    std::string occluder, output;
+    std::string occluder, output, distanceRange;
     int size = 256;
     double limbDarkening = 0.6;
     CacheOptions cache;
@@ -41,13 +41,17 @@ void addPrecomputeCommand(CLI::App& app, Action& action) {
   shadow->add_option("--limb-darkening", o->limbDarkening, "Linear limb-darkening coefficient of the Sun (Eq. 1)")
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   shadow->add_option("--output,-o", o->output, "EXR file to write")->required();
+  addDistanceRangeOption(shadow, o->distanceRange);
   o->cache.addTo(shadow);
 
   shadow->callback([&action, o] {
     action = [o] {
       output::checkWritable(o->output, {".exr"});
       const OccluderChoice occ = chooseOccluder(o->occluder, "", "");
-      auto source = updateShadowLut(o->size, o->limbDarkening, o->cache, &occ);
+      eclipse::LutRange range;
+      if (!o->distanceRange.empty()) range = distanceRangeOption(o->distanceRange, occ, true, o->size);
+      auto source =
+          updateShadowLut(o->size, o->limbDarkening, o->cache, &occ, nullptr, o->distanceRange.empty() ? nullptr : &range);
       vtkImageData* image = source->GetOutput();
       tables::writeExr(o->output, filters::toTable(filters::fromImageData(image), filters::fieldParameters(image)));
       std::cout << "wrote " << o->output << " (" << o->size << "x" << o->size << " shadow LuT of " << occ.name
@@ -65,7 +69,7 @@ void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action) {
       "eclipse", "The eclipse tables of an occluder with an atmosphere: the shadow LuT (refracted and scattered "
                  "light included) and the limb-luminance LuT (eclipse paper, 5.2-5.3)");
   struct Options {
-    std::string occluder, output;
+    std::string occluder, output, distanceRange;
     int size = 256, limbLutSize = 64, layers = 1;
     EclipseAtmosphereChoice atmosphere;
     CacheOptions cache;
@@ -78,6 +82,7 @@ void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action) {
   eclipse->add_option("--layers", o->layers, "Rows kept of each limb view in the limb-luminance LuT")
       ->capture_default_str()->check(CLI::Range(1, 64));
   eclipse->add_option("--output,-o", o->output, "Directory to write (created if its parent exists)")->required();
+  addDistanceRangeOption(eclipse, o->distanceRange);
   o->atmosphere.addTo(eclipse);
   o->cache.addTo(eclipse);
 
@@ -95,7 +100,10 @@ void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action) {
       OccluderChoice occ = chooseOccluder(o->occluder, "", "");
       occ.radiusM = o->atmosphere.bottomRadiusM();
 
-      auto shadow = updateShadowLut(o->size, 0.6, o->cache, &occ, &o->atmosphere);
+      eclipse::LutRange range;
+      if (!o->distanceRange.empty()) range = distanceRangeOption(o->distanceRange, occ, false, o->size);
+      auto shadow =
+          updateShadowLut(o->size, 0.6, o->cache, &occ, &o->atmosphere, o->distanceRange.empty() ? nullptr : &range);
       auto limb = vtkSmartPointer<vtkLimbLuminanceSource>::New();
       o->atmosphere.configure(limb, occ);
       limb->SetWidth(o->limbLutSize);

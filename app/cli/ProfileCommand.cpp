@@ -109,7 +109,23 @@ void addProfileCommand(CLI::App& app, Action& action) {
       } else if (!o->lut.empty() && !o->exact) {
         filter->SetInputData(readShadowLut(o->lut));
       } else if (!o->exact) {
-        lut = updateShadowLut(o->size, o->limbDarkening, o->cache, &occ, &o->atmosphere);
+        // Near the occluder the penumbra is 2u of the LuT's height (docs/eclipse-shadows.md):
+        // below 16 rows the LuT covers only this cross-section's ranges.
+        const eclipse::SunOccluderSystem system{sunRadiusM, occ.radiusM, occ.sunDistanceM};
+        const double offsetM =
+            maxOffsetM > 0.0 ? maxOffsetM : 1.25 * eclipse::shadowConeRadii(system, distanceM).penumbraRadiusM;
+        eclipse::LutRange range;
+        bool ranged = false;
+        try {
+          range = eclipse::lutRangeForDistances(system, distanceM, std::hypot(distanceM, offsetM), !withAtmosphere,
+                                                o->size);
+          ranged = 2.0 * range.uMax * o->size < 16.0;
+        } catch (const std::invalid_argument&) {  // a cross-section reaching the Sun: the whole LuT
+        }
+        if (ranged)
+          std::cerr << "note: the penumbra is " << std::lround(2.0 * range.uMax * o->size)
+                    << " rows of a whole LuT here; using one over this cross-section's distances\n";
+        lut = updateShadowLut(o->size, o->limbDarkening, o->cache, &occ, &o->atmosphere, ranged ? &range : nullptr);
         filter->SetInputConnection(lut->GetOutputPort());
       }
       filter->SetSunRadiusM(sunRadiusM);

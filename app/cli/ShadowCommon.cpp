@@ -143,19 +143,40 @@ vtkSmartPointer<vtkTable> atmosphericProfile(const EclipseAtmosphereChoice& atmo
   return filters::profileTable(eclipse::atmosphericShadowProfile(model, distanceM, maxOffsetM, samples, nullptr, limb));
 }
 
+eclipse::LutRange distanceRangeOption(const std::string& text, const OccluderChoice& occ, bool darkUmbra, int size) {
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) throw CommandError("--distance-range: expected MIN:MAX (e.g. 9000km:9800km), got " + text);
+  const double lo = lengthOption("--distance-range", text.substr(0, colon));
+  const double hi = lengthOption("--distance-range", text.substr(colon + 1));
+  try {
+    return eclipse::lutRangeForDistances({eclipse::kSunRadiusM, occ.radiusM, occ.sunDistanceM}, lo, hi, darkUmbra, size);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError("--distance-range: " + std::string(e.what()) + " (got " + text + ")");
+  }
+}
+
+void addDistanceRangeOption(CLI::App* command, std::string& text) {
+  command->add_option("--distance-range", text,
+                      "Receivers' distances from the occluder's centre, MIN:MAX (e.g. 9000km:9800km for Phobos): "
+                      "the LuT covers only their u and v ranges, at full resolution (docs/eclipse-shadows.md)");
+}
+
 vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limbDarkening, const CacheOptions& cache,
                                                            const OccluderChoice* occluder,
-                                                           const EclipseAtmosphereChoice* atmosphere) {
+                                                           const EclipseAtmosphereChoice* atmosphere,
+                                                           const eclipse::LutRange* range) {
   auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
   source->SetWidth(size);
   source->SetHeight(size);
   source->SetLimbDarkening(limbDarkening);
+  if (range) source->SetLutRange(*range);
   if (occluder) {
     source->SetOccluderName(occluder->name.c_str());
     source->SetOccluderRadiusM(occluder->radiusM);
     source->SetSunOccluderDistanceM(occluder->sunDistanceM);
   }
   std::string what = "shadow LuT " + std::to_string(size) + "x" + std::to_string(size);
+  if (range) what += " (u " + filters::formatNumber(range->uMin) + ".." + filters::formatNumber(range->uMax) + ")";
   if (atmosphere && !atmosphere->atmosphere.empty()) {
     if (!occluder) throw CommandError("an atmosphere needs an occluder");
     atmosphere->configure(source, *occluder);

@@ -2,6 +2,7 @@
 // What the `precompute shadow` and `profile shadow` commands share: choosing the
 // occluder and building (or loading from the cache) its shadow LuT.
 #include "Commands.hpp"
+#include "ShadowLut.hpp"
 #include "scene/ReceiverShadow.hpp"
 
 #include <vtkSmartPointer.h>
@@ -38,6 +39,14 @@ SceneShadow sceneShadow(const std::string& scenePath, const std::string& time);
 /// Parse a length option ("384400km"); throws CommandError naming the option.
 double lengthOption(const std::string& option, const std::string& text);
 
+/// --distance-range MIN:MAX ("9000km:9800km"): the LuT's ranges for receivers at those
+/// distances from the occluder's centre (eclipse::lutRangeForDistances; `darkUmbra` for an
+/// airless occluder). Throws CommandError naming the option.
+eclipse::LutRange distanceRangeOption(const std::string& text, const OccluderChoice& occluder, bool darkUmbra,
+                                      int size);
+/// `--distance-range` on a command (help text shared by precompute shadow / eclipse).
+void addDistanceRangeOption(CLI::App* command, std::string& text);
+
 /// The occluder's atmosphere for the eclipse tables: --atmosphere PRESET|FILE, the limb
 /// views' size and the precomputation's (--draft-tables: small tables for quick looks).
 struct EclipseAtmosphereChoice {
@@ -58,10 +67,12 @@ void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& 
 
 /// Build the LuT through the filter, with progress on stderr and cache reporting. The
 /// occluder, if given, is recorded in the LuT's parameters (an airless LuT's values do
-/// not depend on it). With an atmosphere (not empty), the atmospheric LuT.
+/// not depend on it). With an atmosphere (not empty), the atmospheric LuT; with `range`,
+/// a scene-limited LuT over those ranges.
 vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limbDarkening, const CacheOptions& cache,
                                                            const OccluderChoice* occluder = nullptr,
-                                                           const EclipseAtmosphereChoice* atmosphere = nullptr);
+                                                           const EclipseAtmosphereChoice* atmosphere = nullptr,
+                                                           const eclipse::LutRange* range = nullptr);
 
 /// The shadow's cross-section through an atmosphere computed directly at every sample
 /// (no LuT; limb views of atmosphere.limbSize rows): the columns of vtkShadowProfileFilter.

@@ -454,13 +454,27 @@ ShadowLut buildAtmosphericShadowLut(const AtmosphericShadowModel& m, const Atmos
   LutExtent ext = requested.empty() ? LutExtent{0, params.width, 0, params.height} : requested;
   if (ext.uBegin < 0 || ext.vBegin < 0 || ext.uEnd > params.width || ext.vEnd > params.height)
     throw std::invalid_argument("shadow LuT extent outside the table");
+  checkLutRange(params.uMin, params.uMax, params.vMin, params.vMax, params.vLowFraction);
+  if (params.vLowFraction > 0.0 && (ext.vBegin != 0 || ext.vEnd != params.height))
+    throw std::invalid_argument("a shadow LuT with a split v axis is computed over its whole v extent");
+  ShadowLut whole;  // the whole table's u of each column, v of each row
+  whole.width = params.width, whole.height = params.height;
+  whole.uMin = params.uMin, whole.uMax = params.uMax, whole.vMin = params.vMin, whole.vMax = params.vMax;
+  whole.vLowFraction = params.vLowFraction;
   ShadowLut lut;
   lut.width = ext.uEnd - ext.uBegin;
   lut.height = ext.vEnd - ext.vBegin;
+  const double span = params.uMax - params.uMin;
+  lut.uMin = ext.uBegin == 0 ? params.uMin : params.uMin + span * ext.uBegin / params.width;
+  lut.uMax = ext.uEnd == params.width ? params.uMax : params.uMin + span * ext.uEnd / params.width;
+  const double vSpan = params.vMax - params.vMin;
+  lut.vMin = ext.vBegin == 0 ? params.vMin : params.vMin + vSpan * ext.vBegin / params.height;
+  lut.vMax = ext.vEnd == params.height ? params.vMax : params.vMin + vSpan * ext.vEnd / params.height;
+  lut.vLowFraction = params.vLowFraction;
   lut.rgb.assign(static_cast<std::size_t>(lut.width) * lut.height * 3, 0.0f);
   const bool finished = forEachTexel(lut.width * lut.height, progress, [&](int k) {
     const int i = k % lut.width, j = k / lut.width;
-    const LutCoords c{(ext.uBegin + i + 0.5) / params.width, (ext.vBegin + j + 0.5) / params.height};
+    const LutCoords c{whole.texelU(ext.uBegin + i), whole.texelV(ext.vBegin + j)};
     const std::vector<double> t = illuminanceAt(m, limbPosition(m, c), params.limb).total();
     const glm::dvec3 rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
     float* out = lut.rgb.data() + 3 * static_cast<std::size_t>(k);

@@ -166,10 +166,13 @@ struct LutExtent {
 struct AtmosphericShadowLutParams {
   int width = 256, height = 256;
   LimbViewParams limb;
+  double uMin = 0.0, uMax = 1.0, vMin = 0.0, vMax = 1.0;  ///< ranges over the width and height, as ShadowLutParams'
+  double vLowFraction = 0.0;  ///< (a split v axis needs the whole v extent)
 };
 
 /// The shadow LuT (texel centres as the airless LuT's); only `extent` is computed: the
-/// result is extent-sized (texel (i, j) is the LuT's (uBegin + i, vBegin + j)). OpenMP over
+/// result is extent-sized (texel (i, j) is the LuT's (uBegin + i, vBegin + j); its ranges
+/// those of the extent's columns and rows). OpenMP over
 /// texels; `progress` from the calling thread; empty when cancelled. Throws
 /// std::invalid_argument for a bad model, sizes or extent.
 ShadowLut buildAtmosphericShadowLut(const AtmosphericShadowModel& model,

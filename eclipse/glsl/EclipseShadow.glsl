@@ -4,6 +4,12 @@
 // single precision keeps the angles accurate.
 
 uniform sampler2D umbraShadowLut;
+// The u and v ranges the LuT's width and height cover (eclipse::ShadowLut::uMin, uMax,
+// vMin, vMax) and the fraction of the rows for v in [0, vMin] (vLowFraction: a split v
+// axis); [0, 1] and 0 unless set.
+uniform vec2 umbraShadowLutURange = vec2(0.0, 1.0);
+uniform vec2 umbraShadowLutVRange = vec2(0.0, 1.0);
+uniform float umbraShadowLutVLowFraction = 0.0;
 
 // Angle between two directions without acos, accurate for tiny angles.
 float umbraAngleBetween(vec3 a, vec3 b) {
@@ -12,9 +18,10 @@ float umbraAngleBetween(vec3 a, vec3 b) {
   return 2.0 * atan(length(na - nb), length(na + nb));
 }
 
-// Angular radius of a sphere (Eq. 3); pi/2 from inside it.
+// Angular radius of a sphere (Eq. 3); pi/2 from inside it. asin(r / d) as an atan: GLSL's
+// asin may be a coarse polynomial (Mesa: ~1e-4 rad near 0.4 rad, i.e. close to an occluder).
 float umbraAngularRadius(float radius, float dist) {
-  return dist <= radius ? 1.5707963 : asin(radius / dist);
+  return dist <= radius ? 1.5707963 : atan(radius, sqrt((dist - radius) * (dist + radius)));
 }
 
 // Eq. 3-4: the LuT coordinates (u, v) of p for one occluder; v >= 1 where p gets all the
@@ -29,22 +36,33 @@ vec2 umbraShadowUv(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float occR
   return vec2(phiSun / (phiOcc + phiSun), delta / (phiOcc + phiSun));
 }
 
+// (u, v) -> the coordinate in the LuT's texture, through its u and v ranges (identity at
+// the defaults).
+vec2 umbraShadowLutCoord(vec2 uv) {
+  float u = (uv.x - umbraShadowLutURange.x) / (umbraShadowLutURange.y - umbraShadowLutURange.x);
+  float f = umbraShadowLutVLowFraction;
+  float v = (f > 0.0 && uv.y < umbraShadowLutVRange.x)
+      ? f * uv.y / umbraShadowLutVRange.x
+      : f + (1.0 - f) * (uv.y - umbraShadowLutVRange.x) / (umbraShadowLutVRange.y - umbraShadowLutVRange.x);
+  return vec2(u, v);
+}
+
 // Fraction of sunlight per channel reaching p past one occluder (Eq. 3-4 + LuT lookup).
 vec3 umbraEclipseFactor(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float occRadius) {
   vec2 uv = umbraShadowUv(p, sunPos, sunRadius, occPos, occRadius);
   if (uv.y >= 1.0) return vec3(1.0);
-  return texture(umbraShadowLut, uv).rgb;
+  return texture(umbraShadowLut, umbraShadowLutCoord(uv)).rgb;
 }
 
 // The same lookup in `lut`, a part of a table (an update extent, e.g. the u range a
-// receiver can be in): `map` = (u of its first texel, u step, v of its first texel, v step)
-// of the whole table, whose texel centres are at (i + 0.5) * step. Outside the part the
-// edge texels are used (clamp to edge). With the whole table, the texture coordinate is
-// (u, v) itself.
+// receiver can be in): `map` = (coordinate of its first texel, step, the same in v) in the
+// whole table's texture coordinates, whose texel centres are at (i + 0.5) * step. Outside
+// the part the edge texels are used (clamp to edge). With the whole table, the texture
+// coordinate is umbraShadowLutCoord(u, v) itself.
 vec3 umbraEclipseFactorIn(sampler2D lut, vec4 map, vec3 p, vec3 sunPos, float sunRadius, vec3 occPos,
                           float occRadius) {
   vec2 uv = umbraShadowUv(p, sunPos, sunRadius, occPos, occRadius);
   if (uv.y >= 1.0) return vec3(1.0);
-  vec2 texel = (uv - map.xz) / map.yw + 0.5;
+  vec2 texel = (umbraShadowLutCoord(uv) - map.xz) / map.yw + 0.5;
   return texture(lut, texel / vec2(textureSize(lut, 0))).rgb;
 }

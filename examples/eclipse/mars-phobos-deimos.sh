@@ -5,7 +5,10 @@
 source "$(dirname "$0")/common.sh"
 for moon in phobos:9376km deimos:23463km; do
   name="${moon%%:*}" distance="${moon#*:}"
-  # --exact: the moons sit in the first texels of the LuT's u axis (docs/accuracy-vs-speed.md).
+  # --exact: past the solid body's penumbra (v >= 1) every shadow LuT reads 1, while Mars'
+  # atmosphere still dims the Sun there (the grey rim of the figure). Without --exact the
+  # profile reads a LuT over this cross-section's distances (within 2e-4 of --exact inside
+  # the solid penumbra at 64^2; docs/accuracy-vs-speed.md, "Scene-limited shadow LuTs").
   "$UMBRA" profile shadow --occluder mars --atmosphere mars --distance "$distance" --exact \
     --csv "$out/mars-shadow-$name.csv" --plot "$out/mars-shadow-$name.svg" "${extra[@]}"
 done

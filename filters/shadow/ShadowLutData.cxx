@@ -24,13 +24,44 @@ std::string number(double x) {  // shortest text that reads back as the same dou
 std::string formatNumber(double x) { return number(x); }
 
 std::map<std::string, std::string> airlessLutParameters(const eclipse::ShadowLutParams& p) {
-  return {{"kind", kAirlessShadowLutKind},
+  std::map<std::string, std::string> out{{"kind", kAirlessShadowLutKind},
           {"model", "limb-darkened Sun (Eq. 1), spherical airless occluder; v1"},
           {"width", std::to_string(p.width)},
           {"height", std::to_string(p.height)},
           {"limbDarkening", number(p.limbDarkening)},
           {"relativeTolerance", number(p.relativeTolerance)},
           {"values", "I/I_sun at texel centres u=(i+0.5)/width, v=(j+0.5)/height (Eq. 4)"}};
+  addLutRange(out, {p.uMin, p.uMax, p.vMin, p.vMax, p.vLowFraction});
+  return out;
+}
+
+void addLutRange(std::map<std::string, std::string>& p, const eclipse::LutRange& r) {
+  if (r.uMin == 0.0 && r.uMax == 1.0 && r.vMin == 0.0 && r.vMax == 1.0 && r.vLowFraction == 0.0) return;
+  p["uMin"] = number(r.uMin), p["uMax"] = number(r.uMax);
+  p["vMin"] = number(r.vMin), p["vMax"] = number(r.vMax);
+  p["vLowFraction"] = number(r.vLowFraction);
+  p["rangeCentres"] = "u=uMin+(uMax-uMin)(i+0.5)/width; t=(j+0.5)/height, f=vLowFraction: v=vMin t/f for t<f, "
+                      "else vMin+(vMax-vMin)(t-f)/(1-f)";
+}
+
+eclipse::LutRange lutRangeOf(const eclipse::ShadowLut& lut) {
+  return {lut.uMin, lut.uMax, lut.vMin, lut.vMax, lut.vLowFraction};
+}
+
+eclipse::LutRange lutRangeOf(const std::map<std::string, std::string>& p, const std::string& origin) {
+  eclipse::LutRange r;
+  const char* keys[5] = {"uMin", "uMax", "vMin", "vMax", "vLowFraction"};
+  double* values[5] = {&r.uMin, &r.uMax, &r.vMin, &r.vMax, &r.vLowFraction};
+  int found = 0;
+  try {
+    for (int k = 0; k < 5; ++k)
+      if (const auto it = p.find(keys[k]); it != p.end()) *values[k] = std::stod(it->second), ++found;
+    if (found != 0 && found != 5) throw std::invalid_argument("incomplete");
+    eclipse::checkLutRange(r.uMin, r.uMax, r.vMin, r.vMax, r.vLowFraction);
+  } catch (const std::exception&) {
+    throw std::runtime_error(origin + ": bad ranges (uMin, uMax, vMin, vMax, vLowFraction) of the shadow LuT");
+  }
+  return r;
 }
 
 tables::Table toTable(const eclipse::ShadowLut& lut, const std::map<std::string, std::string>& parameters) {
@@ -40,6 +71,7 @@ tables::Table toTable(const eclipse::ShadowLut& lut, const std::map<std::string,
   t.channels = {"R", "G", "B"};
   t.data = lut.rgb;
   t.parameters = parameters;
+  addLutRange(t.parameters, lutRangeOf(lut));
   return t;
 }
 
@@ -52,20 +84,28 @@ eclipse::ShadowLut fromTable(const tables::Table& t, const std::string& origin) 
   lut.width = t.width;
   lut.height = t.height;
   lut.rgb = t.data;
+  const eclipse::LutRange r = lutRangeOf(t.parameters, origin);
+  lut.uMin = r.uMin, lut.uMax = r.uMax, lut.vMin = r.vMin, lut.vMax = r.vMax, lut.vLowFraction = r.vLowFraction;
   return lut;
 }
 
 vtkSmartPointer<vtkImageData> toImageData(const eclipse::ShadowLut& lut) {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(lut.width, lut.height, 1);
-  image->SetSpacing(1.0 / lut.width, 1.0 / lut.height, 1.0);
-  image->SetOrigin(0.5 / lut.width, 0.5 / lut.height, 0.0);
+  // A split v axis is not evenly spaced: y is then the texture coordinate.
+  const bool split = lut.vLowFraction > 0.0;
+  const double du = (lut.uMax - lut.uMin) / lut.width, dv = split ? 1.0 / lut.height : (lut.vMax - lut.vMin) / lut.height;
+  image->SetSpacing(du, dv, 1.0);
+  image->SetOrigin(lut.uMin + 0.5 * du, (split ? 0.0 : lut.vMin) + 0.5 * dv, 0.0);
   auto values = vtkSmartPointer<vtkFloatArray>::New();
   values->SetName(kShadowLutArrayName);
   values->SetNumberOfComponents(3);
   values->SetNumberOfTuples(static_cast<vtkIdType>(lut.width) * lut.height);
   std::copy(lut.rgb.begin(), lut.rgb.end(), values->GetPointer(0));
   image->GetPointData()->SetScalars(values);
+  std::map<std::string, std::string> range;
+  addLutRange(range, lutRangeOf(lut));
+  if (!range.empty()) setFieldParameters(image, range);
   return image;
 }
 
@@ -80,6 +120,8 @@ eclipse::ShadowLut fromImageData(vtkImageData* image) {
   lut.width = dims[0];
   lut.height = dims[1];
   lut.rgb.assign(values->GetPointer(0), values->GetPointer(0) + 3 * static_cast<std::size_t>(dims[0]) * dims[1]);
+  const eclipse::LutRange r = lutRangeOf(fieldParameters(image), "shadow LuT");
+  lut.uMin = r.uMin, lut.uMax = r.uMax, lut.vMin = r.vMin, lut.vMax = r.vMax, lut.vLowFraction = r.vLowFraction;
   return lut;
 }
 

@@ -32,13 +32,26 @@ std::string formatNumber(double x);
 /// for every Sun and occluder.
 std::map<std::string, std::string> airlessLutParameters(const eclipse::ShadowLutParams& params);
 
+/// Records u and v ranges other than [0, 1] as "uMin", "uMax", "vMin", "vMax",
+/// "vLowFraction" (eclipse::ShadowLut; and the
+/// texel centres in "rangeCentres"); [0, 1]^2 adds nothing, so that such a LuT's header and
+/// key stay as before.
+void addLutRange(std::map<std::string, std::string>& parameters, const eclipse::LutRange& range);
+eclipse::LutRange lutRangeOf(const eclipse::ShadowLut& lut);
+/// The ranges recorded by addLutRange ([0, 1] when absent); throws std::runtime_error naming
+/// `origin` when they are not 0 <= min < max <= 1.
+eclipse::LutRange lutRangeOf(const std::map<std::string, std::string>& parameters, const std::string& origin);
+
 tables::Table toTable(const eclipse::ShadowLut& lut, const std::map<std::string, std::string>& parameters);
-/// Throws std::runtime_error naming `origin` if the table is not an RGB LuT.
+/// Throws std::runtime_error naming `origin` if the table is not an RGB LuT. The u range
+/// comes from the header (uRangeOf).
 eclipse::ShadowLut fromTable(const tables::Table& table, const std::string& origin);
 
-/// Image with point coordinates (u, v) = texel centres and float RGB point scalars.
+/// Image with point coordinates (u, v) = texel centres (in the LuT's ranges) and float RGB
+/// point scalars; the ranges also go to field data (addLutRange).
 vtkSmartPointer<vtkImageData> toImageData(const eclipse::ShadowLut& lut);
-/// Throws std::runtime_error if the image is not a 2D float RGB LuT.
+/// Throws std::runtime_error if the image is not a 2D float RGB LuT. The ranges come from
+/// the field data (lutRangeOf).
 eclipse::ShadowLut fromImageData(vtkImageData* image);
 
 /// A shadow profile as a table: columns offset_km, r, g, b, luminance.

@@ -119,12 +119,18 @@ std::vector<float> vtkEclipseAtmosphereSource::CachedOrComputed(const char* kind
   return t.data;
 }
 
-void vtkEclipseAtmosphereSource::SetLutInformation(vtkInformationVector* out, int width, int height, int depth) {
+void vtkEclipseAtmosphereSource::SetLutInformation(vtkInformationVector* out, int width, int height, int depth,
+                                                   const double uRange[2], const double vRange[2],
+                                                   double vLowFraction) {
   vtkInformation* info = out->GetInformationObject(0);
   const int extent[6] = {0, width - 1, 0, height - 1, 0, depth - 1};
   info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-  const double spacing[3] = {1.0 / width, 1.0 / height, 1.0};
-  const double origin[3] = {0.5 / width, 0.5 / height, 0.0};
+  const double uMin = uRange ? uRange[0] : 0.0, uMax = uRange ? uRange[1] : 1.0;
+  const bool split = vLowFraction > 0.0;
+  const double vMin = vRange && !split ? vRange[0] : 0.0, vMax = vRange && !split ? vRange[1] : 1.0;
+  const double du = (uMax - uMin) / width, dv = (vMax - vMin) / height;
+  const double spacing[3] = {du, dv, 1.0};
+  const double origin[3] = {uMin + 0.5 * du, vMin + 0.5 * dv, 0.0};
   info->Set(vtkDataObject::SPACING(), spacing, 3);
   info->Set(vtkDataObject::ORIGIN(), origin, 3);
   vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_FLOAT, 3);

@@ -99,9 +99,13 @@ protected:
                                                    const umbra::eclipse::Progress&)>;
   std::vector<float> CachedOrComputed(const char* kind, const std::map<std::string, std::string>& parameters,
                                       int width, int height, double limbDarkening, const Compute& compute);
-  /// Whole extent, spacing and origin of a LuT with texel centres at (i + 0.5) / width,
-  /// (j + 0.5) / height and `depth` slices.
-  static void SetLutInformation(vtkInformationVector* out, int width, int height, int depth);
+  /// Whole extent, spacing and origin of a LuT with texel centres at
+  /// uMin + (uMax - uMin)(i + 0.5) / width, vMin + (vMax - vMin)(j + 0.5) / height and
+  /// `depth` slices.
+  /// A split v axis (vLowFraction > 0) has y = the texture coordinate (j + 0.5) / height.
+  static void SetLutInformation(vtkInformationVector* out, int width, int height, int depth,
+                                const double uRange[2] = nullptr, const double vRange[2] = nullptr,
+                                double vLowFraction = 0.0);
 
   std::string OccluderName;
   double OccluderRadiusM = 6371.0084e3;

@@ -24,7 +24,7 @@ void vtkEclipseShadowLutSource::PrintSelf(ostream& os, vtkIndent indent) {
 
 int vtkEclipseShadowLutSource::RequestInformation(vtkInformation*, vtkInformationVector**,
                                                   vtkInformationVector* out) {
-  SetLutInformation(out, this->Width, this->Height, 1);
+  SetLutInformation(out, this->Width, this->Height, 1, this->URange, this->VRange, this->VLowFraction);
   return 1;
 }
 
@@ -33,7 +33,15 @@ int vtkEclipseShadowLutSource::RequestData(vtkInformation*, vtkInformationVector
   using namespace umbra;
   vtkImageData* output = vtkImageData::GetData(out);
   if (this->HasAtmosphere()) return this->RequestAtmospheric(out->GetInformationObject(0), output);
-  const eclipse::ShadowLutParams params{this->Width, this->Height, this->LimbDarkening, this->RelativeTolerance};
+  eclipse::ShadowLutParams params{this->Width, this->Height, this->LimbDarkening, this->RelativeTolerance};
+  params.uMin = this->URange[0], params.uMax = this->URange[1];
+  params.vMin = this->VRange[0], params.vMax = this->VRange[1], params.vLowFraction = this->VLowFraction;
+  try {
+    eclipse::checkLutRange(params.uMin, params.uMax, params.vMin, params.vMax, params.vLowFraction);
+  } catch (const std::exception& e) {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
   const auto parameters = filters::airlessLutParameters(params);
   const tables::TableCache cache(this->CacheDirectory.empty() ? tables::TableCache::defaultDirectory()
                                                               : this->CacheDirectory);
@@ -97,6 +105,9 @@ int vtkEclipseShadowLutSource::RequestAtmospheric(vtkInformation* outInfo, vtkIm
     params.width = this->Width;
     params.height = this->Height;
     params.limb = {this->LimbSize, this->LimbSize, this->ScatteringCells, this->ScatteringCells};
+    params.uMin = this->URange[0], params.uMax = this->URange[1];
+    params.vMin = this->VRange[0], params.vMax = this->VRange[1], params.vLowFraction = this->VLowFraction;
+    eclipse::checkLutRange(params.uMin, params.uMax, params.vMin, params.vMax, params.vLowFraction);
     auto parameters = this->AtmosphereParameters();
     parameters["kind"] = filters::kAtmosphereShadowLutKind;
     parameters["model"] = "limb views of the refracted Sun and in-scattered light + direct light past r_atmo (eclipse paper 5.2); v1";
@@ -107,6 +118,7 @@ int vtkEclipseShadowLutSource::RequestAtmospheric(vtkInformation* outInfo, vtkIm
     parameters["limbDarkening"] = filters::formatNumber(this->LimbDarkening);
     parameters["occluder"] = this->OccluderName;
     parameters["values"] = "I/I_sun (R, G, B: 680, 550, 440 nm) at texel centres u=(i+0.5)/width, v=(j+0.5)/height (Eq. 4)";
+    filters::addLutRange(parameters, {params.uMin, params.uMax, params.vMin, params.vMax, params.vLowFraction});
     if (!whole)
       parameters["extent"] = std::to_string(extent.uBegin) + " " + std::to_string(extent.uEnd) + " " +
                              std::to_string(extent.vBegin) + " " + std::to_string(extent.vEnd);
@@ -121,8 +133,11 @@ int vtkEclipseShadowLutSource::RequestAtmospheric(vtkInformation* outInfo, vtkIm
     vtkSmartPointer<vtkImageData> image = filters::toImageData(lut);
     output->ShallowCopy(image);
     output->SetExtent(extent.uBegin, extent.uEnd - 1, extent.vBegin, extent.vEnd - 1, 0, 0);
-    output->SetSpacing(1.0 / this->Width, 1.0 / this->Height, 1.0);
-    output->SetOrigin(0.5 / this->Width, 0.5 / this->Height, 0.0);
+    const bool split = params.vLowFraction > 0.0;
+    const double du = (params.uMax - params.uMin) / this->Width;
+    const double dv = split ? 1.0 / this->Height : (params.vMax - params.vMin) / this->Height;
+    output->SetSpacing(du, dv, 1.0);
+    output->SetOrigin(params.uMin + 0.5 * du, (split ? 0.0 : params.vMin) + 0.5 * dv, 0.0);
     parameters["sunRadiusM"] = filters::formatNumber(this->SunRadiusM);
     filters::setFieldParameters(output, parameters);
   } catch (const std::exception& e) {

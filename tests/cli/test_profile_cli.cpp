@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -150,4 +152,39 @@ TEST(ProfileCli, SceneGivesTheOccluderAndTheReceiversDistance) {
   const std::size_t from = later.out.find(" and ");
   ASSERT_NE(from, std::string::npos);
   EXPECT_GT(std::stod(later.out.substr(from + 5)), 9000.0) << later.out;  // km from the axis
+}
+
+// Near the occluder (Mars' shadow at Phobos) the profile command builds a LuT over the
+// cross-section's distances only, and `precompute shadow --distance-range` makes one: both
+// agree with --exact at 64^2 where a whole 64^2 LuT is off by ~0.5 (docs/accuracy-vs-speed.md).
+TEST(ProfileCli, RangedLutsAtPhobosAgreeWithExact) {
+  TempDir dir;
+  const std::vector<std::string> env{"UMBRA_CACHE_DIR=" + dir / "cache"};
+  const std::vector<std::string> common{"profile", "shadow", "--occluder", "Mars", "--no-atmosphere", "--distance",
+                                        "9376km", "--size", "64", "--samples", "300"};
+  auto ranged = common, exact = common, fromFile = common;
+  ranged.insert(ranged.end(), {"--csv", dir / "r.csv"});
+  exact.insert(exact.end(), {"--exact", "--csv", dir / "e.csv"});
+  fromFile.insert(fromFile.end(), {"--lut", dir / "lut.exr", "--csv", dir / "f.csv"});
+  ASSERT_EQ(run(UMBRA_EXE, {"precompute", "shadow", "--occluder", "Mars", "--size", "64", "--distance-range",
+                            "9376km:10300km", "--output", dir / "lut.exr"}, env).exitCode, 0);
+  const RunResult rr = run(UMBRA_EXE, ranged, env);
+  ASSERT_EQ(rr.exitCode, 0) << rr.err;
+  EXPECT_NE(rr.err.find("over this cross-section's distances"), std::string::npos) << rr.err;
+  ASSERT_EQ(run(UMBRA_EXE, exact, env).exitCode, 0);
+  const RunResult rf = run(UMBRA_EXE, fromFile, env);
+  ASSERT_EQ(rf.exitCode, 0) << rf.err;
+  const Csv e = readCsv(dir / "e.csv");
+  for (const char* name : {"r.csv", "f.csv"}) {
+    const Csv c = readCsv(dir / name);
+    ASSERT_EQ(c.rows.size(), e.rows.size());
+    double worst = 0.0;
+    for (std::size_t i = 0; i < c.rows.size(); ++i) worst = std::max(worst, std::abs(c.rows[i][4] - e.rows[i][4]));
+    EXPECT_LT(worst, 1e-3) << name;
+  }
+  const RunResult bad = run(UMBRA_EXE, {"precompute", "shadow", "--occluder", "Mars", "--distance-range",
+                                        "9800km:9000km", "--output", dir / "bad.exr"}, env);
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_NE(bad.err.find("--distance-range:"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.exr"));
 }

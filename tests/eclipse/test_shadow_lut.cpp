@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <utility>
 
 using namespace umbra::eclipse;
 
@@ -114,4 +117,101 @@ TEST(ShadowLut, StableAtTheExtremes) {
     EXPECT_GE(f, 0.0);
     EXPECT_LE(f, 1.0);
   }
+}
+
+// The u range: [0, 1] is the table as before, bit for bit (texel centres and sampling).
+TEST(ShadowLutURange, DefaultRangeIsTheWholeTableBitForBit) {
+  ShadowLutParams p{48, 40};
+  const ShadowLut a = buildAirlessShadowLut(p);
+  p.uMin = 0.0, p.uMax = 1.0;
+  const ShadowLut b = buildAirlessShadowLut(p);
+  EXPECT_EQ(a.rgb, b.rgb);
+  ASSERT_EQ(a.rgb.size(), 3u * 48 * 40);
+  EXPECT_EQ(a.rgb[3 * (7 * 48 + 5)], static_cast<float>(airlessShadow({5.5 / 48, 7.5 / 40})));
+  for (double u : {0.0, 0.013, 0.4, 0.77, 1.0})
+    for (double v : {0.0, 0.31, 0.99}) {
+      const double x = std::clamp(u * 48 - 0.5, 0.0, 47.0), y = std::clamp(v * 40 - 0.5, 0.0, 39.0);
+      const int i = std::min(static_cast<int>(x), 46), j = std::min(static_cast<int>(y), 38);
+      const double fx = x - i, fy = y - j;
+      const double expected = (1 - fy) * ((1 - fx) * a.texel(i, j).r + fx * a.texel(i + 1, j).r) +
+                              fy * ((1 - fx) * a.texel(i, j + 1).r + fx * a.texel(i + 1, j + 1).r);
+      EXPECT_EQ(a.sample({u, v}).r, expected);
+    }
+  EXPECT_THROW(buildAirlessShadowLut({8, 8, kDefaultLimbDarkening, 1e-10, 0.5, 0.5}), std::invalid_argument);
+  EXPECT_THROW(buildAirlessShadowLut({8, 8, kDefaultLimbDarkening, 1e-10, 0.0, 1.0, 0.2, 0.1}), std::invalid_argument);
+  EXPECT_THROW(buildAirlessShadowLut({8, 8, kDefaultLimbDarkening, 1e-10, -0.1, 0.5}), std::invalid_argument);
+}
+
+// A ranged LuT's texels hold the shadow function at their centres in the range.
+TEST(ShadowLutURange, TexelsHoldTheShadowFunctionAtTheirCentresInTheRanges) {
+  const ShadowLut lut = buildAirlessShadowLut({16, 16, kDefaultLimbDarkening, 1e-10, 0.002, 0.004, 0.99, 1.0});
+  for (int i : {0, 7, 15})
+    for (int j : {0, 9, 15}) {
+      const double u = 0.002 + 0.002 * (i + 0.5) / 16, v = 0.99 + 0.01 * (j + 0.5) / 16;
+      EXPECT_FLOAT_EQ(lut.texel(i, j).r, static_cast<float>(airlessShadow({u, v})));
+      EXPECT_NEAR(lut.sample({u, v}).r, lut.texel(i, j).r, 1e-12);
+    }
+  // A split v axis: rows [0, 4) over [0, 0.6], [4, 16) over [0.6, 1]; texels at the centres.
+  const ShadowLut split = buildAirlessShadowLut({16, 16, kDefaultLimbDarkening, 1e-10, 0.3, 0.4, 0.6, 1.0, 0.25});
+  for (int j = 0; j < 16; ++j) {
+    const double t = (j + 0.5) / 16, v = t < 0.25 ? 0.6 * t / 0.25 : 0.6 + 0.4 * (t - 0.25) / 0.75;
+    EXPECT_NEAR(split.texelV(j), v, 1e-15);
+    EXPECT_NEAR(split.textureV(v), t, 1e-15);
+    EXPECT_FLOAT_EQ(split.texel(3, j).r, static_cast<float>(airlessShadow({split.texelU(3), v})));
+    EXPECT_NEAR(split.sample({split.texelU(3), v}).r, split.texel(3, j).r, 1e-12);
+  }
+  EXPECT_THROW(buildAirlessShadowLut({8, 8, kDefaultLimbDarkening, 1e-10, 0.0, 1.0, 0.0, 1.0, 0.25}), std::invalid_argument);
+}
+
+namespace {
+// Mars' shadow at Phobos (a = 9376 km, radius 11.1 km) or Deimos (23 463 km, 6.2 km):
+// the largest |LuT - exact| over arcs at the receiver's nearest, mean and farthest
+// distance from Mars' centre, from the axis to 1.1 x the penumbra's angular radius.
+double marsShadowError(const ShadowLut& lut, double orbitM, double radiusM) {
+  const SunOccluderSystem mars{kSunRadiusM, 3389.5e3, 1.523679 * kAu};
+  const glm::dvec3 sun(-mars.sunOccluderDistanceM, 0, 0);
+  const Occluder occ{{0, 0, 0}, mars.occluderRadiusM};
+  double worst = 0.0;
+  for (double d : {orbitM - radiusM, orbitM, orbitM + radiusM}) {
+    const double maxAngle = 1.1 * std::asin(shadowConeRadii(mars, d).penumbraRadiusM / d);
+    for (int k = 0; k <= 400; ++k) {
+      const double a = maxAngle * k / 400;
+      const glm::dvec3 p(d * std::cos(a), d * std::sin(a), 0.0);
+      const double exact = eclipseFactor(p, sun, kSunRadiusM, occ, nullptr).r;
+      worst = std::max(worst, std::abs(eclipseFactor(p, sun, kSunRadiusM, occ, &lut).r - exact));
+    }
+  }
+  return worst;
+}
+} // namespace
+
+// Near the occluder Eq. 4 crowds the shadow into the first u texels: at Phobos a whole
+// 64^2 LuT is far off, one over Phobos' distances only is accurate (docs/eclipse-shadows.md).
+TEST(ShadowLutURange, ARangeOverPhobosDistancesResolvesItsShadow) {
+  const SunOccluderSystem mars{kSunRadiusM, 3389.5e3, 1.523679 * kAu};
+  for (const auto& [orbitM, radiusM] : {std::pair{9376e3, 11.1e3}, std::pair{23463e3, 6.2e3}}) {
+    const LutRange r = lutRangeForDistances(mars, orbitM - radiusM, orbitM + radiusM, true, 64);
+    ASSERT_LT(r.uMin, r.uMax);
+    // The range holds every point of the shadow at these distances (on and off the axis).
+    for (double d : {orbitM - radiusM, orbitM + radiusM})
+      for (double a : {0.0, 0.999 * std::asin(shadowConeRadii(mars, d).penumbraRadiusM / d)}) {
+        const glm::dvec3 p(d * std::cos(a), d * std::sin(a), 0.0);
+        const LutCoords c = lutCoords(shadowAngles(p, {-mars.sunOccluderDistanceM, 0, 0}, kSunRadiusM, {0, 0, 0}, 3389.5e3));
+        EXPECT_GE(c.u, r.uMin);
+        EXPECT_LE(c.u, r.uMax);
+      }
+    const ShadowLut whole = buildAirlessShadowLut({64, 64});
+    const ShadowLut ranged = buildAirlessShadowLut({64, 64, kDefaultLimbDarkening, 1e-10, r.uMin, r.uMax, r.vMin, r.vMax});
+    const ShadowLut uOnly = buildAirlessShadowLut({64, 64, kDefaultLimbDarkening, 1e-10, r.uMin, r.uMax});
+    const double before = marsShadowError(whole, orbitM, radiusM), after = marsShadowError(ranged, orbitM, radiusM);
+    std::printf("  Mars' shadow at %.0f km, 64^2: max |LuT - exact| %.3g whole, %.3g u range only, %.3g ranged "
+                "u [%.6g, %.6g] v [%.6g, 1]\n",
+                orbitM / 1e3, before, marsShadowError(uOnly, orbitM, radiusM), after, r.uMin, r.uMax, r.vMin);
+    // Row 0 is in the umbra for every u of the range: clamping below it reads 0.
+    for (int i = 0; i < 64; ++i) EXPECT_EQ(ranged.texel(i, 0).r, 0.0);
+    EXPECT_LT(after, 1e-3);
+    EXPECT_LT(after, before / 10.0);
+  }
+  EXPECT_THROW(lutRangeForDistances(mars, 0.0, 1e6), std::invalid_argument);
+  EXPECT_THROW(lutRangeForDistances(mars, 2e6, 1e6), std::invalid_argument);
 }

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 
@@ -298,4 +299,45 @@ TEST(AtmosphericShadow, ExtentComputesThatPartOfTheLut) {
   int calls = 0;
   const eclipse::ShadowLut cancelled = eclipse::buildAtmosphericShadowLut(m, p, {}, [&](double) { return ++calls < 0; });
   EXPECT_TRUE(cancelled.rgb.empty());
+}
+
+// Near the occluder the shadow crowds into a corner of (u, v) (docs/eclipse-shadows.md): a
+// 64^2 LuT over u, v in [0, 1] misses Mars' penumbra at Phobos; one over the ranges of
+// Phobos' distances (eclipse::lutRangeForDistances: u range, v split at the umbra's edge
+// with a quarter of the rows inside) resolves it. The same arcs as the
+// airless test: nearest, mean and farthest distance, axis to 1.1 x the penumbra.
+TEST(AtmosphericShadow, RangedLutResolvesMarsShadowAtPhobos) {
+  const AtmosphericShadowModel& m = body("mars").model;
+  const double radiusM = 11.1e3;
+  eclipse::AtmosphericShadowLutParams whole;
+  whole.width = whole.height = 64;
+  whole.limb = smallLimb();
+  eclipse::AtmosphericShadowLutParams ranged = whole, uOnly = whole;
+  const eclipse::LutRange r =
+      eclipse::lutRangeForDistances(m.system, kPhobosDistanceM - radiusM, kPhobosDistanceM + radiusM, false, 64);
+  ASSERT_GT(r.vLowFraction, 0.0);  // the umbra's inside keeps rows of its own
+  ranged.uMin = uOnly.uMin = r.uMin, ranged.uMax = uOnly.uMax = r.uMax;
+  ranged.vMin = r.vMin, ranged.vLowFraction = r.vLowFraction;
+  const eclipse::ShadowLut lutWhole = eclipse::buildAtmosphericShadowLut(m, whole);
+  const eclipse::ShadowLut lutU = eclipse::buildAtmosphericShadowLut(m, uOnly);
+  const eclipse::ShadowLut lutRanged = eclipse::buildAtmosphericShadowLut(m, ranged);
+  double err[3] = {0, 0, 0}, umbraErr = 0.0;
+  for (double d : {kPhobosDistanceM - radiusM, kPhobosDistanceM, kPhobosDistanceM + radiusM}) {
+    const double maxAngle = 1.1 * std::asin(eclipse::shadowConeRadii(m.system, d).penumbraRadiusM / d);
+    for (int k = 0; k <= 400; ++k) {
+      const double a = maxAngle * k / 400;
+      const eclipse::LimbPosition p = eclipse::limbPositionBehind(m, d * std::cos(a), d * std::sin(a));
+      const eclipse::LutCoords c = eclipse::lutCoordsOf(p);
+      if (c.v >= 1.0) continue;  // the LuT ends at v = 1
+      const std::vector<double> t = eclipse::illuminanceAt(m, p, smallLimb()).total();
+      const double exact = eclipse::luminance(eclipse::rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data()));
+      const eclipse::ShadowLut* luts[3] = {&lutWhole, &lutU, &lutRanged};
+      for (int q = 0; q < 3; ++q) err[q] = std::max(err[q], std::abs(eclipse::luminance(luts[q]->sample(c)) - exact));
+      if (c.v < r.vMin) umbraErr = std::max(umbraErr, std::abs(eclipse::luminance(lutRanged.sample(c)) - exact));
+    }
+  }
+  std::printf("  Mars' atmosphere at Phobos, 64^2: max |LuT - exact| %.3g whole, %.3g u range only, %.3g u range "
+              "and v split at %.6g (inside the umbra: %.3g)\n", err[0], err[1], err[2], r.vMin, umbraErr);
+  EXPECT_LT(err[2], 1e-3);
+  EXPECT_LT(err[2], err[0] / 10.0);
 }

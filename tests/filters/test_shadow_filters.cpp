@@ -150,3 +150,55 @@ TEST(ShadowProfileFilter, ExactModeNeedsNoInput) {
   ASSERT_EQ(f->GetOutput()->GetNumberOfRows(), 10);
   EXPECT_EQ(vtkDoubleArray::SafeDownCast(f->GetOutput()->GetColumnByName("luminance"))->GetValue(0), 0.0);
 }
+
+// A LuT over the ranges of Phobos' distances behind Mars: the ranges travel in field data,
+// the EXR header and the cache key; the profile filter reads them back and agrees with the
+// exact profile at 64^2 (the whole-range 64^2 LuT does not: docs/eclipse-shadows.md).
+TEST(ShadowProfileFilter, RangedLutCarriesItsRangesAndResolvesPhobos) {
+  CacheDir cache;
+  const eclipse::SunOccluderSystem mars{eclipse::kSunRadiusM, 3389.5e3, 2.2794e11};
+  const double d = 9376e3, maxOffset = 1.1 * eclipse::shadowConeRadii(mars, d).penumbraRadiusM;
+  const eclipse::LutRange r = eclipse::lutRangeForDistances(mars, d, std::hypot(d, maxOffset), true, 64);
+  double err[2] = {0.0, 0.0};
+  for (int ranged = 0; ranged < 2; ++ranged) {
+    auto source = makeSource(cache, 64);
+    source->SetOccluderRadiusM(mars.occluderRadiusM);
+    source->SetSunOccluderDistanceM(mars.sunOccluderDistanceM);
+    if (ranged) source->SetLutRange(r);
+    vtkNew<vtkShadowProfileFilter> lut, exact;
+    for (vtkShadowProfileFilter* f : {lut.Get(), exact.Get()}) {
+      f->SetInputConnection(source->GetOutputPort());
+      f->SetReceiverDistanceM(d);
+      f->SetMaxOffsetM(maxOffset);
+      f->SetSamples(400);
+    }
+    exact->ExactOn();
+    lut->Update();
+    exact->Update();
+    const auto* la = vtkDoubleArray::SafeDownCast(lut->GetOutput()->GetColumnByName("luminance"));
+    const auto* lb = vtkDoubleArray::SafeDownCast(exact->GetOutput()->GetColumnByName("luminance"));
+    for (vtkIdType i = 0; i < 400; ++i) err[ranged] = std::max(err[ranged], std::abs(la->GetValue(i) - lb->GetValue(i)));
+    if (!ranged) continue;
+    const eclipse::ShadowLut back = filters::fromImageData(source->GetOutput());
+    EXPECT_EQ(back.uMin, r.uMin);
+    EXPECT_EQ(back.uMax, r.uMax);
+    EXPECT_EQ(back.vMin, r.vMin);
+    double origin[3];
+    source->GetOutput()->GetOrigin(origin);
+    EXPECT_DOUBLE_EQ(origin[0], back.texelU(0));
+    EXPECT_DOUBLE_EQ(origin[1], back.texelV(0));
+    // The cache keeps the ranges: a second source reads the same ranged LuT back.
+    auto again = makeSource(cache, 64);
+    again->SetLutRange(r);
+    again->Update();
+    EXPECT_TRUE(again->GetLastUpdateWasCacheHit());
+    EXPECT_NE(again->GetCachePath(), makeSource(cache, 64)->GetCachePath());
+    const eclipse::ShadowLut cached = filters::fromImageData(again->GetOutput());
+    EXPECT_EQ(cached.rgb, back.rgb);
+    EXPECT_EQ(cached.uMin, r.uMin);
+    EXPECT_EQ(cached.vMax, r.vMax);
+  }
+  std::printf("  Phobos, 64^2 profile: max |LuT - exact| %.3g whole, %.3g ranged\n", err[0], err[1]);
+  EXPECT_LT(err[1], 1e-3);
+  EXPECT_GT(err[0], 10 * err[1]);
+}
