@@ -92,18 +92,26 @@ TEST(EclipseCli, EarthProfileAtTheMoonIsRedWithAFigure12Plot) {
 
 // Phobos lies in the first texels of the LuT's u axis, so its profile is computed directly
 // (--exact): red over blue in the umbra, as from the LuT at the axis.
+// The umbra's centre at Phobos is lit by dust scattering at ~20 degrees (atan(3420/9376)).
+// Single scattering gives R ~ 1.95 B (albedo 0.98 vs 0.75, HG p(20 deg) 0.58 vs 0.43 per sr;
+// docs/eclipse-shadows.md). The multiple-scattering tables need 32 cells in nu there: with
+// 4 or 8 the forward peak of the blue dust (g = 0.88) is interpolated out to 20 degrees and
+// the centre came out blue (R, G, B = 1.08, 1.07, 1.23 e-3; with 32: 0.92, 0.83, 0.62 e-3).
 TEST(EclipseCli, MarsProfileAtPhobosIsRedderThanBlue) {
   TempDir dir;
   for (const std::string mode : {"--exact", "--log"}) {
     const RunResult r = run(UMBRA_EXE,
                             with({"profile", "shadow", "--occluder", "mars", "--atmosphere", "mars", "--size", "32",
-                                  "--distance", "9376km", "--samples", "5", "--csv", dir / "p.csv", mode},
+                                  "--distance", "9376km", "--samples", "5", "--scattering-nu", "32", "--csv",
+                                  dir / "p.csv", mode},
                                  kSmall),
                             {"UMBRA_CACHE_DIR=" + dir / "cache"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto rows = readRows(dir / "p.csv");
     ASSERT_EQ(rows.size(), 5u);
     EXPECT_GT(rows[0][1], 1.05 * rows[0][3]) << mode;
+    EXPECT_GT(rows[0][1], rows[0][2]) << mode;
+    EXPECT_GT(rows[0][2], rows[0][3]) << mode;
     EXPECT_LT(rows[0][1], 1e-2) << mode;
     EXPECT_GT(rows[0][1], 1e-6) << mode;
   }
