@@ -73,6 +73,11 @@ void EclipseAtmosphereChoice::addTo(CLI::App* command) {
   command->add_flag("--draft-tables", draftTables,
                     "Small atmosphere tables (transmittance 64x16, scattering 8,32,8,4, irradiance 16x4, "
                     "refraction 128x64): seconds instead of minutes, for quick looks and tests");
+  command->add_option("--scattering-nu", scatteringNu,
+                      "Cells in nu (cosine of the view-sun angle) of the scattering tables (default 8, draft 4). "
+                      "Forward-peaked dust (Mars) needs 32: with 8 the multiple scattering at ~20 degrees is "
+                      "interpolated from the forward peak (docs/eclipse-shadows.md)")
+      ->check(CLI::Range(2, 256));
 }
 
 double EclipseAtmosphereChoice::bottomRadiusM() const {
@@ -94,6 +99,12 @@ void EclipseAtmosphereChoice::configure(vtkEclipseAtmosphereSource* source, cons
     source->SetScatteringSize(8, 32, 8, 4);
     source->SetIrradianceSize(16, 4);
     source->SetRefractionSize(128, 64);
+  }
+  if (scatteringNu > 0) {
+    if (draftTables)
+      source->SetScatteringSize(8, 32, 8, scatteringNu);
+    else
+      source->SetScatteringSize(32, 128, 32, scatteringNu);
   }
 }
 

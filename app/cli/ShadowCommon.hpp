@@ -55,6 +55,7 @@ struct EclipseAtmosphereChoice {
   int scatteringCells = 16;  ///< of the shadow LuT's limb views (the limb-luminance LuT keeps 32)
   int orders = 4;
   bool draftTables = false;
+  int scatteringNu = 0;  ///< cells in nu (view-sun cosine) of the scattering tables; 0: the tables' default
   void addTo(CLI::App* command);
   /// Checks the atmosphere file (one-line error) and returns its bottom radius [m].
   double bottomRadiusM() const;
