@@ -74,9 +74,9 @@ void EclipseAtmosphereChoice::addTo(CLI::App* command) {
                     "Small atmosphere tables (transmittance 64x16, scattering 8,32,8,4, irradiance 16x4, "
                     "refraction 128x64): seconds instead of minutes, for quick looks and tests");
   command->add_option("--scattering-nu", scatteringNu,
-                      "Cells in nu (cosine of the view-sun angle) of the scattering tables (default 8, draft 4). "
-                      "Forward-peaked dust (Mars) needs 32: with 8 the multiple scattering at ~20 degrees is "
-                      "interpolated from the forward peak (docs/eclipse-shadows.md)")
+                      "Cells in nu (cosine of the view-sun angle) of the scattering tables (default 8, draft 4; "
+                      "32 for Mars, whose forward-peaked dust needs them: with 8 the multiple scattering at "
+                      "~20 degrees is interpolated from the forward peak, docs/eclipse-shadows.md)")
       ->check(CLI::Range(2, 256));
 }
 
@@ -100,11 +100,13 @@ void EclipseAtmosphereChoice::configure(vtkEclipseAtmosphereSource* source, cons
     source->SetIrradianceSize(16, 4);
     source->SetRefractionSize(128, 64);
   }
-  if (scatteringNu > 0) {
+  // Mars' forward-peaked dust needs 32 nu cells (docs/eclipse-shadows.md): its default.
+  const int nu = scatteringNu > 0 ? scatteringNu : occ.name == "Mars" ? 32 : 0;
+  if (nu > 0) {
     if (draftTables)
-      source->SetScatteringSize(8, 32, 8, scatteringNu);
+      source->SetScatteringSize(8, 32, 8, nu);
     else
-      source->SetScatteringSize(32, 128, 32, scatteringNu);
+      source->SetScatteringSize(32, 128, 32, nu);
   }
 }
 
