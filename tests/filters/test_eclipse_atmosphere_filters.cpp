@@ -1,9 +1,11 @@
 // The eclipse tables of an occluder with an atmosphere through the filters: the shadow-LuT
 // source with an atmosphere (same values as the library, cache, update extents), the
 // limb-luminance source, and the profile filter on an atmospheric LuT (R, G, B).
+#include "AtmosphereTablesBlocks.h"
 #include "EclipseAtmosphere.hpp"
 #include "ShadowLutData.h"
 #include "Spectrum.hpp"
+#include "vtkAtmosphereTablesSource.h"
 #include "vtkEclipseShadowLutSource.h"
 #include "vtkLimbLuminanceSource.h"
 #include "vtkShadowProfileFilter.h"
@@ -54,6 +56,17 @@ vtkSmartPointer<vtkEclipseShadowLutSource> shadowSource(const CacheDir& cache) {
   return s;
 }
 
+/// The library's options of configure().
+eclipse::EclipseAtmosphereOptions smallOptions() {
+  eclipse::EclipseAtmosphereOptions o;
+  o.tables.orders = 2;
+  o.tables.transmittanceWidth = 64, o.tables.transmittanceHeight = 16;
+  o.tables.scatteringR = 8, o.tables.scatteringMu = 32, o.tables.scatteringMuS = 8, o.tables.scatteringNu = 4;
+  o.tables.irradianceWidth = 16, o.tables.irradianceHeight = 4;
+  o.refractionWidth = 128, o.refractionHeight = 64;
+  return o;
+}
+
 vtkFloatArray* scalars(vtkImageData* image) { return vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars()); }
 } // namespace
 
@@ -68,12 +81,7 @@ TEST(EclipseAtmosphereFilters, ShadowLutSourceWithAnAtmosphereIsTheLibrarysLut) 
   ASSERT_EQ(dims[1], 6);
   EXPECT_FALSE(source->GetLastUpdateWasCacheHit());
 
-  eclipse::EclipseAtmosphereOptions o;
-  o.tables.orders = 2;
-  o.tables.transmittanceWidth = 64, o.tables.transmittanceHeight = 16;
-  o.tables.scatteringR = 8, o.tables.scatteringMu = 32, o.tables.scatteringMuS = 8, o.tables.scatteringNu = 4;
-  o.tables.irradianceWidth = 16, o.tables.irradianceHeight = 4;
-  o.refractionWidth = 128, o.refractionHeight = 64;
+  const eclipse::EclipseAtmosphereOptions o = smallOptions();
   const auto prepared = eclipse::prepareEclipseAtmosphere(
       atmosphere::loadAtmosphere("earth", atmosphere::WavelengthSet::rgb().nm), "earth", 1.496e11, o);
   eclipse::AtmosphericShadowLutParams p;
@@ -189,4 +197,54 @@ TEST(EclipseAtmosphereFilters, ProfileOfTheAtmosphericLutIsRedInTheUmbra) {
   EXPECT_GT(r, 1e-6);
   EXPECT_LT(r, 1e-2);
   EXPECT_NEAR(lum, 0.2126 * r + 0.7152 * g + 0.0722 * b, 1e-12);
+}
+
+// The tables of vtkAtmosphereTablesSource (same options, refraction on), read back with
+// tablesFromBlocks / refractionFromBlocks, prepare the same shadow model as the library's
+// own precomputation: the LuTs agree within float rounding (the blocks store floats).
+TEST(EclipseAtmosphereFilters, TablesFromTheTablesSourcePrepareTheSameLut) {
+  CacheDir cache;
+  const atmosphere::Atmosphere atm = atmosphere::loadAtmosphere("earth", atmosphere::WavelengthSet::rgb().nm);
+  const eclipse::EclipseAtmosphereOptions o = smallOptions();
+  auto source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
+  source->SetAtmosphere("earth");
+  source->SetTables(vtkAtmosphereTablesSource::All);
+  source->SetOrders(2);
+  source->SetTransmittanceSize(64, 16);
+  source->SetScatteringSize(8, 32, 8, 4);
+  source->SetIrradianceSize(16, 4);
+  source->SetRefractedPaths(true);
+  source->SetRefractionWidth(128);
+  source->SetRefractionHeight(64);
+  source->SetRefractionStepM(o.refractionStepM);
+  source->SetCacheDirectory(cache.path.c_str());
+  source->Update();
+  ASSERT_EQ(source->GetLastError(), "");
+  const auto fromBlocks = eclipse::prepareEclipseAtmosphere(atm, filters::tablesFromBlocks(source->GetOutput(), atm),
+                                                            filters::refractionFromBlocks(source->GetOutput(), atm),
+                                                            "earth", 1.496e11, o);
+  const auto direct = eclipse::prepareEclipseAtmosphere(atm, "earth", 1.496e11, o);
+  eclipse::AtmosphericShadowLutParams p;
+  p.width = 8, p.height = 6;
+  p.limb = {32, 32, 4, 4};
+  const eclipse::ShadowLut a = eclipse::buildAtmosphericShadowLut(fromBlocks->model, p);
+  const eclipse::ShadowLut b = eclipse::buildAtmosphericShadowLut(direct->model, p);
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  double maxDiff = 0.0;
+  for (std::size_t k = 0; k < a.rgb.size(); ++k) maxDiff = std::max(maxDiff, std::abs(double(a.rgb[k]) - double(b.rgb[k])));
+  EXPECT_LT(maxDiff, 1e-5);  // float tables: relative rounding ~6e-8, carried through the integrals
+  // A multiblock without the refraction table: a clear error.
+  source->SetTables(vtkAtmosphereTablesSource::Bruneton);
+  source->Update();
+  try {
+    filters::refractionFromBlocks(source->GetOutput(), atm);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("refraction"), std::string::npos) << e.what();
+  }
+  // The tables of another atmosphere: refused.
+  const atmosphere::Atmosphere mars = atmosphere::loadAtmosphere("mars", atmosphere::WavelengthSet::rgb().nm);
+  EXPECT_THROW(eclipse::prepareEclipseAtmosphere(mars, filters::tablesFromBlocks(source->GetOutput(), atm),
+                                                 atmosphere::RefractionTable{}, "mars", 2.28e11, o),
+               std::invalid_argument);
 }
