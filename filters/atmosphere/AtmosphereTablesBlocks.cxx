@@ -15,13 +15,18 @@
 namespace umbra::filters {
 namespace {
 
-vtkImageData* block(vtkMultiBlockDataSet* blocks, const std::string& name) {
+vtkImageData* findBlock(vtkMultiBlockDataSet* blocks, const std::string& name) {
   for (unsigned i = 0; i < blocks->GetNumberOfBlocks(); ++i) {
     vtkInformation* info = blocks->HasMetaData(i) ? blocks->GetMetaData(i) : nullptr;
     if (info && info->Has(vtkCompositeDataSet::NAME()) && name == info->Get(vtkCompositeDataSet::NAME())) {
       if (auto* image = vtkImageData::SafeDownCast(blocks->GetBlock(i))) return image;
     }
   }
+  return nullptr;
+}
+
+vtkImageData* block(vtkMultiBlockDataSet* blocks, const std::string& name) {
+  if (vtkImageData* image = findBlock(blocks, name)) return image;
   throw std::invalid_argument("atmosphere tables: no block '" + name + "'");
 }
 
@@ -151,6 +156,11 @@ atmosphere::RefractionTable refractionFromBlocks(vtkMultiBlockDataSet* blocks, c
     r.contactAltitudeM[static_cast<std::size_t>(i)] = static_cast<float>(contact->GetComponent(i, 0));
   }
   return r;
+}
+
+std::map<std::string, std::string> blockParameters(vtkMultiBlockDataSet* blocks, const std::string& name) {
+  vtkImageData* image = blocks ? findBlock(blocks, name) : nullptr;
+  return image ? fieldParameters(image) : std::map<std::string, std::string>{};
 }
 
 } // namespace umbra::filters

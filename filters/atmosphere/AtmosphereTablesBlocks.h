@@ -5,6 +5,9 @@
 #include "Precompute.hpp"
 #include "Refraction.hpp"
 
+#include <map>
+#include <string>
+
 class vtkMultiBlockDataSet;
 
 namespace umbra::filters {
@@ -18,5 +21,8 @@ atmosphere::AtmosphereTables tablesFromBlocks(vtkMultiBlockDataSet* blocks, cons
 /// The "refraction" block back as a RefractionTable (radii from `atmosphere`). Throws
 /// std::invalid_argument when the block or its arrays are missing.
 atmosphere::RefractionTable refractionFromBlocks(vtkMultiBlockDataSet* blocks, const atmosphere::Atmosphere& atmosphere);
+
+/// The field parameters of the block named `name` (empty when there is none).
+std::map<std::string, std::string> blockParameters(vtkMultiBlockDataSet* blocks, const std::string& name);
 
 } // namespace umbra::filters

@@ -10,7 +10,9 @@
 #include "vtkLimbLuminanceSource.h"
 #include "vtkShadowProfileFilter.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkFloatArray.h>
+#include <vtkNew.h>
 #include <vtkImageData.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
@@ -66,6 +68,35 @@ eclipse::EclipseAtmosphereOptions smallOptions() {
   o.refractionWidth = 128, o.refractionHeight = 64;
   return o;
 }
+
+/// vtkAtmosphereTablesSource with the options of configure() and what the eclipse tables need.
+vtkSmartPointer<vtkAtmosphereTablesSource> tablesSource(const CacheDir& cache) {
+  auto source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
+  source->SetAtmosphere("earth");
+  source->SetTables(vtkAtmosphereTablesSource::All);
+  source->SetOrders(2);
+  source->SetTransmittanceSize(64, 16);
+  source->SetScatteringSize(8, 32, 8, 4);
+  source->SetIrradianceSize(16, 4);
+  source->SetRefractedPaths(true);
+  source->SetRefractionWidth(128);
+  source->SetRefractionHeight(64);
+  source->SetCacheDirectory(cache.path.c_str());
+  return source;
+}
+
+/// The messages of ErrorEvents sent by an object.
+struct ErrorCatcher {
+  std::string message;
+  vtkNew<vtkCallbackCommand> command;
+  explicit ErrorCatcher(vtkObject* o) {
+    command->SetClientData(this);
+    command->SetCallback([](vtkObject*, unsigned long, void* self, void* text) {
+      static_cast<ErrorCatcher*>(self)->message += static_cast<const char*>(text);
+    });
+    o->AddObserver(vtkCommand::ErrorEvent, command);
+  }
+};
 
 vtkFloatArray* scalars(vtkImageData* image) { return vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars()); }
 } // namespace
@@ -206,18 +237,7 @@ TEST(EclipseAtmosphereFilters, TablesFromTheTablesSourcePrepareTheSameLut) {
   CacheDir cache;
   const atmosphere::Atmosphere atm = atmosphere::loadAtmosphere("earth", atmosphere::WavelengthSet::rgb().nm);
   const eclipse::EclipseAtmosphereOptions o = smallOptions();
-  auto source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
-  source->SetAtmosphere("earth");
-  source->SetTables(vtkAtmosphereTablesSource::All);
-  source->SetOrders(2);
-  source->SetTransmittanceSize(64, 16);
-  source->SetScatteringSize(8, 32, 8, 4);
-  source->SetIrradianceSize(16, 4);
-  source->SetRefractedPaths(true);
-  source->SetRefractionWidth(128);
-  source->SetRefractionHeight(64);
-  source->SetRefractionStepM(o.refractionStepM);
-  source->SetCacheDirectory(cache.path.c_str());
+  auto source = tablesSource(cache);
   source->Update();
   ASSERT_EQ(source->GetLastError(), "");
   const auto fromBlocks = eclipse::prepareEclipseAtmosphere(atm, filters::tablesFromBlocks(source->GetOutput(), atm),
@@ -247,4 +267,51 @@ TEST(EclipseAtmosphereFilters, TablesFromTheTablesSourcePrepareTheSameLut) {
   EXPECT_THROW(eclipse::prepareEclipseAtmosphere(mars, filters::tablesFromBlocks(source->GetOutput(), atm),
                                                  atmosphere::RefractionTable{}, "mars", 2.28e11, o),
                std::invalid_argument);
+}
+
+// The shadow-LuT source fed by vtkAtmosphereTablesSource (the pipeline) makes the LuT of
+// the Atmosphere property (same options) within float rounding; a second pipeline reads
+// the atmosphere tables from their cache (no precomputation); an input without the tables
+// it needs is a clear error.
+TEST(EclipseAtmosphereFilters, ShadowLutSourceTakesTheTablesThroughItsInput) {
+  CacheDir cache;
+  auto byProperty = shadowSource(cache);
+  byProperty->SetUseCache(false);
+  byProperty->Update();
+  for (int run = 0; run < 2; ++run) {
+    auto tables = tablesSource(cache);
+    auto lut = shadowSource(cache);
+    lut->SetAtmosphere(nullptr);  // from the input
+    lut->SetUseCache(false);
+    lut->SetInputConnection(tables->GetOutputPort());
+    lut->Update();
+    EXPECT_EQ(tables->GetLastPrecomputeCalls(), run == 0 ? 1 : 0) << "run " << run;
+    if (run == 1) EXPECT_EQ(tables->GetLastComputed(), 0);
+    vtkFloatArray* a = scalars(lut->GetOutput());
+    vtkFloatArray* b = scalars(byProperty->GetOutput());
+    ASSERT_NE(a, nullptr);
+    ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
+    double maxDiff = 0.0;
+    for (vtkIdType k = 0; k < a->GetNumberOfTuples(); ++k)
+      for (int c = 0; c < 3; ++c) maxDiff = std::max(maxDiff, std::abs(double(a->GetComponent(k, c)) - b->GetComponent(k, c)));
+    EXPECT_LT(maxDiff, 1e-5) << "run " << run;
+    EXPECT_NE(filters::fieldParameters(lut->GetOutput()).at("atmosphereTables").find("input:"), std::string::npos);
+  }
+  // Bruneton tables only, refraction on: the error names the missing block.
+  auto bruneton = tablesSource(cache);
+  bruneton->SetTables(vtkAtmosphereTablesSource::Bruneton);
+  auto lut = shadowSource(cache);
+  lut->SetAtmosphere(nullptr);
+  lut->SetUseCache(false);
+  lut->SetInputConnection(bruneton->GetOutputPort());
+  ErrorCatcher errors(lut);
+  lut->Update();
+  EXPECT_NE(errors.message.find("no 'refraction' block"), std::string::npos) << errors.message;
+  // Tables of straight paths with refraction on: refused too.
+  auto straight = tablesSource(cache);
+  straight->SetRefractedPaths(false);
+  lut->SetInputConnection(straight->GetOutputPort());
+  errors.message.clear();
+  lut->Update();
+  EXPECT_NE(errors.message.find("refracted paths off"), std::string::npos) << errors.message;
 }
