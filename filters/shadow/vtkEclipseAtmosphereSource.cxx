@@ -2,6 +2,7 @@
 
 #include "AtmosphereTablesBlocks.h"
 #include "Describe.hpp"
+#include "vtkAtmosphereTablesSource.h"
 #include "EclipseAtmosphere.hpp"
 #include "FieldParameters.h"
 #include "Spectrum.hpp"
@@ -113,6 +114,32 @@ vtkMultiBlockDataSet* vtkEclipseAtmosphereSource::InputTables() const {
 
 bool vtkEclipseAtmosphereSource::HasAtmosphere() const {
   return !this->Atmosphere.empty() || const_cast<vtkEclipseAtmosphereSource*>(this)->GetNumberOfInputConnections(0) > 0;
+}
+
+vtkAlgorithm* vtkEclipseAtmosphereSource::ConnectAtmosphereTables() {
+  auto* tables = vtkAtmosphereTablesSource::SafeDownCast(this->TablesSource);
+  const bool ours = tables && this->GetNumberOfInputConnections(0) > 0 && this->GetInputAlgorithm(0, 0) == tables;
+  if (this->Atmosphere.empty() || (this->GetNumberOfInputConnections(0) > 0 && !ours)) return nullptr;
+  if (!ours) {
+    this->TablesSource = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
+    tables = vtkAtmosphereTablesSource::SafeDownCast(this->TablesSource);
+    this->SetInputConnection(tables->GetOutputPort());
+  }
+  // (Re)configured on every call: the setters mark it modified only on a change.
+  tables->SetAtmosphere(this->Atmosphere.c_str());
+  tables->SetWavelengths(this->Wavelengths);
+  tables->SetOrders(this->Orders);
+  tables->SetTransmittanceSize(this->TransmittanceSize);
+  tables->SetScatteringSize(this->ScatteringSize);
+  tables->SetIrradianceSize(this->IrradianceSize);
+  tables->SetTables(this->Refraction ? vtkAtmosphereTablesSource::All : vtkAtmosphereTablesSource::Bruneton);
+  tables->SetRefractedPaths(this->Refraction);
+  tables->SetRefractionWidth(this->RefractionSize[0]);
+  tables->SetRefractionHeight(this->RefractionSize[1]);
+  tables->SetRefractionStepM(this->RefractionStepM);
+  tables->SetCacheDirectory(this->CacheDirectory.c_str());
+  tables->SetUseCache(this->UseCache);
+  return tables;
 }
 
 std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> vtkEclipseAtmosphereSource::GetPreparedAtmosphere() {

@@ -17,6 +17,7 @@
 #include "ShadowLut.hpp"
 
 #include <vtkImageAlgorithm.h>
+#include <vtkSmartPointer.h>
 
 #include <functional>
 #include <map>
@@ -84,6 +85,13 @@ public:
   /// computed directly. Throws on a bad atmosphere or options.
   std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> GetPreparedAtmosphere();
 
+  /// Feeds the input from a new vtkAtmosphereTablesSource asking for the tables these
+  /// properties describe (atmosphere, wavelengths, sizes, orders, refraction, cache): the
+  /// Bruneton and refraction tables then come from their EXR cache across runs. A later
+  /// call re-configures that tables source from the properties. Does nothing without an
+  /// Atmosphere or when another input is connected. Returns the tables source (or null).
+  vtkAlgorithm* ConnectAtmosphereTables();
+
   /// After an update: whether the table came from the cache, and the cache file's path.
   bool GetLastUpdateWasCacheHit() const { return this->LastCacheHit; }
   const std::string& GetCachePath() const { return this->CachePath; }
@@ -137,6 +145,7 @@ protected:
   std::string CacheDirectory;
   bool UseCache = true;
 
+  vtkSmartPointer<vtkAlgorithm> TablesSource;
   /// The atmosphere this source prepared last (keeps it shared while the source lives).
   std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> Prepared;
   bool LastCacheHit = false;
