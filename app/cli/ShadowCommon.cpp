@@ -113,6 +113,7 @@ void EclipseAtmosphereChoice::configure(vtkEclipseAtmosphereSource* source, cons
 void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& what, const CacheOptions& cache) {
   source->SetCacheDirectory(cache.directory.c_str());
   source->SetUseCache(!cache.disabled);
+  source->ConnectAtmosphereTables();  // the Bruneton and refraction tables from their cache
   ProgressLine progress(what);
   vtkNew<vtkCallbackCommand> onProgress;
   onProgress->SetClientData(&progress);

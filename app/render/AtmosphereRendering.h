@@ -64,13 +64,6 @@ class vtkTextureObject;
 
 namespace umbra::render {
 
-/// The tables of vtkAtmosphereTablesSource's output (the Bruneton blocks: transmittance,
-/// single scattering per component, multiple scattering, direct and indirect irradiance)
-/// back as AtmosphereTables (float values widened to double), for `atmosphere` (the model
-/// they were computed for, at the same wavelengths). Throws std::invalid_argument naming
-/// the missing or inconsistent block.
-atmosphere::AtmosphereTables tablesFromBlocks(vtkMultiBlockDataSet* blocks, const atmosphere::Atmosphere& atmosphere);
-
 /// The colour matrix M of the header (for 680, 550, 440 nm).
 glm::dmat3 atmosphereToDisplayMatrix(const std::vector<double>& wavelengthsNm);
 

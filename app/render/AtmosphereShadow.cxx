@@ -88,6 +88,7 @@ void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, 
   }
   const int extent[6] = {first, last, 0, source->GetHeight() - 1, 0, 0};
   try {
+    source->ConnectAtmosphereTables();  // the atmosphere tables from their cache
     source->UpdateExtent(extent);
   } catch (const std::exception& e) {
     throw std::runtime_error("shadow through the atmosphere of '" + occ->name + "': " + e.what());
@@ -121,6 +122,7 @@ void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs&
   }
   const SphereBody& occ = setUpFor(source, in);
   try {
+    source->ConnectAtmosphereTables();
     source->Update();
   } catch (const std::exception& e) {
     throw std::runtime_error("limb luminance of the atmosphere of '" + occ.name + "': " + e.what());

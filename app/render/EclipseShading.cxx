@@ -1,6 +1,8 @@
 #include "EclipseShading.h"
 
 #include "EclipseShadowGlsl.hpp"
+#include "FieldParameters.h"
+#include "ShadowLutData.h"
 #include "RenderGlsl.hpp"
 
 #include <vtkActor.h>
@@ -89,6 +91,9 @@ struct Receiver {
 
 struct EclipseShading::Impl {
   vtkSmartPointer<vtkTexture> lutTexture;
+  // The u and v ranges of lutTexture (its field data, filters::lutRangeOf): the
+  // umbraShadowLutURange, VRange and VLowFraction uniforms.
+  eclipse::LutRange lutRange;
   SunLight sun;
   std::vector<SphereBody> occluders;
   std::vector<std::unique_ptr<Receiver>> receivers;
@@ -151,6 +156,11 @@ struct EclipseShading::Impl {
     program.SetUniform4fv("umbraOccluders", kMaxOccluders, occ);
     program.SetUniformi("umbraAtmosphereOccluder", atmosphere);
     program.SetUniform4f("umbraAtmosphereLutMap", atmosphereMap.data());
+    const float uRange[2] = {float(lutRange.uMin), float(lutRange.uMax)};
+    const float vRange[2] = {float(lutRange.vMin), float(lutRange.vMax)};
+    program.SetUniform2f("umbraShadowLutURange", uRange);
+    program.SetUniform2f("umbraShadowLutVRange", vRange);
+    program.SetUniformf("umbraShadowLutVLowFraction", float(lutRange.vLowFraction));
   }
 
   void detach(Receiver& r) const {
@@ -237,6 +247,11 @@ vtkSmartPointer<vtkTexture> lutTexture() {
 
 void EclipseShading::SetShadowLut(vtkImageData* lut) {
   auto copy = checkedLutCopy(lut);
+  try {
+    impl_->lutRange = filters::lutRangeOf(filters::fieldParameters(copy), "shadow LuT");
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(e.what());
+  }
   copy->SetOrigin(0.0, 0.0, 0.0);
   copy->SetSpacing(1.0, 1.0, 1.0);
   if (!impl_->lutTexture) impl_->lutTexture = lutTexture();

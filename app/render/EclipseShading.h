@@ -60,8 +60,10 @@ class EclipseShading {
 
   /// The eclipse shadow LuT: 2D image W x H x 1 (W, H >= 2), point scalars float RGB
   /// (3 components), texel (i, j) = value at u = (i + .5) / W, v = (j + .5) / H
-  /// (see filters/shadow/ShadowLutData.h). Bound as an RGB32F texture, linear, clamp-to-edge, no
-  /// mipmaps, no colour mapping. A copy is kept. Throws std::invalid_argument.
+  /// (see filters/shadow/ShadowLutData.h); a ranged LuT (u, v ranges and vLowFraction in
+  /// field data, filters::addLutRange) is read through them. Bound as an RGB32F texture,
+  /// linear, clamp-to-edge, no mipmaps, no colour mapping. A copy is kept. Throws
+  /// std::invalid_argument.
   void SetShadowLut(vtkImageData* lut);
   bool HasShadowLut() const;
   /// The texture every receiver samples as "umbraShadowLut" (nullptr before SetShadowLut).

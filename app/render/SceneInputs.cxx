@@ -2,6 +2,7 @@
 
 #include "Atmosphere.hpp"
 #include "Spectrum.hpp"
+#include "AtmosphereTablesBlocks.h"
 #include "FieldParameters.h"
 #include "vtkAtmosphereTablesSource.h"
 
@@ -87,7 +88,7 @@ void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTa
   if (!source->GetLastError().empty())
     throw std::runtime_error("atmosphere of '" + a.body + "': " + source->GetLastError());
   const atmosphere::Atmosphere model = atmosphere::loadAtmosphere(a.model, atmosphere::WavelengthSet::rgb().nm);
-  view.GetAtmosphere().SetAtmosphere(model, tablesFromBlocks(source->GetOutput(), model), body->centreM,
+  view.GetAtmosphere().SetAtmosphere(model, filters::tablesFromBlocks(source->GetOutput(), model), body->centreM,
                                      body->albedoRgb);
   view.GetAtmosphere().SetRefraction(refraction ? refractionBlock(source->GetOutput()) : nullptr);
 }

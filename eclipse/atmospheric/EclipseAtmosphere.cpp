@@ -7,15 +7,35 @@
 #include <stdexcept>
 
 namespace umbra::eclipse {
+namespace {
+
+void checkOptions(const EclipseAtmosphereOptions& options) {
+  if (options.refractionWidth < 2 || options.refractionHeight < 2 || !(options.refractionStepM > 0.0) ||
+      options.profileSamples < 2)
+    throw std::invalid_argument("eclipse atmosphere: refraction table >= 2x2, step > 0, profile samples >= 2");
+}
+
+/// The shadow model over the prepared tables of `e`.
+void finishModel(EclipseAtmosphere& e, const std::string& occluderName, double sunOccluderDistanceM,
+                 const EclipseAtmosphereOptions& options) {
+  AtmosphericShadowModel& m = e.model;
+  m.system = {kSunRadiusM, e.atmosphere.bottomRadiusM, sunOccluderDistanceM};
+  m.rays = limbRayProfile(e.tables, options.refraction ? &e.refraction : nullptr, options.profileSamples);
+  m.tables = &e.tables;
+  m.atmosphere = &e.atmosphere;
+  m.terrain = defaultTerrain(occluderName);
+  if (options.terrainMeanElevationM >= 0.0) m.terrain.meanElevationM = options.terrainMeanElevationM;
+  if (const std::string err = m.validate(); !err.empty()) throw std::invalid_argument("eclipse atmosphere: " + err);
+}
+
+} // namespace
 
 std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::Atmosphere& atm,
                                                             const std::string& occluderName,
                                                             double sunOccluderDistanceM,
                                                             const EclipseAtmosphereOptions& options,
                                                             const EclipseProgress& progress) {
-  if (options.refractionWidth < 2 || options.refractionHeight < 2 || !(options.refractionStepM > 0.0) ||
-      options.profileSamples < 2)
-    throw std::invalid_argument("eclipse atmosphere: refraction table >= 2x2, step > 0, profile samples >= 2");
+  checkOptions(options);
   auto e = std::make_unique<EclipseAtmosphere>();
   e->atmosphere = atm;
   atmosphere::PrecomputeOptions po = options.tables;
@@ -31,15 +51,29 @@ std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::At
         atmosphere::refractiveMedium(e->atmosphere, e->atmosphere.refractivityReferenceWavelengthNm),
         options.refractionWidth, options.refractionHeight, options.refractionStepM);
   }
-  AtmosphericShadowModel& m = e->model;
-  m.system = {kSunRadiusM, atm.bottomRadiusM, sunOccluderDistanceM};
-  m.rays = limbRayProfile(e->tables, options.refraction ? &e->refraction : nullptr, options.profileSamples);
-  m.tables = &e->tables;
-  m.atmosphere = &e->atmosphere;
-  m.terrain = defaultTerrain(occluderName);
-  if (options.terrainMeanElevationM >= 0.0) m.terrain.meanElevationM = options.terrainMeanElevationM;
-  if (const std::string err = m.validate(); !err.empty()) throw std::invalid_argument("eclipse atmosphere: " + err);
+  finishModel(*e, occluderName, sunOccluderDistanceM, options);
   if (progress) progress(1.0, "done");
+  return e;
+}
+
+std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::Atmosphere& atm,
+                                                            atmosphere::AtmosphereTables tables,
+                                                            atmosphere::RefractionTable refraction,
+                                                            const std::string& occluderName,
+                                                            double sunOccluderDistanceM,
+                                                            const EclipseAtmosphereOptions& options) {
+  checkOptions(options);
+  if (tables.wavelengthsNm != atm.wavelengthsNm || tables.bottomRadiusM != atm.bottomRadiusM ||
+      tables.topRadiusM != atm.topRadiusM)
+    throw std::invalid_argument("eclipse atmosphere: the tables were made for another atmosphere (radii or wavelengths)");
+  if (options.refraction && (refraction.deviationRad.empty() || refraction.bottomRadiusM != atm.bottomRadiusM ||
+                             refraction.topRadiusM != atm.topRadiusM))
+    throw std::invalid_argument("eclipse atmosphere: refraction on but no refraction table for this atmosphere");
+  auto e = std::make_unique<EclipseAtmosphere>();
+  e->atmosphere = atm;
+  e->tables = std::move(tables);
+  if (options.refraction) e->refraction = std::move(refraction);
+  finishModel(*e, occluderName, sunOccluderDistanceM, options);
   return e;
 }
 

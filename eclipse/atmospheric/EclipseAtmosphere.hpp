@@ -50,6 +50,17 @@ std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::At
                                                             const EclipseAtmosphereOptions& options,
                                                             const EclipseProgress& progress = {});
 
+/// The same from tables computed elsewhere (e.g. vtkAtmosphereTablesSource's cache):
+/// `tables` must be those of `atm` with options.tables (refracted paths when
+/// options.refraction), and `refraction` its deviation table (ignored without
+/// options.refraction). Throws std::invalid_argument when they do not match `atm`.
+std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::Atmosphere& atm,
+                                                            atmosphere::AtmosphereTables tables,
+                                                            atmosphere::RefractionTable refraction,
+                                                            const std::string& occluderName,
+                                                            double sunOccluderDistanceM,
+                                                            const EclipseAtmosphereOptions& options);
+
 /// Every parameter that changes the prepared model's values, known before preparing it
 /// (for headers and cache keys): the atmosphere's, the options', the bodies'.
 std::map<std::string, std::string> eclipseAtmosphereParameters(const atmosphere::Atmosphere& atm,

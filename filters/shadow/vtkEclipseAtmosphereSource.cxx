@@ -1,12 +1,18 @@
 #include "vtkEclipseAtmosphereSource.h"
 
+#include "AtmosphereTablesBlocks.h"
+#include "Describe.hpp"
+#include "vtkAtmosphereTablesSource.h"
 #include "EclipseAtmosphere.hpp"
+#include "FieldParameters.h"
 #include "Spectrum.hpp"
 #include "umbra/tables/TableCache.h"
 
 #include <vtkDataObject.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkAlgorithmOutput.h>
+#include <vtkMultiBlockDataSet.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <mutex>
@@ -25,9 +31,121 @@ std::string keyOf(const std::map<std::string, std::string>& parameters) {
   return key;
 }
 
+/// What the eclipse tables are made of: the atmosphere, the options and the parameters of
+/// the prepared model (cache keys); with input tables, their options and parameters.
+struct Resolved {
+  umbra::atmosphere::Atmosphere atm;
+  umbra::eclipse::EclipseAtmosphereOptions options;
+  std::map<std::string, std::string> parameters;
+};
+
+Resolved resolve(const std::string& spec, int wavelengths, vtkMultiBlockDataSet* input, const std::string& occluder,
+                 double sunOccluderDistanceM, umbra::eclipse::EclipseAtmosphereOptions options) {
+  using namespace umbra;
+  if (!input) {
+    Resolved r{atmosphere::loadAtmosphere(spec, wavelengthsOf(wavelengths)), options, {}};
+    r.parameters = eclipse::eclipseAtmosphereParameters(r.atm, occluder, sunOccluderDistanceM, options);
+    return r;
+  }
+  const auto ms = umbra::filters::blockParameters(input, "multiple-scattering");
+  if (ms.empty())
+    throw std::invalid_argument("atmosphere tables input: no 'multiple-scattering' block (ask vtkAtmosphereTablesSource "
+                                "for the Bruneton tables)");
+  const std::string name = spec.empty() && ms.count("atmosphere") ? ms.at("atmosphere") : spec;
+  Resolved r{atmosphere::loadAtmosphere(name, wavelengthsOf(wavelengths)), options, {}};
+  const auto atmosphereKeys = atmosphere::atmosphereParameters(r.atm);
+  for (const auto& [k, v] : atmosphereKeys) {
+    const auto it = ms.find(k);
+    if (it == ms.end() || it->second != v)
+      throw std::invalid_argument("atmosphere tables input: made for another atmosphere than '" + name +
+                                  "' (parameter '" + k + "' differs)");
+  }
+  auto get = [&](const std::map<std::string, std::string>& p, const std::string& block, const std::string& k) {
+    const auto it = p.find(k);
+    if (it == p.end())
+      throw std::invalid_argument("atmosphere tables input: block '" + block + "' has no parameter '" + k + "'");
+    return it->second;
+  };
+  const bool refractedPaths = get(ms, "multiple-scattering", "refractedPaths") == "1";
+  if (options.refraction != refractedPaths)
+    throw std::invalid_argument(std::string("atmosphere tables input: refraction is ") +
+                                (options.refraction ? "on" : "off") + " but the tables were made with refracted paths " +
+                                (refractedPaths ? "on" : "off") + " (vtkAtmosphereTablesSource::SetRefractedPaths)");
+  options.tables.orders = std::stoi(get(ms, "multiple-scattering", "orders"));
+  std::string inputKey;
+  for (const auto& [k, v] : ms)
+    if (k != "kind" && k != "layout" && k != "units" && k != "depth" && !atmosphereKeys.count(k))
+      inputKey += k + "=" + v + "; ";
+  if (options.refraction) {
+    const auto rp = umbra::filters::blockParameters(input, "refraction");
+    if (rp.empty())
+      throw std::invalid_argument("atmosphere tables input: refraction on but no 'refraction' block "
+                                  "(vtkAtmosphereTablesSource::SetTables(All))");
+    options.refractionStepM = std::stod(get(rp, "refraction", "stepM"));
+    options.tables.refractionStepM = options.refractionStepM;
+    options.refractionWidth = std::stoi(get(rp, "refraction", "width"));
+    options.refractionHeight = std::stoi(get(rp, "refraction", "height"));
+    if (std::stod(get(ms, "multiple-scattering", "refractionStepM")) != options.refractionStepM)
+      throw std::invalid_argument("atmosphere tables input: the refracted paths and the refraction table have different steps");
+  }
+  r.options = options;
+  r.parameters = eclipse::eclipseAtmosphereParameters(r.atm, occluder, sunOccluderDistanceM, options);
+  r.parameters["atmosphereTables"] = "input: " + inputKey;  // the input's sizes, orders, samples
+  return r;
+}
+
 } // namespace
 
-vtkEclipseAtmosphereSource::vtkEclipseAtmosphereSource() { this->SetNumberOfInputPorts(0); }
+vtkEclipseAtmosphereSource::vtkEclipseAtmosphereSource() { this->SetNumberOfInputPorts(1); }
+
+int vtkEclipseAtmosphereSource::FillInputPortInformation(int, vtkInformation* info) {
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMultiBlockDataSet");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+vtkMultiBlockDataSet* vtkEclipseAtmosphereSource::InputTables() const {
+  auto* self = const_cast<vtkEclipseAtmosphereSource*>(this);
+  if (self->GetNumberOfInputConnections(0) == 0) return nullptr;
+  auto* blocks = vtkMultiBlockDataSet::SafeDownCast(self->GetInputDataObject(0, 0));
+  if (!blocks) throw std::invalid_argument("atmosphere tables input: not a vtkMultiBlockDataSet");
+  return blocks;
+}
+
+bool vtkEclipseAtmosphereSource::HasAtmosphere() const {
+  return !this->Atmosphere.empty() || const_cast<vtkEclipseAtmosphereSource*>(this)->GetNumberOfInputConnections(0) > 0;
+}
+
+vtkAlgorithm* vtkEclipseAtmosphereSource::ConnectAtmosphereTables() {
+  auto* tables = vtkAtmosphereTablesSource::SafeDownCast(this->TablesSource);
+  const bool ours = tables && this->GetNumberOfInputConnections(0) > 0 && this->GetInputAlgorithm(0, 0) == tables;
+  if (this->Atmosphere.empty() || (this->GetNumberOfInputConnections(0) > 0 && !ours)) return nullptr;
+  if (!ours) {
+    this->TablesSource = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
+    tables = vtkAtmosphereTablesSource::SafeDownCast(this->TablesSource);
+    this->SetInputConnection(tables->GetOutputPort());
+  }
+  // (Re)configured on every call: the setters mark it modified only on a change.
+  tables->SetAtmosphere(this->Atmosphere.c_str());
+  tables->SetWavelengths(this->Wavelengths);
+  tables->SetOrders(this->Orders);
+  tables->SetTransmittanceSize(this->TransmittanceSize);
+  tables->SetScatteringSize(this->ScatteringSize);
+  tables->SetIrradianceSize(this->IrradianceSize);
+  tables->SetTables(this->Refraction ? vtkAtmosphereTablesSource::All : vtkAtmosphereTablesSource::Bruneton);
+  tables->SetRefractedPaths(this->Refraction);
+  tables->SetRefractionWidth(this->RefractionSize[0]);
+  tables->SetRefractionHeight(this->RefractionSize[1]);
+  tables->SetRefractionStepM(this->RefractionStepM);
+  tables->SetCacheDirectory(this->CacheDirectory.c_str());
+  tables->SetUseCache(this->UseCache);
+  return tables;
+}
+
+std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> vtkEclipseAtmosphereSource::GetPreparedAtmosphere() {
+  if (this->GetNumberOfInputConnections(0) > 0) this->GetInputAlgorithm(0, 0)->Update();
+  return this->PrepareAtmosphere(0.0, 1.0);
+}
 
 void vtkEclipseAtmosphereSource::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
@@ -58,8 +176,9 @@ umbra::eclipse::EclipseAtmosphereOptions vtkEclipseAtmosphereSource::Options() c
 }
 
 std::map<std::string, std::string> vtkEclipseAtmosphereSource::AtmosphereParameters() const {
-  const umbra::atmosphere::Atmosphere atm = umbra::atmosphere::loadAtmosphere(this->Atmosphere, wavelengthsOf(this->Wavelengths));
-  return umbra::eclipse::eclipseAtmosphereParameters(atm, this->OccluderName, this->SunOccluderDistanceM, this->Options());
+  return resolve(this->Atmosphere, this->Wavelengths, this->InputTables(), this->OccluderName,
+                 this->SunOccluderDistanceM, this->Options())
+      .parameters;
 }
 
 std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> vtkEclipseAtmosphereSource::PrepareAtmosphere(double from,
@@ -67,17 +186,22 @@ std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> vtkEclipseAtmosphereSou
   using namespace umbra;
   static std::mutex mutex;
   static std::map<std::string, std::weak_ptr<const eclipse::EclipseAtmosphere>> prepared;
-  const atmosphere::Atmosphere atm = atmosphere::loadAtmosphere(this->Atmosphere, wavelengthsOf(this->Wavelengths));
-  const eclipse::EclipseAtmosphereOptions options = this->Options();
-  const std::string key =
-      keyOf(eclipse::eclipseAtmosphereParameters(atm, this->OccluderName, this->SunOccluderDistanceM, options));
+  vtkMultiBlockDataSet* input = this->InputTables();
+  const Resolved r = resolve(this->Atmosphere, this->Wavelengths, input, this->OccluderName,
+                             this->SunOccluderDistanceM, this->Options());
+  const std::string key = keyOf(r.parameters);
   std::lock_guard<std::mutex> lock(mutex);
   if (auto kept = prepared[key].lock()) return this->Prepared = kept;
-  std::shared_ptr<const eclipse::EclipseAtmosphere> made = eclipse::prepareEclipseAtmosphere(
-      atm, this->OccluderName, this->SunOccluderDistanceM, options, [&](double f, const std::string&) {
-        this->UpdateProgress(from + (to - from) * f);
-        return !this->GetAbortExecute();
-      });
+  std::shared_ptr<const eclipse::EclipseAtmosphere> made =
+      input ? eclipse::prepareEclipseAtmosphere(
+                  r.atm, filters::tablesFromBlocks(input, r.atm),
+                  r.options.refraction ? filters::refractionFromBlocks(input, r.atm) : atmosphere::RefractionTable{},
+                  this->OccluderName, this->SunOccluderDistanceM, r.options)
+            : eclipse::prepareEclipseAtmosphere(r.atm, this->OccluderName, this->SunOccluderDistanceM, r.options,
+                                                [&](double f, const std::string&) {
+                                                  this->UpdateProgress(from + (to - from) * f);
+                                                  return !this->GetAbortExecute();
+                                                });
   prepared[key] = made;
   return this->Prepared = made;
 }

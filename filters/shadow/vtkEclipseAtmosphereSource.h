@@ -5,9 +5,19 @@
 // (umbra::eclipse::EclipseAtmosphereOptions), the cache settings. The prepared atmosphere
 // (Bruneton tables, refraction table, limb ray profile) is made once per process for a
 // given set of parameters and shared by the sources that ask for it.
+//
+// Input (optional, port 0): the tables of vtkAtmosphereTablesSource (a vtkMultiBlockDataSet,
+// e.g. read from its EXR cache) instead of preparing them here. It needs the Bruneton
+// tables and, with Refraction on (the default), the "refraction" block and refracted
+// paths: SetTables(vtkAtmosphereTablesSource::All), SetRefractedPaths(true). The table
+// sizes, orders and refraction step are then the input's (its field data feed the cache
+// key); the atmosphere is the Atmosphere property, or when empty the input's "atmosphere"
+// (a preset name), and must be the one the tables were made for. No input and no
+// Atmosphere: the airless case.
 #include "ShadowLut.hpp"
 
 #include <vtkImageAlgorithm.h>
+#include <vtkSmartPointer.h>
 
 #include <functional>
 #include <map>
@@ -19,6 +29,8 @@ struct AtmosphericShadowModel;
 struct EclipseAtmosphere;
 struct EclipseAtmosphereOptions;
 }
+
+class vtkMultiBlockDataSet;
 
 class vtkEclipseAtmosphereSource : public vtkImageAlgorithm {
 public:
@@ -71,9 +83,14 @@ public:
   /// The prepared atmosphere (tables, deviation table, the shadow model), made now if
   /// needed, with progress events; for computations outside the tables, e.g. a profile
   /// computed directly. Throws on a bad atmosphere or options.
-  std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> GetPreparedAtmosphere() {
-    return this->PrepareAtmosphere(0.0, 1.0);
-  }
+  std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> GetPreparedAtmosphere();
+
+  /// Feeds the input from a new vtkAtmosphereTablesSource asking for the tables these
+  /// properties describe (atmosphere, wavelengths, sizes, orders, refraction, cache): the
+  /// Bruneton and refraction tables then come from their EXR cache across runs. A later
+  /// call re-configures that tables source from the properties. Does nothing without an
+  /// Atmosphere or when another input is connected. Returns the tables source (or null).
+  vtkAlgorithm* ConnectAtmosphereTables();
 
   /// After an update: whether the table came from the cache, and the cache file's path.
   bool GetLastUpdateWasCacheHit() const { return this->LastCacheHit; }
@@ -85,8 +102,12 @@ protected:
   vtkEclipseAtmosphereSource();
   ~vtkEclipseAtmosphereSource() override = default;
 
-  bool HasAtmosphere() const { return !this->Atmosphere.empty(); }
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override { return 1; }
+  bool HasAtmosphere() const;
   umbra::eclipse::EclipseAtmosphereOptions Options() const;
+  /// The atmosphere tables on the input port, or null.
+  vtkMultiBlockDataSet* InputTables() const;
   /// The parameters of the prepared atmosphere (loads the atmosphere file; throws its error).
   std::map<std::string, std::string> AtmosphereParameters() const;
   /// Prepared once per process and parameters; progress goes to this algorithm (from
@@ -124,6 +145,7 @@ protected:
   std::string CacheDirectory;
   bool UseCache = true;
 
+  vtkSmartPointer<vtkAlgorithm> TablesSource;
   /// The atmosphere this source prepared last (keeps it shared while the source lives).
   std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> Prepared;
   bool LastCacheHit = false;

@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <fstream>
 #include <sstream>
 
@@ -90,6 +92,41 @@ TEST(EclipseCli, EarthProfileAtTheMoonIsRedWithAFigure12Plot) {
   EXPECT_NE(svg.find(">umbra<"), std::string::npos);
   EXPECT_NE(svg.find(">penumbra<"), std::string::npos);
   EXPECT_NE(svg.find(">1e-05<"), std::string::npos);  // log axis down to the blue umbra
+}
+
+// The atmosphere tables come through vtkAtmosphereTablesSource's cache: a second run with
+// another LuT size computes a new LuT but stores no atmosphere table again.
+TEST(EclipseCli, PrecomputeEclipseTakesTheAtmosphereTablesFromTheirCache) {
+  TempDir dir;
+  auto atmosphereTables = [&] {
+    std::map<std::string, std::filesystem::file_time_type> files;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir / "cache"))
+      if (e.is_regular_file() && e.path().filename().string().rfind("atmosphere-", 0) == 0)
+        files[e.path().string()] = e.last_write_time();
+    return files;
+  };
+  std::map<std::string, std::filesystem::file_time_type> first;
+  for (const std::string size : {"8", "12"}) {
+    const RunResult r = run(UMBRA_EXE,
+                            with({"precompute", "eclipse", "--occluder", "earth", "--atmosphere", "earth", "--size", size,
+                                  "--limb-lut-size", "8", "--layers", "2", "--output", dir / ("out" + size)},
+                                 kSmall),
+                            {"UMBRA_CACHE_DIR=" + dir / "cache"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    if (first.empty()) {
+      first = atmosphereTables();
+      auto has = [&](const std::string& kind) {
+        return std::any_of(first.begin(), first.end(),
+                           [&](const auto& f) { return f.first.find("atmosphere-" + kind) != std::string::npos; });
+      };
+      EXPECT_TRUE(has("multiple-scattering") && has("transmittance") && has("refraction"));
+    } else {
+      EXPECT_EQ(atmosphereTables(), first);  // none rewritten
+    }
+  }
+  const auto shadow = umbra::tables::readExr(dir / "out12/eclipse-shadow-atmosphere.exr", {"R", "G", "B"});
+  EXPECT_EQ(shadow.width, 12);
+  EXPECT_NE(shadow.parameters.at("atmosphereTables").find("input:"), std::string::npos);
 }
 
 // Phobos lies in the first texels of the LuT's u axis, so its profile is computed directly

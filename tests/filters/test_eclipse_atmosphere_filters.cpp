@@ -1,14 +1,18 @@
 // The eclipse tables of an occluder with an atmosphere through the filters: the shadow-LuT
 // source with an atmosphere (same values as the library, cache, update extents), the
 // limb-luminance source, and the profile filter on an atmospheric LuT (R, G, B).
+#include "AtmosphereTablesBlocks.h"
 #include "EclipseAtmosphere.hpp"
 #include "ShadowLutData.h"
 #include "Spectrum.hpp"
+#include "vtkAtmosphereTablesSource.h"
 #include "vtkEclipseShadowLutSource.h"
 #include "vtkLimbLuminanceSource.h"
 #include "vtkShadowProfileFilter.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkFloatArray.h>
+#include <vtkNew.h>
 #include <vtkImageData.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
@@ -54,6 +58,46 @@ vtkSmartPointer<vtkEclipseShadowLutSource> shadowSource(const CacheDir& cache) {
   return s;
 }
 
+/// The library's options of configure().
+eclipse::EclipseAtmosphereOptions smallOptions() {
+  eclipse::EclipseAtmosphereOptions o;
+  o.tables.orders = 2;
+  o.tables.transmittanceWidth = 64, o.tables.transmittanceHeight = 16;
+  o.tables.scatteringR = 8, o.tables.scatteringMu = 32, o.tables.scatteringMuS = 8, o.tables.scatteringNu = 4;
+  o.tables.irradianceWidth = 16, o.tables.irradianceHeight = 4;
+  o.refractionWidth = 128, o.refractionHeight = 64;
+  return o;
+}
+
+/// vtkAtmosphereTablesSource with the options of configure() and what the eclipse tables need.
+vtkSmartPointer<vtkAtmosphereTablesSource> tablesSource(const CacheDir& cache) {
+  auto source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
+  source->SetAtmosphere("earth");
+  source->SetTables(vtkAtmosphereTablesSource::All);
+  source->SetOrders(2);
+  source->SetTransmittanceSize(64, 16);
+  source->SetScatteringSize(8, 32, 8, 4);
+  source->SetIrradianceSize(16, 4);
+  source->SetRefractedPaths(true);
+  source->SetRefractionWidth(128);
+  source->SetRefractionHeight(64);
+  source->SetCacheDirectory(cache.path.c_str());
+  return source;
+}
+
+/// The messages of ErrorEvents sent by an object.
+struct ErrorCatcher {
+  std::string message;
+  vtkNew<vtkCallbackCommand> command;
+  explicit ErrorCatcher(vtkObject* o) {
+    command->SetClientData(this);
+    command->SetCallback([](vtkObject*, unsigned long, void* self, void* text) {
+      static_cast<ErrorCatcher*>(self)->message += static_cast<const char*>(text);
+    });
+    o->AddObserver(vtkCommand::ErrorEvent, command);
+  }
+};
+
 vtkFloatArray* scalars(vtkImageData* image) { return vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars()); }
 } // namespace
 
@@ -68,12 +112,7 @@ TEST(EclipseAtmosphereFilters, ShadowLutSourceWithAnAtmosphereIsTheLibrarysLut) 
   ASSERT_EQ(dims[1], 6);
   EXPECT_FALSE(source->GetLastUpdateWasCacheHit());
 
-  eclipse::EclipseAtmosphereOptions o;
-  o.tables.orders = 2;
-  o.tables.transmittanceWidth = 64, o.tables.transmittanceHeight = 16;
-  o.tables.scatteringR = 8, o.tables.scatteringMu = 32, o.tables.scatteringMuS = 8, o.tables.scatteringNu = 4;
-  o.tables.irradianceWidth = 16, o.tables.irradianceHeight = 4;
-  o.refractionWidth = 128, o.refractionHeight = 64;
+  const eclipse::EclipseAtmosphereOptions o = smallOptions();
   const auto prepared = eclipse::prepareEclipseAtmosphere(
       atmosphere::loadAtmosphere("earth", atmosphere::WavelengthSet::rgb().nm), "earth", 1.496e11, o);
   eclipse::AtmosphericShadowLutParams p;
@@ -189,4 +228,90 @@ TEST(EclipseAtmosphereFilters, ProfileOfTheAtmosphericLutIsRedInTheUmbra) {
   EXPECT_GT(r, 1e-6);
   EXPECT_LT(r, 1e-2);
   EXPECT_NEAR(lum, 0.2126 * r + 0.7152 * g + 0.0722 * b, 1e-12);
+}
+
+// The tables of vtkAtmosphereTablesSource (same options, refraction on), read back with
+// tablesFromBlocks / refractionFromBlocks, prepare the same shadow model as the library's
+// own precomputation: the LuTs agree within float rounding (the blocks store floats).
+TEST(EclipseAtmosphereFilters, TablesFromTheTablesSourcePrepareTheSameLut) {
+  CacheDir cache;
+  const atmosphere::Atmosphere atm = atmosphere::loadAtmosphere("earth", atmosphere::WavelengthSet::rgb().nm);
+  const eclipse::EclipseAtmosphereOptions o = smallOptions();
+  auto source = tablesSource(cache);
+  source->Update();
+  ASSERT_EQ(source->GetLastError(), "");
+  const auto fromBlocks = eclipse::prepareEclipseAtmosphere(atm, filters::tablesFromBlocks(source->GetOutput(), atm),
+                                                            filters::refractionFromBlocks(source->GetOutput(), atm),
+                                                            "earth", 1.496e11, o);
+  const auto direct = eclipse::prepareEclipseAtmosphere(atm, "earth", 1.496e11, o);
+  eclipse::AtmosphericShadowLutParams p;
+  p.width = 8, p.height = 6;
+  p.limb = {32, 32, 4, 4};
+  const eclipse::ShadowLut a = eclipse::buildAtmosphericShadowLut(fromBlocks->model, p);
+  const eclipse::ShadowLut b = eclipse::buildAtmosphericShadowLut(direct->model, p);
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  double maxDiff = 0.0;
+  for (std::size_t k = 0; k < a.rgb.size(); ++k) maxDiff = std::max(maxDiff, std::abs(double(a.rgb[k]) - double(b.rgb[k])));
+  EXPECT_LT(maxDiff, 1e-5);  // float tables: relative rounding ~6e-8, carried through the integrals
+  // A multiblock without the refraction table: a clear error.
+  source->SetTables(vtkAtmosphereTablesSource::Bruneton);
+  source->Update();
+  try {
+    filters::refractionFromBlocks(source->GetOutput(), atm);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("refraction"), std::string::npos) << e.what();
+  }
+  // The tables of another atmosphere: refused.
+  const atmosphere::Atmosphere mars = atmosphere::loadAtmosphere("mars", atmosphere::WavelengthSet::rgb().nm);
+  EXPECT_THROW(eclipse::prepareEclipseAtmosphere(mars, filters::tablesFromBlocks(source->GetOutput(), atm),
+                                                 atmosphere::RefractionTable{}, "mars", 2.28e11, o),
+               std::invalid_argument);
+}
+
+// The shadow-LuT source fed by vtkAtmosphereTablesSource (the pipeline) makes the LuT of
+// the Atmosphere property (same options) within float rounding; a second pipeline reads
+// the atmosphere tables from their cache (no precomputation); an input without the tables
+// it needs is a clear error.
+TEST(EclipseAtmosphereFilters, ShadowLutSourceTakesTheTablesThroughItsInput) {
+  CacheDir cache;
+  auto byProperty = shadowSource(cache);
+  byProperty->SetUseCache(false);
+  byProperty->Update();
+  for (int run = 0; run < 2; ++run) {
+    auto tables = tablesSource(cache);
+    auto lut = shadowSource(cache);
+    lut->SetAtmosphere(nullptr);  // from the input
+    lut->SetUseCache(false);
+    lut->SetInputConnection(tables->GetOutputPort());
+    lut->Update();
+    EXPECT_EQ(tables->GetLastPrecomputeCalls(), run == 0 ? 1 : 0) << "run " << run;
+    if (run == 1) EXPECT_EQ(tables->GetLastComputed(), 0);
+    vtkFloatArray* a = scalars(lut->GetOutput());
+    vtkFloatArray* b = scalars(byProperty->GetOutput());
+    ASSERT_NE(a, nullptr);
+    ASSERT_EQ(a->GetNumberOfTuples(), b->GetNumberOfTuples());
+    double maxDiff = 0.0;
+    for (vtkIdType k = 0; k < a->GetNumberOfTuples(); ++k)
+      for (int c = 0; c < 3; ++c) maxDiff = std::max(maxDiff, std::abs(double(a->GetComponent(k, c)) - b->GetComponent(k, c)));
+    EXPECT_LT(maxDiff, 1e-5) << "run " << run;
+    EXPECT_NE(filters::fieldParameters(lut->GetOutput()).at("atmosphereTables").find("input:"), std::string::npos);
+  }
+  // Bruneton tables only, refraction on: the error names the missing block.
+  auto bruneton = tablesSource(cache);
+  bruneton->SetTables(vtkAtmosphereTablesSource::Bruneton);
+  auto lut = shadowSource(cache);
+  lut->SetAtmosphere(nullptr);
+  lut->SetUseCache(false);
+  lut->SetInputConnection(bruneton->GetOutputPort());
+  ErrorCatcher errors(lut);
+  lut->Update();
+  EXPECT_NE(errors.message.find("no 'refraction' block"), std::string::npos) << errors.message;
+  // Tables of straight paths with refraction on: refused too.
+  auto straight = tablesSource(cache);
+  straight->SetRefractedPaths(false);
+  lut->SetInputConnection(straight->GetOutputPort());
+  errors.message.clear();
+  lut->Update();
+  EXPECT_NE(errors.message.find("refracted paths off"), std::string::npos) << errors.message;
 }

@@ -3,6 +3,7 @@
 // tables (made once per test process by vtkAtmosphereTablesSource, no cache), and a
 // BodyView showing Earth (at the origin) with it, the Sun 1 au away.
 #include "AtmosphereRendering.h"
+#include "AtmosphereTablesBlocks.h"
 #include "RenderTestSupport.hpp"
 #include "SceneInputs.h"
 
@@ -37,7 +38,7 @@ inline const AtmosphereFixture& atmosphereFixture() {
     if (!source->GetLastError().empty()) throw std::runtime_error(source->GetLastError());
     AtmosphereFixture out;
     out.model = atmosphere::loadAtmosphere("earth", atmosphere::WavelengthSet::rgb().nm);
-    out.tables = tablesFromBlocks(source->GetOutput(), out.model);
+    out.tables = umbra::filters::tablesFromBlocks(source->GetOutput(), out.model);
     return out;
   }();
   return f;

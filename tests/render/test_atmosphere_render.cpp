@@ -146,7 +146,7 @@ const RefractionFixture& refractionFixture() {
     source->UseCacheOff();
     source->Update();
     RefractionFixture out;
-    out.tables = tablesFromBlocks(source->GetOutput(), atmosphereFixture().model);
+    out.tables = umbra::filters::tablesFromBlocks(source->GetOutput(), atmosphereFixture().model);
     vtkMultiBlockDataSet* blocks = source->GetOutput();
     out.refraction = vtkImageData::SafeDownCast(blocks->GetBlock(blocks->GetNumberOfBlocks() - 1));
     return out;

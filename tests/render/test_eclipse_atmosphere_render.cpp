@@ -11,6 +11,7 @@
 #include "Atmosphere.hpp"
 #include "Spectrum.hpp"
 #include "AtmosphereRendering.h"
+#include "AtmosphereTablesBlocks.h"
 #include "vtkAtmosphereTablesSource.h"
 #include "vtkEclipseShadowLutSource.h"
 #include "vtkLimbLuminanceSource.h"
@@ -204,7 +205,7 @@ const RingFixture& ringFixture() {
     tables->UseCacheOff();
     tables->Update();
     vtkMultiBlockDataSet* blocks = tables->GetOutput();
-    out.tables = tablesFromBlocks(blocks, out.model);
+    out.tables = umbra::filters::tablesFromBlocks(blocks, out.model);
     out.refraction = vtkImageData::SafeDownCast(blocks->GetBlock(blocks->GetNumberOfBlocks() - 1));
 
     vtkNew<vtkLimbLuminanceSource> limb;

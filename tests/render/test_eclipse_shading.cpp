@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -31,10 +32,11 @@ struct AgreementStats {
 // Sun grazes (cos i < 0.05) are skipped.
 AgreementStats compareWithCpu(const SunLight& sun, const std::vector<SphereBody>& bodies,
                               const SphereBody& receiver, const ViewCamera& camera, int size, int step,
-                              bool withVtkLight = false) {
+                              bool withVtkLight = false, const eclipse::ShadowLut& lut = testLut(),
+                              double bound = 1e-3) {
   BodyView view(size, size, true);
   useSharedDisplay(view.GetRenderWindow());
-  view.SetBodies(sun, bodies, testLutImage());
+  view.SetBodies(sun, bodies, filters::toImageData(lut));
   if (withVtkLight) {  // VTK then builds the lit variant of the receiver's shaders
     vtkNew<vtkLight> light;
     light->SetLightTypeToHeadlight();
@@ -66,12 +68,12 @@ AgreementStats compareWithCpu(const SunLight& sun, const std::vector<SphereBody>
       if (cosi < 0.05) continue;
       double expected = 1.0;
       for (const auto& occ : occluders) {
-        expected *= eclipse::eclipseFactor(*hit, sun.positionM, sun.radiusM, occ, &testLut()).r;
+        expected *= eclipse::eclipseFactor(*hit, sun.positionM, sun.radiusM, occ, &lut).r;
       }
       const double gpu = hdr[3 * (static_cast<std::size_t>(j) * w + i)] / unshadowed;
       const double diff = std::abs(gpu - expected);
       s.maxDiff = std::max(s.maxDiff, diff);
-      EXPECT_LT(diff, 1e-3) << "pixel (" << i << ", " << j << "): GPU factor " << gpu << ", CPU " << expected;
+      EXPECT_LT(diff, bound) << "pixel (" << i << ", " << j << "): GPU factor " << gpu << ", CPU " << expected;
       ++s.samples;
       if (expected < 0.05) ++s.umbra;
       else if (expected < 0.95) ++s.penumbra;
@@ -181,4 +183,31 @@ TEST(EclipseShading, CpuGlslAgreementWithVtkLightInRenderer) {
   const AgreementStats s = compareWithCpu(sun, {earth(), screen}, screen, cam, 128, 4, true);
   EXPECT_GE(s.samples, 200);
   EXPECT_GE(s.penumbra, 50);
+}
+
+// A ranged LuT (u over Phobos' distances, v from the umbra's edge: lutRangeForDistances)
+// read by the renderer through its field data (umbraShadowLutURange, VRange): Mars' shadow
+// on Phobos as the CPU's eclipse factor with the same LuT, within 1e-3. Phobos is put at
+// the shadow's edge (Mars' radius off the axis), 9376 km behind Mars, seen from the Sun's side.
+TEST(EclipseShading, RangedLutAtPhobosAgreesWithTheCpu) {
+  SunLight sun;
+  sun.positionM = {-2.2794e11, 0.0, 0.0};
+  const double marsRadiusM = 3389.5e3, phobosRadiusM = 11.1e3, phobosDistanceM = 9376e3;
+  const SphereBody mars{"Mars", {0.0, 0.0, 0.0}, marsRadiusM, {0.25, 0.25, 0.25}};
+  const SphereBody phobos{"Phobos", {phobosDistanceM, marsRadiusM, 0.0}, phobosRadiusM, {0.07, 0.07, 0.07}};
+  const eclipse::LutRange r = eclipse::lutRangeForDistances({sun.radiusM, marsRadiusM, -sun.positionM.x},
+                                                            phobosDistanceM - phobosRadiusM,
+                                                            1.01 * (phobosDistanceM + phobosRadiusM), true, 64);
+  ASSERT_GT(r.uMin, 0.0);
+  const eclipse::ShadowLut lut =
+      eclipse::buildAirlessShadowLut({64, 64, eclipse::kDefaultLimbDarkening, 1e-10, r.uMin, r.uMax, r.vMin, r.vMax});
+  ViewCamera cam;
+  cam.positionM = phobos.centreM + glm::dvec3(-200e3, 0.0, 0.0);
+  cam.targetM = phobos.centreM;
+  cam.up = {0.0, 0.0, 1.0};
+  cam.fovDeg = 2.0 * std::atan(phobosRadiusM / 200e3) * 180.0 / 3.14159265358979 * 1.1;
+  const AgreementStats s = compareWithCpu(sun, {mars, phobos}, phobos, cam, 128, 4, false, lut, 1e-3);
+  RecordProperty("max_abs_factor_difference", std::to_string(s.maxDiff));
+  EXPECT_GE(s.samples, 200);
+  EXPECT_GE(s.penumbra + s.umbra, 50);  // the shadow crosses Phobos
 }
