@@ -104,6 +104,9 @@ struct EclipseShading::Impl {
   vtkSmartPointer<vtkTexture> atmosphereTexture;
   vtkSmartPointer<vtkImageData> atmosphereNone;
   std::array<float, 4> atmosphereMap{0.25f, 0.5f, 0.25f, 0.5f};
+  // The u and v ranges of the whole atmospheric table (its field data): the
+  // umbraAtmosphereLutURange, VRange and VLowFraction uniforms.
+  eclipse::LutRange atmosphereRange;
 
   std::vector<const SphereBody*> occludersOf(const SphereBody& receiver) const {
     std::vector<const SphereBody*> out;
@@ -156,11 +159,16 @@ struct EclipseShading::Impl {
     program.SetUniform4fv("umbraOccluders", kMaxOccluders, occ);
     program.SetUniformi("umbraAtmosphereOccluder", atmosphere);
     program.SetUniform4f("umbraAtmosphereLutMap", atmosphereMap.data());
-    const float uRange[2] = {float(lutRange.uMin), float(lutRange.uMax)};
-    const float vRange[2] = {float(lutRange.vMin), float(lutRange.vMax)};
-    program.SetUniform2f("umbraShadowLutURange", uRange);
-    program.SetUniform2f("umbraShadowLutVRange", vRange);
-    program.SetUniformf("umbraShadowLutVLowFraction", float(lutRange.vLowFraction));
+    setRangeUniforms(program, "umbraShadowLut", lutRange);
+    setRangeUniforms(program, "umbraAtmosphereLut", atmosphereRange);
+  }
+
+  static void setRangeUniforms(vtkShaderProgram& program, const std::string& prefix, const eclipse::LutRange& r) {
+    const float uRange[2] = {float(r.uMin), float(r.uMax)};
+    const float vRange[2] = {float(r.vMin), float(r.vMax)};
+    program.SetUniform2f((prefix + "URange").c_str(), uRange);
+    program.SetUniform2f((prefix + "VRange").c_str(), vRange);
+    program.SetUniformf((prefix + "VLowFraction").c_str(), float(r.vLowFraction));
   }
 
   void detach(Receiver& r) const {
@@ -265,10 +273,20 @@ void EclipseShading::SetAtmosphereShadowLut(const std::string& occluderName, vtk
     m.atmosphereOccluder.clear();
     m.atmosphereTexture->SetInputData(m.atmosphereNone);
     m.atmosphereMap = {0.25f, 0.5f, 0.25f, 0.5f};
+    m.atmosphereRange = {};
     return;
   }
   auto copy = checkedLutCopy(lut);
-  // The place of the part in the whole table: its first texel's (u, v) and the steps.
+  eclipse::LutRange range;
+  try {
+    range = filters::lutRangeOf(filters::fieldParameters(copy), "atmospheric shadow LuT of '" + occluderName + "'");
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(e.what());
+  }
+  // The place of the part in the whole table: its first texel's (u, v) and the steps,
+  // as texture coordinates of the whole. The points are at (u, v) in the ranges (v is
+  // already the texture coordinate on a split v axis: filters::toImageData); identity at
+  // the default ranges.
   double first[3], spacing[3];
   copy->GetPoint(0, first);
   copy->GetSpacing(spacing);
@@ -276,7 +294,12 @@ void EclipseShading::SetAtmosphereShadowLut(const std::string& occluderName, vtk
     throw std::invalid_argument("atmospheric shadow LuT of '" + occluderName +
                                 "' needs texel coordinates (u, v) with spacing > 0");
   }
-  m.atmosphereMap = {float(first[0]), float(spacing[0]), float(first[1]), float(spacing[1])};
+  const double uSpan = range.uMax - range.uMin;
+  const bool splitV = range.vLowFraction > 0.0;
+  const double vMin = splitV ? 0.0 : range.vMin, vSpan = splitV ? 1.0 : range.vMax - range.vMin;
+  m.atmosphereMap = {float((first[0] - range.uMin) / uSpan), float(spacing[0] / uSpan),
+                     float((first[1] - vMin) / vSpan), float(spacing[1] / vSpan)};
+  m.atmosphereRange = range;
   int ext[6];
   copy->GetExtent(ext);
   copy->SetExtent(0, ext[1] - ext[0], 0, ext[3] - ext[2], 0, 0);

@@ -73,8 +73,10 @@ class EclipseShading {
   /// an atmosphere: I / I_sun per channel R, G, B): receivers take that occluder's shadow
   /// from it (per channel) instead of the airless LuT, with the same Eq. 4 lookup. `lut`
   /// may hold only part of the table (an update extent: texels [i0, i1] x [j0, j1]); its
-  /// origin and spacing place it in the whole (texel centres (i + .5) / W, as the source
-  /// writes them), and outside that part the edge texels are used. One occluder at a
+  /// origin and spacing place it in the whole (texel centres (u, v) in the table's u and v
+  /// ranges, as the source writes them), and outside that part the edge texels are used.
+  /// The ranges (field data, filters::lutRangeOf; [0, 1] when absent) are its own: the
+  /// umbraAtmosphereLutURange, VRange and VLowFraction uniforms. One occluder at a
   /// time; an empty name or a null image removes it. A copy is kept. Throws
   /// std::invalid_argument as SetShadowLut does.
   void SetAtmosphereShadowLut(const std::string& occluderName, vtkImageData* lut);

@@ -36,15 +36,20 @@ vec2 umbraShadowUv(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float occR
   return vec2(phiSun / (phiOcc + phiSun), delta / (phiOcc + phiSun));
 }
 
-// (u, v) -> the coordinate in the LuT's texture, through its u and v ranges (identity at
-// the defaults).
-vec2 umbraShadowLutCoord(vec2 uv) {
-  float u = (uv.x - umbraShadowLutURange.x) / (umbraShadowLutURange.y - umbraShadowLutURange.x);
-  float f = umbraShadowLutVLowFraction;
-  float v = (f > 0.0 && uv.y < umbraShadowLutVRange.x)
-      ? f * uv.y / umbraShadowLutVRange.x
-      : f + (1.0 - f) * (uv.y - umbraShadowLutVRange.x) / (umbraShadowLutVRange.y - umbraShadowLutVRange.x);
+// (u, v) -> the coordinate in a LuT's texture, through its u and v ranges and low-v
+// fraction (identity at [0, 1], [0, 1], 0).
+vec2 umbraShadowLutCoordIn(vec2 uv, vec2 uRange, vec2 vRange, float vLowFraction) {
+  float u = (uv.x - uRange.x) / (uRange.y - uRange.x);
+  float f = vLowFraction;
+  float v = (f > 0.0 && uv.y < vRange.x)
+      ? f * uv.y / vRange.x
+      : f + (1.0 - f) * (uv.y - vRange.x) / (vRange.y - vRange.x);
   return vec2(u, v);
+}
+
+// The same for umbraShadowLut (its umbraShadowLutURange, VRange, VLowFraction).
+vec2 umbraShadowLutCoord(vec2 uv) {
+  return umbraShadowLutCoordIn(uv, umbraShadowLutURange, umbraShadowLutVRange, umbraShadowLutVLowFraction);
 }
 
 // Fraction of sunlight per channel reaching p past one occluder (Eq. 3-4 + LuT lookup).
@@ -57,12 +62,13 @@ vec3 umbraEclipseFactor(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float
 // The same lookup in `lut`, a part of a table (an update extent, e.g. the u range a
 // receiver can be in): `map` = (coordinate of its first texel, step, the same in v) in the
 // whole table's texture coordinates, whose texel centres are at (i + 0.5) * step. Outside
-// the part the edge texels are used (clamp to edge). With the whole table, the texture
-// coordinate is umbraShadowLutCoord(u, v) itself.
-vec3 umbraEclipseFactorIn(sampler2D lut, vec4 map, vec3 p, vec3 sunPos, float sunRadius, vec3 occPos,
-                          float occRadius) {
+// the part the edge texels are used (clamp to edge). The whole table's u and v ranges
+// (uRange, vRange, vLowFraction: umbraShadowLutCoordIn) are its own, not umbraShadowLut's.
+// With the whole table, the texture coordinate is umbraShadowLutCoordIn(u, v, ...) itself.
+vec3 umbraEclipseFactorIn(sampler2D lut, vec4 map, vec2 uRange, vec2 vRange, float vLowFraction, vec3 p,
+                          vec3 sunPos, float sunRadius, vec3 occPos, float occRadius) {
   vec2 uv = umbraShadowUv(p, sunPos, sunRadius, occPos, occRadius);
   if (uv.y >= 1.0) return vec3(1.0);
-  vec2 texel = (umbraShadowLutCoord(uv) - map.xz) / map.yw + 0.5;
+  vec2 texel = (umbraShadowLutCoordIn(uv, uRange, vRange, vLowFraction) - map.xz) / map.yw + 0.5;
   return texture(lut, texel / vec2(textureSize(lut, 0))).rgb;
 }

@@ -15,6 +15,7 @@
 #include "vtkAtmosphereTablesSource.h"
 #include "vtkEclipseShadowLutSource.h"
 #include "vtkLimbLuminanceSource.h"
+#include "ShadowLutData.h"
 
 #include <vtkMultiBlockDataSet.h>
 
@@ -104,6 +105,43 @@ struct MoonInUmbra {
   }
 };
 
+// The receiver's factor per channel in the rendered HDR image (every 4th pixel facing the
+// camera and the Sun) against the CPU lookup in `cpu`: relative (the umbra spans orders of
+// magnitude) within 2 % (GL's filter weights are 8-bit). The CPU factors of the samples
+// and the largest relative difference.
+struct FactorAgreement {
+  std::vector<glm::dvec3> expected;
+  double maxRel = 0.0;
+};
+FactorAgreement compareFactors(const SceneInputs& in, const SphereBody& body, const SphereBody& occluder,
+                               const std::vector<float>& hdr, int width, int height, const eclipse::ShadowLut& cpu) {
+  FactorAgreement out;
+  const eclipse::Occluder occ{occluder.centreM, occluder.radiusM};
+  for (int j = 2; j < height; j += 4) {
+    for (int i = 2; i < width; i += 4) {
+      const Ray ray = pixelRay(in.camera, width, height, i, j);
+      const auto hit = hitSphere(ray, body.centreM, body.radiusM);
+      if (!hit) continue;
+      const glm::dvec3 n = glm::normalize(*hit - body.centreM);
+      if (-glm::dot(n, ray.dir) < 0.3) continue;
+      double cosi = 0.0;
+      const double unshadowed = unshadowedRadiance(*hit, body.centreM, body.albedoRgb.r, in.sun, &cosi);
+      if (cosi < 0.05) continue;
+      const glm::dvec3 expected = eclipse::eclipseFactor(*hit, in.sun.positionM, in.sun.radiusM, occ, &cpu);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_TRUE(std::isfinite(expected[c])) << "the CPU lookup left the computed columns at pixel " << i << ", " << j;
+        const double gpu = hdr[3 * (static_cast<std::size_t>(j) * width + i) + c] / unshadowed;
+        const double rel = std::abs(gpu - expected[c]) / std::max(expected[c], 1e-7);
+        out.maxRel = std::max(out.maxRel, rel);
+        EXPECT_LT(rel, 0.02) << "pixel (" << i << ", " << j << ") channel " << c << ": GPU " << gpu << ", CPU "
+                             << expected[c];
+      }
+      out.expected.push_back(expected);
+    }
+  }
+  return out;
+}
+
 } // namespace
 
 // The columns asked for are only those around the Moon's u (Eq. 4 at 384 400 km: ~0.22).
@@ -128,38 +166,71 @@ TEST(EclipseAtmosphereRender, CpuGlslAgreementMoonInEarthsUmbra) {
   MoonInUmbra s(umbraEdgeM - 0.5e6, 128);
   EXPECT_LE(s.columns[1] - s.columns[0], 3) << "columns " << s.columns[0] << ".." << s.columns[1];
   const eclipse::ShadowLut cpu = cpuTable(s.source->GetOutput());
-  const eclipse::Occluder earth{s.in.bodies[0].centreM, s.in.bodies[0].radiusM};
-  int samples = 0, umbra = 0;
-  double maxRel = 0.0;
-  for (int j = 2; j < s.height; j += 4) {
-    for (int i = 2; i < s.width; i += 4) {
-      const Ray ray = pixelRay(s.in.camera, s.width, s.height, i, j);
-      const auto hit = hitSphere(ray, s.moon.centreM, s.moon.radiusM);
-      if (!hit) continue;
-      const glm::dvec3 n = glm::normalize(*hit - s.moon.centreM);
-      if (-glm::dot(n, ray.dir) < 0.3) continue;
-      double cosi = 0.0;
-      const double unshadowed = unshadowedRadiance(*hit, s.moon.centreM, s.moon.albedoRgb.r, s.in.sun, &cosi);
-      if (cosi < 0.05) continue;
-      const glm::dvec3 expected = eclipse::eclipseFactor(*hit, s.in.sun.positionM, s.in.sun.radiusM, earth, &cpu);
-      for (int c = 0; c < 3; ++c) {
-        ASSERT_TRUE(std::isfinite(expected[c])) << "the CPU lookup left the computed columns at pixel " << i << ", " << j;
-        const double gpu = s.hdr[3 * (static_cast<std::size_t>(j) * s.width + i) + c] / unshadowed;
-        // Relative (the umbra spans orders of magnitude); GL's filter weights are 8-bit.
-        const double rel = std::abs(gpu - expected[c]) / std::max(expected[c], 1e-7);
-        maxRel = std::max(maxRel, rel);
-        EXPECT_LT(rel, 0.02) << "pixel (" << i << ", " << j << ") channel " << c << ": GPU " << gpu << ", CPU "
-                             << expected[c];
-      }
-      ++samples;
-      if (expected.r < 0.01) ++umbra;
-    }
-  }
+  const FactorAgreement f = compareFactors(s.in, s.moon, s.in.bodies[0], s.hdr, s.width, s.height, cpu);
+  const int samples = int(f.expected.size());
+  const int umbra = int(std::count_if(f.expected.begin(), f.expected.end(), [](const glm::dvec3& e) { return e.r < 0.01; }));
+  const double maxRel = f.maxRel;
   std::printf("  columns %d..%d of %d, %d samples (%d in the umbra), max relative |GPU - CPU| = %.3g\n",
               s.columns[0], s.columns[1], kLutWidth, samples, umbra, maxRel);
   RecordProperty("max_rel_factor_difference", std::to_string(maxRel));
   EXPECT_GE(samples, 200);
   EXPECT_GE(umbra, 50);
+}
+
+// A ranged atmospheric LuT (u over Phobos' distances, v split at the umbra's edge:
+// lutRangeForDistances; field data read by SetAtmosphereShadowLut into
+// umbraAtmosphereLutURange, VRange, VLowFraction): Mars' shadow through its atmosphere on
+// Phobos, put at the shadow's edge (Mars' radius off the axis) and seen from the Sun's
+// side, as the CPU's eclipse factor with the same table, within 2 % (compareFactors).
+// Read through the whole-table ranges [0, 1] instead, the same pixels are off by a factor
+// of up to ~160.
+TEST(EclipseAtmosphereRender, RangedLutAtPhobosAgreesWithTheCpu) {
+  SceneInputs in;
+  in.sun.positionM = {-2.2794e11, 0.0, 0.0};
+  const double marsRadiusM = atmosphere::loadAtmosphere("mars", atmosphere::WavelengthSet::rgb().nm).bottomRadiusM;
+  const double phobosRadiusM = 11.1e3, phobosDistanceM = 9376e3;
+  const SphereBody mars{"Mars", {0.0, 0.0, 0.0}, marsRadiusM, {0.25, 0.25, 0.25}};
+  const SphereBody phobos{"Phobos", {phobosDistanceM, marsRadiusM, 0.0}, phobosRadiusM, {0.07, 0.07, 0.07}};
+  in.bodies = {mars, phobos};
+  in.atmosphere = SceneAtmosphere{"Mars", "mars"};
+  in.camera.positionM = phobos.centreM + glm::dvec3(-200e3, 0.0, 0.0);
+  in.camera.targetM = phobos.centreM;
+  in.camera.up = {0.0, 0.0, 1.0};
+  in.camera.fovDeg = 2.0 * std::atan(phobosRadiusM / 200e3) * 180.0 / 3.14159265358979 * 1.1;
+  const eclipse::LutRange r = eclipse::lutRangeForDistances({in.sun.radiusM, marsRadiusM, -in.sun.positionM.x},
+                                                            phobosDistanceM - phobosRadiusM,
+                                                            1.01 * (phobosDistanceM + phobosRadiusM), false, kLutHeight);
+  ASSERT_GT(r.uMin, 0.0);
+  ASSERT_GT(r.vLowFraction, 0.0);  // the umbra is not dark: a split v axis
+
+  vtkNew<vtkEclipseShadowLutSource> source;
+  configureSmall(source);
+  source->SetLutRange(r);
+  BodyView view(128, 128, true);
+  useSharedDisplay(view.GetRenderWindow());
+  view.SetBodies(in.sun, in.bodies, testLutImage());
+  applySceneAtmosphereShadow(view.GetShading(), in, source);  // sets the source up for Mars
+  source->UpdateWholeExtent();                                 // all of the ranged table
+  view.GetShading().SetAtmosphereShadowLut("Mars", source->GetOutput());
+  const eclipse::ShadowLut cpu = filters::fromImageData(source->GetOutput());
+  ASSERT_EQ(cpu.uMin, r.uMin);
+  ASSERT_EQ(cpu.vLowFraction, r.vLowFraction);
+  view.SetCamera(in.camera);
+  view.SetExposureEV(0.0);
+  view.Render();
+  std::vector<float> hdr;
+  int width = 0, height = 0;
+  view.ReadHdr(hdr, width, height);
+
+  const FactorAgreement f = compareFactors(in, phobos, mars, hdr, width, height, cpu);
+  const int samples = int(f.expected.size());
+  const int shadowed = int(std::count_if(f.expected.begin(), f.expected.end(), [](const glm::dvec3& e) { return e.g < 0.99; }));
+  const double maxRel = f.maxRel;
+  std::printf("  u %.4f..%.4f, v %.4f..%.4f (low fraction %.3f), %d samples (%d shadowed), max relative |GPU - CPU| = %.3g\n",
+              r.uMin, r.uMax, r.vMin, r.vMax, r.vLowFraction, samples, shadowed, maxRel);
+  RecordProperty("max_rel_factor_difference", std::to_string(maxRel));
+  EXPECT_GE(samples, 200);
+  EXPECT_GE(shadowed, 50);  // the shadow crosses Phobos
 }
 
 // The Moon on the shadow's axis: copper, R > G > B at its centre, and not black (the

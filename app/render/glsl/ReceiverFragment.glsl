@@ -19,9 +19,12 @@ uniform int umbraOccluderCount;    // 0..4
 uniform vec4 umbraOccluders[4];    // xyz: centre relative to the body's centre (m), w: radius (m)
 // The occluder whose shadow comes from the atmospheric shadow LuT (umbraAtmosphereShadowLut,
 // declared by VTK; RGB through its atmosphere), -1: none; the part of the table held and
-// its place in the whole (umbraEclipseFactorIn).
+// its place in the whole, and the whole's u and v ranges (umbraEclipseFactorIn).
 uniform int umbraAtmosphereOccluder;
 uniform vec4 umbraAtmosphereLutMap;
+uniform vec2 umbraAtmosphereLutURange;
+uniform vec2 umbraAtmosphereLutVRange;
+uniform float umbraAtmosphereLutVLowFraction;
 
 const float umbraAuM = 1.495978707e11;
 const float umbraInvPi = 0.31830988618;
@@ -54,7 +57,8 @@ void umbraReceiverShade() {
   for (int i = 0; i < 4; ++i) {
     if (i >= umbraOccluderCount) break;
     if (i == umbraAtmosphereOccluder) {
-      shadow *= umbraEclipseFactorIn(umbraAtmosphereShadowLut, umbraAtmosphereLutMap, p, umbraSunPos,
+      shadow *= umbraEclipseFactorIn(umbraAtmosphereShadowLut, umbraAtmosphereLutMap, umbraAtmosphereLutURange,
+                                     umbraAtmosphereLutVRange, umbraAtmosphereLutVLowFraction, p, umbraSunPos,
                                      umbraSunRadius, umbraOccluders[i].xyz, umbraOccluders[i].w);
     } else {
       shadow *= umbraEclipseFactor(p, umbraSunPos, umbraSunRadius, umbraOccluders[i].xyz,
