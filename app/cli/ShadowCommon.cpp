@@ -96,18 +96,15 @@ void EclipseAtmosphereChoice::configure(vtkEclipseAtmosphereSource* source, cons
   source->SetOrders(orders);
   if (draftTables) {
     source->SetTransmittanceSize(64, 16);
-    source->SetScatteringSize(8, 32, 8, 4);
     source->SetIrradianceSize(16, 4);
     source->SetRefractionSize(128, 64);
   }
-  // Mars' forward-peaked dust needs 32 nu cells (docs/eclipse-shadows.md): its default.
-  const int nu = scatteringNu > 0 ? scatteringNu : occ.name == "Mars" ? 32 : 0;
-  if (nu > 0) {
-    if (draftTables)
-      source->SetScatteringSize(8, 32, 8, nu);
-    else
-      source->SetScatteringSize(32, 128, 32, nu);
-  }
+  // 0: the occluder's default (eclipse::defaultScatteringNu; draft tables 4 where it is 8).
+  const int nu = scatteringNu > 0 ? scatteringNu : draftTables ? eclipse::defaultScatteringNu(occ.name, 4) : 0;
+  if (draftTables)
+    source->SetScatteringSize(8, 32, 8, nu);
+  else
+    source->SetScatteringSize(32, 128, 32, nu);
 }
 
 void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& what, const CacheOptions& cache) {

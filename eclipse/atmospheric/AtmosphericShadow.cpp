@@ -195,12 +195,21 @@ double TerrainModel::transmission(double contactAltitudeM) const {
   return std::clamp(contactAltitudeM / (2.0 * meanElevationM), 0.0, 1.0);
 }
 
+namespace {
+std::string lowerCase(std::string name) {
+  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return name;
+}
+} // namespace
+
 TerrainModel defaultTerrain(const std::string& occluderName) {
   TerrainModel t;
-  std::string name = occluderName;
-  for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (name == "earth") t.meanElevationM = 240.0;
+  if (lowerCase(occluderName) == "earth") t.meanElevationM = 240.0;
   return t;
+}
+
+int defaultScatteringNu(const std::string& occluderName, int otherwise) {
+  return lowerCase(occluderName) == "mars" ? 32 : otherwise;
 }
 
 void LimbRayProfile::at(double b, double& dev, double& contact, double* T) const {

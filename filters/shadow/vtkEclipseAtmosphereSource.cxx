@@ -130,7 +130,8 @@ vtkAlgorithm* vtkEclipseAtmosphereSource::ConnectAtmosphereTables() {
   tables->SetWavelengths(this->Wavelengths);
   tables->SetOrders(this->Orders);
   tables->SetTransmittanceSize(this->TransmittanceSize);
-  tables->SetScatteringSize(this->ScatteringSize);
+  const umbra::eclipse::EclipseAtmosphereOptions o = this->Options();
+  tables->SetScatteringSize(o.tables.scatteringR, o.tables.scatteringMu, o.tables.scatteringMuS, o.tables.scatteringNu);
   tables->SetIrradianceSize(this->IrradianceSize);
   tables->SetTables(this->Refraction ? vtkAtmosphereTablesSource::All : vtkAtmosphereTablesSource::Bruneton);
   tables->SetRefractedPaths(this->Refraction);
@@ -163,7 +164,8 @@ umbra::eclipse::EclipseAtmosphereOptions vtkEclipseAtmosphereSource::Options() c
   o.tables.scatteringR = this->ScatteringSize[0];
   o.tables.scatteringMu = this->ScatteringSize[1];
   o.tables.scatteringMuS = this->ScatteringSize[2];
-  o.tables.scatteringNu = this->ScatteringSize[3];
+  o.tables.scatteringNu = this->ScatteringSize[3] > 0 ? this->ScatteringSize[3]
+                                                       : umbra::eclipse::defaultScatteringNu(this->OccluderName, 8);
   o.tables.irradianceWidth = this->IrradianceSize[0];
   o.tables.irradianceHeight = this->IrradianceSize[1];
   o.refraction = this->Refraction;

@@ -58,7 +58,8 @@ public:
   vtkGetMacro(Wavelengths, int);
   vtkSetVector2Macro(TransmittanceSize, int);
   vtkGetVector2Macro(TransmittanceSize, int);
-  vtkSetVector4Macro(ScatteringSize, int);  ///< R, MU, MU_S, NU
+  /// R, MU, MU_S, NU; NU = 0 (the default): eclipse::defaultScatteringNu(occluder, 8).
+  vtkSetVector4Macro(ScatteringSize, int);
   vtkGetVector4Macro(ScatteringSize, int);
   vtkSetVector2Macro(IrradianceSize, int);
   vtkGetVector2Macro(IrradianceSize, int);
@@ -136,7 +137,7 @@ protected:
   int Orders = 4;
   int Wavelengths = 3;
   int TransmittanceSize[2] = {256, 64};
-  int ScatteringSize[4] = {32, 128, 32, 8};
+  int ScatteringSize[4] = {32, 128, 32, 0};
   int IrradianceSize[2] = {64, 16};
   bool Refraction = true;
   int RefractionSize[2] = {512, 256};

@@ -216,6 +216,15 @@ TEST(AtmosphericShadow, MarsShadowAtPhobosIsRedThenGrey) {
   EXPECT_GT(edge.r, 100 * rgbAt(m, kPhobosDistanceM, 0.0).r);
 }
 
+// Mars' dust needs 32 nu cells (the test above; docs/eclipse-shadows.md): the default for
+// Mars whatever the case of its name; other bodies keep the caller's value.
+TEST(AtmosphericShadow, MarsDefaultsTo32NuCells) {
+  EXPECT_EQ(eclipse::defaultScatteringNu("Mars", 8), 32);
+  EXPECT_EQ(eclipse::defaultScatteringNu("mars", 4), 32);
+  EXPECT_EQ(eclipse::defaultScatteringNu("Earth", 8), 8);
+  EXPECT_EQ(eclipse::defaultScatteringNu("earth", 4), 4);
+}
+
 // Must show: positions at the occluder's surface (u -> 0) and far beyond the umbra (u -> 1).
 TEST(AtmosphericShadow, EndsOfTheLutAreFiniteAndSensible) {
   const AtmosphericShadowModel& m = body("earth").model;
