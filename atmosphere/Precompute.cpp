@@ -1216,6 +1216,15 @@ void copyChannels2D(const Table2D& from, Table2D& to, const std::vector<int>& ls
 }
 }  // namespace
 
+namespace detail {
+void lobeValuesBaseline(double A, double B, double g, const double* c, double* p, int n) {
+  lobeValuesPlain(A, B, g, c, p, n);
+}
+void lobeValuesDispatched(double A, double B, double g, const double* c, double* p, int n) {
+  lobeValues(A, B, g, c, p, n);
+}
+}  // namespace detail
+
 ScatteringCoords scatteringCoordsFromRMuMuSNu(const ShellRadii& shell, const ScatteringTableSize& size,
                                               double muSMin, double r, double mu, double muS, double nu,
                                               bool rayIntersectsGround) {

@@ -14,6 +14,13 @@
 #include <vector>
 
 namespace umbra::atmosphere {
+namespace detail {
+// Precompute.cpp's density lobe kernel: the plain loop and the one chosen at run time
+// (the AVX-512 reciprocal square root where the CPU has it).
+void lobeValuesBaseline(double A, double B, double g, const double* c, double* p, int n);
+void lobeValuesDispatched(double A, double B, double g, const double* c, double* p, int n);
+} // namespace detail
+
 namespace {
 
 using umbra::test::kPi;
@@ -81,6 +88,18 @@ void expectTablesSane(const AtmosphereTables& t) {
 }
 
 // ---- the parametrisation ----------------------------------------------------------------------
+
+TEST(Precompute, LobeKernelDispatchedMatchesBaseline) {
+  // 37 cosines: whole 8-lane blocks and a scalar tail; g from forward to backward lobes.
+  std::vector<double> c(37);
+  for (std::size_t j = 0; j < c.size(); ++j) c[j] = -1.0 + 2.0 * j / (c.size() - 1);
+  for (double g : {-0.76, 0.0, 0.3, 0.8, 0.99}) {
+    std::vector<double> plain(c.size()), fast(c.size());
+    detail::lobeValuesBaseline(0.07, 0.5, g, c.data(), plain.data(), static_cast<int>(c.size()));
+    detail::lobeValuesDispatched(0.07, 0.5, g, c.data(), fast.data(), static_cast<int>(c.size()));
+    for (std::size_t j = 0; j < c.size(); ++j) EXPECT_NEAR(fast[j], plain[j], 1e-13 * std::abs(plain[j])) << g << " " << c[j];
+  }
+}
 
 TEST(Precompute, ScatteringCoordsRoundTripAtTexelCentres) {
   const ShellRadii shell{6360e3, 6420e3};
