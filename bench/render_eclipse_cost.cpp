@@ -6,6 +6,7 @@
 //
 //   xvfb-run -a build/bench/umbra-bench-render-eclipse [--frames 40] [--size 1920x1080]
 #include "BodyView.h"
+#include "RenderBenchSupport.hpp"
 #include "SceneInputs.h"
 #include "ShadowLut.hpp"
 #include "ShadowLutData.h"
@@ -16,8 +17,6 @@
 #include <vtkImageData.h>
 #include <vtkRenderWindow.h>
 
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <vector>
 
@@ -48,21 +47,7 @@ int main(int argc, char** argv) {
     v->SetExposureEV(s.exposureEv);
     v->Render();  // warm up: shader compilation
   }
-  std::vector<double> times[2];
-  for (int f = 0; f < frames; ++f) {
-    for (int k = 0; k < 2; ++k) {
-      render::BodyView& v = k == 0 ? withShadow : without;
-      const auto t0 = std::chrono::steady_clock::now();
-      v.Render();
-      v.GetRenderWindow()->WaitForCompletion();
-      times[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    }
-  }
-  double median[2];
-  for (int k = 0; k < 2; ++k) {
-    std::sort(times[k].begin(), times[k].end());
-    median[k] = times[k][times[k].size() / 2];
-  }
+  const std::vector<double> median = bench::medianFrameWallMs({&withShadow, &without}, frames);
   std::printf("| frame | with the eclipse shadow [ms] | without [ms] | cost |\n|---|---:|---:|---:|\n");
   std::printf("| %dx%d, %d frames, median | %.2f | %.2f | %+.1f %% |\n", width, height, frames, median[0], median[1],
               100.0 * (median[0] / median[1] - 1.0));

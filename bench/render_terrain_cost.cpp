@@ -7,6 +7,7 @@
 //
 //   xvfb-run -a build/bench/umbra-bench-render-terrain [--frames 5] [--width 1920 --height 1080]
 #include "BodyView.h"
+#include "RenderBenchSupport.hpp"
 #include "SceneInputs.h"
 #include "SceneTerrain.h"
 #include "ShadowLut.hpp"
@@ -18,8 +19,6 @@
 #include <vtkImageData.h>
 #include <vtkRenderWindow.h>
 
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <vector>
 
@@ -47,21 +46,7 @@ int main(int argc, char** argv) {
     if (v == &withTerrain) terrains = render::addSceneTerrains(*v, s, in, {});
     v->Render();  // warm up: shader compilation, textures
   }
-  std::vector<double> times[2];
-  for (int f = 0; f < frames; ++f) {
-    for (int k = 0; k < 2; ++k) {
-      render::BodyView& v = k == 0 ? withTerrain : without;
-      const auto t0 = std::chrono::steady_clock::now();
-      v.Render();
-      v.GetRenderWindow()->WaitForCompletion();
-      times[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    }
-  }
-  double median[2];
-  for (int k = 0; k < 2; ++k) {
-    std::sort(times[k].begin(), times[k].end());
-    median[k] = times[k][times[k].size() / 2];
-  }
+  const std::vector<double> median = bench::medianFrameWallMs({&withTerrain, &without}, frames);
   std::printf("| frame | with the terrain [ms] | sphere only [ms] |\n|---|---:|---:|\n");
   std::printf("| %dx%d, %d frames, median | %.0f | %.0f |\n", width, height, frames, median[0], median[1]);
   return 0;
