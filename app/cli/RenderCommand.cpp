@@ -33,9 +33,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <regex>
+#include <tuple>
 
 namespace umbra::cli {
 namespace {
@@ -179,6 +181,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
       if (o->atmosphereTables == "small") render::useSmallLimbLuminanceTables(limb);
       view.GetAtmosphere().SetLimbRingThresholdPixels(o->limbRingThresholdPx);
       std::vector<std::unique_ptr<render::TerrainRendering>> terrains;  // (drawn by the view)
+      std::map<std::tuple<std::string, double, double>, terrain::HeightField> dems;  // by path, spacing, radius
       std::optional<ProgressLine> progress;
       if (animation) progress.emplace("frames (" + std::to_string(frames.size()) + ")");
       for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -207,8 +210,12 @@ void addRenderCommand(CLI::App& app, Action& action) {
         view.SetCamera(in.camera);
         for (const auto& t : terrains) view.GetRenderer()->RemoveActor(t->GetActor());  // the last frame's
         try {
-          terrains = render::addSceneTerrains(view, s, in, [](const std::string& path, double spacingM, double radiusM) {
-            return readDem(path, spacingM, radiusM).field;
+          terrains = render::addSceneTerrains(view, s, in, [&dems](const std::string& path, double spacingM, double radiusM) {
+            // Read each DEM once for all frames of an animation.
+            const auto key = std::make_tuple(path, spacingM, radiusM);
+            auto it = dems.find(key);
+            if (it == dems.end()) it = dems.emplace(key, readDem(path, spacingM, radiusM).field).first;
+            return it->second;
           });
         } catch (const std::invalid_argument& e) {
           throw CommandError(o->scene + ": " + e.what());
