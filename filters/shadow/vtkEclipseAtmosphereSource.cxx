@@ -251,13 +251,20 @@ void vtkEclipseAtmosphereSource::SetLutInformation(vtkInformationVector* out, in
   vtkInformation* info = out->GetInformationObject(0);
   const int extent[6] = {0, width - 1, 0, height - 1, 0, depth - 1};
   info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  double spacing[3], origin[3];
+  LutSpacingOrigin(width, height, uRange, vRange, vLowFraction, spacing, origin);
+  info->Set(vtkDataObject::SPACING(), spacing, 3);
+  info->Set(vtkDataObject::ORIGIN(), origin, 3);
+  vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_FLOAT, 3);
+}
+
+void vtkEclipseAtmosphereSource::LutSpacingOrigin(int width, int height, const double uRange[2],
+                                                  const double vRange[2], double vLowFraction, double spacing[3],
+                                                  double origin[3]) {
   const double uMin = uRange ? uRange[0] : 0.0, uMax = uRange ? uRange[1] : 1.0;
   const bool split = vLowFraction > 0.0;
   const double vMin = vRange && !split ? vRange[0] : 0.0, vMax = vRange && !split ? vRange[1] : 1.0;
   const double du = (uMax - uMin) / width, dv = (vMax - vMin) / height;
-  const double spacing[3] = {du, dv, 1.0};
-  const double origin[3] = {uMin + 0.5 * du, vMin + 0.5 * dv, 0.0};
-  info->Set(vtkDataObject::SPACING(), spacing, 3);
-  info->Set(vtkDataObject::ORIGIN(), origin, 3);
-  vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_FLOAT, 3);
+  spacing[0] = du, spacing[1] = dv, spacing[2] = 1.0;
+  origin[0] = uMin + 0.5 * du, origin[1] = vMin + 0.5 * dv, origin[2] = 0.0;
 }

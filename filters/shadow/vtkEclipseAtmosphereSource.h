@@ -128,6 +128,9 @@ protected:
   static void SetLutInformation(vtkInformationVector* out, int width, int height, int depth,
                                 const double uRange[2] = nullptr, const double vRange[2] = nullptr,
                                 double vLowFraction = 0.0);
+  /// The spacing and origin that SetLutInformation gives (for RequestData to set on its output).
+  static void LutSpacingOrigin(int width, int height, const double uRange[2], const double vRange[2],
+                               double vLowFraction, double spacing[3], double origin[3]);
 
   std::string OccluderName;
   double OccluderRadiusM = 6371.0084e3;

@@ -133,11 +133,10 @@ int vtkEclipseShadowLutSource::RequestAtmospheric(vtkInformation* outInfo, vtkIm
     vtkSmartPointer<vtkImageData> image = filters::toImageData(lut);
     output->ShallowCopy(image);
     output->SetExtent(extent.uBegin, extent.uEnd - 1, extent.vBegin, extent.vEnd - 1, 0, 0);
-    const bool split = params.vLowFraction > 0.0;
-    const double du = (params.uMax - params.uMin) / this->Width;
-    const double dv = split ? 1.0 / this->Height : (params.vMax - params.vMin) / this->Height;
-    output->SetSpacing(du, dv, 1.0);
-    output->SetOrigin(params.uMin + 0.5 * du, (split ? 0.0 : params.vMin) + 0.5 * dv, 0.0);
+    double spacing[3], origin[3];
+    LutSpacingOrigin(this->Width, this->Height, this->URange, this->VRange, this->VLowFraction, spacing, origin);
+    output->SetSpacing(spacing);
+    output->SetOrigin(origin);
     parameters["sunRadiusM"] = filters::formatNumber(this->SunRadiusM);
     filters::setFieldParameters(output, parameters);
   } catch (const std::exception& e) {

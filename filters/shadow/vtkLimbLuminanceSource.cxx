@@ -52,8 +52,10 @@ int vtkLimbLuminanceSource::RequestData(vtkInformation*, vtkInformationVector**,
           return eclipse::buildLimbLuminanceLut(model, params, progress).rgb;
         });
     output->SetDimensions(this->Width, this->Height, depth);
-    output->SetSpacing(1.0 / this->Width, 1.0 / this->Height, 1.0);
-    output->SetOrigin(0.5 / this->Width, 0.5 / this->Height, 0.0);
+    double spacing[3], origin[3];
+    LutSpacingOrigin(this->Width, this->Height, nullptr, nullptr, 0.0, spacing, origin);
+    output->SetSpacing(spacing);
+    output->SetOrigin(origin);
     auto values = vtkSmartPointer<vtkFloatArray>::New();
     values->SetName("L_over_Esun");
     values->SetNumberOfComponents(3);
