@@ -3,30 +3,64 @@
 
 #include "BodyView.h"
 #include <vtkRenderWindow.h>
+#include <vtk_glew.h>
 #include <algorithm>
 #include <chrono>
 #include <vector>
 
 namespace umbra::bench {
 
-// Renders each view `frames` times, interleaved, and returns each view's median wall time per frame [ms]
-// (render + WaitForCompletion). The views are expected to be warmed up already.
-inline std::vector<double> medianFrameWallMs(const std::vector<render::BodyView*>& views, int frames) {
-  std::vector<std::vector<double>> times(views.size());
+/// Per view, the median time per frame [ms]: on the GL timer (GL_TIME_ELAPSED around the
+/// frame) and on the wall clock (render + glFinish).
+struct FrameTimes {
+  std::vector<double> glMs, wallMs;
+};
+
+inline double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// Renders each view `frames` times, interleaved frame by frame so that a change in the
+// machine's load hits every view alike, and returns the medians. The views are expected
+// to be warmed up already (shaders compiled, textures uploaded).
+inline FrameTimes medianFrameTimes(const std::vector<render::BodyView*>& views, int frames) {
+  const std::size_t n = views.size();
+  std::vector<std::vector<double>> gl(n), wall(n);
+  std::vector<GLuint> queries(n, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    views[k]->GetRenderWindow()->MakeCurrent();
+    glGenQueries(1, &queries[k]);
+  }
   for (int f = 0; f < frames; ++f) {
-    for (std::size_t k = 0; k < views.size(); ++k) {
+    for (std::size_t k = 0; k < n; ++k) {
+      vtkRenderWindow* w = views[k]->GetRenderWindow();
+      w->MakeCurrent();
       const auto t0 = std::chrono::steady_clock::now();
+      glBeginQuery(GL_TIME_ELAPSED, queries[k]);
       views[k]->Render();
-      views[k]->GetRenderWindow()->WaitForCompletion();
-      times[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      w->MakeCurrent();
+      glEndQuery(GL_TIME_ELAPSED);
+      glFinish();
+      wall[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      GLuint64 ns = 0;
+      glGetQueryObjectui64v(queries[k], GL_QUERY_RESULT, &ns);
+      gl[k].push_back(ns * 1e-6);
     }
   }
-  std::vector<double> median(views.size());
-  for (std::size_t k = 0; k < views.size(); ++k) {
-    std::sort(times[k].begin(), times[k].end());
-    median[k] = times[k][times[k].size() / 2];
+  FrameTimes t;
+  for (std::size_t k = 0; k < n; ++k) {
+    views[k]->GetRenderWindow()->MakeCurrent();
+    glDeleteQueries(1, &queries[k]);
+    t.glMs.push_back(median(gl[k]));
+    t.wallMs.push_back(median(wall[k]));
   }
-  return median;
+  return t;
+}
+
+// The wall-clock medians alone.
+inline std::vector<double> medianFrameWallMs(const std::vector<render::BodyView*>& views, int frames) {
+  return medianFrameTimes(views, frames).wallMs;
 }
 
 }  // namespace umbra::bench

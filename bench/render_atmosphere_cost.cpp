@@ -9,6 +9,7 @@
 //   xvfb-run -a build/bench/umbra-bench-render-atmosphere [--frames 20] [--width 1920 --height 1080]
 //       [--tables default|small]
 #include "BodyView.h"
+#include "RenderBenchSupport.hpp"
 #include "SceneInputs.h"
 #include "vtkUmbraRenderPass.h"
 #include "ShadowLut.hpp"
@@ -21,10 +22,7 @@
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkRenderWindow.h>
-#include <vtk_glew.h>
 
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -67,40 +65,17 @@ int main(int argc, char** argv) {
     if (k == 3) v.GetRenderPass()->SetGlareStrength(1.0);
     v.Render();  // warm up: shaders, textures
   }
-  std::vector<double> gpu[kConfigs], wall[kConfigs];
-  std::vector<GLuint> queries(kConfigs, 0);
-  for (int k = 0; k < kConfigs; ++k) {
-    views[k]->GetRenderWindow()->MakeCurrent();
-    glGenQueries(1, &queries[k]);
-  }
-  for (int f = 0; f < frames; ++f) {
-    for (int k = 0; k < kConfigs; ++k) {
-      vtkRenderWindow* w = views[k]->GetRenderWindow();
-      w->MakeCurrent();
-      const auto t0 = std::chrono::steady_clock::now();
-      glBeginQuery(GL_TIME_ELAPSED, queries[k]);
-      views[k]->Render();
-      w->MakeCurrent();
-      glEndQuery(GL_TIME_ELAPSED);
-      glFinish();
-      wall[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-      GLuint64 ns = 0;
-      glGetQueryObjectui64v(queries[k], GL_QUERY_RESULT, &ns);
-      gpu[k].push_back(ns * 1e-6);
-    }
-  }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
+  std::vector<render::BodyView*> timed;
+  for (auto& v : views) timed.push_back(v.get());
+  const bench::FrameTimes times = bench::medianFrameTimes(timed, frames);
   std::printf("| %dx%d, %d frames, %s tables, median | GL timer [ms] | wall [ms] | GL time vs no atmosphere |\n",
               width, height, frames, tables.c_str());
   std::printf("|---|---:|---:|---:|\n");
   for (int k = 0; k < kConfigs; ++k)
-    std::printf("| %s | %.2f | %.2f | %+.1f %% |\n", names[k], median(gpu[k]), median(wall[k]),
-                100.0 * (median(gpu[k]) / median(gpu[0]) - 1.0));
-  const double atm = median(gpu[1]);
-  std::printf("\nrefraction vs atmosphere without it: %+.1f %%\n", 100.0 * (median(gpu[2]) / atm - 1.0));
-  std::printf("glare vs atmosphere without it: %+.1f %%\n", 100.0 * (median(gpu[3]) / atm - 1.0));
+    std::printf("| %s | %.2f | %.2f | %+.1f %% |\n", names[k], times.glMs[k], times.wallMs[k],
+                100.0 * (times.glMs[k] / times.glMs[0] - 1.0));
+  const double atm = times.glMs[1];
+  std::printf("\nrefraction vs atmosphere without it: %+.1f %%\n", 100.0 * (times.glMs[2] / atm - 1.0));
+  std::printf("glare vs atmosphere without it: %+.1f %%\n", 100.0 * (times.glMs[3] / atm - 1.0));
   return 0;
 }

@@ -14,6 +14,7 @@
 //       [--width 1920 --height 1080] [--tables small|default]
 #include "AtmosphereShadow.h"
 #include "BodyView.h"
+#include "RenderBenchSupport.hpp"
 #include "SceneInputs.h"
 #include "ShadowLut.hpp"
 #include "ShadowLutData.h"
@@ -27,10 +28,7 @@
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkRenderWindow.h>
-#include <vtk_glew.h>
 
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -105,39 +103,16 @@ int main(int argc, char** argv) {
   std::printf("ring width on screen: %.2f px (limb-luminance LuT used: %s)\n",
               views[5]->GetAtmosphere().GetLastRingWidthPixels(),
               views[5]->GetAtmosphere().GetLastDrawUsedLimbLuminance() ? "yes" : "no");
-  std::vector<std::vector<double>> gpu(n), wall(n);
-  std::vector<GLuint> queries(n, 0);
-  for (std::size_t k = 0; k < n; ++k) {
-    views[k]->GetRenderWindow()->MakeCurrent();
-    glGenQueries(1, &queries[k]);
-  }
-  for (int f = 0; f < frames; ++f) {
-    for (std::size_t k = 0; k < n; ++k) {
-      vtkRenderWindow* w = views[k]->GetRenderWindow();
-      w->MakeCurrent();
-      const auto t0 = std::chrono::steady_clock::now();
-      glBeginQuery(GL_TIME_ELAPSED, queries[k]);
-      views[k]->Render();
-      w->MakeCurrent();
-      glEndQuery(GL_TIME_ELAPSED);
-      glFinish();
-      wall[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-      GLuint64 ns = 0;
-      glGetQueryObjectui64v(queries[k], GL_QUERY_RESULT, &ns);
-      gpu[k].push_back(ns * 1e-6);
-    }
-  }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
+  std::vector<render::BodyView*> timed;
+  for (auto& v : views) timed.push_back(v.get());
+  const bench::FrameTimes times = bench::medianFrameTimes(timed, frames);
   std::printf("| %dx%d, %d frames, %s tables, median | GL timer [ms] | wall [ms] | GL time ratio |\n", width,
               height, frames, tables.c_str());
   std::printf("|---|---:|---:|---:|\n");
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t base = k < 3 ? 0 : 3;  // vs shadow off / vs ray marching without refraction
-    std::printf("| %s | %.2f | %.2f | %.2f |\n", configs[k].name, median(gpu[k]), median(wall[k]),
-                median(gpu[k]) / median(gpu[base]));
+    std::printf("| %s | %.2f | %.2f | %.2f |\n", configs[k].name, times.glMs[k], times.wallMs[k],
+                times.glMs[k] / times.glMs[base]);
   }
   return 0;
 }
