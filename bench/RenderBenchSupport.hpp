@@ -6,15 +6,24 @@
 #include <vtk_glew.h>
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <vector>
 
 namespace umbra::bench {
 
 /// Per view, the median time per frame [ms]: on the GL timer (GL_TIME_ELAPSED around the
-/// frame) and on the wall clock (render + glFinish).
+/// frame), on the wall clock (render + glFinish), and the process's CPU time over the same
+/// span (all threads: with Mesa's llvmpipe the fragment work itself, and the steadier
+/// figure on a machine shared with other jobs).
 struct FrameTimes {
-  std::vector<double> glMs, wallMs;
+  std::vector<double> glMs, wallMs, cpuMs;
 };
+
+inline double processCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
 
 inline double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -26,7 +35,7 @@ inline double median(std::vector<double> v) {
 // to be warmed up already (shaders compiled, textures uploaded).
 inline FrameTimes medianFrameTimes(const std::vector<render::BodyView*>& views, int frames) {
   const std::size_t n = views.size();
-  std::vector<std::vector<double>> gl(n), wall(n);
+  std::vector<std::vector<double>> gl(n), wall(n), cpu(n);
   std::vector<GLuint> queries(n, 0);
   for (std::size_t k = 0; k < n; ++k) {
     views[k]->GetRenderWindow()->MakeCurrent();
@@ -37,11 +46,13 @@ inline FrameTimes medianFrameTimes(const std::vector<render::BodyView*>& views, 
       vtkRenderWindow* w = views[k]->GetRenderWindow();
       w->MakeCurrent();
       const auto t0 = std::chrono::steady_clock::now();
+      const double c0 = processCpuMs();
       glBeginQuery(GL_TIME_ELAPSED, queries[k]);
       views[k]->Render();
       w->MakeCurrent();
       glEndQuery(GL_TIME_ELAPSED);
       glFinish();
+      cpu[k].push_back(processCpuMs() - c0);
       wall[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       GLuint64 ns = 0;
       glGetQueryObjectui64v(queries[k], GL_QUERY_RESULT, &ns);
@@ -54,6 +65,7 @@ inline FrameTimes medianFrameTimes(const std::vector<render::BodyView*>& views, 
     glDeleteQueries(1, &queries[k]);
     t.glMs.push_back(median(gl[k]));
     t.wallMs.push_back(median(wall[k]));
+    t.cpuMs.push_back(median(cpu[k]));
   }
   return t;
 }

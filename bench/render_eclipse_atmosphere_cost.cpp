@@ -11,7 +11,7 @@
 // runs on the CPU.
 //
 //   xvfb-run -a build/bench/umbra-bench-render-eclipse-atmosphere [--frames 10]
-//       [--width 1920 --height 1080] [--tables small|default]
+//       [--width 1920 --height 1080] [--tables small|default] [--part moon|earth|all]
 #include "AtmosphereShadow.h"
 #include "BodyView.h"
 #include "RenderBenchSupport.hpp"
@@ -40,11 +40,14 @@ using namespace umbra;
 int main(int argc, char** argv) {
   CLI::App app{"Frame time of the eclipse through an atmosphere: shadow on/off, refraction, limb-luminance LuT"};
   int frames = 10, width = 1920, height = 1080;
-  std::string tables = "small";
+  std::string tables = "small", part = "all";
   app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
   app.add_option("--width", width)->capture_default_str();
   app.add_option("--height", height)->capture_default_str();
   app.add_option("--tables", tables, "Table sizes: small or default")->check(CLI::IsMember({"small", "default"}))
+      ->capture_default_str();
+  app.add_option("--part", part, "The Moon's configurations (shadow), Earth's (ring) or all")
+      ->check(CLI::IsMember({"moon", "earth", "all"}))
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   const bool small = tables == "small";
@@ -89,9 +92,11 @@ int main(int argc, char** argv) {
       {"Earth ring: limb-luminance LuT", &earth, earthScene.exposureEv,
        [&](render::BodyView& v) { sky(v, true, 1000.0); }},
   };
-  const std::size_t n = configs.size();
+  // configs[first, last): the Moon's are 0..2, Earth's 3..5.
+  const std::size_t first = part == "earth" ? 3 : 0, last = part == "moon" ? 3 : configs.size();
   std::vector<std::unique_ptr<render::BodyView>> views;
-  for (const Config& c : configs) {
+  for (std::size_t k = first; k < last; ++k) {
+    const Config& c = configs[k];
     views.push_back(std::make_unique<render::BodyView>(width, height, true));
     render::BodyView& v = *views.back();
     v.SetBodies(c.in->sun, c.in->bodies, airless);
@@ -100,19 +105,21 @@ int main(int argc, char** argv) {
     v.SetExposureEV(c.exposureEv);
     v.Render();  // warm up: shaders, textures
   }
-  std::printf("ring width on screen: %.2f px (limb-luminance LuT used: %s)\n",
-              views[5]->GetAtmosphere().GetLastRingWidthPixels(),
-              views[5]->GetAtmosphere().GetLastDrawUsedLimbLuminance() ? "yes" : "no");
+  if (last == configs.size()) {
+    const render::AtmosphereRendering& limbView = views.back()->GetAtmosphere();
+    std::printf("ring width on screen: %.2f px (limb-luminance LuT used: %s)\n", limbView.GetLastRingWidthPixels(),
+                limbView.GetLastDrawUsedLimbLuminance() ? "yes" : "no");
+  }
   std::vector<render::BodyView*> timed;
   for (auto& v : views) timed.push_back(v.get());
   const bench::FrameTimes times = bench::medianFrameTimes(timed, frames);
-  std::printf("| %dx%d, %d frames, %s tables, median | GL timer [ms] | wall [ms] | GL time ratio |\n", width,
-              height, frames, tables.c_str());
-  std::printf("|---|---:|---:|---:|\n");
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t base = k < 3 ? 0 : 3;  // vs shadow off / vs ray marching without refraction
-    std::printf("| %s | %.2f | %.2f | %.2f |\n", configs[k].name, times.glMs[k], times.wallMs[k],
-                times.glMs[k] / times.glMs[base]);
+  std::printf("| %dx%d, %d frames, %s tables, median | GL timer [ms] | wall [ms] | CPU [ms] | GL time ratio | CPU time ratio |\n",
+              width, height, frames, tables.c_str());
+  std::printf("|---|---:|---:|---:|---:|---:|\n");
+  for (std::size_t k = first; k < last; ++k) {
+    const std::size_t i = k - first, base = (k < 3 ? 0 : 3) - first;  // vs shadow off / vs no refraction
+    std::printf("| %s | %.2f | %.2f | %.2f | %.2f | %.2f |\n", configs[k].name, times.glMs[i], times.wallMs[i],
+                times.cpuMs[i], times.glMs[i] / times.glMs[base], times.cpuMs[i] / times.cpuMs[base]);
   }
   return 0;
 }

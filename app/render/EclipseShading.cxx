@@ -36,6 +36,7 @@ constexpr const char* kLutSamplerDecl = "uniform sampler2D umbraShadowLut;";
 constexpr const char* kAtmosphereLutSamplerName = "umbraAtmosphereShadowLut";
 
 vtkSmartPointer<vtkTexture> lutTexture();
+vtkSmartPointer<vtkImageData> rgbaTexels(vtkImageData* lut);
 
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -204,7 +205,7 @@ EclipseShading::EclipseShading() : impl_(std::make_unique<Impl>()) {
   none->GetPointData()->SetScalars(ones);
   impl_->atmosphereNone = none;
   impl_->atmosphereTexture = lutTexture();
-  impl_->atmosphereTexture->SetInputData(none);
+  impl_->atmosphereTexture->SetInputData(rgbaTexels(none));
 }
 
 EclipseShading::~EclipseShading() { ClearReceivers(); }
@@ -241,7 +242,23 @@ vtkSmartPointer<vtkImageData> checkedLutCopy(vtkImageData* lut) {
   return copy;
 }
 
-// A float RGB LuT texture: values as they are, linear, clamp-to-edge, no mipmaps.
+// The texels of a checked LuT as RGBA (alpha 1), the form the texture gets: Mesa's
+// llvmpipe samples four-channel float textures much faster than RGB32F ones (as
+// AtmosphereRendering's tables).
+vtkSmartPointer<vtkImageData> rgbaTexels(vtkImageData* lut) {
+  auto out = vtkSmartPointer<vtkImageData>::New();
+  out->CopyStructure(lut);
+  vtkDataArray* rgb = lut->GetPointData()->GetScalars();
+  vtkNew<vtkFloatArray> rgba;
+  rgba->SetNumberOfComponents(4);
+  rgba->SetNumberOfTuples(rgb->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < rgb->GetNumberOfTuples(); ++i)
+    for (int c = 0; c < 4; ++c) rgba->SetValue(4 * i + c, c < 3 ? static_cast<float>(rgb->GetComponent(i, c)) : 1.0f);
+  out->GetPointData()->SetScalars(rgba);
+  return out;
+}
+
+// A float RGBA LuT texture: values as they are, linear, clamp-to-edge, no mipmaps.
 vtkSmartPointer<vtkTexture> lutTexture() {
   auto tex = vtkSmartPointer<vtkTexture>::New();
   tex->SetColorModeToDirectScalars();  // float values as they are: no lookup table
@@ -263,7 +280,7 @@ void EclipseShading::SetShadowLut(vtkImageData* lut) {
   copy->SetOrigin(0.0, 0.0, 0.0);
   copy->SetSpacing(1.0, 1.0, 1.0);
   if (!impl_->lutTexture) impl_->lutTexture = lutTexture();
-  impl_->lutTexture->SetInputData(copy);
+  impl_->lutTexture->SetInputData(rgbaTexels(copy));
   for (auto& r : impl_->receivers) r->actor->GetProperty()->SetTexture(kLutSamplerName, impl_->lutTexture);
 }
 
@@ -271,7 +288,7 @@ void EclipseShading::SetAtmosphereShadowLut(const std::string& occluderName, vtk
   Impl& m = *impl_;
   if (occluderName.empty() || !lut) {
     m.atmosphereOccluder.clear();
-    m.atmosphereTexture->SetInputData(m.atmosphereNone);
+    m.atmosphereTexture->SetInputData(rgbaTexels(m.atmosphereNone));
     m.atmosphereMap = {0.25f, 0.5f, 0.25f, 0.5f};
     m.atmosphereRange = {};
     return;
@@ -306,7 +323,7 @@ void EclipseShading::SetAtmosphereShadowLut(const std::string& occluderName, vtk
   copy->SetOrigin(0.0, 0.0, 0.0);
   copy->SetSpacing(1.0, 1.0, 1.0);
   m.atmosphereOccluder = occluderName;
-  m.atmosphereTexture->SetInputData(copy);
+  m.atmosphereTexture->SetInputData(rgbaTexels(copy));
 }
 
 const std::string& EclipseShading::GetAtmosphereOccluder() const { return impl_->atmosphereOccluder; }

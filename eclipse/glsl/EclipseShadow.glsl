@@ -52,11 +52,14 @@ vec2 umbraShadowLutCoord(vec2 uv) {
   return umbraShadowLutCoordIn(uv, umbraShadowLutURange, umbraShadowLutVRange, umbraShadowLutVLowFraction);
 }
 
+// umbraShadowLut at (u, v) (v < 1: in the shadow).
+vec3 umbraShadowLutAt(vec2 uv) { return texture(umbraShadowLut, umbraShadowLutCoord(uv)).rgb; }
+
 // Fraction of sunlight per channel reaching p past one occluder (Eq. 3-4 + LuT lookup).
 vec3 umbraEclipseFactor(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float occRadius) {
   vec2 uv = umbraShadowUv(p, sunPos, sunRadius, occPos, occRadius);
   if (uv.y >= 1.0) return vec3(1.0);
-  return texture(umbraShadowLut, umbraShadowLutCoord(uv)).rgb;
+  return umbraShadowLutAt(uv);
 }
 
 // The same lookup in `lut`, a part of a table (an update extent, e.g. the u range a
@@ -65,10 +68,14 @@ vec3 umbraEclipseFactor(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float
 // the part the edge texels are used (clamp to edge). The whole table's u and v ranges
 // (uRange, vRange, vLowFraction: umbraShadowLutCoordIn) are its own, not umbraShadowLut's.
 // With the whole table, the texture coordinate is umbraShadowLutCoordIn(u, v, ...) itself.
+// umbraShadowLutAtIn: the lookup alone at (u, v) (v < 1).
+vec3 umbraShadowLutAtIn(sampler2D lut, vec4 map, vec2 uRange, vec2 vRange, float vLowFraction, vec2 uv) {
+  vec2 texel = (umbraShadowLutCoordIn(uv, uRange, vRange, vLowFraction) - map.xz) / map.yw + 0.5;
+  return texture(lut, texel / vec2(textureSize(lut, 0))).rgb;
+}
 vec3 umbraEclipseFactorIn(sampler2D lut, vec4 map, vec2 uRange, vec2 vRange, float vLowFraction, vec3 p,
                           vec3 sunPos, float sunRadius, vec3 occPos, float occRadius) {
   vec2 uv = umbraShadowUv(p, sunPos, sunRadius, occPos, occRadius);
   if (uv.y >= 1.0) return vec3(1.0);
-  vec2 texel = (umbraShadowLutCoordIn(uv, uRange, vRange, vLowFraction) - map.xz) / map.yw + 0.5;
-  return texture(lut, texel / vec2(textureSize(lut, 0))).rgb;
+  return umbraShadowLutAtIn(lut, map, uRange, vRange, vLowFraction, uv);
 }

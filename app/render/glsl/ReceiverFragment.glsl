@@ -56,13 +56,14 @@ void umbraReceiverShade() {
   vec3 shadow = vec3(1.0);
   for (int i = 0; i < 4; ++i) {
     if (i >= umbraOccluderCount) break;
+    // (u, v) once, then the one table's lookup (umbraEclipseFactor / umbraEclipseFactorIn).
+    vec2 uv = umbraShadowUv(p, umbraSunPos, umbraSunRadius, umbraOccluders[i].xyz, umbraOccluders[i].w);
+    if (uv.y >= 1.0) continue;
     if (i == umbraAtmosphereOccluder) {
-      shadow *= umbraEclipseFactorIn(umbraAtmosphereShadowLut, umbraAtmosphereLutMap, umbraAtmosphereLutURange,
-                                     umbraAtmosphereLutVRange, umbraAtmosphereLutVLowFraction, p, umbraSunPos,
-                                     umbraSunRadius, umbraOccluders[i].xyz, umbraOccluders[i].w);
+      shadow *= umbraShadowLutAtIn(umbraAtmosphereShadowLut, umbraAtmosphereLutMap, umbraAtmosphereLutURange,
+                                   umbraAtmosphereLutVRange, umbraAtmosphereLutVLowFraction, uv);
     } else {
-      shadow *= umbraEclipseFactor(p, umbraSunPos, umbraSunRadius, umbraOccluders[i].xyz,
-                                   umbraOccluders[i].w);
+      shadow *= umbraShadowLutAt(uv);
     }
   }
   vec3 radiance = umbraAlbedo * (umbraInvPi * eSun * cosi) * shadow;
