@@ -88,6 +88,7 @@ struct Receiver {
   vtkSmartPointer<vtkOpenGLPolyDataMapper> mapper;
   SphereBody body;
   unsigned long observerTag = 0;
+  std::string fragmentDecl;  // the fragment code its shader was given (fragmentDeclFor)
 };
 
 struct EclipseShading::Impl {
@@ -132,6 +133,33 @@ struct EclipseShading::Impl {
     r.actor->SetPosition(p.x, p.y, p.z);
   }
 
+  // The index among occludersOf(receiver) of the occluder shaded with the atmospheric LuT, -1: none.
+  int atmosphereIndexOf(const SphereBody& receiver) const {
+    if (atmosphereOccluder.empty()) return -1;
+    const auto occ = occludersOf(receiver);
+    for (std::size_t i = 0; i < occ.size() && i < static_cast<std::size_t>(kMaxOccluders); ++i)
+      if (occ[i]->name == atmosphereOccluder) return static_cast<int>(i);
+    return -1;
+  }
+
+  // The receiver's fragment code with its occluder count and atmospheric occluder as
+  // constants (ReceiverFragment.glsl): the shadow loop unrolls to exactly its occluders,
+  // one LuT lookup each, nothing for a receiver without any.
+  std::string fragmentDeclFor(const SphereBody& receiver) const {
+    const std::size_t n = std::min(occludersOf(receiver).size(), static_cast<std::size_t>(kMaxOccluders));
+    return "#define UMBRA_OCCLUDER_COUNT " + std::to_string(n) + "\n#define UMBRA_ATMOSPHERE_OCCLUDER " +
+           std::to_string(atmosphereIndexOf(receiver)) + "\n" + eclipseGlslWithoutSampler() + "\n" +
+           checkedGlsl("ReceiverFragment.glsl", glsl::kReceiverFragment) + "\n" + kFsDec.tag;
+  }
+
+  // Gives the receiver's shader the code for its present occluders (a rebuild when they changed).
+  void updateFragmentDecl(Receiver& r) const {
+    std::string decl = fragmentDeclFor(r.body);
+    if (decl == r.fragmentDecl) return;
+    r.actor->GetShaderProperty()->AddFragmentShaderReplacement(kFsDec.tag, true, decl, false);
+    r.fragmentDecl = std::move(decl);
+  }
+
   // Called by the mapper (UpdateShaderEvent) with its program bound, every draw.
   void setUniforms(const Receiver& r, vtkShaderProgram& program) const {
     const SphereBody& b = r.body;
@@ -145,10 +173,8 @@ struct EclipseShading::Impl {
     program.SetUniformf("umbraSunIrradiance", float(sun.irradianceAt1AuWm2));
     float occ[kMaxOccluders][4] = {};
     int n = 0;
-    int atmosphere = -1;
     for (const SphereBody* o : occludersOf(b)) {
       if (n == kMaxOccluders) break;  // checked when set; never silently reached
-      if (!atmosphereOccluder.empty() && o->name == atmosphereOccluder) atmosphere = n;
       const glm::dvec3 rel = o->centreM - b.centreM;
       occ[n][0] = float(rel.x);
       occ[n][1] = float(rel.y);
@@ -156,9 +182,7 @@ struct EclipseShading::Impl {
       occ[n][3] = float(o->radiusM);
       ++n;
     }
-    program.SetUniformi("umbraOccluderCount", n);
     program.SetUniform4fv("umbraOccluders", kMaxOccluders, occ);
-    program.SetUniformi("umbraAtmosphereOccluder", atmosphere);
     program.SetUniform4f("umbraAtmosphereLutMap", atmosphereMap.data());
     setRangeUniforms(program, "umbraShadowLut", lutRange);
     setRangeUniforms(program, "umbraAtmosphereLut", atmosphereRange);
@@ -291,6 +315,7 @@ void EclipseShading::SetAtmosphereShadowLut(const std::string& occluderName, vtk
     m.atmosphereTexture->SetInputData(rgbaTexels(m.atmosphereNone));
     m.atmosphereMap = {0.25f, 0.5f, 0.25f, 0.5f};
     m.atmosphereRange = {};
+    for (auto& r : m.receivers) m.updateFragmentDecl(*r);
     return;
   }
   auto copy = checkedLutCopy(lut);
@@ -324,6 +349,7 @@ void EclipseShading::SetAtmosphereShadowLut(const std::string& occluderName, vtk
   copy->SetSpacing(1.0, 1.0, 1.0);
   m.atmosphereOccluder = occluderName;
   m.atmosphereTexture->SetInputData(rgbaTexels(copy));
+  for (auto& r : m.receivers) m.updateFragmentDecl(*r);
 }
 
 const std::string& EclipseShading::GetAtmosphereOccluder() const { return impl_->atmosphereOccluder; }
@@ -355,6 +381,7 @@ void EclipseShading::SetOccluders(const std::vector<SphereBody>& occluders) {
     impl_->occluders = std::move(previous);
     throw;
   }
+  for (auto& r : impl_->receivers) impl_->updateFragmentDecl(*r);
 }
 
 void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const glm::dvec3& originM) {
@@ -368,8 +395,6 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   }
   impl_->checkOccluderCount(body, impl_->occludersOf(body).size());
   const std::string vsDec = checkedGlsl("ReceiverVertex.glsl", glsl::kReceiverVertex);
-  const std::string fsDec = eclipseGlslWithoutSampler() + "\n" +
-                            checkedGlsl("ReceiverFragment.glsl", glsl::kReceiverFragment) + "\n" + kFsDec.tag;
 
   Receiver* receiver = nullptr;
   for (auto& r : impl_->receivers) {
@@ -411,14 +436,15 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
     sp->AddVertexShaderReplacement(kVsDec.tag, true, vsDec, false);
     sp->AddVertexShaderReplacement(kVsImpl.tag, true,
                                    std::string("  umbraReceiverVertex(vertexMC);\n") + kVsImpl.tag, false);
-    sp->AddFragmentShaderReplacement(kFsDec.tag, true, fsDec, false);
     sp->AddFragmentShaderReplacement(kFsImpl.tag, true, std::string("  umbraReceiverShade();\n") + kFsImpl.tag,
                                      false);
     vtkNew<ReceiverUniformsCommand> cmd;
     cmd->owner = impl_.get();
     cmd->receiver = receiver;
     receiver->observerTag = mapper->AddObserver(vtkCommand::UpdateShaderEvent, cmd);
+    receiver->fragmentDecl.clear();
   }
+  impl_->updateFragmentDecl(*receiver);
   actor->Modified();
 }
 

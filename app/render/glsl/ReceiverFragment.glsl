@@ -15,12 +15,15 @@ uniform vec3 umbraAlbedo;          // linear RGB
 uniform vec3 umbraSunPos;          // m, relative to the body's centre
 uniform float umbraSunRadius;      // m
 uniform float umbraSunIrradiance;  // W m^-2 at 1 au
-uniform int umbraOccluderCount;    // 0..4
+// The receiver's occluders: UMBRA_OCCLUDER_COUNT (0..4) of them, #defined before this file
+// by EclipseShading with UMBRA_ATMOSPHERE_OCCLUDER, the one whose shadow comes from the
+// atmospheric shadow LuT (umbraAtmosphereShadowLut, declared by VTK; RGB through its
+// atmosphere), -1: none. Constants, so that the shadow loop unrolls to exactly the
+// occluders present with one lookup each: a SIMD rasteriser (Mesa's llvmpipe) runs both
+// sides of a branch and one more, masked, iteration of a loop whose count is a uniform.
 uniform vec4 umbraOccluders[4];    // xyz: centre relative to the body's centre (m), w: radius (m)
-// The occluder whose shadow comes from the atmospheric shadow LuT (umbraAtmosphereShadowLut,
-// declared by VTK; RGB through its atmosphere), -1: none; the part of the table held and
-// its place in the whole, and the whole's u and v ranges (umbraEclipseFactorIn).
-uniform int umbraAtmosphereOccluder;
+// The part of the atmospheric table held and its place in the whole, and the whole's u
+// and v ranges (umbraEclipseFactorIn).
 uniform vec4 umbraAtmosphereLutMap;
 uniform vec2 umbraAtmosphereLutURange;
 uniform vec2 umbraAtmosphereLutVRange;
@@ -53,17 +56,18 @@ void umbraReceiverShade() {
   float dAu = dSun / umbraAuM;
   float eSun = umbraSunIrradiance / (dAu * dAu);
 
+  // umbraEclipseFactor of each occluder (umbraEclipseFactorIn for the atmospheric one),
+  // (u, v) computed once.
   vec3 shadow = vec3(1.0);
-  for (int i = 0; i < 4; ++i) {
-    if (i >= umbraOccluderCount) break;
-    // (u, v) once, then the one table's lookup (umbraEclipseFactor / umbraEclipseFactorIn).
+  for (int i = 0; i < UMBRA_OCCLUDER_COUNT; ++i) {
     vec2 uv = umbraShadowUv(p, umbraSunPos, umbraSunRadius, umbraOccluders[i].xyz, umbraOccluders[i].w);
-    if (uv.y >= 1.0) continue;
-    if (i == umbraAtmosphereOccluder) {
-      shadow *= umbraShadowLutAtIn(umbraAtmosphereShadowLut, umbraAtmosphereLutMap, umbraAtmosphereLutURange,
-                                   umbraAtmosphereLutVRange, umbraAtmosphereLutVLowFraction, uv);
-    } else {
-      shadow *= umbraShadowLutAt(uv);
+    if (uv.y < 1.0) {
+      if (i == UMBRA_ATMOSPHERE_OCCLUDER) {
+        shadow *= umbraShadowLutAtIn(umbraAtmosphereShadowLut, umbraAtmosphereLutMap, umbraAtmosphereLutURange,
+                                     umbraAtmosphereLutVRange, umbraAtmosphereLutVLowFraction, uv);
+      } else {
+        shadow *= umbraShadowLutAt(uv);
+      }
     }
   }
   vec3 radiance = umbraAlbedo * (umbraInvPi * eSun * cosi) * shadow;
