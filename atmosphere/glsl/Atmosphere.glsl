@@ -219,13 +219,20 @@ vec3 umbraAtmDirectIrradiance(float r, float muS) {
 // In-scattered radiance between (r, mu) and the point at distance d along the ray, with
 // the sun at cosines muS (zenith) and nu (view): S(x) - T(x, y) S(y). endsOnGround: the
 // point is on the ground.
-vec3 umbraAtmInScatteringToPoint(float r, float mu, float muS, float nu, float d, bool rayHitsGround,
-                                 bool endsOnGround) {
-  vec3 sx = umbraAtmScatteredRadiance(r, mu, muS, nu, rayHitsGround);
+// umbraAtmInScatteringFrom: the same with S(x) = umbraAtmScatteredRadiance(r, mu, ...) and
+// T(x, y) = umbraAtmTransmittance(r, mu, d, ...) already at hand (a caller that needs them
+// too looks each up once).
+vec3 umbraAtmInScatteringFrom(vec3 sx, vec3 T, float r, float mu, float muS, float nu, float d, bool rayHitsGround,
+                              bool endsOnGround) {
   float rd = umbraAtmRadiusAlong(r, mu, d, endsOnGround);
   float mud = clamp((r * mu + d) / rd, -1.0, 1.0);
   float muSd = clamp((r * muS + d * nu) / rd, -1.0, 1.0);
   vec3 sy = umbraAtmScatteredRadiance(rd, mud, muSd, nu, rayHitsGround);
-  vec3 T = umbraAtmTransmittance(r, mu, d, rayHitsGround, endsOnGround);
   return max(sx - T * sy, vec3(0.0));
+}
+vec3 umbraAtmInScatteringToPoint(float r, float mu, float muS, float nu, float d, bool rayHitsGround,
+                                 bool endsOnGround) {
+  return umbraAtmInScatteringFrom(umbraAtmScatteredRadiance(r, mu, muS, nu, rayHitsGround),
+                                  umbraAtmTransmittance(r, mu, d, rayHitsGround, endsOnGround), r, mu, muS, nu, d,
+                                  rayHitsGround, endsOnGround);
 }

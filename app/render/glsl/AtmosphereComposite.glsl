@@ -127,7 +127,14 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
   bool onGround = ground && dObject >= dEnd * (1.0 - umbraGroundTolerance);
   bool onObject = !onGround && dObject < dEnd;
 
-  if (onGround) {
+  // S(x), the same for the three cases (the sky's ray misses the ground): looked up once,
+  // as the segment's T. A SIMD rasteriser (Mesa's llvmpipe) runs every branch, masked.
+  vec3 sx = umbraAtmScatteredRadiance(r, mu, muS, nu, ground);
+  if (onGround || onObject) {
+    float d = onGround ? dEnd : dObject;
+    vec3 T = umbraAtmTransmittance(r, mu, d, ground, onGround);
+    vec3 S = umbraAtmInScatteringFrom(sx, T, r, mu, muS, nu, d, ground, onGround);
+    if (onObject) return T * frame + umbraAtmToDisplay * S * umbraSolarIrradiance;
     vec3 y = x + dEnd * dir;
     float muSg = dot(normalize(y), umbraSunDirection);
     float rg = umbraAtmBottom;
@@ -138,19 +145,11 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
     if (dFrame < umbraFarAway && muSg > 0.05 && all(greaterThan(unshadowed, vec3(0.0))))
       eclipse = clamp(frame / unshadowed, vec3(0.0), vec3(1.0));
     vec3 E = eclipse * umbraAtmDirectIrradiance(rg, muSg) + umbraAtmIndirectIrradiance(rg, muSg);
-    vec3 T = umbraAtmTransmittance(r, mu, dEnd, true, true);
-    vec3 S = umbraAtmInScatteringToPoint(r, mu, muS, nu, dEnd, true, true);
     vec3 raw = T * umbraGroundAlbedo * 0.31830988618 * E + S;
     return umbraAtmToDisplay * raw * umbraSolarIrradiance;
-  }
-  if (onObject) {
-    vec3 T = umbraAtmTransmittance(r, mu, dObject, ground, false);
-    vec3 S = umbraAtmInScatteringToPoint(r, mu, muS, nu, dObject, ground, false);
-    return T * frame + umbraAtmToDisplay * S * umbraSolarIrradiance;
   }
   if (umbraRefraction == 1 && umbraParallel == 0 && dFrame >= umbraFarAway)
     background = umbraRefractedBackground(x, r, mu, dir);
   vec3 T = umbraAtmTransmittanceToTop(r, mu);
-  vec3 S = umbraAtmScatteredRadiance(r, mu, muS, nu, false);
-  return T * background + umbraAtmToDisplay * S * umbraSolarIrradiance;
+  return T * background + umbraAtmToDisplay * sx * umbraSolarIrradiance;
 }
