@@ -16,6 +16,7 @@
 #include <vtkOpenGLRenderUtilities.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLShaderCache.h>
+#include <vtkOpenGLState.h>
 #include <vtkPointData.h>
 #include <vtkRenderer.h>
 #include <vtkShaderProgram.h>
@@ -25,6 +26,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -62,6 +64,45 @@ vtkSmartPointer<vtkTextureObject> floatTexture(vtkOpenGLRenderWindow* window, in
                          : t->Create3DFromRaw(w, h, d, components, VTK_FLOAT, data.data());
   if (!ok) throw std::runtime_error("cannot create a " + std::to_string(w) + "x" + std::to_string(h) + " float texture");
   return t;
+}
+
+// A rectangle of pixels [x0, x1) x [y0, y1).
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  bool whole(int w, int h) const { return x0 <= 0 && y0 <= 0 && x1 >= w && y1 >= h; }
+};
+
+// The pixels whose view rays can meet a sphere (centre relative to the camera, radius):
+// the bounding box, one pixel wider each side, of the projected corners of the cube around
+// it (the sphere's projection lies in their convex hull). The whole frame when a corner is
+// not in front of a perspective camera. halfWidth, halfHeight: the frame's half extent at
+// unit distance (perspective) or in metres (parallel).
+PixelRect sphereOnScreen(const glm::dvec3& centre, double radius, const glm::dvec3& fwd, const glm::dvec3& right,
+                         const glm::dvec3& up, bool parallel, double halfWidth, double halfHeight, int w, int h) {
+  const PixelRect whole{0, 0, w, h};
+  double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL};
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 c = centre + radius * ((corner & 1 ? 1.0 : -1.0) * right + (corner & 2 ? 1.0 : -1.0) * up +
+                                            (corner & 4 ? 1.0 : -1.0) * fwd);
+    const double z = parallel ? 1.0 : glm::dot(c, fwd);
+    if (!(z > 0.0)) return whole;
+    const double ndc[2] = {glm::dot(c, right) / (z * halfWidth), glm::dot(c, up) / (z * halfHeight)};
+    for (int k = 0; k < 2; ++k) {
+      lo[k] = std::min(lo[k], ndc[k]);
+      hi[k] = std::max(hi[k], ndc[k]);
+    }
+  }
+  if (!(std::isfinite(lo[0]) && std::isfinite(lo[1]) && std::isfinite(hi[0]) && std::isfinite(hi[1]))) return whole;
+  auto pixel = [](double ndc, int n, double round) {
+    return static_cast<int>(std::clamp(round + 0.5 * (ndc + 1.0) * n, -1.0, n + 1.0));
+  };
+  PixelRect r{pixel(lo[0], w, 0.0) - 1, pixel(lo[1], h, 0.0) - 1, pixel(hi[0], w, 1.0) + 1, pixel(hi[1], h, 1.0) + 1};
+  r.x0 = std::max(r.x0, 0);
+  r.y0 = std::max(r.y0, 0);
+  r.x1 = std::min(r.x1, w);
+  r.y1 = std::min(r.y1, h);
+  return r;
 }
 
 std::vector<float> asFloat(const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); }
@@ -141,6 +182,7 @@ struct AtmosphereRendering::Impl {
   int limbSize[3] = {0, 0, 0};
   vtkSmartPointer<vtkTextureObject> limb;
   std::unique_ptr<vtkOpenGLQuadHelper> limbQuad;
+  std::unique_ptr<vtkOpenGLQuadHelper> backgroundQuad;  // umbraAtmosphereBackground
   double limbThresholdPx = 5.0;
   double lastRingWidthPx = 0.0;
   bool lastUsedLimb = false;
@@ -306,23 +348,24 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
                    eclipse::occluderInFront(m.origin + pos, m.sun.positionM, m.centre) &&
                    m.lastRingWidthPx < m.limbThresholdPx;
 
-  std::unique_ptr<vtkOpenGLQuadHelper>& quad = m.lastUsedLimb ? m.limbQuad : m.quad;
-  if (!quad) {
-    std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
-    std::string decl = std::string(atmosphere::kAtmosphereGlsl) + "\n" + glsl::kAtmosphereComposite + "\n";
-    if (m.lastUsedLimb) decl += std::string(glsl::kLimbRing) + "\n";
-    vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl", decl + "//VTK::FSQ::Decl");
-    vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
-                                 std::string("  gl_FragData[0] = vec4(") +
-                                     (m.lastUsedLimb ? "umbraLimbRing" : "umbraAtmosphereComposite") +
-                                     "(texCoord), 1.0);\n//VTK::FSQ::Impl");
-    quad = std::make_unique<vtkOpenGLQuadHelper>(window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
-                                                 fs.c_str(), "");
-  } else {
-    window->GetShaderCache()->ReadyShaderProgram(quad->Program);
-  }
-  vtkShaderProgram* p = quad->Program;
-  if (!p || !p->GetCompiled()) return false;
+  // A full-screen program running `function` (texCoord) of AtmosphereComposite.glsl (with
+  // LimbRing.glsl for the ring), bound.
+  auto ready = [&](std::unique_ptr<vtkOpenGLQuadHelper>& quad, const char* function, bool limbCode) {
+    if (!quad) {
+      std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
+      std::string decl = std::string(atmosphere::kAtmosphereGlsl) + "\n" + glsl::kAtmosphereComposite + "\n";
+      if (limbCode) decl += std::string(glsl::kLimbRing) + "\n";
+      vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl", decl + "//VTK::FSQ::Decl");
+      vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
+                                   std::string("  gl_FragData[0] = vec4(") + function + "(texCoord), 1.0);\n//VTK::FSQ::Impl");
+      quad = std::make_unique<vtkOpenGLQuadHelper>(window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+                                                   fs.c_str(), "");
+    } else {
+      window->GetShaderCache()->ReadyShaderProgram(quad->Program);
+    }
+    vtkShaderProgram* p = quad->Program;
+    return p && p->GetCompiled() ? p : nullptr;
+  };
 
   // The camera (double): world position, basis, projection.
   glm::dvec3 focal, up;
@@ -335,51 +378,66 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   const glm::dvec3 cameraWorld = m.origin + pos;
   const glm::dvec3 toCentre = m.centre - cameraWorld;
   const double camRadius = glm::length(toCentre);
-  setVec3(p, "umbraPlanetFromCamera", toCentre);
-  setVec3(p, "umbraCameraUp", camRadius > 0.0 ? -toCentre / camRadius : glm::dvec3(0.0, 0.0, 1.0));
-  p->SetUniformf("umbraCameraRadius", static_cast<float>(camRadius));
-  setVec3(p, "umbraRayForward", fwd);
-  p->SetUniformi("umbraParallel", parallel ? 1 : 0);
-  if (parallel) {
-    const double s = cam->GetParallelScale();
-    setVec3(p, "umbraRayOriginX", right * (s * aspect));
-    setVec3(p, "umbraRayOriginY", camUp * s);
-    setVec3(p, "umbraRayX", glm::dvec3(0.0));
-    setVec3(p, "umbraRayY", glm::dvec3(0.0));
-  } else {
-    const double t = std::tan(0.5 * cam->GetViewAngle() * kPi / 180.0);
-    setVec3(p, "umbraRayX", right * (t * aspect));
-    setVec3(p, "umbraRayY", camUp * t);
-    setVec3(p, "umbraRayOriginX", glm::dvec3(0.0));
-    setVec3(p, "umbraRayOriginY", glm::dvec3(0.0));
-  }
+  const double halfHeight = parallel ? cam->GetParallelScale() : std::tan(0.5 * cam->GetViewAngle() * kPi / 180.0);
   double nearFar[2];
   cam->GetClippingRange(nearFar);
-  p->SetUniformf("umbraNear", static_cast<float>(nearFar[0]));
-  p->SetUniformf("umbraFar", static_cast<float>(nearFar[1]));
-
   const glm::dvec3 toSun = m.sun.positionM - m.centre;
   const double dSun = glm::length(toSun);
-  setVec3(p, "umbraSunDirection", toSun / dSun);
-  p->SetUniformf("umbraSunAngularRadius", static_cast<float>(std::asin(std::min(1.0, m.sun.radiusM / dSun))));
-  p->SetUniformf("umbraSolarIrradiance", static_cast<float>(m.sun.irradianceAt1AuWm2 * (kAuM / dSun) * (kAuM / dSun)));
-  p->SetUniformf("umbraLimbDarkening", static_cast<float>(m.limbDarkening));
-  float mat[9];
-  for (int col = 0; col < 3; ++col)
-    for (int row = 0; row < 3; ++row) mat[3 * col + row] = static_cast<float>(m.colour[col][row]);
-  p->SetUniformMatrix3x3("umbraAtmToDisplay", mat);
-  setVec3(p, "umbraGroundAlbedo", m.albedo);
-
-  // The tables.
   const atmosphere::AtmosphereTables& t = m.tables;
-  p->SetUniformf("umbraAtmBottom", static_cast<float>(t.bottomRadiusM));
-  p->SetUniformf("umbraAtmTop", static_cast<float>(t.topRadiusM));
-  p->SetUniformf("umbraAtmMuSMin", static_cast<float>(t.options.muSMin));
-  const int size[4] = {t.options.scatteringR, t.options.scatteringMu, t.options.scatteringMuS, t.options.scatteringNu};
-  p->SetUniform1iv("umbraAtmScatteringSize", 4, size);
-  p->SetUniformi("umbraAtmComponents", static_cast<int>(t.singleScattering.size()));
-  p->SetUniformi("umbraRefraction", m.refractionValues.empty() ? 0 : 1);
-  p->SetUniform3fv("umbraAtmPhase", 24, reinterpret_cast<const float(*)[3]>(m.phase.data()));
+
+  auto setUniforms = [&](vtkShaderProgram* p) {
+    setVec3(p, "umbraPlanetFromCamera", toCentre);
+    setVec3(p, "umbraCameraUp", camRadius > 0.0 ? -toCentre / camRadius : glm::dvec3(0.0, 0.0, 1.0));
+    p->SetUniformf("umbraCameraRadius", static_cast<float>(camRadius));
+    setVec3(p, "umbraRayForward", fwd);
+    p->SetUniformi("umbraParallel", parallel ? 1 : 0);
+    const glm::dvec3 x = right * (halfHeight * aspect), y = camUp * halfHeight;
+    setVec3(p, "umbraRayOriginX", parallel ? x : glm::dvec3(0.0));
+    setVec3(p, "umbraRayOriginY", parallel ? y : glm::dvec3(0.0));
+    setVec3(p, "umbraRayX", parallel ? glm::dvec3(0.0) : x);
+    setVec3(p, "umbraRayY", parallel ? glm::dvec3(0.0) : y);
+    p->SetUniformf("umbraNear", static_cast<float>(nearFar[0]));
+    p->SetUniformf("umbraFar", static_cast<float>(nearFar[1]));
+
+    setVec3(p, "umbraSunDirection", toSun / dSun);
+    p->SetUniformf("umbraSunAngularRadius", static_cast<float>(std::asin(std::min(1.0, m.sun.radiusM / dSun))));
+    p->SetUniformf("umbraSolarIrradiance", static_cast<float>(m.sun.irradianceAt1AuWm2 * (kAuM / dSun) * (kAuM / dSun)));
+    p->SetUniformf("umbraLimbDarkening", static_cast<float>(m.limbDarkening));
+    float mat[9];
+    for (int col = 0; col < 3; ++col)
+      for (int row = 0; row < 3; ++row) mat[3 * col + row] = static_cast<float>(m.colour[col][row]);
+    p->SetUniformMatrix3x3("umbraAtmToDisplay", mat);
+    setVec3(p, "umbraGroundAlbedo", m.albedo);
+
+    // The tables.
+    p->SetUniformf("umbraAtmBottom", static_cast<float>(t.bottomRadiusM));
+    p->SetUniformf("umbraAtmTop", static_cast<float>(t.topRadiusM));
+    p->SetUniformf("umbraAtmMuSMin", static_cast<float>(t.options.muSMin));
+    const int size[4] = {t.options.scatteringR, t.options.scatteringMu, t.options.scatteringMuS, t.options.scatteringNu};
+    p->SetUniform1iv("umbraAtmScatteringSize", 4, size);
+    p->SetUniformi("umbraAtmComponents", static_cast<int>(t.singleScattering.size()));
+    p->SetUniformi("umbraRefraction", m.refractionValues.empty() ? 0 : 1);
+    p->SetUniform3fv("umbraAtmPhase", 24, reinterpret_cast<const float(*)[3]>(m.phase.data()));
+    p->SetUniformi("umbraRefractionTable", m.refraction->GetTextureUnit());
+    p->SetUniformi("umbraFrameColour", colour->GetTextureUnit());
+    p->SetUniformi("umbraFrameDepth", depth->GetTextureUnit());
+    p->SetUniformi("umbraAtmTransmittanceTable", m.transmittance->GetTextureUnit());
+    p->SetUniformi("umbraAtmScatteringTable", m.scattering->GetTextureUnit());
+    p->SetUniformi("umbraAtmIrradianceTable", m.irradiance->GetTextureUnit());
+    p->SetUniformi("umbraAtmDirectIrradianceTable", m.direct->GetTextureUnit());
+    if (m.lastUsedLimb) {
+      // The camera's (u, v) of Eq. 4 for this occluder (its ground), in double.
+      const float uv[2] = {static_cast<float>(limbUv.u), static_cast<float>(limbUv.v)};
+      p->SetUniform2f("umbraLimbUv", uv);
+      p->SetUniformf("umbraLimbOccluder", static_cast<float>(phiOcc));
+      p->SetUniformf("umbraLimbAtmosphere", static_cast<float>(phiAtmo));
+      p->SetUniformf("umbraLimbDistance",
+                     static_cast<float>(std::sqrt(std::max(camRadius * camRadius - t.topRadiusM * t.topRadiusM, 0.0))));
+      p->SetUniformf("umbraPixelAngle", static_cast<float>(pixelAngle));
+      setVec3(p, "umbraSunFromCamera", glm::normalize(m.sun.positionM - cameraWorld));
+      p->SetUniformi("umbraLimbLuminance", m.limb->GetTextureUnit());
+    }
+  };
 
   colour->Activate();
   depth->Activate();
@@ -388,27 +446,33 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   m.irradiance->Activate();
   m.direct->Activate();
   m.refraction->Activate();
-  p->SetUniformi("umbraRefractionTable", m.refraction->GetTextureUnit());
-  p->SetUniformi("umbraFrameColour", colour->GetTextureUnit());
-  p->SetUniformi("umbraFrameDepth", depth->GetTextureUnit());
-  p->SetUniformi("umbraAtmTransmittanceTable", m.transmittance->GetTextureUnit());
-  p->SetUniformi("umbraAtmScatteringTable", m.scattering->GetTextureUnit());
-  p->SetUniformi("umbraAtmIrradianceTable", m.irradiance->GetTextureUnit());
-  p->SetUniformi("umbraAtmDirectIrradianceTable", m.direct->GetTextureUnit());
-  if (m.lastUsedLimb) {
-    // The camera's (u, v) of Eq. 4 for this occluder (its ground), in double.
-    const float uv[2] = {static_cast<float>(limbUv.u), static_cast<float>(limbUv.v)};
-    p->SetUniform2f("umbraLimbUv", uv);
-    p->SetUniformf("umbraLimbOccluder", static_cast<float>(phiOcc));
-    p->SetUniformf("umbraLimbAtmosphere", static_cast<float>(phiAtmo));
-    p->SetUniformf("umbraLimbDistance",
-                   static_cast<float>(std::sqrt(std::max(camRadius * camRadius - t.topRadiusM * t.topRadiusM, 0.0))));
-    p->SetUniformf("umbraPixelAngle", static_cast<float>(pixelAngle));
-    setVec3(p, "umbraSunFromCamera", glm::normalize(m.sun.positionM - cameraWorld));
-    m.limb->Activate();
-    p->SetUniformi("umbraLimbLuminance", m.limb->GetTextureUnit());
+  if (m.lastUsedLimb) m.limb->Activate();
+  // Every ray outside the atmosphere's rectangle on screen misses it and sees the
+  // background: a cheap program draws that, the composite only the rectangle (a SIMD
+  // rasteriser such as Mesa's llvmpipe pays the whole composite at every pixel it draws).
+  const PixelRect rect = sphereOnScreen(toCentre, t.topRadiusM, fwd, right, camUp, parallel, halfHeight * aspect,
+                                        halfHeight, width, height);
+  bool ok = true;
+  if (!rect.whole(width, height)) {
+    vtkShaderProgram* b = ready(m.backgroundQuad, "umbraAtmosphereBackground", false);
+    if (b) {
+      setUniforms(b);
+      m.backgroundQuad->Render();
+    }
+    ok = b != nullptr;
   }
-  quad->Render();
+  vtkShaderProgram* p = m.lastUsedLimb ? ready(m.limbQuad, "umbraLimbRing", true)
+                                       : ready(m.quad, "umbraAtmosphereComposite", false);
+  ok = ok && p;
+  if (ok && !rect.empty()) {
+    setUniforms(p);
+    vtkOpenGLState* state = window->GetState();
+    vtkOpenGLState::ScopedglEnableDisable scissorSaver(state, GL_SCISSOR_TEST);
+    vtkOpenGLState::ScopedglScissor scissorBoxSaver(state);
+    state->vtkglEnable(GL_SCISSOR_TEST);
+    state->vtkglScissor(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0);
+    (m.lastUsedLimb ? m.limbQuad : m.quad)->Render();
+  }
   if (m.lastUsedLimb) m.limb->Deactivate();
   m.refraction->Deactivate();
   m.direct->Deactivate();
@@ -417,12 +481,12 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   m.transmittance->Deactivate();
   depth->Deactivate();
   colour->Deactivate();
-  return true;
+  return ok;
 }
 
 void AtmosphereRendering::ReleaseGraphicsResources(vtkOpenGLRenderWindow* window) {
   Impl& m = *impl_;
-  for (auto* q : {&m.quad, &m.limbQuad}) {
+  for (auto* q : {&m.quad, &m.limbQuad, &m.backgroundQuad}) {
     if (*q) {
       (*q)->ReleaseGraphicsResources(window);
       q->reset();

@@ -48,6 +48,23 @@ float umbraSunDisc(vec3 dir) {
   return profile * umbraSolarIrradiance / (3.14159265 * umbraSunAngularRadius * umbraSunAngularRadius);
 }
 
+// The view ray's direction at ndc (perspective: through the pixel; parallel: forward,
+// umbraRayX and Y being zero).
+vec3 umbraRayDirection(vec2 ndc) { return normalize(umbraRayForward + ndc.x * umbraRayX + ndc.y * umbraRayY); }
+
+// What a ray that misses the atmosphere sees: the frame, plus the Sun's disc where the
+// frame holds nothing.
+vec3 umbraBackground(vec3 frame, float dFrame, vec3 dir) {
+  return dFrame >= umbraFarAway ? frame + vec3(umbraSunDisc(dir)) : frame;
+}
+
+// umbraBackground at the pixel uv: AtmosphereRendering draws it, a cheap program, outside
+// the atmosphere's rectangle on screen, where every ray misses the atmosphere.
+vec3 umbraAtmosphereBackground(vec2 uv) {
+  return umbraBackground(texture(umbraFrameColour, uv).rgb, umbraFrameDistance(texture(umbraFrameDepth, uv).r),
+                         umbraRayDirection(2.0 * uv - vec2(1.0)));
+}
+
 // Where a direction meets the image (perspective), in texture coordinates.
 vec2 umbraImageOf(vec3 d) {
   float f = dot(d, umbraRayForward);
@@ -78,17 +95,12 @@ vec3 umbraRefractedBackground(vec3 x, float r, float mu, vec3 dir) {
 
 vec3 umbraAtmosphereComposite(vec2 uv) {
   vec2 ndc = 2.0 * uv - vec2(1.0);
-  vec3 dir;
+  vec3 dir = umbraRayDirection(ndc);
   vec3 centre = umbraPlanetFromCamera;  // planet centre relative to the ray's origin
-  if (umbraParallel == 1) {
-    dir = normalize(umbraRayForward);
-    centre -= ndc.x * umbraRayOriginX + ndc.y * umbraRayOriginY;
-  } else {
-    dir = normalize(umbraRayForward + ndc.x * umbraRayX + ndc.y * umbraRayY);
-  }
+  if (umbraParallel == 1) centre -= ndc.x * umbraRayOriginX + ndc.y * umbraRayOriginY;
   vec3 frame = texture(umbraFrameColour, uv).rgb;
   float dFrame = umbraFrameDistance(texture(umbraFrameDepth, uv).r);
-  vec3 background = dFrame >= umbraFarAway ? frame + vec3(umbraSunDisc(dir)) : frame;
+  vec3 background = umbraBackground(frame, dFrame, dir);
 
   // The view ray against the top of the atmosphere, by its impact vector.
   float top = umbraAtmTop;
