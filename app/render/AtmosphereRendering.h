@@ -107,7 +107,10 @@ class AtmosphereRendering {
   /// vtkAtmosphereTablesSource (arrays deviation_rad, contact_altitude_m over the
   /// transmittance parametrisation). Rays that leave the atmosphere are bent by the
   /// deviation before they look up the background and the Sun; rays whose contact altitude
-  /// is negative see black. Perspective views only. The scattering tables should then come
+  /// is negative see black; those that descend are attenuated along the refracted path
+  /// (eclipse::refractedTransmittanceToTop) and by the terrain at their contact
+  /// (SetTerrainMeanElevation); from outside the atmosphere the Sun through the limb is
+  /// averaged over sub-rays across the pixel (GetLastLimbSubsamples). Perspective views only. The scattering tables should then come
   /// from refracted paths (vtkAtmosphereTablesSource::RefractedPaths). Throws
   /// std::invalid_argument for a malformed table.
   void SetRefraction(vtkImageData* table);
