@@ -103,7 +103,8 @@ vec3 umbraRefractedSun(vec3 x, float r, float mu, vec3 dir) {
 // sub-rays past the top see the bare Sun, those into the ground nothing.
 vec3 umbraLimbSun(vec3 centre, vec3 dir) {
   int n = max(umbraLimbSubsamples, 1);
-  vec3 radial = normalize(centre - dot(centre, dir) * dir);
+  vec3 across = centre - dot(centre, dir) * dir;
+  vec3 radial = length(across) > 0.0 ? normalize(across) : vec3(0.0);
   vec3 sun = vec3(0.0);
   for (int k = 0; k < n; ++k) {
     vec3 d = normalize(dir + ((float(k) + 0.5) / float(n) - 0.5) * umbraPixelAngle * radial);
