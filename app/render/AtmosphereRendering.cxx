@@ -184,6 +184,8 @@ struct AtmosphereRendering::Impl {
   std::unique_ptr<vtkOpenGLQuadHelper> limbQuad;
   std::unique_ptr<vtkOpenGLQuadHelper> backgroundQuad;  // umbraAtmosphereBackground
   double limbThresholdPx = 5.0;
+  double terrainMeanElevationM = 0.0;
+  int lastLimbSubsamples = 1;
   double lastRingWidthPx = 0.0;
   bool lastUsedLimb = false;
 
@@ -319,6 +321,12 @@ bool AtmosphereRendering::HasRefraction() const { return !impl_->refractionValue
 void AtmosphereRendering::SetOrigin(const glm::dvec3& originM) { impl_->origin = originM; }
 void AtmosphereRendering::SetColourMatrix(const glm::dmat3& m) { impl_->colour = m; }
 void AtmosphereRendering::SetLimbDarkening(double u) { impl_->limbDarkening = u; }
+void AtmosphereRendering::SetTerrainMeanElevation(double meanElevationM) {
+  if (!(std::isfinite(meanElevationM) && meanElevationM >= 0.0))
+    throw std::invalid_argument("terrain mean elevation must be finite and >= 0 m");
+  impl_->terrainMeanElevationM = meanElevationM;
+}
+int AtmosphereRendering::GetLastLimbSubsamples() const { return impl_->lastLimbSubsamples; }
 
 bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, vtkTextureObject* colour,
                                vtkTextureObject* depth, int width, int height) {
@@ -385,6 +393,13 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   const double dSun = glm::length(toSun);
   const atmosphere::AtmosphereTables& t = m.tables;
 
+  // The pixel's extent at the limb (camera outside the atmosphere) in sub-rays.
+  const double limbExtentM = pixelAngle * std::sqrt(std::max(camRadius * camRadius - t.bottomRadiusM * t.bottomRadiusM, 0.0));
+  m.lastLimbSubsamples = parallel || camRadius <= t.topRadiusM || m.refractionValues.empty()
+                             ? 1
+                             : static_cast<int>(std::clamp(std::ceil(limbExtentM / kLimbSubsampleSpacingM), 1.0,
+                                                           double(kMaxLimbSubsamples)));
+
   auto setUniforms = [&](vtkShaderProgram* p) {
     setVec3(p, "umbraPlanetFromCamera", toCentre);
     setVec3(p, "umbraCameraUp", camRadius > 0.0 ? -toCentre / camRadius : glm::dvec3(0.0, 0.0, 1.0));
@@ -417,6 +432,9 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     p->SetUniform1iv("umbraAtmScatteringSize", 4, size);
     p->SetUniformi("umbraAtmComponents", static_cast<int>(t.singleScattering.size()));
     p->SetUniformi("umbraRefraction", m.refractionValues.empty() ? 0 : 1);
+    p->SetUniformf("umbraTerrainMeanElevation", static_cast<float>(m.terrainMeanElevationM));
+    p->SetUniformf("umbraPixelAngle", static_cast<float>(pixelAngle));
+    p->SetUniformi("umbraLimbSubsamples", m.lastLimbSubsamples);
     p->SetUniform3fv("umbraAtmPhase", 24, reinterpret_cast<const float(*)[3]>(m.phase.data()));
     p->SetUniformi("umbraRefractionTable", m.refraction->GetTextureUnit());
     p->SetUniformi("umbraFrameColour", colour->GetTextureUnit());
@@ -433,7 +451,6 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
       p->SetUniformf("umbraLimbAtmosphere", static_cast<float>(phiAtmo));
       p->SetUniformf("umbraLimbDistance",
                      static_cast<float>(std::sqrt(std::max(camRadius * camRadius - t.topRadiusM * t.topRadiusM, 0.0))));
-      p->SetUniformf("umbraPixelAngle", static_cast<float>(pixelAngle));
       setVec3(p, "umbraSunFromCamera", glm::normalize(m.sun.positionM - cameraWorld));
       p->SetUniformi("umbraLimbLuminance", m.limb->GetTextureUnit());
     }

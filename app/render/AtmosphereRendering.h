@@ -107,7 +107,10 @@ class AtmosphereRendering {
   /// vtkAtmosphereTablesSource (arrays deviation_rad, contact_altitude_m over the
   /// transmittance parametrisation). Rays that leave the atmosphere are bent by the
   /// deviation before they look up the background and the Sun; rays whose contact altitude
-  /// is negative see black. Perspective views only. The scattering tables should then come
+  /// is negative see black; those that descend are attenuated along the refracted path
+  /// (eclipse::refractedTransmittanceToTop) and by the terrain at their contact
+  /// (SetTerrainMeanElevation); from outside the atmosphere the Sun through the limb is
+  /// averaged over sub-rays across the pixel (GetLastLimbSubsamples). Perspective views only. The scattering tables should then come
   /// from refracted paths (vtkAtmosphereTablesSource::RefractedPaths). Throws
   /// std::invalid_argument for a malformed table.
   void SetRefraction(vtkImageData* table);
@@ -131,6 +134,18 @@ class AtmosphereRendering {
 
   /// Limb darkening of the Sun's disc (eclipse/SolarDisc.hpp's Eq. 1 coefficient).
   void SetLimbDarkening(double u);
+  /// Rough land of the body (eclipse::TerrainModel, eclipse paper 5.2; default 0 m: only
+  /// rays below the ground are blocked): with refraction, a ray that descends to a contact
+  /// altitude below twice this is dimmed as in the limb views (eclipse::defaultTerrain: Earth
+  /// 240 m). Throws std::invalid_argument for a negative or non-finite value.
+  void SetTerrainMeanElevation(double meanElevationM);
+
+  /// With refraction, from outside the atmosphere, the Sun seen through the limb is averaged
+  /// over this many rays across a pixel (towards the planet's centre): the pixel's extent at
+  /// the limb over kLimbSubsampleSpacingM, 1 to kMaxLimbSubsamples. After Draw.
+  static constexpr double kLimbSubsampleSpacingM = 250.0;
+  static constexpr int kMaxLimbSubsamples = 64;
+  int GetLastLimbSubsamples() const;
 
   /// Draws the atmosphere: reads `colour` and `depth` (the delegate's frame), writes the
   /// composed frame into the currently bound draw framebuffer (w x h). False when the

@@ -9,6 +9,7 @@
 #include <vtkImageData.h>
 #include <vtkMultiBlockDataSet.h>
 
+#include "AtmosphericShadow.hpp"  // defaultTerrain()
 #include "ShadowLut.hpp"  // luminance()
 #include "scene/Scene.hpp"
 
@@ -91,6 +92,7 @@ void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTa
   view.GetAtmosphere().SetAtmosphere(model, filters::tablesFromBlocks(source->GetOutput(), model), body->centreM,
                                      body->albedoRgb);
   view.GetAtmosphere().SetRefraction(refraction ? refractionBlock(source->GetOutput()) : nullptr);
+  view.GetAtmosphere().SetTerrainMeanElevation(eclipse::defaultTerrain(a.body).meanElevationM);
 }
 
 void useSmallAtmosphereTables(vtkAtmosphereTablesSource* source) {

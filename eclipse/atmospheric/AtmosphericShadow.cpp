@@ -223,6 +223,18 @@ void LimbRayProfile::at(double b, double& dev, double& contact, double* T) const
   for (int c = 0; c < channels; ++c) T[c] = (1 - f) * t0[c] + f * t0[c + channels];
 }
 
+void refractedTransmittanceToTop(const atmosphere::AtmosphereTables& tables, double r, double mu, double contact,
+                                 double* T) {
+  const int n = static_cast<int>(tables.wavelengthCount());
+  if (mu >= 0.0) return atmosphere::transmittanceToTop(tables, r, mu, T);
+  if (contact < 0.0) return std::fill(T, T + n, 0.0);
+  // Symmetric about the periapsis: the way out from it, twice, less the part above r.
+  atmosphere::transmittanceToTop(tables, std::min(tables.bottomRadiusM + contact, r), 0.0, T);
+  std::vector<double> above(n);
+  atmosphere::transmittanceToTop(tables, r, -mu, above.data());
+  for (int c = 0; c < n; ++c) T[c] = std::min(T[c] * T[c] / std::max(above[c], 1e-30), 1.0);
+}
+
 LimbRayProfile limbRayProfile(const atmosphere::AtmosphereTables& tables,
                               const atmosphere::RefractionTable* refraction, int samples) {
   if (samples < 2) throw std::invalid_argument("limb ray profile needs at least 2 samples");
@@ -245,13 +257,7 @@ LimbRayProfile limbRayProfile(const atmosphere::AtmosphereTables& tables,
     }
     p.deviationRad[k] = dev, p.contactAltitudeM[k] = contact;
     double* T = p.transmittance.data() + static_cast<std::size_t>(k) * p.channels;
-    if (contact < 0.0) {
-      std::fill(T, T + p.channels, 0.0);
-      continue;
-    }
-    // Symmetric about the periapsis: the way out from it, twice.
-    atmosphere::transmittanceToTop(tables, std::min(rBottom + contact, rTop), 0.0, T);
-    for (int c = 0; c < p.channels; ++c) T[c] *= T[c];
+    refractedTransmittanceToTop(tables, rTop, -std::sqrt(std::max(0.0, rTop * rTop - b * b)) / rTop, contact, T);
   }
   return p;
 }

@@ -75,6 +75,15 @@ struct LimbRayProfile {
           double* transmittanceOut) const;
 };
 
+/// T along a refracted ray from (r, mu) to the top (per channel into `out`), given its contact
+/// altitude from the deviation / contact table: rising rays (mu >= 0) T(r, mu); descending
+/// ones pass their periapsis r_p = r_occ + contact (symmetric about it), so
+/// T = T(r_p, horizontal)^2 / T(r, -mu) (at r = r_atmo: T(r_p, horizontal)^2); 0 when the
+/// contact is below the ground. The render pass's GLSL twin is
+/// umbraRefractedTransmittanceToTop (app/render/glsl/AtmosphereComposite.glsl).
+void refractedTransmittanceToTop(const atmosphere::AtmosphereTables& tables, double radiusM, double mu,
+                                 double contactAltitudeM, double* out);
+
 /// From the tables: T(b) = T(r_p, horizontal)^2 with r_p the periapsis of the ray (the
 /// contact radius of the refraction table, or b without refraction), the deviation and
 /// contact from `refraction` (nullptr: straight rays, deviation 0, contact b - r_occ).

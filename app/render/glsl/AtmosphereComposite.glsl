@@ -24,6 +24,9 @@ uniform mat3 umbraAtmToDisplay;       // table channels -> frame colour
 uniform vec3 umbraGroundAlbedo;
 uniform int umbraRefraction;          // 1: bend the rays that leave the atmosphere
 uniform sampler2D umbraRefractionTable;  // deviation (rad), contact altitude (m) over (x_mu, x_r)
+uniform float umbraTerrainMeanElevation;  // m (eclipse::TerrainModel): rough land at the contact
+uniform float umbraPixelAngle;        // rad per pixel (perspective)
+uniform int umbraLimbSubsamples;      // sub-rays across a pixel for the Sun through the limb (>= 1)
 
 const float umbraLogDepthMinM = 1.0e-3;           // as ReceiverFragment.glsl
 const float umbraLogDepthOctaves = 53.150849518;
@@ -72,25 +75,88 @@ vec2 umbraImageOf(vec3 d) {
   return 0.5 * ndc + vec2(0.5);
 }
 
-// The background of a ray leaving the atmosphere from x (radius r, view cosine mu) with
-// refraction (eclipse paper, section 4.2): a ray bent into the ground sees black; else the
-// exit ray (the view ray turned towards the planet's centre by the deviation) looks up
-// the frame at its vanishing point, black where the frame holds something there (the
-// ray passed behind it), plus the Sun's disc along the exit ray.
-vec3 umbraRefractedBackground(vec3 x, float r, float mu, vec3 dir) {
-  vec2 dc = texture(umbraRefractionTable,
-                    umbraAtmTransmittanceUvSized(r, mu, vec2(textureSize(umbraRefractionTable, 0)))).rg;
-  if (dc.y < 0.0) return vec3(0.0);
+// eclipse::TerrainModel::transmission: a ray whose contact altitude is below the mean land
+// elevation is partly blocked, linearly from 0 m (blocked) to twice the mean (free).
+float umbraTerrainTransmission(float contactAltitudeM) {
+  if (umbraTerrainMeanElevation <= 0.0) return contactAltitudeM >= 0.0 ? 1.0 : 0.0;
+  return clamp(contactAltitudeM / (2.0 * umbraTerrainMeanElevation), 0.0, 1.0);
+}
+
+// eclipse::refractedTransmittanceToTop: T along the refracted ray from (r, mu) to the top;
+// a descending ray passes its periapsis r_bottom + contact, T(r_p, 0)^2 / T(r, -mu).
+vec3 umbraRefractedTransmittanceToTop(float r, float mu, float contactAltitudeM) {
+  if (mu >= 0.0) return umbraAtmTransmittanceToTop(r, mu);
+  if (contactAltitudeM < 0.0) return vec3(0.0);
+  vec3 tp = umbraAtmTransmittanceToTop(min(umbraAtmBottom + contactAltitudeM, r), 0.0);
+  return min(tp * tp / max(umbraAtmTransmittanceToTop(r, -mu), vec3(1e-30)), vec3(1.0));
+}
+
+// Deviation (rad) and contact altitude (m) of the ray (r, mu).
+vec2 umbraRefractionOf(float r, float mu) {
+  return texture(umbraRefractionTable, umbraAtmTransmittanceUvSized(r, mu, vec2(textureSize(umbraRefractionTable, 0)))).rg;
+}
+
+// The exit direction of the ray dir leaving the atmosphere from x (radius r) after the
+// deviation: turned towards the planet's centre.
+vec3 umbraExitDirection(vec3 x, float r, vec3 dir, float deviation) {
   vec3 toCentre = -x / r;
   vec3 across = toCentre - dot(toCentre, dir) * dir;
   float l = length(across);
-  vec3 exitDir = l > 0.0 ? cos(dc.x) * dir + sin(dc.x) * (across / l) : dir;
+  return l > 0.0 ? cos(deviation) * dir + sin(deviation) * (across / l) : dir;
+}
+
+// The Sun through the atmosphere along the refracted ray entering at x (radius r, view
+// cosine mu) along dir: its disc along the exit ray, times T along the refracted path and
+// the terrain at the contact (as the limb views of eclipse/atmospheric).
+vec3 umbraRefractedSun(vec3 x, float r, float mu, vec3 dir) {
+  vec2 dc = umbraRefractionOf(r, mu);
+  float sun = umbraSunDisc(umbraExitDirection(x, r, dir, dc.x));
+  if (sun <= 0.0 || dc.y < 0.0) return vec3(0.0);
+  return sun * umbraTerrainTransmission(dc.y) * umbraRefractedTransmittanceToTop(r, mu, dc.y);
+}
+
+// From outside the atmosphere: the Sun through the limb averaged over umbraLimbSubsamples
+// rays across the pixel of dir, spread towards the planet's centre (from the camera):
+// sub-rays past the top see the bare Sun, those into the ground nothing.
+vec3 umbraLimbSun(vec3 centre, vec3 dir) {
+  int n = max(umbraLimbSubsamples, 1);
+  vec3 across = centre - dot(centre, dir) * dir;
+  vec3 radial = length(across) > 0.0 ? normalize(across) : vec3(0.0);
+  vec3 sun = vec3(0.0);
+  for (int k = 0; k < n; ++k) {
+    vec3 d = normalize(dir + ((float(k) + 0.5) / float(n) - 0.5) * umbraPixelAngle * radial);
+    vec3 perp = centre - dot(centre, d) * d;
+    float h = length(perp);
+    if (h >= umbraAtmTop) {
+      sun += vec3(umbraSunDisc(d));
+    } else if (h > umbraAtmBottom) {
+      vec3 xk = -perp - sqrt((umbraAtmTop - h) * (umbraAtmTop + h)) * d;
+      sun += umbraRefractedSun(xk, umbraAtmTop, dot(xk, d) / umbraAtmTop, d);
+    }
+  }
+  return sun / float(n);
+}
+
+// The background of a ray leaving the atmosphere from x (radius r, view cosine mu) with
+// refraction (eclipse paper, section 4.2), attenuated along the refracted path: a ray bent
+// into the ground sees black; else the exit ray (the view ray turned towards the planet's
+// centre by the deviation) looks up the frame at its vanishing point, black where the
+// frame holds something there (the ray passed behind it), plus the Sun's disc along the
+// exit ray. From outside the atmosphere (centre: the planet's centre from the camera) the
+// Sun's term is the mean of umbraLimbSubsamples rays across the pixel towards the centre:
+// the light of a ring seen from the shadow comes through a band of the limb much thinner
+// than a pixel until the ring is hundreds of pixels wide.
+vec3 umbraRefractedBackground(vec3 x, float r, float mu, vec3 dir, vec3 centre, bool outside) {
+  vec2 dc = umbraRefractionOf(r, mu);
+  vec3 exitDir = umbraExitDirection(x, r, dir, dc.x);
   vec3 seen = vec3(0.0);
   vec2 at = umbraImageOf(exitDir);
-  if (dot(exitDir, umbraRayForward) > 0.0 && all(greaterThanEqual(at, vec2(0.0))) && all(lessThanEqual(at, vec2(1.0))) &&
-      texture(umbraFrameDepth, at).r >= 1.0)
+  if (dc.y >= 0.0 && dot(exitDir, umbraRayForward) > 0.0 && all(greaterThanEqual(at, vec2(0.0))) &&
+      all(lessThanEqual(at, vec2(1.0))) && texture(umbraFrameDepth, at).r >= 1.0)
     seen = texture(umbraFrameColour, at).rgb;
-  return seen + vec3(umbraSunDisc(exitDir));
+  seen *= umbraTerrainTransmission(dc.y) * umbraRefractedTransmittanceToTop(r, mu, dc.y);
+  if (!outside || umbraLimbSubsamples <= 1) return seen + umbraRefractedSun(x, r, mu, dir);
+  return seen + umbraLimbSun(centre, dir);
 }
 
 vec3 umbraAtmosphereComposite(vec2 uv) {
@@ -158,10 +224,15 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
       eclipse = clamp(frame / unshadowed, vec3(0.0), vec3(1.0));
     vec3 E = eclipse * umbraAtmDirectIrradiance(rg, muSg) + umbraAtmIndirectIrradiance(rg, muSg);
     vec3 raw = T * umbraGroundAlbedo * 0.31830988618 * E + S;
-    return umbraAtmToDisplay * raw * umbraSolarIrradiance;
+    // A pixel on the limb seen from outside: the part of it past the ground sees the Sun
+    // through the atmosphere (the ring seen from the shadow, a few pixels wide).
+    vec3 limbSun = umbraRefraction == 1 && umbraParallel == 0 && !inside && umbraLimbSubsamples > 1 &&
+                           h + 0.5 * umbraPixelAngle * tc > umbraAtmBottom
+                       ? umbraLimbSun(centre, dir) : vec3(0.0);
+    return umbraAtmToDisplay * raw * umbraSolarIrradiance + limbSun;
   }
   if (umbraRefraction == 1 && umbraParallel == 0 && dFrame >= umbraFarAway)
-    background = umbraRefractedBackground(x, r, mu, dir);
+    return umbraRefractedBackground(x, r, mu, dir, centre, !inside) + umbraAtmToDisplay * sx * umbraSolarIrradiance;
   vec3 T = umbraAtmTransmittanceToTop(r, mu);
   return T * background + umbraAtmToDisplay * sx * umbraSolarIrradiance;
 }

@@ -17,7 +17,6 @@ uniform vec2 umbraLimbUv;              // the camera's (u, v)
 uniform float umbraLimbOccluder;       // phi_occ (rad): the ground's angular radius
 uniform float umbraLimbAtmosphere;     // phi_atmo (rad): the top's
 uniform float umbraLimbDistance;       // m, camera to the limb (in front of it: an object)
-uniform float umbraPixelAngle;         // rad per pixel
 uniform vec3 umbraSunFromCamera;       // unit
 
 float umbraAngle(vec3 a, vec3 b) {
