@@ -18,7 +18,7 @@ glm::dvec3 ShadowLut::texel(int i, int j) const {
 
 glm::dvec3 ShadowLut::sample(const LutCoords& c) const {
   // GL_LINEAR with GL_CLAMP_TO_EDGE: texel centres at (i + 0.5) / size.
-  const double x = std::clamp((c.u - uMin) / (uMax - uMin) * width - 0.5, 0.0, width - 1.0);
+  const double x = std::clamp(range().textureU(c.u) * width - 0.5, 0.0, width - 1.0);
   const double y = std::clamp(textureV(c.v) * height - 0.5, 0.0, height - 1.0);
   const int i0 = std::min(static_cast<int>(x), width - 1), j0 = std::min(static_cast<int>(y), height - 1);
   const int i1 = std::min(i0 + 1, width - 1), j1 = std::min(j0 + 1, height - 1);
@@ -33,12 +33,12 @@ double airlessShadow(const LutCoords& c, double limbDarkening, double tol) {
   return visibleFractionLimbDarkened(n.occluderRadius, n.separation, limbDarkening, tol).value;
 }
 
-double ShadowLut::textureV(double v) const {
+double LutRange::textureV(double v) const {
   if (vLowFraction > 0.0 && v < vMin) return vLowFraction * v / vMin;
   return vLowFraction + (1.0 - vLowFraction) * (v - vMin) / (vMax - vMin);
 }
 
-double ShadowLut::texelV(int j) const {
+double LutRange::texelV(int j, int height) const {
   if (vLowFraction <= 0.0) return vMin + (vMax - vMin) * (j + 0.5) / height;
   const double t = (j + 0.5) / height;
   return t < vLowFraction ? vMin * t / vLowFraction : vMin + (vMax - vMin) * (t - vLowFraction) / (1.0 - vLowFraction);
@@ -63,9 +63,15 @@ LutRange lutRangeForDistances(const SunOccluderSystem& s, double minDistanceM, d
     const double phiSun = angularRadiusRad(s.sunRadiusM, sunDistanceM);
     return phiSun / (angularRadiusRad(s.occluderRadiusM, occluderDistanceM) + phiSun);
   };
-  LutRange r{u(minDistanceM, s.sunOccluderDistanceM + minDistanceM), u(maxDistanceM, s.sunOccluderDistanceM - maxDistanceM)};
-  r.uMin = std::max(r.uMin, 0.0), r.uMax = std::min(r.uMax, 1.0);
-  if (!(r.uMin < r.uMax)) r.uMax = std::min(1.0, r.uMin + 1e-9);
+  const double uMin = std::max(u(minDistanceM, s.sunOccluderDistanceM + minDistanceM), 0.0);
+  double uMax = std::min(u(maxDistanceM, s.sunOccluderDistanceM - maxDistanceM), 1.0);
+  if (!(uMin < uMax)) uMax = std::min(1.0, uMin + 1e-9);
+  return lutRangeForU(uMin, uMax, darkUmbra, height);
+}
+
+LutRange lutRangeForU(double uMin, double uMax, bool darkUmbra, int height) {
+  if (!(uMin >= 0.0 && uMin < uMax && uMax <= 1.0)) throw std::invalid_argument("u range must satisfy 0 <= min < max <= 1");
+  LutRange r{uMin, uMax};
   r.vMax = 1.0;
   const double edge = 1.0 - 2.0 * r.uMax, half = 0.5 / std::max(height, 2);
   if (darkUmbra) {
@@ -76,6 +82,8 @@ LutRange lutRangeForDistances(const SunOccluderSystem& s, double minDistanceM, d
   }
   return r;
 }
+
+bool rangedLutPays(const LutRange& range, int height) { return 2.0 * range.uMax * height < 16.0; }
 
 ShadowLut buildAirlessShadowLut(const ShadowLutParams& p, const Progress& progress) {
   if (p.width < 2 || p.height < 2) throw std::invalid_argument("shadow LuT size must be at least 2x2");

@@ -29,6 +29,21 @@ struct ShadowLutParams {
   double vLowFraction = 0.0;
 };
 
+/// The u and v ranges of a LuT (ShadowLutParams) and its texel layout: texel (i, j) of a
+/// width x height LuT stands for (texelU(i, width), texelV(j, height)); a lookup at (u, v)
+/// reads texture coordinate (textureU(u), textureV(v)) (before clamping; ShadowLut).
+struct LutRange {
+  double uMin = 0.0, uMax = 1.0, vMin = 0.0, vMax = 1.0, vLowFraction = 0.0;
+  double texelU(int i, int width) const { return uMin + (uMax - uMin) * (i + 0.5) / width; }
+  double texelV(int j, int height) const;
+  double textureU(double u) const { return (u - uMin) / (uMax - uMin); }
+  double textureV(double v) const;
+  bool operator==(const LutRange& o) const {
+    return uMin == o.uMin && uMax == o.uMax && vMin == o.vMin && vMax == o.vMax && vLowFraction == o.vLowFraction;
+  }
+  bool operator!=(const LutRange& o) const { return !(*this == o); }
+};
+
 /// I / I_sun per texel, RGB (equal channels for an airless occluder). Texel (i, j) holds
 /// the value at its centre u = uMin + (uMax - uMin) (i + 0.5) / width, v = vMin + (vMax -
 /// vMin) (j + 0.5) / height, so that the GPU's linear filtering with clamp-to-edge of the
@@ -46,11 +61,12 @@ struct ShadowLut {
   double vLowFraction = 0.0;      ///< of the rows, for v in [0, vMin]
   glm::dvec3 texel(int i, int j) const;
   glm::dvec3 sample(const LutCoords& c) const;
+  LutRange range() const { return {uMin, uMax, vMin, vMax, vLowFraction}; }
   /// u of column i's centre, v of row j's.
-  double texelU(int i) const { return uMin + (uMax - uMin) * (i + 0.5) / width; }
-  double texelV(int j) const;
+  double texelU(int i) const { return range().texelU(i, width); }
+  double texelV(int j) const { return range().texelV(j, height); }
   /// The texture coordinate along the height of v (before clamping).
-  double textureV(double v) const;
+  double textureV(double v) const { return range().textureV(v); }
 };
 
 /// Checks a LuT's ranges: 0 <= min < max <= 1, 0 <= vLowFraction < 1 and vMin > 0 with a
@@ -79,11 +95,14 @@ ShadowLut buildAirlessShadowLut(const ShadowLutParams& params, const Progress& p
 /// `height`-row LuT is in the umbra for every u of the range (clamping below it reads 0);
 /// without (an atmosphere lights the umbra's inside) a quarter of the rows go to [0, vMin].
 /// Throws std::invalid_argument when the distances are not 0 < min <= max < d - r_sun.
-struct LutRange {
-  double uMin = 0.0, uMax = 1.0, vMin = 0.0, vMax = 1.0, vLowFraction = 0.0;
-};
 LutRange lutRangeForDistances(const SunOccluderSystem& system, double minDistanceM, double maxDistanceM,
                               bool darkUmbra = false, int height = 256);
+/// The v part of lutRangeForDistances for the u range [uMin, uMax] (0 <= uMin < uMax <= 1).
+LutRange lutRangeForU(double uMin, double uMax, bool darkUmbra = false, int height = 256);
+/// Whether a LuT over `range` pays against a whole one of `height` rows: near the occluder
+/// the penumbra is 2 uMax of the whole LuT's height; below 16 rows it is too coarse there
+/// (docs/eclipse-shadows.md). `umbra profile shadow` and the scenes' LuTs use it.
+bool rangedLutPays(const LutRange& range, int height);
 
 /// One occluder as the shadow sees it.
 struct Occluder {

@@ -111,7 +111,9 @@ void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action) {
       limb->SetColumns(o->limbLutSize);
       limb->SetLayers(o->layers);
       limb->SetLimbRows(o->atmosphere.limbSize);
-      updateEclipseSource(limb, "limb-luminance LuT", o->cache);
+      // The same distances: the limb-luminance LuT over their u and v ranges too.
+      if (!o->distanceRange.empty()) limb->SetLutRange(distanceRangeOption(o->distanceRange, occ, false, o->limbLutSize));
+      updateEclipseSource(limb, std::string("limb-luminance LuT") + (o->distanceRange.empty() ? "" : " (ranged)"), o->cache);
 
       const bool created = !fs::exists(dir, ec);
       if (created && !fs::create_directory(dir, ec))

@@ -119,7 +119,7 @@ void addProfileCommand(CLI::App& app, Action& action) {
         try {
           range = eclipse::lutRangeForDistances(system, distanceM, std::hypot(distanceM, offsetM), !withAtmosphere,
                                                 o->size);
-          ranged = 2.0 * range.uMax * o->size < 16.0;
+          ranged = eclipse::rangedLutPays(range, o->size);
         } catch (const std::invalid_argument&) {  // a cross-section reaching the Sun: the whole LuT
         }
         if (ranged)

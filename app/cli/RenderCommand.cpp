@@ -165,7 +165,8 @@ void addRenderCommand(CLI::App& app, Action& action) {
         throw CommandError("--atmosphere-tables: expected default or small, got '" + o->atmosphereTables + "'");
       if (!std::getenv("DISPLAY")) throw CommandError("rendering needs an X display: run under xvfb-run -a");
 
-      auto lut = updateShadowLut(s.shadowLutSize, eclipse::kDefaultLimbDarkening, o->cache);
+      vtkSmartPointer<vtkEclipseShadowLutSource> lut;  // the airless LuT, per frame when its ranges change
+      std::optional<eclipse::LutRange> lutRange;
       render::BodyView view(s.width, s.height, /*offscreen=*/true);
       vtkNew<vtkAtmosphereTablesSource> tables;
       tables->SetCacheDirectory(o->cache.directory.c_str());
@@ -194,6 +195,14 @@ void addRenderCommand(CLI::App& app, Action& action) {
           }
         }
         const render::SceneInputs in = render::sceneInputs(s);
+        // Near an occluder (Phobos by Mars) a whole LuT is too coarse: one over the
+        // receivers' u and v ranges (render::sceneLutRange), as the atmospheric one's.
+        const auto range = render::sceneLutRange(in.sun, in.bodies, in.bodies, /*darkUmbra=*/true, s.shadowLutSize);
+        if (!lut || range != lutRange) {
+          lut = updateShadowLut(s.shadowLutSize, eclipse::kDefaultLimbDarkening, o->cache, nullptr, nullptr,
+                                range ? &*range : nullptr, range ? render::rangedLutWidth(*range, s.shadowLutSize) : 0);
+          lutRange = range;
+        }
         view.SetBodies(in.sun, in.bodies, lut->GetOutput());
         if (in.atmosphere) {
           try {

@@ -175,9 +175,9 @@ void addDistanceRangeOption(CLI::App* command, std::string& text) {
 vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limbDarkening, const CacheOptions& cache,
                                                            const OccluderChoice* occluder,
                                                            const EclipseAtmosphereChoice* atmosphere,
-                                                           const eclipse::LutRange* range) {
+                                                           const eclipse::LutRange* range, int width) {
   auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
-  source->SetWidth(size);
+  source->SetWidth(width > 0 ? width : size);
   source->SetHeight(size);
   source->SetLimbDarkening(limbDarkening);
   if (range) source->SetLutRange(*range);
@@ -186,7 +186,7 @@ vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limb
     source->SetOccluderRadiusM(occluder->radiusM);
     source->SetSunOccluderDistanceM(occluder->sunDistanceM);
   }
-  std::string what = "shadow LuT " + std::to_string(size) + "x" + std::to_string(size);
+  std::string what = "shadow LuT " + std::to_string(source->GetWidth()) + "x" + std::to_string(size);
   if (range) what += " (u " + filters::formatNumber(range->uMin) + ".." + filters::formatNumber(range->uMax) + ")";
   if (atmosphere && !atmosphere->atmosphere.empty()) {
     if (!occluder) throw CommandError("an atmosphere needs an occluder");

@@ -69,11 +69,11 @@ void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& 
 /// Build the LuT through the filter, with progress on stderr and cache reporting. The
 /// occluder, if given, is recorded in the LuT's parameters (an airless LuT's values do
 /// not depend on it). With an atmosphere (not empty), the atmospheric LuT; with `range`,
-/// a scene-limited LuT over those ranges.
+/// a scene-limited LuT over those ranges, `width` columns (0: size).
 vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limbDarkening, const CacheOptions& cache,
                                                            const OccluderChoice* occluder = nullptr,
                                                            const EclipseAtmosphereChoice* atmosphere = nullptr,
-                                                           const eclipse::LutRange* range = nullptr);
+                                                           const eclipse::LutRange* range = nullptr, int width = 0);
 
 /// The shadow's cross-section through an atmosphere computed directly at every sample
 /// (no LuT; limb views of atmosphere.limbSize rows): the columns of vtkShadowProfileFilter.

@@ -1,13 +1,16 @@
 #include "SceneView.hpp"
 
 #include "AtmosphereRendering.h"
+#include "AtmosphereShadow.h"
 #include "BodyView.h"
 #include "SceneInputs.h"
 #include "vtkAtmosphereTablesSource.h"
+#include "vtkEclipseShadowLutSource.h"
 #include "vtkUmbraRenderPass.h"
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
@@ -16,6 +19,8 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <optional>
+#include <stdexcept>
 
 // The render library's BodyView (vtkUmbraRenderPass + EclipseShading) builds the renderer;
 // the renderer is moved into the widget's render window and drawn there. BodyView's own
@@ -30,6 +35,11 @@ struct SceneView::Impl {
   vtkSmartPointer<vtkRenderer> renderer;
   vtkSmartPointer<vtkAtmosphereTablesSource> tables;
   vtkAtmosphereTablesSource* applied = nullptr;  // the tables the view's atmosphere holds
+  // Near an occluder (Phobos by Mars) the view's own LuT over the receivers' ranges
+  // (render::sceneLutRange), made again when they change; elsewhere the given one.
+  vtkSmartPointer<vtkEclipseShadowLutSource> ranged;
+  std::optional<eclipse::LutRange> rangedFor;
+  int rangedHeight = 0;
 };
 
 SceneView::SceneView(QVTKOpenGLNativeWidget* widget) : impl(std::make_unique<Impl>()) {
@@ -54,7 +64,22 @@ vtkRenderer* SceneView::renderer() const { return impl->renderer; }
 void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
   const render::SceneInputs in = render::sceneInputs(s);
   impl->bodies->GetRenderWindow()->SetSize(std::max(1, impl->widget->width()), std::max(1, impl->widget->height()));
-  impl->bodies->SetBodies(in.sun, in.bodies, shadowLut);
+  int dims[3] = {0, 0, 0};
+  if (shadowLut) shadowLut->GetDimensions(dims);
+  const auto range = shadowLut ? render::sceneLutRange(in.sun, in.bodies, in.bodies, /*darkUmbra=*/true, dims[1])
+                               : std::nullopt;
+  if (range && (!impl->ranged || range != impl->rangedFor || dims[1] != impl->rangedHeight)) {
+    auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
+    source->SetWidth(render::rangedLutWidth(*range, dims[0]));
+    source->SetHeight(dims[1]);
+    source->SetLutRange(*range);
+    source->Update();
+    if (source->GetOutput()->GetNumberOfPoints() == 0) throw std::runtime_error("the ranged shadow LuT could not be computed");
+    impl->ranged = source;
+    impl->rangedFor = range;
+    impl->rangedHeight = dims[1];
+  }
+  impl->bodies->SetBodies(in.sun, in.bodies, range ? impl->ranged->GetOutput() : shadowLut);
   const bool drawn = impl->tables && in.atmosphere && impl->tables->GetAtmosphere() == in.atmosphere->model;
   render::AtmosphereRendering& atmosphere = impl->bodies->GetAtmosphere();
   const auto body = in.atmosphere ? std::find_if(in.bodies.begin(), in.bodies.end(),

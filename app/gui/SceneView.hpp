@@ -21,7 +21,9 @@ public:
   SceneView& operator=(const SceneView&) = delete;
 
   /// Shows the scene (bodies, camera, exposure). Call again after the time changed. The
-  /// shadow LuT is the table the render library samples (not recomputed here).
+  /// shadow LuT is the table the render library samples; near an occluder, where a whole
+  /// LuT is too coarse (render::sceneLutRange: Phobos by Mars), the view makes its own over
+  /// the receivers' ranges with as many rows.
   void setScene(const scene::Scene& scene, vtkImageData* shadowLut);
   void setExposureEV(double ev);
   /// Glare strength (vtkUmbraRenderPass::SetGlareStrength), 0..10.

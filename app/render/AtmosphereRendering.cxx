@@ -3,6 +3,7 @@
 #include "AtmosphereGlsl.hpp"
 #include "FieldParameters.h"
 #include "RenderGlsl.hpp"
+#include "ShadowLutData.h"
 #include "ShadowMapping.hpp"
 #include "Spectrum.hpp"
 
@@ -180,6 +181,7 @@ struct AtmosphereRendering::Impl {
   // The limb-luminance LuT (SetLimbLuminance): values, size, texture, its program.
   std::vector<float> limbValues;
   int limbSize[3] = {0, 0, 0};
+  eclipse::LutRange limbRange;  // its u and v ranges (field data; [0, 1] when absent)
   vtkSmartPointer<vtkTextureObject> limb;
   std::unique_ptr<vtkOpenGLQuadHelper> limbQuad;
   std::unique_ptr<vtkOpenGLQuadHelper> backgroundQuad;  // umbraAtmosphereBackground
@@ -304,6 +306,11 @@ void AtmosphereRendering::SetLimbLuminance(vtkImageData* lut) {
       v[3 * i + c] = static_cast<float>(values->GetComponent(i, c));
       if (!std::isfinite(v[3 * i + c])) throw std::invalid_argument("limb-luminance LuT has a non-finite value");
     }
+  try {
+    m.limbRange = filters::lutRangeOf(filters::fieldParameters(lut), "limb-luminance LuT");
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(e.what());
+  }
   m.limbValues = std::move(v);
   for (int k = 0; k < 3; ++k) m.limbSize[k] = dims[k];
 }
@@ -445,7 +452,10 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     p->SetUniformi("umbraAtmDirectIrradianceTable", m.direct->GetTextureUnit());
     if (m.lastUsedLimb) {
       // The camera's (u, v) of Eq. 4 for this occluder (its ground), in double.
-      const float uv[2] = {static_cast<float>(limbUv.u), static_cast<float>(limbUv.v)};
+      // ... as the texture coordinate through the LuT's ranges (in double: a ranged LuT may
+      // span a u range of 1e-5).
+      const float uv[2] = {static_cast<float>(m.limbRange.textureU(limbUv.u)),
+                           static_cast<float>(m.limbRange.textureV(limbUv.v))};
       p->SetUniform2f("umbraLimbUv", uv);
       p->SetUniformf("umbraLimbOccluder", static_cast<float>(phiOcc));
       p->SetUniformf("umbraLimbAtmosphere", static_cast<float>(phiAtmo));

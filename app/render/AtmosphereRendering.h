@@ -121,7 +121,8 @@ class AtmosphereRendering {
   /// atmosphere is thinner than the threshold on screen, the ring is drawn from it
   /// instead of ray marching (eclipse paper, 5.4; app/render/glsl/LimbRing.glsl), at the
   /// camera's (u, v) of Eq. 4 for this occluder (its ground radius, the Sun), when the
-  /// camera is in its shadow (v < 1) outside the atmosphere. Perspective views only. nullptr: none (always ray marching). Throws std::invalid_argument.
+  /// camera is in its shadow (v < 1) outside the atmosphere; a ranged LuT (u, v ranges in
+  /// field data, filters::lutRangeOf) is read through its ranges. Perspective views only. nullptr: none (always ray marching). Throws std::invalid_argument.
   void SetLimbLuminance(vtkImageData* lut);
   bool HasLimbLuminance() const;
   /// Ring width on screen below which the LuT draws the ring (default 5 px; 0: never).

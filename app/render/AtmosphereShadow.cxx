@@ -38,6 +38,43 @@ const SphereBody& setUpFor(vtkEclipseAtmosphereSource* source, const SceneInputs
   return *occ;
 }
 
+// Adds to `u` (min, max) the u range of the points at [lo, hi] from `occluder`'s centre;
+// false when they reach the Sun.
+bool addDistances(const SunLight& sun, const SphereBody& occluder, double lo, double hi, bool darkUmbra, int height,
+                  std::array<double, 2>& u) {
+  const eclipse::SunOccluderSystem system{sun.radiusM, occluder.radiusM, glm::length(occluder.centreM - sun.positionM)};
+  try {
+    const eclipse::LutRange r = eclipse::lutRangeForDistances(system, lo, hi, darkUmbra, height);
+    u = {std::min(u[0], r.uMin), std::max(u[1], r.uMax)};
+    return true;
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+}
+
+// The ranges for the u range `u` (none when empty or when a whole LuT resolves it).
+std::optional<eclipse::LutRange> rangeForU(const std::array<double, 2>& u, bool darkUmbra, int height) {
+  if (!(u[0] < u[1])) return std::nullopt;
+  const eclipse::LutRange r = eclipse::lutRangeForU(u[0], u[1], darkUmbra, height);
+  if (!eclipse::rangedLutPays(r, height)) return std::nullopt;
+  return r;
+}
+
+// Sets `source` to `range` (rangedLutWidth of its width) or, without, to the whole LuT;
+// runs `update` and gives the source its width back (also when `update` throws).
+template <class Source, class Update>
+void updateRanged(Source* source, const std::optional<eclipse::LutRange>& range, const Update& update) {
+  const int width = source->GetWidth();
+  source->SetLutRange(range ? *range : eclipse::LutRange{});
+  if (range) source->SetWidth(rangedLutWidth(*range, width));
+  struct Restore {
+    Source* s;
+    int w;
+    ~Restore() { s->SetWidth(w); }
+  } restore{source, width};
+  update();
+}
+
 // The tables of the atmosphere shared by the small shadow and limb-luminance LuTs.
 void useSmallEclipseAtmosphere(vtkEclipseAtmosphereSource* s) {
   s->SetOrders(2);
@@ -65,31 +102,88 @@ std::array<int, 2> shadowLutColumns(const SunLight& sun, const SphereBody& occlu
   return {std::clamp(first, 0, width - 1), std::clamp(last, 0, width - 1)};
 }
 
+bool canBeInPenumbra(const SunLight& sun, const SphereBody& occluder, const SphereBody& receiver) {
+  const glm::dvec3 toOcc = occluder.centreM - sun.positionM;
+  const double d = glm::length(toOcc);
+  if (!(d > sun.radiusM + occluder.radiusM)) return true;  // touching the Sun: anything goes
+  const glm::dvec3 axis = toOcc / d;
+  // The apex lies between the Sun and the occluder, d R / (R + R_sun) from the occluder.
+  const glm::dvec3 apex = occluder.centreM - axis * (d * occluder.radiusM / (occluder.radiusM + sun.radiusM));
+  const double sinA = (sun.radiusM + occluder.radiusM) / d, cosA = std::sqrt(1.0 - sinA * sinA);
+  const glm::dvec3 w = receiver.centreM - apex;
+  const double along = glm::dot(w, axis), perp = glm::length(w - along * axis);
+  const double margin = 1e-6 * glm::length(w) + 1.0;  // rounding
+  // Nearest point of the cone's surface on its nappe, or else its apex.
+  if (along * cosA + perp * sinA >= 0.0) return perp * cosA - along * sinA <= receiver.radiusM + margin;
+  return glm::length(w) <= receiver.radiusM + margin;
+}
+
+std::optional<eclipse::LutRange> sceneLutRange(const SunLight& sun, const std::vector<SphereBody>& occluders,
+                                               const std::vector<SphereBody>& receivers, bool darkUmbra, int height) {
+  validateSun(sun);
+  std::array<double, 2> u{1.0, 0.0};
+  for (const SphereBody& occ : occluders) {
+    validateBody(occ);
+    for (const SphereBody& r : receivers) {
+      validateBody(r);
+      if (r.name == occ.name || !canBeInPenumbra(sun, occ, r)) continue;
+      const double dOcc = glm::length(r.centreM - occ.centreM);
+      const double lo = std::max(dOcc - r.radiusM, occ.radiusM), hi = dOcc + r.radiusM;
+      if (hi <= lo) continue;  // inside the occluder: never seen
+      if (!addDistances(sun, occ, lo, hi, darkUmbra, height, u)) return std::nullopt;
+    }
+  }
+  return rangeForU(u, darkUmbra, height);
+}
+
+std::optional<eclipse::LutRange> pointLutRange(const SunLight& sun, const SphereBody& occluder,
+                                               const glm::dvec3& pointM, bool darkUmbra, int height) {
+  validateSun(sun);
+  validateBody(occluder);
+  const double d = glm::length(pointM - occluder.centreM);
+  std::array<double, 2> u{1.0, 0.0};
+  if (!(d > occluder.radiusM) || !addDistances(sun, occluder, d, d, darkUmbra, height, u)) return std::nullopt;
+  return rangeForU(u, darkUmbra, height);
+}
+
+int rangedLutWidth(const eclipse::LutRange& range, int width) {
+  const int w = static_cast<int>(std::ceil(width * (range.uMax - range.uMin))) + 1;
+  return std::clamp(w, 2, std::max(width, 2));
+}
+
 void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, vtkEclipseShadowLutSource* source) {
   if (!in.atmosphere) {
     shading.SetAtmosphereShadowLut("", nullptr);
     return;
   }
   const SphereBody* occ = &setUpFor(source, in);
-  int first = source->GetWidth(), last = -1;
-  for (const SphereBody& b : in.bodies) {
-    if (b.name == occ->name) continue;
-    const auto cols = shadowLutColumns(in.sun, *occ, b, source->GetWidth());
-    first = std::min(first, cols[0]);
-    last = std::max(last, cols[1]);
+  std::vector<SphereBody> others;
+  for (const SphereBody& b : in.bodies)
+    if (b.name != occ->name) others.push_back(b);
+  const auto range = sceneLutRange(in.sun, {*occ}, others, /*darkUmbra=*/false, source->GetHeight());
+  int extent[6] = {0, 0, 0, source->GetHeight() - 1, 0, 0};
+  if (range) {
+    extent[1] = rangedLutWidth(*range, source->GetWidth()) - 1;  // all of the ranged table
+  } else {
+    int first = source->GetWidth(), last = -1;
+    for (const SphereBody& b : others) {
+      const auto cols = shadowLutColumns(in.sun, *occ, b, source->GetWidth());
+      first = std::min(first, cols[0]);
+      last = std::max(last, cols[1]);
+    }
+    if (last < first) {  // nothing else to shade
+      shading.SetAtmosphereShadowLut("", nullptr);
+      return;
+    }
+    if (last == first) {  // at least 2 columns (a texture of >= 2x2 texels)
+      if (last + 1 < source->GetWidth()) ++last;
+      else --first;
+    }
+    extent[0] = first, extent[1] = last;
   }
-  if (last < first) {  // nothing else to shade
-    shading.SetAtmosphereShadowLut("", nullptr);
-    return;
-  }
-  if (last == first) {  // at least 2 columns (a texture of >= 2x2 texels)
-    if (last + 1 < source->GetWidth()) ++last;
-    else --first;
-  }
-  const int extent[6] = {first, last, 0, source->GetHeight() - 1, 0, 0};
   try {
     source->ConnectAtmosphereTables();  // the atmosphere tables from their cache
-    source->UpdateExtent(extent);
+    updateRanged(source, range, [&] { source->UpdateExtent(extent); });
   } catch (const std::exception& e) {
     throw std::runtime_error("shadow through the atmosphere of '" + occ->name + "': " + e.what());
   }
@@ -121,9 +215,12 @@ void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs&
     return;
   }
   const SphereBody& occ = setUpFor(source, in);
+  // Near the occluder (Phobos by Mars) the whole LuT's v rows are too coarse: one around
+  // the camera's distance.
+  const auto range = pointLutRange(in.sun, occ, cam, /*darkUmbra=*/false, source->GetHeight());
   try {
     source->ConnectAtmosphereTables();
-    source->Update();
+    updateRanged(source, range, [&] { source->Update(); });
   } catch (const std::exception& e) {
     throw std::runtime_error("limb luminance of the atmosphere of '" + occ.name + "': " + e.what());
   }

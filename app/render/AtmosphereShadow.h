@@ -7,7 +7,11 @@
 #include "AtmosphereRendering.h"
 #include "EclipseShading.h"
 
+#include "ShadowLut.hpp"
+
 #include <array>
+#include <optional>
+#include <vector>
 
 class vtkEclipseAtmosphereSource;
 class vtkEclipseShadowLutSource;
@@ -24,15 +28,41 @@ struct SceneInputs;
 std::array<int, 2> shadowLutColumns(const SunLight& sun, const SphereBody& occluder, const SphereBody& receiver,
                                     int width);
 
+/// Whether any point of `receiver` can be in `occluder`'s penumbra: the sphere meets the
+/// cone of the lines tangent to the Sun and the occluder that cross between them
+/// (conservative: the cone's part before the occluder counts too).
+bool canBeInPenumbra(const SunLight& sun, const SphereBody& occluder, const SphereBody& receiver);
+
+/// The ranges of a shadow LuT for a scene (eclipse::lutRangeForDistances, as `umbra profile
+/// shadow` chooses them): for each body of `receivers` that can be in the penumbra of a body
+/// of `occluders` (not itself), its distances from that occluder (centre -+ radius, at least
+/// the occluder's radius); the union of their u ranges, v for it as eclipse::lutRangeForU
+/// (`darkUmbra`: airless; `height` rows). None (a whole LuT) when no receiver can be in a
+/// penumbra, when the distances reach the Sun, or when a whole LuT of `height` rows
+/// resolves the penumbra there (eclipse::rangedLutPays is false: e.g. the Moon in Earth's
+/// shadow at 256 rows).
+std::optional<eclipse::LutRange> sceneLutRange(const SunLight& sun, const std::vector<SphereBody>& occluders,
+                                               const std::vector<SphereBody>& receivers, bool darkUmbra, int height);
+/// The same for a point (radius 0, e.g. the camera) behind `occluder`.
+std::optional<eclipse::LutRange> pointLutRange(const SunLight& sun, const SphereBody& occluder,
+                                               const glm::dvec3& pointM, bool darkUmbra, int height);
+/// Columns of a ranged LuT: its u texel spacing no coarser than that of a whole LuT of
+/// `width` columns (ceil(width (uMax - uMin)) + 1), in [2, width].
+int rangedLutWidth(const eclipse::LutRange& range, int width);
+
 /// When `in` has an atmosphere, sets `source` up for it (occluder = the body with the
 /// atmosphere, its model, the Sun; table sizes, limb views, cache as the caller set them),
-/// updates it for the columns every other body needs, and hands the result to `shading`
-/// (SetAtmosphereShadowLut). Without an atmosphere, removes any. Throws
-/// std::runtime_error naming the body when the table cannot be made.
+/// updates it and hands the result to `shading` (SetAtmosphereShadowLut). Near the
+/// occluder (sceneLutRange of the other bodies: e.g. Phobos by Mars) the table covers only
+/// their u and v ranges, rangedLutWidth columns of it; elsewhere the whole table's u columns
+/// that every other body needs (shadowLutColumns; the source's ranges set to [0, 1]). The
+/// source's width is given back after the update. Without an atmosphere, removes any.
+/// Throws std::runtime_error naming the body when the table cannot be made.
 void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, vtkEclipseShadowLutSource* source);
 
 /// When `in` has an atmosphere and its camera is in that body's shadow (v < 1) outside the
-/// atmosphere, sets `source` up for it as applySceneAtmosphereShadow does, updates it and
+/// atmosphere, sets `source` up for it as applySceneAtmosphereShadow does (ranged around
+/// the camera's distance when pointLutRange gives ranges: rangedLutWidth columns), updates it and
 /// hands the limb-luminance LuT to `atmosphere`
 /// (AtmosphereRendering::SetLimbLuminance: the ring drawn from it when thin on screen).
 /// Otherwise removes any (nothing computed). Throws std::runtime_error naming the body.

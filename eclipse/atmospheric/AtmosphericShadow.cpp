@@ -514,11 +514,14 @@ LimbLuminanceLut buildLimbLuminanceLut(const AtmosphericShadowModel& m, const Li
   lp.columns = params.columns;
   checkLimbParams(lp);
   LimbLuminanceLut lut;
+  const LutRange& r = params.range;
+  checkLutRange(r.uMin, r.uMax, r.vMin, r.vMax, r.vLowFraction);
   lut.width = params.width, lut.height = params.height, lut.columns = params.columns, lut.layers = params.layers;
+  lut.range = r;
   lut.rgb.assign(static_cast<std::size_t>(lut.width) * lut.height * lut.depth() * 3, 0.0f);
   const bool finished = forEachTexel(lut.width * lut.height, progress, [&](int k) {
     const int i = k % lut.width, j = k / lut.width;
-    const LutCoords c{(i + 0.5) / lut.width, (j + 0.5) / lut.height};
+    const LutCoords c{r.texelU(i, lut.width), r.texelV(j, lut.height)};
     const LimbView view = renderLimbView(m, limbPosition(m, c), lp);
     const int nc = view.channels;
     std::vector<double> sum(nc);

@@ -198,13 +198,15 @@ struct LimbLuminanceLutParams {
   int columns = 64;             ///< beta samples of each limb view
   int layers = 1;               ///< rows kept of each view (subsampled from limb.rows)
   LimbViewParams limb{64, 256, 32, 32};
+  LutRange range;  ///< u and v ranges over the width and height, as the shadow LuT's
 };
 
-/// For each (u, v) texel the limb view averaged down to `layers` rows: RGB radiance per
+/// For each (u, v) texel (at its centre in params.range) the limb view averaged down to `layers` rows: RGB radiance per
 /// unit solar irradiance [1/sr]. Stored as a 3D texture width x height x (columns * layers),
 /// the rows one after the other: value (i, j, layer * columns + column).
 struct LimbLuminanceLut {
   int width = 0, height = 0, columns = 0, layers = 0;
+  LutRange range;  ///< texel (i, j) at (range.texelU(i, width), range.texelV(j, height))
   std::vector<float> rgb;  ///< [((k * height + j) * width + i) * 3 + c], k = layer * columns + column
   int depth() const { return columns * layers; }
   glm::dvec3 texel(int i, int j, int k) const;

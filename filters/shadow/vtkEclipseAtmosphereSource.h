@@ -75,6 +75,28 @@ public:
   vtkSetMacro(TerrainMeanElevationM, double);
   vtkGetMacro(TerrainMeanElevationM, double);
 
+  /// The u and v ranges (Eq. 4) the width and height cover (default 0, 1: all of it).
+  /// Narrower ones, e.g. umbra::eclipse::lutRangeForDistances of the receivers' distances,
+  /// give full resolution there; outside them the edge texels are read (both LuTs:
+  /// vtkEclipseShadowLutSource, vtkLimbLuminanceSource). Recorded in the
+  /// field data and the cache key (uMin, uMax, vMin, vMax), read back downstream.
+  vtkSetVector2Macro(URange, double);
+  vtkGetVector2Macro(URange, double);
+  vtkSetVector2Macro(VRange, double);
+  vtkGetVector2Macro(VRange, double);
+  /// Fraction of the rows for v in [0, VRange[0]] (default 0; eclipse::ShadowLut).
+  vtkSetMacro(VLowFraction, double);
+  vtkGetMacro(VLowFraction, double);
+  /// All of the above from umbra::eclipse::lutRangeForDistances.
+  void SetLutRange(const umbra::eclipse::LutRange& r) {
+    this->SetURange(r.uMin, r.uMax);
+    this->SetVRange(r.vMin, r.vMax);
+    this->SetVLowFraction(r.vLowFraction);
+  }
+  umbra::eclipse::LutRange GetLutRange() const {
+    return {this->URange[0], this->URange[1], this->VRange[0], this->VRange[1], this->VLowFraction};
+  }
+
   vtkSetStdStringFromCharMacro(CacheDirectory);
   vtkGetCharFromStdStringMacro(CacheDirectory);
   vtkSetMacro(UseCache, bool);
@@ -148,6 +170,9 @@ protected:
   double TerrainMeanElevationM = -1.0;
   std::string CacheDirectory;
   bool UseCache = true;
+  double URange[2] = {0.0, 1.0};
+  double VRange[2] = {0.0, 1.0};
+  double VLowFraction = 0.0;
 
   vtkSmartPointer<vtkAlgorithm> TablesSource;
   /// The atmosphere this source prepared last (keeps it shared while the source lives).

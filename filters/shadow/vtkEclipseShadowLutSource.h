@@ -38,24 +38,6 @@ public:
   vtkSetClampMacro(RelativeTolerance, double, 1e-15, 1e-2);
   vtkGetMacro(RelativeTolerance, double);
 
-  /// The u and v ranges (Eq. 4) the width and height cover (default 0, 1: all of it).
-  /// Narrower ones, e.g. umbra::eclipse::lutRangeForDistances of the receivers' distances,
-  /// give full resolution there; outside them the edge texels are read. Recorded in the
-  /// field data and the cache key (uMin, uMax, vMin, vMax), read back downstream.
-  vtkSetVector2Macro(URange, double);
-  vtkGetVector2Macro(URange, double);
-  vtkSetVector2Macro(VRange, double);
-  vtkGetVector2Macro(VRange, double);
-  /// Fraction of the rows for v in [0, VRange[0]] (default 0; eclipse::ShadowLut).
-  vtkSetMacro(VLowFraction, double);
-  vtkGetMacro(VLowFraction, double);
-  /// All of the above from umbra::eclipse::lutRangeForDistances.
-  void SetLutRange(const umbra::eclipse::LutRange& r) {
-    this->SetURange(r.uMin, r.uMax);
-    this->SetVRange(r.vMin, r.vMax);
-    this->SetVLowFraction(r.vLowFraction);
-  }
-
   /// Limb views (atmosphere only): rows = columns = LimbSize (default 256), the in-scattered
   /// light on ScatteringCells x ScatteringCells cells (default 16).
   vtkSetClampMacro(LimbSize, int, 1, 65536);
@@ -79,9 +61,6 @@ private:
   double RelativeTolerance = 1e-10;
   int LimbSize = 256;
   int ScatteringCells = 16;
-  double URange[2] = {0.0, 1.0};
-  double VRange[2] = {0.0, 1.0};
-  double VLowFraction = 0.0;
 
   int RequestAtmospheric(vtkInformation* outInfo, vtkImageData* output);
 };

@@ -20,7 +20,8 @@ void vtkLimbLuminanceSource::PrintSelf(ostream& os, vtkIndent indent) {
 }
 
 int vtkLimbLuminanceSource::RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) {
-  SetLutInformation(out, this->Width, this->Height, this->Columns * this->Layers);
+  SetLutInformation(out, this->Width, this->Height, this->Columns * this->Layers, this->URange, this->VRange,
+                    this->VLowFraction);
   return 1;
 }
 
@@ -34,6 +35,9 @@ int vtkLimbLuminanceSource::RequestData(vtkInformation*, vtkInformationVector**,
     params.width = this->Width, params.height = this->Height, params.columns = this->Columns;
     params.layers = this->Layers;
     params.limb = {this->Columns, this->LimbRows, this->ScatteringCells, this->ScatteringCells};
+    params.range = this->GetLutRange();
+    eclipse::checkLutRange(params.range.uMin, params.range.uMax, params.range.vMin, params.range.vMax,
+                           params.range.vLowFraction);
     auto parameters = this->AtmosphereParameters();
     parameters["kind"] = filters::kLimbLuminanceLutKind;
     parameters["model"] = "limb views averaged to layers (eclipse paper 5.3); v1";
@@ -45,6 +49,7 @@ int vtkLimbLuminanceSource::RequestData(vtkInformation*, vtkInformationVector**,
     parameters["occluder"] = this->OccluderName;
     parameters["layout"] = "x = u index, y = v index + height * (layer * columns + column): the slices stacked";
     parameters["values"] = "radiance per unit solar irradiance [1/sr], R, G, B = 680, 550, 440 nm";
+    filters::addLutRange(parameters, params.range);
     const int depth = this->Columns * this->Layers;
     const std::vector<float> rgb = this->CachedOrComputed(
         filters::kLimbLuminanceLutKind, parameters, this->Width, this->Height * depth, this->LimbDarkening,
@@ -53,7 +58,7 @@ int vtkLimbLuminanceSource::RequestData(vtkInformation*, vtkInformationVector**,
         });
     output->SetDimensions(this->Width, this->Height, depth);
     double spacing[3], origin[3];
-    LutSpacingOrigin(this->Width, this->Height, nullptr, nullptr, 0.0, spacing, origin);
+    LutSpacingOrigin(this->Width, this->Height, this->URange, this->VRange, this->VLowFraction, spacing, origin);
     output->SetSpacing(spacing);
     output->SetOrigin(origin);
     auto values = vtkSmartPointer<vtkFloatArray>::New();

@@ -7,7 +7,9 @@
 // value (i, j, layer * Columns + column), point coordinates (u, v) at texel centres in x, y
 // and the slice index in z. Built by umbra::eclipse::buildLimbLuminanceLut; cached as EXR
 // (kind "eclipse-limb-luminance", the slices stacked: height Height * depth) keyed by every
-// parameter. Needs an atmosphere (SetAtmosphere).
+// parameter. Needs an atmosphere (SetAtmosphere). With u and v ranges (SetLutRange, as the
+// shadow LuT's) the texel centres are in them; they go to the field data and the cache key
+// (filters::addLutRange: uMin, uMax, vMin, vMax, vLowFraction).
 #include "vtkEclipseAtmosphereSource.h"
 
 class vtkLimbLuminanceSource : public vtkEclipseAtmosphereSource {

@@ -71,6 +71,28 @@ TEST(EclipseCli, PrecomputeWritesTheShadowAndLimbLuminanceTables) {
   for (float x : limb.data) ASSERT_TRUE(std::isfinite(x) && x >= 0.0f);
 }
 
+// --distance-range: both tables over the same u and v ranges (Phobos' distances from Mars:
+// u ~ 0.008, v split at the umbra's edge), recorded in their headers.
+TEST(EclipseCli, PrecomputeDistanceRangeRangesBothTables) {
+  TempDir dir;
+  const RunResult r = run(UMBRA_EXE,
+                          with({"precompute", "eclipse", "--occluder", "mars", "--atmosphere", "mars", "--size", "8",
+                                "--limb-lut-size", "4", "--distance-range", "9365km:9387km", "--output", dir / "out"},
+                               kSmall),
+                          {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const umbra::tables::Table shadow = umbra::tables::readExr(dir / "out/eclipse-shadow-atmosphere.exr", {"R", "G", "B"});
+  const umbra::tables::Table limb = umbra::tables::readExr(dir / "out/eclipse-limb-luminance.exr", {"R", "G", "B"});
+  for (const char* key : {"uMin", "uMax", "vMin", "vMax", "vLowFraction"}) {
+    ASSERT_TRUE(limb.parameters.count(key)) << key;
+    EXPECT_EQ(limb.parameters.at(key), shadow.parameters.at(key)) << key;
+  }
+  EXPECT_NEAR(std::stod(limb.parameters.at("uMin")), 0.0083, 0.0002);
+  EXPECT_LT(std::stod(limb.parameters.at("uMax")) - std::stod(limb.parameters.at("uMin")), 1e-4);
+  EXPECT_EQ(limb.parameters.at("vLowFraction"), "0.25");
+  for (float x : limb.data) ASSERT_TRUE(std::isfinite(x) && x >= 0.0f);
+}
+
 TEST(EclipseCli, EarthProfileAtTheMoonIsRedWithAFigure12Plot) {
   TempDir dir;
   const RunResult r = run(UMBRA_EXE,

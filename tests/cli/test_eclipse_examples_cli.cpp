@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,13 @@ const TempDir& cacheDir() {
 tables::Table render(const TempDir& dir, const std::string& scene, const std::string& size,
                      const std::vector<std::string>& extra = {}) {
   return renderExr(dir, UMBRA_SOURCE_DIR "/examples/scenes/" + scene, size, extra, &cacheDir());
+}
+// The shadow LuTs of `kind` in the cache directory `cache`, read.
+std::vector<tables::Table> cachedLuts(const std::string& cache, const std::string& kind) {
+  std::vector<tables::Table> out;
+  for (const auto& e : std::filesystem::directory_iterator(cache))
+    if (e.path().filename().string().rfind(kind + "-", 0) == 0) out.push_back(tables::readExr(e.path().string(), {"R", "G", "B"}));
+  return out;
 }
 } // namespace
 
@@ -73,4 +81,31 @@ TEST(EclipseExamplesCli, PhobosInTheUmbraIsLitThroughMarsAtmosphere) {
   std::printf("  Phobos' centre: R G B = %.3g %.3g %.3g W m^-2 sr^-1\n", c.r, c.g, c.b);
   EXPECT_GT(c.r + c.g + c.b, 1e-3);
   EXPECT_LT(c.g, 0.05 * 0.068 / 3.14159 * 1361.0 / (1.524 * 1.524));  // < 5 % of full sunlight
+  // The atmospheric shadow LuT was made over Phobos' ranges only (u ~ 0.0083, 2 columns).
+  int ranged = 0;
+  for (const tables::Table& t : cachedLuts(cacheDir() / "cache", "eclipse-shadow-atmosphere"))
+    if (t.parameters.count("uMin") && std::stod(t.parameters.at("uMin")) < 0.01) {
+      ++ranged;
+      EXPECT_EQ(t.width, 2);
+      EXPECT_GT(std::stod(t.parameters.at("vLowFraction")), 0.0);
+    }
+  EXPECT_EQ(ranged, 1);
+}
+
+// Phobos across the umbra's edge (airless): `umbra render` makes the LuT over Phobos' u and
+// v ranges by itself (2 x 256 texels, v from the umbra's edge), not the whole 256^2.
+TEST(EclipseExamplesCli, PhobosInThePenumbraGetsARangedLut) {
+  TempDir dir;
+  renderExr(dir, UMBRA_SOURCE_DIR "/examples/scenes/phobos-in-mars-shadow.json", "64x48");  // its own cache
+  const std::vector<tables::Table> luts = cachedLuts(dir / "cache", "eclipse-shadow-airless");
+  int ranged = 0;
+  for (const tables::Table& t : luts) {
+    if (!t.parameters.count("uMin")) continue;
+    ++ranged;
+    EXPECT_EQ(t.width, 2);
+    EXPECT_EQ(t.height, 256);
+    EXPECT_NEAR(std::stod(t.parameters.at("uMin")), 0.00872, 0.00002);  // 9376 km - 11 km behind Mars
+    EXPECT_GT(std::stod(t.parameters.at("vMin")), 0.98);
+  }
+  EXPECT_EQ(ranged, 1);
 }

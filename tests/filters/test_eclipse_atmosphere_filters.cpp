@@ -209,6 +209,48 @@ TEST(EclipseAtmosphereFilters, LimbLuminanceSourceIsA3dRgbTexture) {
   EXPECT_EQ(scalars(airless->GetOutput()), nullptr);
 }
 
+// Ranged (u, v in [0.5, 1], 2 x 2 texels): its texels are the whole 4 x 4 LuT's texels
+// (2 + i, 2 + j) (the same centres), bit for bit; the ranges in field data, the point
+// coordinates and the cache key (a different table, not a cache hit).
+TEST(EclipseAtmosphereFilters, RangedLimbLuminanceLutIsPartOfTheWholeOne) {
+  CacheDir cache;
+  const auto make = [&](int size, const eclipse::LutRange* range) {
+    auto s = vtkSmartPointer<vtkLimbLuminanceSource>::New();
+    configure(s.Get(), cache);
+    s->SetWidth(size);
+    s->SetHeight(size);
+    s->SetColumns(4);
+    s->SetLimbRows(16);
+    s->SetScatteringCells(4);
+    if (range) s->SetLutRange(*range);
+    s->Update();
+    return s;
+  };
+  const eclipse::LutRange range{0.5, 1.0, 0.5, 1.0, 0.0};
+  auto whole = make(4, nullptr);
+  auto ranged = make(2, &range);
+  EXPECT_FALSE(ranged->GetLastUpdateWasCacheHit());
+  vtkImageData* r = ranged->GetOutput();
+  vtkImageData* w = whole->GetOutput();
+  int dims[3];
+  r->GetDimensions(dims);
+  ASSERT_EQ(dims[0], 2);
+  ASSERT_EQ(dims[2], 4);
+  EXPECT_EQ(filters::lutRangeOf(filters::fieldParameters(r), "ranged"), range);
+  double p[3];
+  r->GetPoint(0, p);
+  EXPECT_DOUBLE_EQ(p[0], 0.625);
+  EXPECT_DOUBLE_EQ(p[1], 0.625);
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        int a[3] = {i, j, k}, b[3] = {i + 2, j + 2, k};
+        for (int c = 0; c < 3; ++c)
+          EXPECT_EQ(scalars(r)->GetComponent(r->ComputePointId(a), c), scalars(w)->GetComponent(w->ComputePointId(b), c))
+              << i << " " << j << " " << k;
+      }
+}
+
 TEST(EclipseAtmosphereFilters, ProfileOfTheAtmosphericLutIsRedInTheUmbra) {
   CacheDir cache;
   auto source = shadowSource(cache);

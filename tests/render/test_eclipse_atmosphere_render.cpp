@@ -55,8 +55,11 @@ void configureSmall(vtkEclipseShadowLutSource* s) {
   s->UseCacheOff();
 }
 
-// The part of the table the source computed, in a whole-size CPU table (NaN elsewhere).
+// The part of the table the source computed, in a whole-size CPU table (NaN elsewhere);
+// a ranged table (the scene path's near the occluder: sceneLutRange) is whole already.
 eclipse::ShadowLut cpuTable(vtkImageData* image) {
+  const eclipse::LutRange range = filters::lutRangeOf(filters::fieldParameters(image), "atmospheric LuT");
+  if (range != eclipse::LutRange{}) return filters::fromImageData(image);
   eclipse::ShadowLut lut;
   lut.width = kLutWidth;
   lut.height = kLutHeight;
@@ -182,8 +185,8 @@ TEST(EclipseAtmosphereRender, CpuGlslAgreementMoonInEarthsUmbra) {
   EXPECT_GE(umbra, 50);
 }
 
-// A ranged atmospheric LuT (u over Phobos' distances, v split at the umbra's edge:
-// lutRangeForDistances; field data read by SetAtmosphereShadowLut into
+// A ranged atmospheric LuT (u over Phobos' distances, v split at the umbra's edge: the
+// scene path's own choice, sceneLutRange; field data read by SetAtmosphereShadowLut into
 // umbraAtmosphereLutURange, VRange, VLowFraction): Mars' shadow through its atmosphere on
 // Phobos, put at the shadow's edge (Mars' radius off the axis) and seen from the Sun's
 // side, as the CPU's eclipse factor with the same table, within 2 % (compareFactors).
@@ -202,24 +205,16 @@ TEST(EclipseAtmosphereRender, RangedLutAtPhobosAgreesWithTheCpu) {
   in.camera.targetM = phobos.centreM;
   in.camera.up = {0.0, 0.0, 1.0};
   in.camera.fovDeg = 2.0 * std::atan(phobosRadiusM / 200e3) * 180.0 / 3.14159265358979 * 1.1;
-  const eclipse::LutRange r = eclipse::lutRangeForDistances({in.sun.radiusM, marsRadiusM, -in.sun.positionM.x},
-                                                            phobosDistanceM - phobosRadiusM,
-                                                            1.01 * (phobosDistanceM + phobosRadiusM), false, kLutHeight);
-  ASSERT_GT(r.uMin, 0.0);
-  ASSERT_GT(r.vLowFraction, 0.0);  // the umbra is not dark: a split v axis
-
   vtkNew<vtkEclipseShadowLutSource> source;
   configureSmall(source);
-  source->SetLutRange(r);
   BodyView view(128, 128, true);
   useSharedDisplay(view.GetRenderWindow());
   view.SetBodies(in.sun, in.bodies, testLutImage());
-  applySceneAtmosphereShadow(view.GetShading(), in, source);  // sets the source up for Mars
-  source->UpdateWholeExtent();                                 // all of the ranged table
-  view.GetShading().SetAtmosphereShadowLut("Mars", source->GetOutput());
+  applySceneAtmosphereShadow(view.GetShading(), in, source);  // ranged by itself
   const eclipse::ShadowLut cpu = filters::fromImageData(source->GetOutput());
-  ASSERT_EQ(cpu.uMin, r.uMin);
-  ASSERT_EQ(cpu.vLowFraction, r.vLowFraction);
+  const eclipse::LutRange r = cpu.range();
+  ASSERT_GT(r.uMin, 0.0);
+  ASSERT_GT(r.vLowFraction, 0.0);  // the umbra is not dark: a split v axis
   view.SetCamera(in.camera);
   view.SetExposureEV(0.0);
   view.Render();
@@ -268,6 +263,30 @@ struct RingFixture {
   atmosphere::AtmosphereTables tables;
   vtkSmartPointer<vtkImageData> refraction, limb;
 };
+// The ring tests' eclipse tables: Earth's atmosphere (small tables, refraction), the Sun at
+// 1 au; kLimbWidth x kLimbHeight texels.
+void configureRingTables(vtkEclipseAtmosphereSource* s, double bottomRadiusM) {
+  s->SetOccluderName("Earth");
+  s->SetOccluderRadiusM(bottomRadiusM);
+  s->SetSunOccluderDistanceM(kAu);
+  s->SetAtmosphere("earth");
+  s->SetOrders(3);
+  s->SetTransmittanceSize(64, 16);
+  s->SetScatteringSize(8, 32, 8, 4);
+  s->SetIrradianceSize(16, 4);
+  s->SetRefractionSize(128, 64);
+  s->UseCacheOff();
+}
+// The limb-luminance LuT of the ring tests: 16 columns, views of 512 rows, 4x4 cells.
+void configureRingLimb(vtkLimbLuminanceSource* limb, double bottomRadiusM) {
+  configureRingTables(limb, bottomRadiusM);
+  limb->SetWidth(kLimbWidth);
+  limb->SetHeight(kLimbHeight);
+  limb->SetColumns(16);
+  limb->SetLimbRows(512);
+  limb->SetScatteringCells(4);
+}
+
 const RingFixture& ringFixture() {
   static const RingFixture f = [] {
     RingFixture out;
@@ -286,21 +305,7 @@ const RingFixture& ringFixture() {
     out.refraction = vtkImageData::SafeDownCast(blocks->GetBlock(blocks->GetNumberOfBlocks() - 1));
 
     vtkNew<vtkLimbLuminanceSource> limb;
-    limb->SetOccluderName("Earth");
-    limb->SetOccluderRadiusM(out.tables.bottomRadiusM);
-    limb->SetSunOccluderDistanceM(kAu);
-    limb->SetAtmosphere("earth");
-    limb->SetOrders(3);
-    limb->SetTransmittanceSize(64, 16);
-    limb->SetScatteringSize(8, 32, 8, 4);
-    limb->SetIrradianceSize(16, 4);
-    limb->SetRefractionSize(128, 64);
-    limb->SetWidth(kLimbWidth);
-    limb->SetHeight(kLimbHeight);
-    limb->SetColumns(16);
-    limb->SetLimbRows(512);
-    limb->SetScatteringCells(4);
-    limb->UseCacheOff();
+    configureRingLimb(limb, out.tables.bottomRadiusM);
     limb->Update();
     out.limb = vtkSmartPointer<vtkImageData>::New();
     out.limb->DeepCopy(limb->GetOutput());
@@ -333,8 +338,9 @@ struct RingFrame {
 };
 
 // Earth seen from `camera` towards `target`, with refraction, ray marched or from the LuT.
+// `lut`: that limb-luminance LuT instead of the fixture's.
 RingFrame renderRing(const glm::dvec3& camera, const glm::dvec3& target, double fovDeg, int size, bool useLut,
-                     double thresholdPx) {
+                     double thresholdPx, vtkImageData* lut = nullptr) {
   const RingFixture& f = ringFixture();
   SunLight sun;
   sun.positionM = {-kAu, 0.0, 0.0};
@@ -346,7 +352,7 @@ RingFrame renderRing(const glm::dvec3& camera, const glm::dvec3& target, double 
   atmo.SetAtmosphere(f.model, f.tables, earth.centreM, earth.albedoRgb);
   atmo.SetRefraction(f.refraction);
   atmo.SetTerrainMeanElevation(eclipse::defaultTerrain("Earth").meanElevationM);
-  if (useLut) atmo.SetLimbLuminance(f.limb);
+  if (useLut) atmo.SetLimbLuminance(lut ? lut : f.limb.Get());
   atmo.SetLimbRingThresholdPixels(thresholdPx);
   ViewCamera cam;
   cam.positionM = camera;
@@ -400,20 +406,11 @@ TEST(EclipseAtmosphereRender, ThinRingFromTheLimbLuminanceLut) {
   // Energy: the ring's flux over the Sun's irradiance is the illuminance the atmospheric
   // shadow LuT holds at the same (u, v) (in the umbra all of it comes through the ring).
   vtkNew<vtkEclipseShadowLutSource> shadow;
-  shadow->SetOccluderName("Earth");  // its terrain, as the limb LuT's
-  shadow->SetOccluderRadiusM(ringFixture().tables.bottomRadiusM);
-  shadow->SetSunOccluderDistanceM(kAu);
-  shadow->SetAtmosphere("earth");
-  shadow->SetOrders(3);
-  shadow->SetTransmittanceSize(64, 16);
-  shadow->SetScatteringSize(8, 32, 8, 4);
-  shadow->SetIrradianceSize(16, 4);
-  shadow->SetRefractionSize(128, 64);
+  configureRingTables(shadow, ringFixture().tables.bottomRadiusM);
   shadow->SetWidth(kLimbWidth);
   shadow->SetHeight(kLimbHeight);
   shadow->SetLimbSize(512);
   shadow->SetScatteringCells(4);
-  shadow->UseCacheOff();
   const int texel[6] = {1, 1, 0, 0, 0, 0};
   shadow->UpdateExtent(texel);
   vtkDataArray* iOverSun = shadow->GetOutput()->GetPointData()->GetScalars();
@@ -572,4 +569,62 @@ TEST(EclipseAtmosphereRender, RayMarchedRingMatchesTheCpuLimbRays) {
   EXPECT_GT(compared, 100);
   EXPECT_LT(p90Red, 0.05);  // single pixels: the float geometry moves the Sun's edge by ~30 m of the limb
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(gpuSum[c] / cpuSum[c], 1.0, 0.02) << "channel " << c;
+}
+
+// A ranged limb-luminance LuT (u, v ranges as the shadow LuT's: pointLutRange of a camera
+// 200 000 km behind Earth, as applySceneLimbLuminance asks for one): the camera at the
+// centre of a texel of it in the umbra, the ring drawn from it (read through the ranges:
+// umbraLimbUv) carries the illuminance that a ranged shadow LuT holds at the same (u, v),
+// within 5 % as above. (Nearer, e.g. 30 000 km, the ring is 12 deg off the view's axis,
+// where the pixels' solid angle is cos^3 of the centre's: 11 % off, a flaw of the flux sum.)
+TEST(EclipseAtmosphereRender, RangedLimbLuminanceLutRingMatchesTheShadowLut) {
+  const RingFixture& f = ringFixture();
+  SunLight sun;
+  sun.positionM = {-kAu, 0.0, 0.0};
+  const SphereBody earth{"Earth", {0.0, 0.0, 0.0}, f.tables.bottomRadiusM, {0.1, 0.1, 0.1}};
+  const auto range = pointLutRange(sun, earth, {2.0e8, 0.0, 0.0}, false, kLimbHeight);
+  ASSERT_TRUE(range);
+  ASSERT_GT(range->vLowFraction, 0.0);
+  const int width = rangedLutWidth(*range, kLimbWidth);
+  const int row = 1;  // in the umbra: v < vMin
+  const eclipse::LutCoords uv{range->texelU(0, width), range->texelV(row, kLimbHeight)};
+  ASSERT_LT(uv.v, range->vMin);
+  const glm::dvec3 camera = eclipse::inverseLutCoords(uv, {sun.radiusM, f.tables.bottomRadiusM, kAu}).pointM;
+
+  vtkNew<vtkLimbLuminanceSource> limb;
+  configureRingLimb(limb, f.tables.bottomRadiusM);
+  limb->SetLutRange(*range);
+  limb->SetWidth(width);
+  limb->Update();
+  int dims[3];
+  limb->GetOutput()->GetDimensions(dims);
+  ASSERT_EQ(dims[0], width);
+  const eclipse::LutRange back = filters::lutRangeOf(filters::fieldParameters(limb->GetOutput()), "limb LuT");
+  EXPECT_EQ(back, *range);
+
+  // The ring from it: all of Earth in view, under 2 px wide at 128 px.
+  const double phi = std::asin(f.tables.topRadiusM / glm::length(camera));
+  const double fovDeg = 2.2 * phi * 180.0 / kPi;
+  const RingFrame frame = renderRing(camera, earth.centreM, fovDeg, 128, true, 5.0, limb->GetOutput());
+  ASSERT_TRUE(frame.usedLut);
+
+  vtkNew<vtkEclipseShadowLutSource> shadow;
+  configureRingTables(shadow, f.tables.bottomRadiusM);
+  shadow->SetWidth(width);
+  shadow->SetHeight(kLimbHeight);
+  shadow->SetLimbSize(512);
+  shadow->SetScatteringCells(4);
+  shadow->SetLutRange(*range);
+  const int column[6] = {0, 0, 0, kLimbHeight - 1, 0, 0};  // (a split v axis: all rows)
+  shadow->UpdateExtent(column);
+  vtkDataArray* iOverSun = shadow->GetOutput()->GetPointData()->GetScalars();
+  ASSERT_NE(iOverSun, nullptr);
+  ASSERT_EQ(iOverSun->GetNumberOfTuples(), kLimbHeight);
+  const glm::dvec3 lutOverSun{iOverSun->GetComponent(row, 0), iOverSun->GetComponent(row, 1), 0.0};
+  const glm::dvec3 ringOverSun = frame.flux() / SunLight().irradianceAt1AuWm2;
+  std::printf("  u %.6f v %.4f (%.0f km behind Earth), ring %.2f px: flux / E_sun R G = %.3g %.3g, shadow LuT = %.3g %.3g\n",
+              uv.u, uv.v, glm::length(camera) / 1e3, frame.ringWidthPx, ringOverSun.r, ringOverSun.g, lutOverSun.r,
+              lutOverSun.g);
+  EXPECT_NEAR(ringOverSun.r / lutOverSun.r, 1.0, 0.05);
+  EXPECT_NEAR(ringOverSun.g / lutOverSun.g, 1.0, 0.05);
 }

@@ -13,7 +13,7 @@
 // With one layer (the LuT's default) the ring is uniform across its height.
 
 uniform sampler3D umbraLimbLuminance;  // u, v, beta / pi
-uniform vec2 umbraLimbUv;              // the camera's (u, v)
+uniform vec2 umbraLimbUv;              // the camera's (u, v) as texture coordinates (the LuT's ranges)
 uniform float umbraLimbOccluder;       // phi_occ (rad): the ground's angular radius
 uniform float umbraLimbAtmosphere;     // phi_atmo (rad): the top's
 uniform float umbraLimbDistance;       // m, camera to the limb (in front of it: an object)

@@ -1,0 +1,224 @@
+// The scene path asks for ranged eclipse LuTs by itself (AtmosphereShadow: sceneLutRange,
+// applySceneAtmosphereShadow): Phobos by Mars, where a whole LuT gives Mars' penumbra only
+// 2u = 1.6 % of its rows. The two example scenes (examples/scenes/phobos-in-mars-shadow.json,
+// phobos-in-mars-umbra-atmosphere.json) rendered with small tables: the shading on Phobos
+// (GPU factor = radiance / unshadowed radiance) against the CPU's exact factor at the same
+// points (no LuT: eclipse::eclipseFactor without a table; through the atmosphere
+// illuminanceAt with the LuT's limb views). The ranged LuT is within the bound, the whole
+// LuT of the same size is not (both asserted).
+#include "AtmosphereShadow.h"
+#include "RenderTestSupport.hpp"
+#include "SceneInputs.h"
+
+#include "AtmosphericShadow.hpp"
+#include "EclipseAtmosphere.hpp"
+#include "ShadowLutData.h"
+#include "scene/Scene.hpp"
+#include "vtkEclipseShadowLutSource.h"
+#include "vtkLimbLuminanceSource.h"
+
+#include <vtkImageData.h>
+#include <vtkNew.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+using namespace umbra;
+using namespace umbra::render;
+using namespace umbra::render::test;
+
+namespace {
+
+constexpr int kSize = 64;  // the LuTs' rows (and the whole LuTs' columns)
+constexpr int kImage = 96;
+
+SceneInputs loadPhobosScene(const std::string& file) {
+  const scene::Scene s = scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/" + file);
+  return sceneInputs(s);
+}
+
+const SphereBody& body(const SceneInputs& in, const std::string& name) {
+  return *std::find_if(in.bodies.begin(), in.bodies.end(), [&](const SphereBody& b) { return b.name == name; });
+}
+
+// Phobos' shading in a rendered view: per sampled pixel (facing the camera and the Sun) the
+// GPU's factor per channel and `exact`'s; the largest |GPU - exact| (absolute, or relative
+// to exact with `relative`).
+struct Agreement {
+  int samples = 0, shadowed = 0;
+  double maxDiff = 0.0;
+};
+Agreement compare(const SceneInputs& in, const std::vector<float>& hdr, int w, int h,
+                  const std::function<glm::dvec3(const glm::dvec3&)>& exact, bool relative) {
+  const SphereBody& phobos = body(in, "Phobos");
+  Agreement a;
+  for (int j = 1; j < h; j += 3)
+    for (int i = 1; i < w; i += 3) {
+      const Ray ray = pixelRay(in.camera, w, h, i, j);
+      const auto hit = hitSphere(ray, phobos.centreM, phobos.radiusM);
+      if (!hit) continue;
+      if (-glm::dot(glm::normalize(*hit - phobos.centreM), ray.dir) < 0.3) continue;
+      double cosi = 0.0;
+      const double unshadowed = unshadowedRadiance(*hit, phobos.centreM, 1.0, in.sun, &cosi);  // x albedo
+      if (cosi < 0.1) continue;
+      const glm::dvec3 e = exact(*hit);
+      ++a.samples;
+      if (e.g < 0.99) ++a.shadowed;
+      for (int c = 0; c < 3; ++c) {
+        const double gpu = hdr[3 * (static_cast<std::size_t>(j) * w + i) + c] / (phobos.albedoRgb[c] * unshadowed);
+        const double d = std::abs(gpu - e[c]) / (relative ? std::max(e[c], 1e-9) : 1.0);
+        EXPECT_TRUE(std::isfinite(gpu)) << "pixel " << i << ", " << j;
+        a.maxDiff = std::max(a.maxDiff, d);
+      }
+    }
+  return a;
+}
+
+std::vector<float> renderPhobos(const SceneInputs& in, vtkImageData* airless,
+                                const std::function<void(EclipseShading&)>& atmosphere = {}) {
+  BodyView view(kImage, kImage * 3 / 4, true);
+  useSharedDisplay(view.GetRenderWindow());
+  view.SetBodies(in.sun, in.bodies, airless);
+  if (atmosphere) atmosphere(view.GetShading());
+  view.SetCamera(in.camera);
+  view.SetExposureEV(0.0);
+  view.Render();
+  std::vector<float> hdr;
+  int w = 0, h = 0;
+  view.ReadHdr(hdr, w, h);
+  return hdr;
+}
+
+vtkSmartPointer<vtkImageData> airlessLut(const std::optional<eclipse::LutRange>& range) {
+  vtkNew<vtkEclipseShadowLutSource> s;
+  s->UseCacheOff();
+  s->SetHeight(kSize);
+  s->SetWidth(range ? rangedLutWidth(*range, kSize) : kSize);
+  if (range) s->SetLutRange(*range);
+  s->Update();
+  auto out = vtkSmartPointer<vtkImageData>::New();
+  out->DeepCopy(s->GetOutput());
+  return out;
+}
+
+} // namespace
+
+// Who can be in whose penumbra, and the ranges the scene asks for.
+TEST(SceneRangedLut, RangesCoverPhobosOnly) {
+  const SceneInputs in = loadPhobosScene("phobos-in-mars-shadow.json");
+  const SphereBody &mars = body(in, "Mars"), &phobos = body(in, "Phobos");
+  EXPECT_TRUE(canBeInPenumbra(in.sun, mars, phobos));
+  EXPECT_FALSE(canBeInPenumbra(in.sun, phobos, mars));  // Phobos' shadow points away from Mars
+  const auto r = sceneLutRange(in.sun, in.bodies, in.bodies, true, kSize);
+  ASSERT_TRUE(r);
+  // Every point of Phobos has u (Eq. 4) inside the range.
+  for (const double dx : {-phobos.radiusM, phobos.radiusM}) {
+    const glm::dvec3 p = phobos.centreM + glm::dvec3(dx, 0.0, 0.0);
+    const eclipse::LutCoords c =
+        eclipse::lutCoords(eclipse::shadowAngles(p, in.sun.positionM, in.sun.radiusM, mars.centreM, mars.radiusM));
+    EXPECT_GE(c.u, r->uMin);
+    EXPECT_LE(c.u, r->uMax);
+  }
+  EXPECT_LT(r->uMax - r->uMin, 1e-4);
+  EXPECT_GT(r->vMin, 0.95);  // the umbra's edge 1 - 2u
+  EXPECT_EQ(rangedLutWidth(*r, kSize), 2);
+  // The Moon in Earth's shadow: a whole 256-row LuT resolves it (no range), a 32-row one not.
+  SunLight sun;
+  sun.positionM = {-kAu, 0.0, 0.0};
+  const SphereBody earth{"Earth", {0.0, 0.0, 0.0}, 6.371e6, {0.3, 0.3, 0.3}};
+  const SphereBody moon{"Moon", {kMoonDistance, 0.0, 0.0}, 1.7374e6, {0.12, 0.12, 0.12}};
+  EXPECT_FALSE(sceneLutRange(sun, {earth}, {moon}, true, 256));
+  EXPECT_TRUE(sceneLutRange(sun, {earth}, {moon}, true, 32));
+}
+
+// Airless: Phobos across the umbra's edge. Ranged 64-row LuT (2 columns) vs whole 64².
+TEST(SceneRangedLut, AirlessPhobosMatchesTheExactFactor) {
+  const SceneInputs in = loadPhobosScene("phobos-in-mars-shadow.json");
+  const SphereBody& mars = body(in, "Mars");
+  const auto range = sceneLutRange(in.sun, in.bodies, in.bodies, true, kSize);
+  ASSERT_TRUE(range);
+  const eclipse::Occluder occ{mars.centreM, mars.radiusM};
+  const auto exact = [&](const glm::dvec3& p) {
+    return eclipse::eclipseFactor(p, in.sun.positionM, in.sun.radiusM, occ, nullptr);
+  };
+  const int w = kImage, h = kImage * 3 / 4;
+  const Agreement ranged = compare(in, renderPhobos(in, airlessLut(range)), w, h, exact, false);
+  const Agreement whole = compare(in, renderPhobos(in, airlessLut(std::nullopt)), w, h, exact, false);
+  std::printf("  %d samples (%d shadowed); max |GPU - exact| of I/I_sun: ranged %.3g, whole %.3g\n", ranged.samples,
+              ranged.shadowed, ranged.maxDiff, whole.maxDiff);
+  RecordProperty("ranged_max_abs", std::to_string(ranged.maxDiff));
+  RecordProperty("whole_max_abs", std::to_string(whole.maxDiff));
+  EXPECT_GE(ranged.samples, 200);
+  EXPECT_GE(ranged.shadowed, 50);
+  constexpr double kBound = 5e-3;
+  EXPECT_LT(ranged.maxDiff, kBound);
+  EXPECT_GT(whole.maxDiff, kBound);
+}
+
+// Through Mars' atmosphere: Phobos 1500 km off the axis in the umbra, lit by the
+// atmosphere's ring. The scene path (applySceneAtmosphereShadow, small tables: 64 x 32,
+// limb views of 32 rows) ranges the table itself; the whole table's columns (the path
+// before) for comparison. Relative differences (the umbra is ~1e-3 of I_sun).
+TEST(SceneRangedLut, AtmospherePhobosMatchesTheExactFactor) {
+  const SceneInputs in = loadPhobosScene("phobos-in-mars-umbra-atmosphere.json");
+  ASSERT_TRUE(in.atmosphere);
+  const SphereBody &mars = body(in, "Mars"), &phobos = body(in, "Phobos");
+  vtkNew<vtkEclipseShadowLutSource> source;
+  useSmallEclipseShadowTables(source);
+  source->UseCacheOff();
+  const int width = source->GetWidth();
+
+  vtkSmartPointer<vtkImageData> ranged;
+  const std::vector<float> rangedHdr = renderPhobos(in, testLutImage(), [&](EclipseShading& shading) {
+    applySceneAtmosphereShadow(shading, in, source);
+    ranged = vtkSmartPointer<vtkImageData>::New();
+    ranged->DeepCopy(source->GetOutput());
+  });
+  EXPECT_EQ(source->GetWidth(), width);  // given back
+  const eclipse::LutRange r = filters::lutRangeOf(filters::fieldParameters(ranged), "ranged LuT");
+  int dims[3];
+  ranged->GetDimensions(dims);
+  std::printf("  ranged table %dx%d: u %.6f..%.6f, v %.4f..%.4f (low fraction %.2f)\n", dims[0], dims[1], r.uMin,
+              r.uMax, r.vMin, r.vMax, r.vLowFraction);
+  EXPECT_GT(r.uMin, 0.0);
+  EXPECT_GT(r.vLowFraction, 0.0);
+  EXPECT_EQ(dims[0], 2);
+
+  // The whole table's columns around Phobos (as before: ranges [0, 1]).
+  const auto cols = shadowLutColumns(in.sun, mars, phobos, width);
+  source->SetLutRange({});
+  const int extent[6] = {cols[0], std::max(cols[1], cols[0] + 1), 0, source->GetHeight() - 1, 0, 0};
+  source->UpdateExtent(extent);
+  vtkNew<vtkImageData> whole;
+  whole->DeepCopy(source->GetOutput());
+  const std::vector<float> wholeHdr =
+      renderPhobos(in, testLutImage(), [&](EclipseShading& shading) { shading.SetAtmosphereShadowLut("Mars", whole); });
+
+  const auto prepared = source->GetPreparedAtmosphere();
+  const eclipse::AtmosphericShadowModel& model = prepared->model;
+  const eclipse::LimbViewParams limb{source->GetLimbSize(), source->GetLimbSize(), source->GetScatteringCells(),
+                                     source->GetScatteringCells()};
+  const auto exact = [&](const glm::dvec3& p) {
+    const eclipse::LutCoords c =
+        eclipse::lutCoords(eclipse::shadowAngles(p, in.sun.positionM, in.sun.radiusM, mars.centreM, mars.radiusM));
+    const std::vector<double> t = eclipse::illuminanceAt(model, eclipse::limbPosition(model, c), limb).total();
+    return eclipse::rgbOfSpectralRatio(model.rays.wavelengthsNm, t.data());
+  };
+  const int w = kImage, h = kImage * 3 / 4;
+  const Agreement a = compare(in, rangedHdr, w, h, exact, true);
+  const Agreement b = compare(in, wholeHdr, w, h, exact, true);
+  std::printf("  %d samples (%d shadowed); max relative |GPU - exact|: ranged %.3g, whole %.3g\n", a.samples,
+              a.shadowed, a.maxDiff, b.maxDiff);
+  RecordProperty("ranged_max_rel", std::to_string(a.maxDiff));
+  RecordProperty("whole_max_rel", std::to_string(b.maxDiff));
+  EXPECT_GE(a.samples, 200);
+  EXPECT_EQ(a.shadowed, a.samples);  // all in the umbra
+  constexpr double kBound = 5e-3;
+  EXPECT_LT(a.maxDiff, kBound);
+  EXPECT_GT(b.maxDiff, kBound);
+}
