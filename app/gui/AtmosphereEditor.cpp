@@ -55,15 +55,26 @@ nlohmann::ordered_json::json_pointer pointerOf(const std::string& path) {
 
 std::string joinPath(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
 
-std::string valueText(const nlohmann::ordered_json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
+std::string valueText(const nlohmann::ordered_json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_float()) return atmosphere::formatNumber(v.get<double>());  // shortest text that reads back
+  return v.dump();
+}
 
 }  // namespace
 
 AtmosphereEditor::AtmosphereEditor(QWidget* parent) : QWidget(parent) {
   this->fields = new QTreeWidget;
   this->fields->setColumnCount(4);
-  this->fields->setHeaderLabels({"field", "value", "unit", "accepted"});
-  this->fields->header()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
+  this->fields->setHeaderLabels({"field", "value", "unit", "range"});
+  this->fields->header()->setStretchLastSection(false);
+  this->fields->header()->setSectionResizeMode(0, QHeaderView::Interactive);
+  this->fields->header()->setSectionResizeMode(1, QHeaderView::Stretch);
+  this->fields->header()->setSectionResizeMode(2, QHeaderView::ResizeToContents);
+  this->fields->header()->setSectionResizeMode(3, QHeaderView::Interactive);
+  this->fields->setColumnWidth(0, 210);
+  this->fields->setColumnWidth(3, 120);
+  this->setMinimumWidth(520);
   this->fields->setEditTriggers(QAbstractItemView::NoEditTriggers);  // only the value column: below
   connect(this->fields, &QTreeWidget::itemDoubleClicked, this, [this](QTreeWidgetItem* item, int) {
     if (item->flags() & Qt::ItemIsEditable) this->fields->editItem(item, 1);

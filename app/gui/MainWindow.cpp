@@ -188,7 +188,7 @@ MainWindow::MainWindow() {
   this->editorDock->hide();
   this->atmosphereEdit = new QPushButton("Edit...");
   this->atmosphereEdit->setToolTip("Show the atmosphere's fields: every component's profile, optics and phase");
-  connect(this->atmosphereEdit, &QPushButton::clicked, this, [this] { this->editorDock->show(); this->editorDock->raise(); });
+  connect(this->atmosphereEdit, &QPushButton::clicked, this, [this] { this->showAtmosphereEditor(); });
 
   auto* controls = new QHBoxLayout;
   controls->addWidget(new QLabel("Time (UTC)"));
@@ -361,6 +361,11 @@ void MainWindow::atmosphereFinished(int generation) {
   this->refresh();
 }
 
+void MainWindow::showAtmosphereEditor() {
+  this->editorDock->show();
+  this->editorDock->raise();
+}
+
 void MainWindow::saveAtmosphereJson(const std::string& path) const { this->editor->saveJson(path); }
 
 void MainWindow::loadAtmosphereDialog() {
@@ -368,7 +373,7 @@ void MainWindow::loadAtmosphereDialog() {
   if (path.isEmpty()) return;
   try {
     this->setAtmosphere(path.toStdString());
-    this->editorDock->show();
+    this->showAtmosphereEditor();
   } catch (const std::exception& e) {
     QMessageBox::critical(this, "Cannot load atmosphere", e.what());
   }

@@ -63,6 +63,8 @@ public:
   /// The atmosphere editor (its document follows setAtmosphere; its accepted edits
   /// recompute the tables).
   AtmosphereEditor& atmosphereEditor() const { return *this->editor; }
+  /// Shows the editor's dock (the "Edit..." button).
+  void showAtmosphereEditor();
   /// Writes the edited atmosphere as JSON (atomically). Throws std::runtime_error naming the path.
   void saveAtmosphereJson(const std::string& path) const;
   /// Small tables (useSmallAtmosphereTables) for the next setAtmosphere: quick looks, tests.
