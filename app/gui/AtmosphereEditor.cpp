@@ -120,6 +120,11 @@ void AtmosphereEditor::setDocument(const Json& document, const std::string& sour
   this->rebuild();
 }
 
+void AtmosphereEditor::scheduleRebuild() {
+  // Not now: the edit may come from an item or a combo box of the tree, which must outlive it.
+  QTimer::singleShot(0, this, [this] { this->rebuild(); });
+}
+
 void AtmosphereEditor::rebuild() {
   std::set<std::string> expanded;
   for (QTreeWidgetItemIterator it(this->fields); *it; ++it)
@@ -170,6 +175,7 @@ void AtmosphereEditor::addItems(QTreeWidgetItem* parent, const Json& value, cons
       choice->setCurrentText(qs(valueText(v)));
       this->fields->setItemWidget(child, 1, choice);
       connect(choice, &QComboBox::textActivated, this, [this, path](const QString& t) { this->setType(path, t.toStdString()); });
+      choice->setToolTip(child->toolTip(1));
       continue;
     }
     child->setText(1, qs(valueText(v)));
@@ -245,7 +251,7 @@ std::string AtmosphereEditor::setValue(const std::string& path, const std::strin
   }
   if (!problem.empty()) return this->reject(path, problem);
   problem = this->apply(path, std::move(candidate));
-  if (problem.empty() && added) this->rebuild();  // a new key: its item (and children) as any other's
+  if (problem.empty() && added) this->scheduleRebuild();  // a new key: its item (and children) as any other's
   return problem;
 }
 
@@ -258,7 +264,7 @@ std::string AtmosphereEditor::setType(const std::string& objectPath, const std::
     return this->reject(objectPath, this->source + ": " + objectPath + ": " + e.what());
   }
   const std::string problem = this->apply(joinPath(objectPath, atmosphere::selectorKey(atmosphere::fieldPattern(objectPath))), std::move(candidate));
-  if (problem.empty()) this->rebuild();
+  if (problem.empty()) this->scheduleRebuild();
   return problem;
 }
 

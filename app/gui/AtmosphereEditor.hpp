@@ -70,6 +70,7 @@ private:
   std::string apply(const std::string& path, Json candidate);  // validate, then accept or reject
   std::string reject(const std::string& path, const std::string& problem);  // red item, message
   void rebuild();
+  void scheduleRebuild();  // rebuild() once the event loop runs again
   void addItems(QTreeWidgetItem* parent, const Json& value, const std::string& path, const std::string& where,
                 const std::string& type);
   QTreeWidgetItem* itemAt(const std::string& path) const;

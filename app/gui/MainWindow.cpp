@@ -14,6 +14,7 @@
 #include <QAction>
 #include <QApplication>
 #include <QComboBox>
+#include <QDir>
 #include <QDockWidget>
 #include <QMetaObject>
 #include <QProgressBar>
@@ -40,7 +41,6 @@
 #include <vtkSmartPointer.h>
 
 #include <atomic>
-#include <fstream>
 #include <thread>
 #include <cmath>
 #include <cstdio>
@@ -255,7 +255,10 @@ void MainWindow::setAtmosphere(const std::string& model) {
   if (model.empty()) {
     this->editor->setDocument(AtmosphereEditor::Json(), "");
   } else {
-    const std::string name = model.find('/') == std::string::npos ? model : QFileInfo(qs(model)).fileName().toStdString();
+    const bool edit = QFileInfo(qs(model)).absolutePath() == QDir(this->editedDir.path()).absolutePath();
+    const std::string name = edit                                     ? this->editedFrom
+                             : model.find('/') == std::string::npos ? model
+                                                                    : QFileInfo(qs(model)).fileName().toStdString();
     this->editor->setDocument(AtmosphereEditor::Json::parse(atmosphere::resolvedAtmosphereJson(model)), name);
   }
   int index = this->atmosphereChoice->findData(qs(model));
@@ -272,18 +275,13 @@ void MainWindow::atmosphereEdited() {
   // The edited document goes to the tables as a file, as a preset does.
   const std::string path = (this->editedDir.path() + QString("/edit-%1.json").arg(++this->editCount)).toStdString();
   try {
-    output::OutputFile out(path);
-    {
-      std::ofstream file(out.tempPath(), std::ios::binary);
-      file << this->editor->document().dump(2) << "\n";
-      if (!file.flush()) throw std::runtime_error(path + ": cannot write");
-    }
-    out.commit();
+    this->editor->saveJson(path);
   } catch (const std::exception& e) {
     this->setStatus(QString("atmosphere: ") + e.what());
     return;
   }
-  const QString label = qs(this->editor->sourceName() + " (edited)");
+  this->editedFrom = this->editor->sourceName();
+  const QString label = qs(this->editedFrom + " (edited)");
   int index = -1;
   for (int i = 0; i < this->atmosphereChoice->count(); ++i)
     if (this->atmosphereChoice->itemData(i).toString().startsWith(this->editedDir.path() + "/")) index = i;

@@ -129,6 +129,7 @@ private:
   std::string drawnModel;  // the model of the tables the view has
   QTemporaryDir editedDir;  // the editor's documents, one file per accepted edit
   int editCount = 0;
+  std::string editedFrom;  // the name the edits started from (the editor's name for them)
   bool smallTables = false;
   struct AtmosphereJob;
   std::unique_ptr<AtmosphereJob> job;

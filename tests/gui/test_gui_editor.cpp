@@ -14,6 +14,7 @@
 #include "CliRunner.hpp"
 
 #include <QApplication>
+#include <QComboBox>
 #include <QElapsedTimer>
 #include <QImage>
 #include <QSurfaceFormat>
@@ -93,6 +94,30 @@ TEST(GuiEditor, ThePresetsFieldsAreInTheTreeWithUnits) {
     }
   }
   EXPECT_EQ(scaleHeights, 3);  // molecules, aerosols, oxygen (ozone is a tent)
+
+  // As a user edits: a value typed into the tree, a type chosen in its combo box.
+  auto item = [&](const QString& path) -> QTreeWidgetItem* {
+    for (QTreeWidgetItemIterator it(e.tree()); *it; ++it)
+      if ((*it)->data(0, Qt::UserRole).toString() == path) return *it;
+    return nullptr;
+  };
+  QTreeWidgetItem* h = item("components.aerosols.density.scaleHeightM");
+  ASSERT_NE(h, nullptr);
+  h->setText(1, "3000");
+  EXPECT_EQ(e.document()["components"]["aerosols"]["density"]["scaleHeightM"], 3000);
+  EXPECT_TRUE(e.changePending());
+  QTreeWidgetItem* type = item("components.aerosols.phase.type");
+  ASSERT_NE(type, nullptr);
+  auto* choice = qobject_cast<QComboBox*>(e.tree()->itemWidget(type, 1));
+  ASSERT_NE(choice, nullptr);
+  EXPECT_GE(choice->findText("tabulated"), 0);
+  emit choice->textActivated("henyey-greenstein");
+  QApplication::processEvents();
+  EXPECT_EQ(e.document()["components"]["aerosols"]["phase"], Json::parse(R"({"type": "henyey-greenstein", "g": 0.8})"));
+  ASSERT_NE(item("components.aerosols.phase.g"), nullptr);  // the tree was rebuilt
+  EXPECT_EQ(item("components.aerosols.phase.g")->text(1), "0.8");
+  settle(win.w);
+  EXPECT_EQ(drawn(win.w).component("aerosols").density.scaleHeightM, 3000.0);
 }
 
 // Twenty times the aerosols (densityScale 1 -> 20: vertical optical depth 0.0053 -> 0.11,
