@@ -67,12 +67,15 @@ void checkAtmosphere(const std::string& model) {
 } // namespace
 
 /// Atmosphere tables being made in a worker thread: the source is only touched by the
-/// worker until it has finished (then by the GUI thread), except SetAbortExecute.
+/// worker until it has finished (then by the GUI thread), except SetAbortExecute. The
+/// worker's progress callback sets AbortExecute again from `cancelled`: VTK clears it when
+/// the execution starts, so a cancel that comes before that is not lost.
 struct MainWindow::AtmosphereJob {
   vtkSmartPointer<vtkAtmosphereTablesSource> source;
   vtkNew<vtkCallbackCommand> onProgress;
   std::thread thread;
   std::atomic<bool> cancelled{false};
+  QProgressBar* bar = nullptr;
 };
 
 MainWindow::MainWindow() {
@@ -159,12 +162,7 @@ MainWindow::MainWindow() {
   this->atmosphereProgress->setVisible(false);
   this->atmosphereCancel = new QPushButton("Cancel");
   this->atmosphereCancel->setVisible(false);
-  connect(this->atmosphereCancel, &QPushButton::clicked, this, [this] {
-    if (this->job) {
-      this->job->cancelled = true;
-      this->job->source->SetAbortExecute(1);
-    }
-  });
+  connect(this->atmosphereCancel, &QPushButton::clicked, this, [this] { this->cancelAtmosphereTables(); });
 
   // The atmosphere editor, in a dock (hidden until "Edit..."), with its Load/Save buttons.
   this->editor = new AtmosphereEditor;
@@ -236,6 +234,12 @@ void MainWindow::overrideAtmosphere(const std::string& model) {
 }
 
 bool MainWindow::atmosphereBusy() const { return this->job != nullptr; }
+
+void MainWindow::cancelAtmosphereTables() {
+  if (!this->job) return;
+  this->job->cancelled = true;
+  this->job->source->SetAbortExecute(1);
+}
 
 void MainWindow::cancelAtmosphere() {
   if (!this->job) return;
@@ -316,9 +320,12 @@ void MainWindow::startAtmosphere(const std::string& model) {
   j.source->SetRefractedPaths(false);
   if (this->smallTables) render::useSmallAtmosphereTables(j.source);
   QProgressBar* bar = this->atmosphereProgress;
-  j.onProgress->SetClientData(bar);
-  j.onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
-    auto* progress = static_cast<QProgressBar*>(client);
+  j.bar = bar;
+  j.onProgress->SetClientData(&j);
+  j.onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
+    const auto* job = static_cast<const AtmosphereJob*>(client);
+    if (job->cancelled) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    QProgressBar* progress = job->bar;
     const int percent = static_cast<int>(100.0 * *static_cast<double*>(data));
     QMetaObject::invokeMethod(progress, [progress, percent] { progress->setValue(percent); }, Qt::QueuedConnection);
   });

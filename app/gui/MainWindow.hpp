@@ -57,6 +57,8 @@ public:
   void overrideAtmosphere(const std::string& model);
   /// True while atmosphere tables are being computed.
   bool atmosphereBusy() const;
+  /// The Cancel button: stops the tables being computed; the view keeps the ones it has.
+  void cancelAtmosphereTables();
   /// The model (preset or file) whose tables the view draws ("" : none). An edit's model
   /// is a file in a private temporary folder.
   const std::string& drawnAtmosphere() const { return this->drawnModel; }

@@ -181,6 +181,24 @@ TEST(GuiEditor, ABadValueIsRejectedAndTheTablesStay) {
   EXPECT_FALSE(e.changePending());
 }
 
+// Cancel right after an edit: the view keeps the preset's tables, the choice goes back to it.
+TEST(GuiEditor, CancelKeepsTheTablesDrawn) {
+  Window win;
+  AtmosphereEditor& e = win.w.atmosphereEditor();
+  ASSERT_EQ(e.setValue("components.molecules.density.scaleHeightM", "7000"), "");
+  e.flush();
+  ASSERT_TRUE(win.w.atmosphereBusy());
+  win.w.cancelAtmosphereTables();
+  settle(win.w);
+  EXPECT_EQ(win.w.drawnAtmosphere(), "earth");
+  EXPECT_NE(win.w.statusText().indexOf("atmosphere: cancelled"), -1) << win.w.statusText().toStdString();
+  // The edit is still in the editor; the next one computes its tables.
+  EXPECT_EQ(e.document()["components"]["molecules"]["density"]["scaleHeightM"], 7000);
+  ASSERT_EQ(e.setValue("components.molecules.density.scaleHeightM", "7500"), "");
+  settle(win.w);
+  EXPECT_EQ(drawn(win.w).component("molecules").density.scaleHeightM, 7500.0);
+}
+
 TEST(GuiEditor, SaveThenLoadGivesTheSameModel) {
   Window win;
   AtmosphereEditor& e = win.w.atmosphereEditor();
