@@ -250,8 +250,10 @@ std::string AtmosphereEditor::setValue(const std::string& path, const std::strin
     problem = this->source + ": " + path + ": " + e.what();
   }
   if (!problem.empty()) return this->reject(path, problem);
+  const bool object = candidate[pointerOf(path)].is_object();
   problem = this->apply(path, std::move(candidate));
-  if (problem.empty() && added) this->scheduleRebuild();  // a new key: its item (and children) as any other's
+  // A new key, or a value that became an object (a spectrum table): items as any other's.
+  if (problem.empty() && (added || object)) this->scheduleRebuild();
   return problem;
 }
 

@@ -116,8 +116,19 @@ TEST(GuiEditor, ThePresetsFieldsAreInTheTreeWithUnits) {
   EXPECT_EQ(e.document()["components"]["aerosols"]["phase"], Json::parse(R"({"type": "henyey-greenstein", "g": 0.8})"));
   ASSERT_NE(item("components.aerosols.phase.g"), nullptr);  // the tree was rebuilt
   EXPECT_EQ(item("components.aerosols.phase.g")->text(1), "0.8");
+  // A number turned into a spectrum table: its wavelengths and values become items.
+  ASSERT_EQ(e.setValue("components.aerosols.phase.g", R"({"wavelengthsNm": [440, 680], "values": [0.85, 0.75]})"), "");
+  QApplication::processEvents();
+  ASSERT_NE(item("components.aerosols.phase.g.values"), nullptr);
+  EXPECT_EQ(item("components.aerosols.phase.g.values")->text(1), "[0.85,0.75]");
   settle(win.w);
-  EXPECT_EQ(drawn(win.w).component("aerosols").density.scaleHeightM, 3000.0);
+  const atm::Atmosphere a = drawn(win.w);
+  EXPECT_EQ(a.component("aerosols").density.scaleHeightM, 3000.0);
+  // g at 680, 550, 440 nm (the view's wavelengths), linear in between: 0.85 - 0.1 * 110 / 240 at 550.
+  ASSERT_EQ(a.component("aerosols").phases.size(), 3u);
+  EXPECT_DOUBLE_EQ(a.component("aerosols").phases[0].g(), 0.75);
+  EXPECT_NEAR(a.component("aerosols").phases[1].g(), 0.85 - 0.1 * 110.0 / 240.0, 1e-12);
+  EXPECT_DOUBLE_EQ(a.component("aerosols").phases[2].g(), 0.85);
 }
 
 // Twenty times the aerosols (densityScale 1 -> 20: vertical optical depth 0.0053 -> 0.11,
