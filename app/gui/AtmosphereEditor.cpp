@@ -9,7 +9,9 @@
 
 #include <QComboBox>
 #include <QHeaderView>
+#include <QInputDialog>
 #include <QLabel>
+#include <QMenu>
 #include <QTimer>
 #include <QTreeWidget>
 #include <QTreeWidgetItemIterator>
@@ -80,6 +82,24 @@ AtmosphereEditor::AtmosphereEditor(QWidget* parent) : QWidget(parent) {
     if (item->flags() & Qt::ItemIsEditable) this->fields->editItem(item, 1);
   });
   connect(this->fields, &QTreeWidget::itemChanged, this, [this](QTreeWidgetItem* item, int column) { this->edited(item, column); });
+  // Components are added and removed from the context menu of "components" and of each one.
+  this->fields->setContextMenuPolicy(Qt::CustomContextMenu);
+  connect(this->fields, &QTreeWidget::customContextMenuRequested, this, [this](const QPoint& at) {
+    QTreeWidgetItem* item = this->fields->itemAt(at);
+    const std::string path = item ? item->data(0, kPathRole).toString().toStdString() : "";
+    const std::string prefix = "components.";
+    QMenu menu;
+    if (path == "components") {
+      menu.addAction("Add component...", this, [this] {
+        const QString name = QInputDialog::getText(this, "Add component", "Name of the new component:");
+        if (!name.isEmpty()) this->addComponent(name.toStdString());
+      });
+    } else if (path.rfind(prefix, 0) == 0 && path.find('.', prefix.size()) == std::string::npos) {
+      const std::string name = path.substr(prefix.size());
+      menu.addAction(qs("Remove " + name), this, [this, name] { this->removeComponent(name); });
+    }
+    if (!menu.isEmpty()) menu.exec(this->fields->viewport()->mapToGlobal(at));
+  });
   this->status = new QLabel;
   this->status->setWordWrap(true);
   this->status->setTextInteractionFlags(Qt::TextSelectableByMouse);
@@ -266,6 +286,34 @@ std::string AtmosphereEditor::setType(const std::string& objectPath, const std::
     return this->reject(objectPath, this->source + ": " + objectPath + ": " + e.what());
   }
   const std::string problem = this->apply(joinPath(objectPath, atmosphere::selectorKey(atmosphere::fieldPattern(objectPath))), std::move(candidate));
+  if (problem.empty()) this->scheduleRebuild();
+  return problem;
+}
+
+std::string AtmosphereEditor::addComponent(const std::string& name) {
+  const std::string path = "components." + name;
+  if (name.empty() || name.find_first_of(".[]/~") != std::string::npos)
+    return this->reject("components", this->source + ": " + path + ": expected a name without . [ ] / ~");
+  if (!this->hasDocument() || this->doc.value("components", Json::object()).contains(name))
+    return this->reject("components", this->source + ": " + path + ": the component exists already");
+  Json component = Json::object();
+  for (const atmosphere::Field& f : atmosphere::atmosphereFields())
+    if (std::string("components.*") == f.where && f.exampleJson && *f.exampleJson == '{')  // density, optics, phase
+      component[f.key] = Json::parse(f.exampleJson);
+  Json candidate = this->doc;
+  candidate["components"][name] = component;
+  const std::string problem = this->apply("components", std::move(candidate));
+  if (problem.empty()) this->scheduleRebuild();
+  return problem;
+}
+
+std::string AtmosphereEditor::removeComponent(const std::string& name) {
+  const std::string path = "components." + name;
+  if (!this->hasDocument() || !this->doc.value("components", Json::object()).contains(name))
+    return this->reject("components", this->source + ": " + path + ": no such component");
+  Json candidate = this->doc;
+  candidate["components"].erase(name);
+  const std::string problem = this->apply(path, std::move(candidate));
   if (problem.empty()) this->scheduleRebuild();
   return problem;
 }

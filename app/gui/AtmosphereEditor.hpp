@@ -50,6 +50,10 @@ public:
   /// Turns the object at `objectPath` ("components.dust.phase") into `type` (its "type" or
   /// "model"), with the new type's fields (atmosphere::withFieldType). Same return.
   std::string setType(const std::string& objectPath, const std::string& type);
+  /// Adds a component with the field table's example profile, optics and phase (an
+  /// exponential profile, coefficients, an isotropic phase), or removes one. Same return as setValue.
+  std::string addComponent(const std::string& name);
+  std::string removeComponent(const std::string& name);
   /// The message of the last rejected edit ("" after an accepted one).
   QString message() const;
 

@@ -210,6 +210,26 @@ TEST(GuiEditor, CancelKeepsTheTablesDrawn) {
   EXPECT_EQ(drawn(win.w).component("molecules").density.scaleHeightM, 7500.0);
 }
 
+// Components: one removed (the ozone: no Chappuis absorption any more), one added with the
+// table's defaults; removing the one refraction follows is rejected naming that field.
+TEST(GuiEditor, ComponentsAreAddedAndRemoved) {
+  Window win;
+  AtmosphereEditor& e = win.w.atmosphereEditor();
+  const std::string follows = e.removeComponent("molecules");
+  EXPECT_NE(follows.find("earth: refraction.followsComponent: expected the name of a component"), std::string::npos) << follows;
+  EXPECT_NE(e.removeComponent("dust").find("components.dust: no such component"), std::string::npos);
+  EXPECT_EQ(e.removeComponent("ozone"), "");
+  EXPECT_EQ(e.addComponent("haze"), "");
+  EXPECT_NE(e.addComponent("haze").find("exists already"), std::string::npos);
+  settle(win.w);
+  const atm::Atmosphere a = drawn(win.w);
+  EXPECT_EQ(a.find("ozone"), nullptr);
+  ASSERT_NE(a.find("haze"), nullptr);
+  EXPECT_EQ(a.component("haze").density.scaleHeightM, 8000.0);
+  EXPECT_EQ(a.component("haze").scatteringPerM, std::vector<double>(3, 4e-6));
+  EXPECT_EQ(a.components.size(), 4u);  // molecules, aerosols, oxygen, haze
+}
+
 TEST(GuiEditor, SaveThenLoadGivesTheSameModel) {
   Window win;
   AtmosphereEditor& e = win.w.atmosphereEditor();
