@@ -640,14 +640,25 @@ Atmosphere parseAtmosphere(const std::string& jsonText, const std::string& sourc
   return a;
 }
 
+namespace {
+
+std::string atmospherePath(const std::string& presetNameOrPath) {
+  if (looksLikePath(presetNameOrPath)) return presetNameOrPath;
+  const std::string path = (fs::path(presetDirectory()) / (presetNameOrPath + ".json")).string();
+  if (presetNameOrPath.empty() || !fs::exists(path)) throw AtmosphereError(unknownPresetMessage(presetNameOrPath));
+  return path;
+}
+
+}  // namespace
+
 Atmosphere loadAtmosphere(const std::string& presetNameOrPath, const std::vector<double>& wavelengthsNm) {
-  std::string path = presetNameOrPath;
-  if (!looksLikePath(presetNameOrPath)) {
-    path = (fs::path(presetDirectory()) / (presetNameOrPath + ".json")).string();
-    if (presetNameOrPath.empty() || !fs::exists(path))
-      throw AtmosphereError(unknownPresetMessage(presetNameOrPath));
-  }
+  const std::string path = atmospherePath(presetNameOrPath);
   return parseAtmosphere(readFile(path), path, wavelengthsNm, fs::path(path).parent_path().string());
+}
+
+std::string resolvedAtmosphereJson(const std::string& presetNameOrPath) {
+  const std::string path = atmospherePath(presetNameOrPath);
+  return resolveExtends(parseJson(readFile(path), path), path, fs::path(path).parent_path().string(), 0).dump(2);
 }
 
 }  // namespace umbra::atmosphere

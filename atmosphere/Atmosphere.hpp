@@ -76,4 +76,9 @@ Atmosphere loadAtmosphere(const std::string& presetNameOrPath, const std::vector
 Atmosphere parseAtmosphere(const std::string& jsonText, const std::string& sourceName,
                            const std::vector<double>& wavelengthsNm, const std::string& baseDirectory = ".");
 
+/// The JSON document of a preset or file with its "extends" resolved (comments dropped),
+/// as text: what an editor shows and writes back. Throws AtmosphereError like loadAtmosphere
+/// (it does not check the fields: loadAtmosphere and parseAtmosphere do).
+std::string resolvedAtmosphereJson(const std::string& presetNameOrPath);
+
 }  // namespace umbra::atmosphere

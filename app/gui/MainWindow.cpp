@@ -1,5 +1,6 @@
 #include "MainWindow.hpp"
 
+#include "AtmosphereEditor.hpp"
 #include "OutputFile.hpp"
 #include "ProfilePanel.hpp"
 #include "SceneInputs.h"
@@ -13,6 +14,8 @@
 #include <QAction>
 #include <QApplication>
 #include <QComboBox>
+#include <QDir>
+#include <QDockWidget>
 #include <QMetaObject>
 #include <QProgressBar>
 #include <QPushButton>
@@ -64,12 +67,15 @@ void checkAtmosphere(const std::string& model) {
 } // namespace
 
 /// Atmosphere tables being made in a worker thread: the source is only touched by the
-/// worker until it has finished (then by the GUI thread), except SetAbortExecute.
+/// worker until it has finished (then by the GUI thread), except SetAbortExecute. The
+/// worker's progress callback sets AbortExecute again from `cancelled`: VTK clears it when
+/// the execution starts, so a cancel that comes before that is not lost.
 struct MainWindow::AtmosphereJob {
   vtkSmartPointer<vtkAtmosphereTablesSource> source;
   vtkNew<vtkCallbackCommand> onProgress;
   std::thread thread;
   std::atomic<bool> cancelled{false};
+  QProgressBar* bar = nullptr;
 };
 
 MainWindow::MainWindow() {
@@ -83,6 +89,11 @@ MainWindow::MainWindow() {
   QAction* shot = file->addAction("&Save screenshot...");
   shot->setShortcut(QKeySequence::Save);
   connect(shot, &QAction::triggered, this, [this] { this->saveScreenshotDialog(); });
+  file->addSeparator();
+  QAction* loadAtmosphere = file->addAction("&Load atmosphere JSON...");
+  connect(loadAtmosphere, &QAction::triggered, this, [this] { this->loadAtmosphereDialog(); });
+  QAction* saveAtmosphere = file->addAction("Save atmosphere &as JSON...");
+  connect(saveAtmosphere, &QAction::triggered, this, [this] { this->saveAtmosphereDialog(); });
   file->addSeparator();
   QAction* quit = file->addAction("&Quit");
   quit->setShortcut(QKeySequence::Quit);
@@ -151,12 +162,31 @@ MainWindow::MainWindow() {
   this->atmosphereProgress->setVisible(false);
   this->atmosphereCancel = new QPushButton("Cancel");
   this->atmosphereCancel->setVisible(false);
-  connect(this->atmosphereCancel, &QPushButton::clicked, this, [this] {
-    if (this->job) {
-      this->job->cancelled = true;
-      this->job->source->SetAbortExecute(1);
-    }
-  });
+  connect(this->atmosphereCancel, &QPushButton::clicked, this, [this] { this->cancelAtmosphereTables(); });
+
+  // The atmosphere editor, in a dock (hidden until "Edit..."), with its Load/Save buttons.
+  this->editor = new AtmosphereEditor;
+  this->editor->onChanged([this](const AtmosphereEditor::Json&) { this->atmosphereEdited(); });
+  auto* editorPanel = new QWidget;
+  auto* editorLayout = new QVBoxLayout(editorPanel);
+  auto* editorButtons = new QHBoxLayout;
+  auto* loadButton = new QPushButton("Load JSON...");
+  connect(loadButton, &QPushButton::clicked, this, [this] { this->loadAtmosphereDialog(); });
+  auto* saveButton = new QPushButton("Save as JSON...");
+  connect(saveButton, &QPushButton::clicked, this, [this] { this->saveAtmosphereDialog(); });
+  editorButtons->addWidget(loadButton);
+  editorButtons->addWidget(saveButton);
+  editorButtons->addStretch(1);
+  editorLayout->addLayout(editorButtons);
+  editorLayout->addWidget(this->editor, 1);
+  this->editorDock = new QDockWidget("Atmosphere", this);
+  this->editorDock->setWidget(editorPanel);
+  this->editorDock->setObjectName("atmosphereEditor");
+  this->addDockWidget(Qt::RightDockWidgetArea, this->editorDock);
+  this->editorDock->hide();
+  this->atmosphereEdit = new QPushButton("Edit...");
+  this->atmosphereEdit->setToolTip("Show the atmosphere's fields: every component's profile, optics and phase");
+  connect(this->atmosphereEdit, &QPushButton::clicked, this, [this] { this->showAtmosphereEditor(); });
 
   auto* controls = new QHBoxLayout;
   controls->addWidget(new QLabel("Time (UTC)"));
@@ -170,6 +200,7 @@ MainWindow::MainWindow() {
   controls->addSpacing(16);
   controls->addWidget(new QLabel("Atmosphere"));
   controls->addWidget(this->atmosphereChoice);
+  controls->addWidget(this->atmosphereEdit);
   controls->addWidget(this->atmosphereProgress);
   controls->addWidget(this->atmosphereCancel);
 
@@ -204,6 +235,12 @@ void MainWindow::overrideAtmosphere(const std::string& model) {
 
 bool MainWindow::atmosphereBusy() const { return this->job != nullptr; }
 
+void MainWindow::cancelAtmosphereTables() {
+  if (!this->job) return;
+  this->job->cancelled = true;
+  this->job->source->SetAbortExecute(1);
+}
+
 void MainWindow::cancelAtmosphere() {
   if (!this->job) return;
   this->job->cancelled = true;
@@ -219,23 +256,61 @@ void MainWindow::setAtmosphere(const std::string& model) {
   if (!this->current) throw std::runtime_error("atmosphere: no scene loaded");
   if (this->atmosphereBody.empty()) throw std::runtime_error("atmosphere: the scene has no body to put it on");
   checkAtmosphere(model);
-  this->cancelAtmosphere();
+  if (model.empty()) {
+    this->editor->setDocument(AtmosphereEditor::Json(), "");
+  } else {
+    const bool edit = QFileInfo(qs(model)).absolutePath() == QDir(this->editedDir.path()).absolutePath();
+    const std::string name = edit                                     ? this->editedFrom
+                             : model.find('/') == std::string::npos ? model
+                                                                    : QFileInfo(qs(model)).fileName().toStdString();
+    this->editor->setDocument(AtmosphereEditor::Json::parse(atmosphere::resolvedAtmosphereJson(model)), name);
+  }
   int index = this->atmosphereChoice->findData(qs(model));
   if (index < 0) {
     this->atmosphereChoice->addItem(QFileInfo(qs(model)).fileName(), qs(model));
     index = this->atmosphereChoice->count() - 1;
   }
   this->atmosphereChoice->setCurrentIndex(index);
-  for (scene::Body& b : this->current->bodies)
-    b.atmosphereModel = b.name == this->atmosphereBody ? model : std::string();
-  this->view->setAtmosphereTables(nullptr);
+  this->startAtmosphere(model);
+}
+
+void MainWindow::atmosphereEdited() {
+  if (!this->current || this->atmosphereBody.empty() || !this->editor->hasDocument()) return;
+  // The edited document goes to the tables as a file, as a preset does.
+  const std::string path = (this->editedDir.path() + QString("/edit-%1.json").arg(++this->editCount)).toStdString();
+  try {
+    this->editor->saveJson(path);
+  } catch (const std::exception& e) {
+    this->setStatus(QString("atmosphere: ") + e.what());
+    return;
+  }
+  this->editedFrom = this->editor->sourceName();
+  const QString label = qs(this->editedFrom + " (edited)");
+  int index = -1;
+  for (int i = 0; i < this->atmosphereChoice->count(); ++i)
+    if (this->atmosphereChoice->itemData(i).toString().startsWith(this->editedDir.path() + "/")) index = i;
+  if (index < 0) {
+    this->atmosphereChoice->addItem(label, qs(path));
+    index = this->atmosphereChoice->count() - 1;
+  }
+  this->atmosphereChoice->setItemText(index, label);
+  this->atmosphereChoice->setItemData(index, qs(path));
+  this->atmosphereChoice->setCurrentIndex(index);
+  this->startAtmosphere(path);
+}
+
+void MainWindow::startAtmosphere(const std::string& model) {
+  this->cancelAtmosphere();
   if (model.empty()) {
+    for (scene::Body& b : this->current->bodies) b.atmosphereModel.clear();
+    this->view->setAtmosphereTables(nullptr);
+    this->drawnModel.clear();
     this->refresh();
     return;
   }
 
   // The source is configured as render::applySceneAtmosphere configures it, so that its
-  // Update there (GUI thread) finds it up to date.
+  // Update there (GUI thread) finds it up to date. The view keeps its tables meanwhile.
   this->job = std::make_unique<AtmosphereJob>();
   AtmosphereJob& j = *this->job;
   j.source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
@@ -245,9 +320,12 @@ void MainWindow::setAtmosphere(const std::string& model) {
   j.source->SetRefractedPaths(false);
   if (this->smallTables) render::useSmallAtmosphereTables(j.source);
   QProgressBar* bar = this->atmosphereProgress;
-  j.onProgress->SetClientData(bar);
-  j.onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
-    auto* progress = static_cast<QProgressBar*>(client);
+  j.bar = bar;
+  j.onProgress->SetClientData(&j);
+  j.onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
+    const auto* job = static_cast<const AtmosphereJob*>(client);
+    if (job->cancelled) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    QProgressBar* progress = job->bar;
     const int percent = static_cast<int>(100.0 * *static_cast<double*>(data));
     QMetaObject::invokeMethod(progress, [progress, percent] { progress->setValue(percent); }, Qt::QueuedConnection);
   });
@@ -255,14 +333,13 @@ void MainWindow::setAtmosphere(const std::string& model) {
   bar->setValue(0);
   bar->setVisible(true);
   this->atmosphereCancel->setVisible(true);
-  this->setStatus(qs("computing the " + model + " atmosphere tables..."));
+  this->setStatus(qs("computing the " + this->atmosphereChoice->currentText().toStdString() + " atmosphere tables..."));
   const int generation = ++this->jobGeneration;
   vtkAtmosphereTablesSource* source = j.source;
   j.thread = std::thread([this, source, generation] {
     source->Update();
     QMetaObject::invokeMethod(this, [this, generation] { this->atmosphereFinished(generation); }, Qt::QueuedConnection);
   });
-  this->refresh();  // meanwhile: the scene without the atmosphere
 }
 
 void MainWindow::atmosphereFinished(int generation) {
@@ -273,15 +350,50 @@ void MainWindow::atmosphereFinished(int generation) {
   this->atmosphereCancel->setVisible(false);
   const std::string error = done->source->GetLastError();
   if (!error.empty()) {
-    for (scene::Body& b : this->current->bodies) b.atmosphereModel.clear();
-    this->atmosphereChoice->setCurrentIndex(0);
+    // The view keeps what it drew; the choice goes back to it.
+    const int index = this->atmosphereChoice->findData(qs(this->drawnModel));
+    this->atmosphereChoice->setCurrentIndex(std::max(index, 0));
     this->refresh();
     this->setStatus(qs("atmosphere: " + (done->cancelled ? std::string("cancelled") : error)));
     return;
   }
   done->source->RemoveObserver(done->onProgress);
+  const std::string model = done->source->GetAtmosphere();
+  for (scene::Body& b : this->current->bodies)
+    b.atmosphereModel = b.name == this->atmosphereBody ? model : std::string();
   this->view->setAtmosphereTables(done->source);
+  this->drawnModel = model;
   this->refresh();
+}
+
+void MainWindow::showAtmosphereEditor() {
+  this->editorDock->show();
+  this->editorDock->raise();
+}
+
+void MainWindow::saveAtmosphereJson(const std::string& path) const { this->editor->saveJson(path); }
+
+void MainWindow::loadAtmosphereDialog() {
+  const QString path = QFileDialog::getOpenFileName(this, "Load atmosphere", QString(), "Atmosphere files (*.json);;All files (*)");
+  if (path.isEmpty()) return;
+  try {
+    this->setAtmosphere(path.toStdString());
+    this->showAtmosphereEditor();
+  } catch (const std::exception& e) {
+    QMessageBox::critical(this, "Cannot load atmosphere", e.what());
+  }
+}
+
+void MainWindow::saveAtmosphereDialog() {
+  QString path = QFileDialog::getSaveFileName(this, "Save atmosphere as JSON", "atmosphere.json", "Atmosphere files (*.json)");
+  if (path.isEmpty()) return;
+  if (QFileInfo(path).suffix().isEmpty()) path += ".json";
+  try {
+    this->saveAtmosphereJson(path.toStdString());
+    this->statusBar()->showMessage("wrote " + path, 4000);
+  } catch (const std::exception& e) {
+    QMessageBox::critical(this, "Cannot save atmosphere", e.what());
+  }
 }
 
 void MainWindow::loadScene(const std::string& path, std::optional<scene::UtcTime> time) {
@@ -319,6 +431,7 @@ void MainWindow::loadScene(const std::string& path, std::optional<scene::UtcTime
   // target body.
   this->cancelAtmosphere();
   this->view->setAtmosphereTables(nullptr);
+  this->drawnModel.clear();
   const scene::Scene& c = *this->current;
   std::string model;
   this->atmosphereBody.clear();

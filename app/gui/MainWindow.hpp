@@ -1,22 +1,27 @@
 #pragma once
 // umbra-gui's main window: the 3D view of a scene (left), the cross-section of the shadow
 // the camera's target lies in (right), a time slider (+-6 h around the scene time, 1-minute
-// steps), exposure and glare controls, the atmosphere (none or a preset, drawn on the
-// scene's body with an atmosphere, else the observer's or target body) with a progress
-// bar and a cancel button while its tables are computed in a worker thread (below), and a
-// status bar with the receiver's place in the shadow.
+// steps), exposure and glare controls, the atmosphere (none, a preset or a file, drawn on
+// the scene's body with an atmosphere, else the observer's or target body) with a progress
+// bar and a cancel button while its tables are computed in a worker thread (below), its
+// editor (a dock: every field of the model, AtmosphereEditor.hpp; an accepted edit
+// recomputes the tables the same way; Load/Save JSON), and a status bar with the
+// receiver's place in the shadow. While new tables are computed the view keeps the ones
+// it has; a cancelled or failed computation leaves them.
 #include "scene/ReceiverShadow.hpp"
 #include "scene/Scene.hpp"
 
 #include <QMainWindow>
 #include <QRect>
 #include <QString>
+#include <QTemporaryDir>
 
 #include <memory>
 #include <optional>
 #include <string>
 
 class QComboBox;
+class QDockWidget;
 class QDoubleSpinBox;
 class QLabel;
 class QProgressBar;
@@ -26,6 +31,7 @@ class QVTKOpenGLNativeWidget;
 
 namespace umbra::gui {
 
+class AtmosphereEditor;
 class ProfilePanel;
 class SceneView;
 
@@ -51,6 +57,18 @@ public:
   void overrideAtmosphere(const std::string& model);
   /// True while atmosphere tables are being computed.
   bool atmosphereBusy() const;
+  /// The Cancel button: stops the tables being computed; the view keeps the ones it has.
+  void cancelAtmosphereTables();
+  /// The model (preset or file) whose tables the view draws ("" : none). An edit's model
+  /// is a file in a private temporary folder.
+  const std::string& drawnAtmosphere() const { return this->drawnModel; }
+  /// The atmosphere editor (its document follows setAtmosphere; its accepted edits
+  /// recompute the tables).
+  AtmosphereEditor& atmosphereEditor() const { return *this->editor; }
+  /// Shows the editor's dock (the "Edit..." button).
+  void showAtmosphereEditor();
+  /// Writes the edited atmosphere as JSON (atomically). Throws std::runtime_error naming the path.
+  void saveAtmosphereJson(const std::string& path) const;
   /// Small tables (useSmallAtmosphereTables) for the next setAtmosphere: quick looks, tests.
   void useSmallAtmosphereTables(bool small) { this->smallTables = small; }
   /// Exposure of the 3D view in EV (the spin box follows).
@@ -81,6 +99,10 @@ private:
   void setStatus(const QString& text);
   void cancelAtmosphere();  // stops and joins the worker, if any
   void atmosphereFinished(int generation);
+  void startAtmosphere(const std::string& model);  // the tables in the worker
+  void atmosphereEdited();  // the editor's accepted document -> a file -> startAtmosphere
+  void loadAtmosphereDialog();
+  void saveAtmosphereDialog();
 
   QVTKOpenGLNativeWidget* viewWidget = nullptr;
   QVTKOpenGLNativeWidget* plotWidget = nullptr;
@@ -92,6 +114,9 @@ private:
   QProgressBar* atmosphereProgress = nullptr;
   QPushButton* atmosphereCancel = nullptr;
   QDoubleSpinBox* glare = nullptr;
+  QPushButton* atmosphereEdit = nullptr;
+  QDockWidget* editorDock = nullptr;
+  AtmosphereEditor* editor = nullptr;
 
   std::unique_ptr<SceneView> view;
   std::unique_ptr<ProfilePanel> plot;
@@ -103,6 +128,10 @@ private:
 
   std::string atmosphereBody;  // the body the atmosphere goes on ("" : none possible)
   std::optional<std::string> atmosphereOverride;
+  std::string drawnModel;  // the model of the tables the view has
+  QTemporaryDir editedDir;  // the editor's documents, one file per accepted edit
+  int editCount = 0;
+  std::string editedFrom;  // the name the edits started from (the editor's name for them)
   bool smallTables = false;
   struct AtmosphereJob;
   std::unique_ptr<AtmosphereJob> job;

@@ -1,9 +1,11 @@
-// umbra-gui [SCENE.json] [--time ISO] [--atmosphere NAME|none] [--atmosphere-tables default|small]
-//           [--exposure EV] [--glare S] [--screenshot FILE.png] [--quit-after-screenshot]
+// umbra-gui [SCENE.json] [--time ISO] [--atmosphere NAME|FILE|none] [--atmosphere-set FIELD=VALUE ...]
+//           [--atmosphere-tables default|small] [--exposure EV] [--glare S] [--screenshot FILE.png]
+//           [--editor] [--quit-after-screenshot]
 //
 // The desktop GUI: a scene's bodies in 3D, a time slider that moves them, and the
 // cross-section of the shadow the camera's target lies in. With --screenshot it saves
 // the window once it is shown (batch mode: errors are one line on stderr and exit 1).
+#include "AtmosphereEditor.hpp"
 #include "MainWindow.hpp"
 #include "OutputFile.hpp"
 #include "scene/Time.hpp"
@@ -83,11 +85,18 @@ int main(int argc, char** argv) {
   const QCommandLineOption quitOption("quit-after-screenshot", "Exit (0) once the screenshot is written.");
   const QCommandLineOption atmosphereOption(
       "atmosphere", "Draw this atmosphere (a preset, a file, or none) instead of the scene's.", "NAME");
+  const QCommandLineOption setOption(
+      "atmosphere-set",
+      "Change a field of the atmosphere as the editor does (repeatable), e.g. components.aerosols.densityScale=20.",
+      "FIELD=VALUE");
+  const QCommandLineOption editorOption("editor", "Show the atmosphere editor (every field of the model).");
   const QCommandLineOption tablesOption(
       "atmosphere-tables", "Atmosphere table sizes: default, or small (quick looks and tests).", "SIZES", "default");
   const QCommandLineOption exposureOption("exposure", "Exposure in EV (default: the scene's).", "EV");
   const QCommandLineOption glareOption("glare", "Glare strength, 0..10 (default 0).", "S");
   parser.addOption(atmosphereOption);
+  parser.addOption(setOption);
+  parser.addOption(editorOption);
   parser.addOption(tablesOption);
   parser.addOption(exposureOption);
   parser.addOption(glareOption);
@@ -136,7 +145,17 @@ int main(int argc, char** argv) {
       }
     }
     if (!positional.isEmpty()) window.loadScene(positional.first().toStdString(), time);
-    else if (time || parser.isSet(atmosphereOption)) throw std::runtime_error("--time and --atmosphere need a scene file");
+    else if (time || parser.isSet(atmosphereOption) || parser.isSet(setOption))
+      throw std::runtime_error("--time and --atmosphere need a scene file");
+    for (const QString& change : parser.values(setOption)) {
+      const int eq = change.indexOf('=');
+      if (eq <= 0) throw std::runtime_error("--atmosphere-set: expected FIELD=VALUE, got '" + change.toStdString() + "'");
+      if (!window.atmosphereEditor().hasDocument()) throw std::runtime_error("--atmosphere-set: the scene shows no atmosphere");
+      const std::string problem =
+          window.atmosphereEditor().setValue(change.left(eq).toStdString(), change.mid(eq + 1).toStdString());
+      if (!problem.empty()) throw std::runtime_error("--atmosphere-set: " + problem);
+    }
+    window.atmosphereEditor().flush();  // the edited tables now, not after the debounce
     if (parser.isSet(exposureOption)) window.setExposure(number(exposureOption, -40.0, 40.0));
     if (parser.isSet(glareOption)) window.setGlare(number(glareOption, 0.0, 10.0));
   } catch (const std::exception& e) {
@@ -144,6 +163,7 @@ int main(int argc, char** argv) {
     error = e.what();
   }
 
+  if (parser.isSet(editorOption)) window.showAtmosphereEditor();
   window.show();
   if (!error.empty())
     QTimer::singleShot(0, &window, [&window, error] { QMessageBox::critical(&window, "umbra-gui", QString::fromStdString(error)); });

@@ -221,6 +221,22 @@ TEST(GuiScreenshot, AtmosphereOnOffAndPreset) {
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
 }
 
+// --atmosphere-set goes through the editor: a bad value is one line naming the field, exit 1.
+TEST(GuiScreenshot, AtmosphereSetBadValueIsOneLine) {
+  TempDir dir;
+  const std::string sunset = std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/earth-sunset.json";
+  const RunResult r = umbra::test::run(
+      UMBRA_GUI_EXE,
+      {sunset, "--atmosphere-tables", "small", "--atmosphere-set", "components.aerosols.density.scaleHeightM=-5",
+       "--screenshot", dir / "x.png"},
+      {"UMBRA_CACHE_DIR=" + (dir / "cache")});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("--atmosphere-set: earth: components.aerosols.density.scaleHeightM: expected"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
 TEST(GuiScreenshot, Help) {
   const RunResult r = umbra::test::run(UMBRA_GUI_EXE, {"--help"});
   EXPECT_EQ(r.exitCode, 0) << r.err;
@@ -228,4 +244,5 @@ TEST(GuiScreenshot, Help) {
   EXPECT_NE(r.out.find("--quit-after-screenshot"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--time"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--atmosphere"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--atmosphere-set"), std::string::npos) << r.out;
 }

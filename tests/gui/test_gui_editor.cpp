@@ -1,0 +1,308 @@
+// The atmosphere editor driven in-process (this binary runs under xvfb-run, see
+// umbra_add_render_test) on umbra-gui's MainWindow with small tables: an accepted edit
+// reaches the tables and changes the sky the way physics says; a rejected one names the
+// component and field and leaves the tables; Save/Load JSON round-trips every field; the
+// time slider moves the Sun under the same tables.
+#include "AtmosphereEditor.hpp"
+#include "MainWindow.hpp"
+
+#include "Atmosphere.hpp"
+#include "Describe.hpp"
+#include "Spectrum.hpp"
+#include "scene/Time.hpp"
+
+#include "CliRunner.hpp"
+
+#include <QApplication>
+#include <QComboBox>
+#include <QElapsedTimer>
+#include <QImage>
+#include <QSurfaceFormat>
+#include <QTreeWidget>
+#include <QTreeWidgetItemIterator>
+#include <QVTKOpenGLNativeWidget.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <optional>
+#include <fstream>
+#include <iostream>
+#include <regex>
+
+using umbra::gui::AtmosphereEditor;
+using umbra::gui::MainWindow;
+using Json = AtmosphereEditor::Json;
+namespace atm = umbra::atmosphere;
+
+namespace {
+
+const std::string kSunset = std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/earth-sunset.json";
+
+/// Runs the event loop until the tables are made and no edit is pending (at most 60 s).
+void settle(MainWindow& w) {
+  QElapsedTimer clock;
+  clock.start();
+  while ((w.atmosphereBusy() || w.atmosphereEditor().changePending()) && clock.elapsed() < 60000)
+    QApplication::processEvents(QEventLoop::AllEvents, 50);
+  QApplication::processEvents();
+  ASSERT_FALSE(w.atmosphereBusy()) << "the tables took more than 60 s";
+}
+
+struct Window {
+  umbra::test::TempDir dir;
+  MainWindow w;
+  explicit Window(std::optional<umbra::scene::UtcTime> time = std::nullopt) {
+    w.useSmallAtmosphereTables(true);
+    w.loadScene(kSunset, time);
+    w.show();
+    settle(w);
+  }
+  QImage shot(const std::string& name) {
+    w.saveScreenshot(dir / name);
+    return QImage(QString::fromStdString(dir / name));
+  }
+  /// A sky pixel: a quarter of the view's width in, 10 % below its top (away from the Sun).
+  QRgb sky(const QImage& image) const {
+    const QRect v = w.viewRect();
+    return image.pixel(v.left() + v.width() / 4, v.top() + v.height() / 10);
+  }
+};
+
+atm::Atmosphere drawn(const MainWindow& w) { return atm::loadAtmosphere(w.drawnAtmosphere(), atm::WavelengthSet::rgb().nm); }
+
+std::string describe(QRgb c) {
+  return std::to_string(qRed(c)) + " " + std::to_string(qGreen(c)) + " " + std::to_string(qBlue(c));
+}
+
+}  // namespace
+
+TEST(GuiEditor, ThePresetsFieldsAreInTheTreeWithUnits) {
+  Window win;
+  AtmosphereEditor& e = win.w.atmosphereEditor();
+  ASSERT_TRUE(e.hasDocument());
+  EXPECT_EQ(e.sourceName(), "earth");
+  EXPECT_EQ(win.w.drawnAtmosphere(), "earth");
+  // Every component's profile parameter is an item with the table's unit.
+  int scaleHeights = 0;
+  for (QTreeWidgetItemIterator it(e.tree()); *it; ++it) {
+    const QString path = (*it)->data(0, Qt::UserRole).toString();
+    if (path.endsWith(".density.scaleHeightM")) {
+      ++scaleHeights;
+      EXPECT_EQ((*it)->text(2), "m") << path.toStdString();
+      EXPECT_EQ((*it)->text(3), "> 0") << path.toStdString();
+    }
+  }
+  EXPECT_EQ(scaleHeights, 3);  // molecules, aerosols, oxygen (ozone is a tent)
+
+  // As a user edits: a value typed into the tree, a type chosen in its combo box.
+  auto item = [&](const QString& path) -> QTreeWidgetItem* {
+    for (QTreeWidgetItemIterator it(e.tree()); *it; ++it)
+      if ((*it)->data(0, Qt::UserRole).toString() == path) return *it;
+    return nullptr;
+  };
+  QTreeWidgetItem* h = item("components.aerosols.density.scaleHeightM");
+  ASSERT_NE(h, nullptr);
+  h->setText(1, "3000");
+  EXPECT_EQ(e.document()["components"]["aerosols"]["density"]["scaleHeightM"], 3000);
+  EXPECT_TRUE(e.changePending());
+  QTreeWidgetItem* type = item("components.aerosols.phase.type");
+  ASSERT_NE(type, nullptr);
+  auto* choice = qobject_cast<QComboBox*>(e.tree()->itemWidget(type, 1));
+  ASSERT_NE(choice, nullptr);
+  EXPECT_GE(choice->findText("tabulated"), 0);
+  emit choice->textActivated("henyey-greenstein");
+  QApplication::processEvents();
+  EXPECT_EQ(e.document()["components"]["aerosols"]["phase"], Json::parse(R"({"type": "henyey-greenstein", "g": 0.8})"));
+  ASSERT_NE(item("components.aerosols.phase.g"), nullptr);  // the tree was rebuilt
+  EXPECT_EQ(item("components.aerosols.phase.g")->text(1), "0.8");
+  // A number turned into a spectrum table: its wavelengths and values become items.
+  ASSERT_EQ(e.setValue("components.aerosols.phase.g", R"({"wavelengthsNm": [440, 680], "values": [0.85, 0.75]})"), "");
+  QApplication::processEvents();
+  ASSERT_NE(item("components.aerosols.phase.g.values"), nullptr);
+  EXPECT_EQ(item("components.aerosols.phase.g.values")->text(1), "[0.85,0.75]");
+  settle(win.w);
+  const atm::Atmosphere a = drawn(win.w);
+  EXPECT_EQ(a.component("aerosols").density.scaleHeightM, 3000.0);
+  // g at 680, 550, 440 nm (the view's wavelengths), linear in between: 0.85 - 0.1 * 110 / 240 at 550.
+  ASSERT_EQ(a.component("aerosols").phases.size(), 3u);
+  EXPECT_DOUBLE_EQ(a.component("aerosols").phases[0].g(), 0.75);
+  EXPECT_NEAR(a.component("aerosols").phases[1].g(), 0.85 - 0.1 * 110.0 / 240.0, 1e-12);
+  EXPECT_DOUBLE_EQ(a.component("aerosols").phases[2].g(), 0.85);
+}
+
+// Twenty times the aerosols (densityScale 1 -> 20: vertical optical depth 0.0053 -> 0.11,
+// still thin) scatter more sunlight forward: with the Sun 60 degrees high the sky about 12
+// degrees from it, where the aerosols' forward peak (Cornette-Shanks, g = 0.8) dominates,
+// gets brighter in every channel (the aerosols are grey).
+TEST(GuiEditor, AnEditReachesTheTablesAndTheSky) {
+  Window win(umbra::scene::parseUtc("2024-03-20T14:05:00Z"));
+  win.w.setExposure(-12.0);
+  const QRgb before = win.sky(win.shot("before.png"));
+  AtmosphereEditor& e = win.w.atmosphereEditor();
+  EXPECT_NE(e.setValue("components.aerosols.densityScales", "20").find("earth: components.aerosols.densityScales: no such field"),
+            std::string::npos);
+  EXPECT_FALSE(e.changePending());
+  EXPECT_EQ(e.setValue("components.aerosols.densityScale", "20"), "");  // optional: not in the preset, added
+  EXPECT_EQ(e.message(), "");
+  EXPECT_TRUE(e.changePending());  // debounced
+  settle(win.w);
+  EXPECT_NE(win.w.drawnAtmosphere(), "earth");
+  const atm::Atmosphere a = drawn(win.w);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_DOUBLE_EQ(a.component("aerosols").scatteringPerM[i], 20 * 3.996e-6);
+    EXPECT_DOUBLE_EQ(a.component("aerosols").absorptionPerM[i], 20 * 4.44e-7);
+  }
+  EXPECT_EQ(a.component("molecules").density.scaleHeightM, 8000.0);
+  const QRgb after = win.sky(win.shot("after.png"));
+  std::printf("  sky with the aerosols' densityScale 1: %s, 20: %s\n", describe(before).c_str(),
+              describe(after).c_str());
+  EXPECT_LT(qRed(before), 200) << "not saturated";
+  EXPECT_GT(qRed(after), qRed(before) + 10);
+  EXPECT_GT(qGreen(after), qGreen(before) + 10);
+  EXPECT_GT(qBlue(after), qBlue(before) + 5);
+}
+
+TEST(GuiEditor, ABadValueIsRejectedAndTheTablesStay) {
+  Window win;
+  AtmosphereEditor& e = win.w.atmosphereEditor();
+  const Json doc = e.document();
+  const std::string problem = e.setValue("components.molecules.density.scaleHeightM", "-8000");
+  EXPECT_NE(problem.find("earth: components.molecules.density.scaleHeightM: "), std::string::npos) << problem;
+  EXPECT_EQ(std::count(problem.begin(), problem.end(), '\n'), 0) << problem;
+  EXPECT_EQ(e.message().toStdString(), problem);
+  EXPECT_EQ(e.document(), doc);
+  EXPECT_FALSE(e.changePending());
+  settle(win.w);
+  EXPECT_EQ(win.w.drawnAtmosphere(), "earth");
+  // The value stays in the tree, in red.
+  for (QTreeWidgetItemIterator it(e.tree()); *it; ++it)
+    if ((*it)->data(0, Qt::UserRole).toString() == "components.molecules.density.scaleHeightM") {
+      EXPECT_EQ((*it)->text(1), "-8000");
+      EXPECT_EQ((*it)->foreground(1).color(), QColor(Qt::red));
+    }
+
+  const std::string text = e.setValue("components.aerosols.phase.g", "strong");
+  EXPECT_NE(text.find("components.aerosols.phase.g: expected a number"), std::string::npos) << text;
+  const std::string g = e.setValue("components.aerosols.phase.g", "1.5");
+  EXPECT_NE(g.find("components.aerosols.phase.g: expected a number in (-1, 1), got 1.5"), std::string::npos) << g;
+  const std::string unknown = e.setType("components.aerosols.phase", "no-such-phase");
+  EXPECT_NE(unknown.find("components.aerosols.phase"), std::string::npos) << unknown;
+  EXPECT_EQ(e.document(), doc);
+  EXPECT_FALSE(e.changePending());
+}
+
+// Cancel right after an edit: the view keeps the preset's tables, the choice goes back to it.
+TEST(GuiEditor, CancelKeepsTheTablesDrawn) {
+  Window win;
+  AtmosphereEditor& e = win.w.atmosphereEditor();
+  ASSERT_EQ(e.setValue("components.molecules.density.scaleHeightM", "7000"), "");
+  e.flush();
+  ASSERT_TRUE(win.w.atmosphereBusy());
+  win.w.cancelAtmosphereTables();
+  settle(win.w);
+  EXPECT_EQ(win.w.drawnAtmosphere(), "earth");
+  EXPECT_NE(win.w.statusText().indexOf("atmosphere: cancelled"), -1) << win.w.statusText().toStdString();
+  // The edit is still in the editor; the next one computes its tables.
+  EXPECT_EQ(e.document()["components"]["molecules"]["density"]["scaleHeightM"], 7000);
+  ASSERT_EQ(e.setValue("components.molecules.density.scaleHeightM", "7500"), "");
+  settle(win.w);
+  EXPECT_EQ(drawn(win.w).component("molecules").density.scaleHeightM, 7500.0);
+}
+
+// Components: one removed (the ozone: no Chappuis absorption any more), one added with the
+// table's defaults; removing the one refraction follows is rejected naming that field.
+TEST(GuiEditor, ComponentsAreAddedAndRemoved) {
+  Window win;
+  AtmosphereEditor& e = win.w.atmosphereEditor();
+  const std::string follows = e.removeComponent("molecules");
+  EXPECT_NE(follows.find("earth: refraction.followsComponent: expected the name of a component"), std::string::npos) << follows;
+  EXPECT_NE(e.removeComponent("dust").find("components.dust: no such component"), std::string::npos);
+  EXPECT_EQ(e.removeComponent("ozone"), "");
+  EXPECT_EQ(e.addComponent("haze"), "");
+  EXPECT_NE(e.addComponent("haze").find("exists already"), std::string::npos);
+  settle(win.w);
+  const atm::Atmosphere a = drawn(win.w);
+  EXPECT_EQ(a.find("ozone"), nullptr);
+  ASSERT_NE(a.find("haze"), nullptr);
+  EXPECT_EQ(a.component("haze").density.scaleHeightM, 8000.0);
+  EXPECT_EQ(a.component("haze").scatteringPerM, std::vector<double>(3, 4e-6));
+  EXPECT_EQ(a.components.size(), 4u);  // molecules, aerosols, oxygen, haze
+}
+
+TEST(GuiEditor, SaveThenLoadGivesTheSameModel) {
+  Window win;
+  AtmosphereEditor& e = win.w.atmosphereEditor();
+  e.setDebounceMs(0);
+  ASSERT_EQ(e.setType("components.aerosols.phase", "double-henyey-greenstein"), "");
+  ASSERT_EQ(e.setValue("components.aerosols.phase.alpha", "0.7"), "");
+  ASSERT_EQ(e.setValue("groundAlbedo", "0.3"), "");
+  ASSERT_EQ(e.setValue("components.ozone.optics.crossSectionM2.values[1]", "3e-28"), "");
+  ASSERT_EQ(e.setValue("name", "earth-edited"), "");
+  const Json edited = e.document();
+  const std::string path = win.dir / "mine.json";
+  win.w.saveAtmosphereJson(path);
+  settle(win.w);
+
+  std::ifstream in(path);
+  EXPECT_EQ(Json::parse(in), edited);
+  const auto rgb = atm::WavelengthSet::rgb().nm;
+  const atm::ParameterMap saved = atm::atmosphereParameters(atm::loadAtmosphere(path, rgb));
+  const atm::ParameterMap shown = atm::atmosphereParameters(atm::parseAtmosphere(edited.dump(), "x", rgb));
+  EXPECT_EQ(saved, shown);
+  EXPECT_EQ(saved.at("groundAlbedo"), "0.3 0.3 0.3");
+  EXPECT_NE(saved.at("component.aerosols.phases").find("0.7"), std::string::npos) << saved.at("component.aerosols.phases");
+  // The tables drawn are the edited model's.
+  EXPECT_EQ(atm::atmosphereParameters(drawn(win.w)), shown);
+
+  // Load: the file becomes the document and the tables' model.
+  win.w.setAtmosphere("earth");
+  settle(win.w);
+  EXPECT_NE(e.document(), edited);
+  win.w.setAtmosphere(path);
+  EXPECT_EQ(e.document(), edited);
+  settle(win.w);
+  EXPECT_EQ(win.w.drawnAtmosphere(), path);
+
+  // A bad file: one line naming the file and the field; the document and tables stay.
+  const std::string bad = win.dir / "bad.json";
+  Json broken = edited;
+  broken["components"]["aerosols"]["density"]["scaleHeightM"] = -1;
+  std::ofstream(bad) << broken.dump();
+  try {
+    win.w.setAtmosphere(bad);
+    ADD_FAILURE() << "a negative scale height was loaded";
+  } catch (const std::exception& x) {
+    const std::string m = x.what();
+    EXPECT_NE(m.find(bad + ": components.aerosols.density.scaleHeightM: "), std::string::npos) << m;
+  }
+  EXPECT_EQ(e.document(), edited);
+  EXPECT_EQ(win.w.drawnAtmosphere(), path);
+  // The JSON written is all there is: no temporary left beside it.
+  EXPECT_EQ(win.dir.fileCount(), 2);  // mine.json and bad.json
+}
+
+// The time slider with an atmosphere: an hour after sunset the same tables (no
+// recomputation) give a darker sky; the plot panel and the status follow the time.
+TEST(GuiEditor, TimeSliderKeepsTheTablesAndDarkensTheSky) {
+  Window win;
+  const QRgb before = win.sky(win.shot("sunset.png"));
+  const std::string model = win.w.drawnAtmosphere();
+  win.w.showTime(umbra::scene::parseUtc("2024-03-20T19:05:00Z"));
+  EXPECT_FALSE(win.w.atmosphereBusy());
+  EXPECT_EQ(win.w.drawnAtmosphere(), model);
+  const QRgb after = win.sky(win.shot("dusk.png"));
+  std::printf("  sky at 18:05 %s, at 19:05 %s\n", describe(before).c_str(), describe(after).c_str());
+  EXPECT_LT(qBlue(after) + qGreen(after), qBlue(before) + qGreen(before) - 20);
+  EXPECT_NE(win.w.statusText().indexOf("2024-03-20T19:05:00Z"), -1) << win.w.statusText().toStdString();
+  EXPECT_GT(win.w.plotRect().width(), 100);
+}
+
+int main(int argc, char** argv) {
+  umbra::test::TempDir cache;  // a private table cache
+  setenv("UMBRA_CACHE_DIR", cache.path.c_str(), 1);
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
