@@ -546,7 +546,7 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
     in.object(value, field, {"model", "effectiveRadiusM", "effectiveVariance", "numberDensityPerM3",
                              "refractiveIndexReal", "refractiveIndexImag"});
     const double rEff = in.number(in.require(value, "effectiveRadiusM", field), key("effectiveRadiusM"),
-                                  "an effective radius in (0, 1e-4] m", [](double x) { return x > 0.0 && x <= 1e-4; });
+                                  "an effective radius in (0, 2e-5] m", [](double x) { return x > 0.0 && x <= 2e-5; });
     const double vEff = value.contains("effectiveVariance")
                             ? in.number(value["effectiveVariance"], key("effectiveVariance"),
                                         "an effective variance in [0, 2]", [](double x) { return x >= 0.0 && x <= 2.0; })

@@ -128,6 +128,17 @@ TEST(ModelAerosols, MieModelWithoutSpreadIsOneSphere) {
   EXPECT_NEAR(c.extinctionPerM(0), q.qExt * area, 1e-12 * q.qExt * area);
   EXPECT_NEAR(c.phase(0).asymmetry(), q.g, 2e-3);
   EXPECT_NEAR(umbra::test::integrateSphere([&](double mu) { return c.phase(0)(mu); }), 1.0, 1e-9);
+  // Bad input: one message naming the field.
+  std::string bad = json;
+  bad.replace(bad.find("1.6e-6"), 6, "-1e-6");
+  try {
+    parseAtmosphere(bad, "sphere.json", {550.0});
+    ADD_FAILURE() << "accepted a negative effective radius";
+  } catch (const AtmosphereError& e) {
+    EXPECT_NE(std::string(e.what()).find("sphere.json: components.dust.optics.effectiveRadiusM: expected an effective radius"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ModelAerosols, TabulatedComponentIsTheMieHook) {
