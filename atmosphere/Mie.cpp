@@ -204,8 +204,19 @@ MieEfficiencies mieSphere(double x, std::complex<double> m, const std::vector<do
   return efficienciesFrom(x, m, a, b);
 }
 
+LogNormalSizes logNormalFromEffective(double effectiveRadiusM, double effectiveVariance, double numberDensityPerM3) {
+  if (!(effectiveRadiusM > 0.0) || !std::isfinite(effectiveRadiusM))
+    throw std::invalid_argument("effective radius must be positive");
+  if (!(effectiveVariance >= 0.0) || !std::isfinite(effectiveVariance))
+    throw std::invalid_argument("effective variance must be >= 0");
+  if (!(numberDensityPerM3 >= 0.0) || !std::isfinite(numberDensityPerM3))
+    throw std::invalid_argument("number density must be >= 0");
+  const double s2 = std::log1p(effectiveVariance);  // ln^2 sigma_g
+  return {effectiveRadiusM * std::exp(-2.5 * s2), std::exp(std::sqrt(s2)), numberDensityPerM3};
+}
+
 MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNormalSizes& sizes, int phaseSamples,
-                        int extraLevels) {
+                        int extraLevels, double bulkTolerance, double phaseTolerance) {
   if (!(wavelengthM > 0.0) || !std::isfinite(wavelengthM))
     throw std::invalid_argument("mieLogNormal: wavelength must be positive");
   if (!(sizes.medianRadiusM > 0.0) || !std::isfinite(sizes.medianRadiusM))
@@ -216,6 +227,8 @@ MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNor
     throw std::invalid_argument("mieLogNormal: number density must be >= 0");
   if (phaseSamples < 2) throw std::invalid_argument("mieLogNormal: phaseSamples must be >= 2");
   if (extraLevels < 0 || extraLevels > 8) throw std::invalid_argument("mieLogNormal: extraLevels must be in [0, 8]");
+  if (!(bulkTolerance > 0.0 && bulkTolerance < 1.0) || !(phaseTolerance > 0.0 && phaseTolerance < 1.0))
+    throw std::invalid_argument("mieLogNormal: tolerances must be in (0, 1)");
   checkSphere(2.0 * kPi * sizes.medianRadiusM / wavelengthM, m);
 
   const double k = 2.0 * kPi / wavelengthM;
@@ -301,7 +314,6 @@ MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNor
     //    step resolves, at the Nyquist limit, the interference oscillations cos(omega x) at
     //    the centre of the window, omega = 2 + 4|m|. Changes are relative to each quantity,
     //    except g C_sca, whose change is measured against C_sca (g may be ~0).
-    constexpr double kBulkTolerance = 1e-8, kPhaseTolerance = 1e-6;
     constexpr long kMaxIntervals = 16384;
     const double omega = 2.0 + 4.0 * std::abs(m);
     const double hStart = std::min(kCoarseStep, kPi / (omega * s * sizeAt(uc)));
@@ -353,7 +365,7 @@ MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNor
         const double scale = std::abs(q == 2 ? total[1] : total[q]);
         const double rel = scale > 0.0 ? std::abs(total[q] - previous[q]) / scale : 0.0;
         change = std::max(change, rel);
-        if (rel > (q < 3 ? kBulkTolerance : kPhaseTolerance)) ok = false;
+        if (rel > (q < 3 ? bulkTolerance : phaseTolerance)) ok = false;
       }
       if (levelsLeft > 0) {
         --levelsLeft;

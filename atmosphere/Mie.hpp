@@ -67,6 +67,13 @@ struct LogNormalSizes {
   double numberDensityPerM3;  ///< N [1/m^3]
 };
 
+/// The log-normal distribution with a given effective radius and effective variance
+/// (Hansen & Travis 1974, Space Sci. Rev. 16, 527, Eqs. 2.53-2.54 for the log-normal:
+/// r_eff = <r^3>/<r^2> = r_m exp(5/2 ln^2 sigma_g), v_eff = exp(ln^2 sigma_g) - 1), the
+/// parameters planetary retrievals publish. v_eff = 0: one radius. Throws
+/// std::invalid_argument for r_eff <= 0, v_eff < 0 or a negative density.
+LogNormalSizes logNormalFromEffective(double effectiveRadiusM, double effectiveVariance, double numberDensityPerM3);
+
 struct MieAerosol {
   double scatteringPerM = 0, extinctionPerM = 0, absorptionPerM = 0;  ///< bulk coefficients at the given number density [1/m]
   double asymmetry = 0;          ///< scattering-weighted mean cosine
@@ -106,11 +113,15 @@ struct MieAerosol {
 ///   The forward-scattering samples of the phase table grow like r^6 and are truncated with
 ///   the window like everything else, i.e. at the 1e-10 level of C_sca, not of their own.
 ///
+/// bulkTolerance and phaseTolerance (in (0, 1)) replace the 1e-8 and 1e-6 above: a table
+/// for rendering needs far less (atmosphere presets use 1e-4 and 1e-3, ~10 times fewer
+/// nodes for Martian dust).
 /// phaseSamples (>= 2) table entries at theta_j = pi (1 - j/(phaseSamples - 1)).
 /// sigma_g = 1 gives the single sphere of radius r_m. Throws std::invalid_argument for
 /// non-positive wavelength or radius, sigma_g < 1, negative density, Im(m) < 0,
 /// phaseSamples < 2, extraLevels outside [0, 8].
 MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNormalSizes& sizes,
-                        int phaseSamples = 181, int extraLevels = 0);
+                        int phaseSamples = 181, int extraLevels = 0, double bulkTolerance = 1e-8,
+                        double phaseTolerance = 1e-6);
 
 } // namespace umbra::atmosphere

@@ -544,7 +544,10 @@ struct Model {
       Lobe tab;
       tab.table.resize(kPhaseTableSize);
       for (int i = 0; i < kPhaseTableSize; ++i) tab.table[i] = p(-1.0 + 2.0 * i / (kPhaseTableSize - 1));
-      m.lobes.push_back({addLobe(tab, l, "table:" + p.describe(), index), 1.0});
+      // keyed by the table's bytes: equal tables share a lobe, different ones (e.g. one
+      // Lorenz-Mie table per wavelength, all with the same sample count) never do
+      const std::string key(reinterpret_cast<const char*>(tab.table.data()), tab.table.size() * sizeof(double));
+      m.lobes.push_back({addLobe(tab, l, "table:" + key, index), 1.0});
     }
     return m;
   }

@@ -156,7 +156,14 @@ void phaseLobes(const atmosphere::PhaseFunction& p, PhaseLobe& first, PhaseLobe&
       second.a *= 1.0 - p.alpha();
       return;
     }
-    case Kind::Tabulated: break;
+    case Kind::Tabulated: {
+      // No GLSL table: the single scattering drawn on the GPU uses Henyey-Greenstein with
+      // the table's asymmetry parameter (e.g. Mars' Lorenz-Mie dust); the tables computed
+      // on the CPU (multiple scattering, eclipse shadows) use the table itself.
+      const double g = p.asymmetry();
+      first = lobe(atmosphere::PhaseFunction::henyeyGreenstein(g), g);
+      return;
+    }
   }
   throw std::invalid_argument("the renderer has no GLSL form of the phase function " + p.describe());
 }

@@ -54,8 +54,9 @@ struct TerrainModel {
 TerrainModel defaultTerrain(const std::string& occluderName);
 /// Cells in nu (the view-sun cosine) the occluder's scattering tables need, else
 /// `otherwise`: Mars' forward-peaked dust needs 32 (with 8 its multiple scattering at the
-/// ~20 degrees that light the umbra at Phobos is interpolated from the forward peak and
-/// the umbra turns blue; docs/eclipse-shadows.md).
+/// ~20 degrees that light the umbra at Phobos is interpolated from the forward peak: the
+/// umbra's level is 1.9 times too high, and with the earlier Henyey-Greenstein dust it
+/// turned blue; docs/eclipse-shadows.md).
 int defaultScatteringNu(const std::string& occluderName, int otherwise);
 
 /// Optics of a ray crossing the atmosphere with impact parameter b, at `samples` values of b

@@ -10,7 +10,8 @@ for moon in phobos:9376km deimos:23463km; do
   # profile reads a LuT over this cross-section's distances (within 2e-4 of --exact inside
   # the solid penumbra at 64^2; docs/accuracy-vs-speed.md, "Scene-limited shadow LuTs").
   # --scattering-nu 32: the dust's forward-peaked multiple scattering needs 32 cells in nu,
-  # or the umbra comes out blue (docs/eclipse-shadows.md, "Mars at Phobos").
+  # or the umbra at Phobos comes out 1.9 times too bright (docs/eclipse-shadows.md, "Mars'
+  # shadow with Lorenz-Mie dust": red over most of the umbra at both moons).
   "$UMBRA" profile shadow --occluder mars --atmosphere mars --distance "$distance" --exact --scattering-nu 32 \
     --csv "$out/mars-shadow-$name.csv" --plot "$out/mars-shadow-$name.svg" "${extra[@]}"
 done

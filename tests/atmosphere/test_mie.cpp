@@ -24,6 +24,7 @@
 
 #include <cmath>
 #include <complex>
+#include <utility>
 #include <vector>
 
 using namespace umbra::atmosphere;
@@ -507,4 +508,41 @@ TEST(MieLogNormal, PhaseTableIsNormalisedWithMeanCosineG) {
   EXPECT_THROW(mieLogNormal(550e-9, 1.5, {0.1e-6, 0.9, 1e9}), std::invalid_argument);
   EXPECT_THROW(mieLogNormal(-1.0, 1.5, {0.1e-6, 1.5, 1e9}), std::invalid_argument);
   EXPECT_THROW(mieLogNormal(550e-9, 1.5, {0.1e-6, 1.5, 1e9}, 1), std::invalid_argument);
+}
+
+TEST(MieLogNormal, EffectiveRadiusAndVarianceAreTheAreaWeightedMoments) {
+  // r_eff = <r^3>/<r^2>, v_eff = <r^4><r^2>/<r^3>^2 - 1 (Hansen & Travis 1974), the moments
+  // summed numerically over the distribution logNormalFromEffective returns.
+  for (const auto [reff, veff] : {std::pair{1.5e-6, 0.3}, std::pair{0.2e-6, 0.05}, std::pair{5e-6, 1.0}}) {
+    const LogNormalSizes d = logNormalFromEffective(reff, veff, 7.0);
+    EXPECT_EQ(d.numberDensityPerM3, 7.0);
+    const double s = std::log(d.geometricStdDev);
+    double m2 = 0, m3 = 0, m4 = 0;
+    for (int i = -4000; i <= 4000; ++i) {  // u = ln(r/r_m)/s in [-10, 10]
+      const double u = i * 0.0025, r = d.medianRadiusM * std::exp(s * u), w = std::exp(-0.5 * u * u);
+      m2 += w * r * r, m3 += w * r * r * r, m4 += w * r * r * r * r;
+    }
+    EXPECT_NEAR(m3 / m2, reff, 1e-9 * reff);
+    EXPECT_NEAR(m4 * m2 / (m3 * m3) - 1.0, veff, 1e-9);
+  }
+  const LogNormalSizes one = logNormalFromEffective(1.6e-6, 0.0, 1.0);
+  EXPECT_EQ(one.geometricStdDev, 1.0);
+  EXPECT_EQ(one.medianRadiusM, 1.6e-6);
+  EXPECT_THROW(logNormalFromEffective(0.0, 0.3, 1.0), std::invalid_argument);
+  EXPECT_THROW(logNormalFromEffective(1e-6, -0.1, 1.0), std::invalid_argument);
+  EXPECT_THROW(mieLogNormal(550e-9, 1.5, {0.1e-6, 1.5, 1e9}, 181, 0, 1e-8, 0.0), std::invalid_argument);
+}
+
+TEST(MieLogNormal, LooseTolerancesStayCloseToTheTightOnes) {
+  // The atmosphere loader's tolerances (bulk 1e-4, phase 1e-2) on Martian dust at 680 nm,
+  // the least absorbing (sharpest resonances) of its wavelengths: far fewer nodes, the
+  // same optics to < 1e-3 (bulk) and 1 % (phase samples).
+  const LogNormalSizes d = logNormalFromEffective(1.5e-6, 0.3, 1.0);
+  const MieAerosol tight = mieLogNormal(680e-9, {1.52, 0.001}, d, 91);
+  const MieAerosol loose = mieLogNormal(680e-9, {1.52, 0.001}, d, 91, 0, 1e-4, 1e-2);
+  EXPECT_LT(loose.sizeNodes * 3, tight.sizeNodes);
+  EXPECT_NEAR(loose.scatteringPerM / tight.scatteringPerM, 1.0, 1e-3);
+  EXPECT_NEAR(loose.extinctionPerM / tight.extinctionPerM, 1.0, 1e-3);
+  EXPECT_NEAR(loose.asymmetry, tight.asymmetry, 1e-3);
+  for (std::size_t j = 0; j < tight.phase.size(); ++j) EXPECT_NEAR(loose.phase[j] / tight.phase[j], 1.0, 0.01) << j;
 }

@@ -322,6 +322,37 @@ TEST(Precompute, OrdersDecreaseInAPurelyScatteringAtmosphere) {
   expectTablesSane(t);
 }
 
+TEST(Precompute, TabulatedPhasesPerWavelengthStayApart) {
+  // One table per wavelength, all with the same number of samples (as Lorenz-Mie gives
+  // them): the multiple scattering must follow each wavelength's own table, i.e. agree
+  // with the closed forms they sample (HG 0.8 at the first wavelength, HG 0.2 at the second).
+  auto table = [](double g) {
+    std::vector<double> deg, v;
+    for (int i = 0; i <= 720; ++i) deg.push_back(i * 0.25);
+    for (double d : deg) v.push_back(PhaseFunction::henyeyGreenstein(g)(std::cos(d * kPi / 180.0)));
+    return PhaseFunction::tabulatedDegrees(deg, v);
+  };
+  Component closed = makeComponent("haze", DensityProfile::exponential(1200.0), 4e-5, 0.0, PhaseFunction::isotropic(), 2);
+  Component tabulated = closed;
+  closed.phases = {PhaseFunction::henyeyGreenstein(0.8), PhaseFunction::henyeyGreenstein(0.2)};
+  tabulated.phases = {table(0.8), table(0.2)};
+  PrecomputeOptions o = smallOptions();
+  o.orders = 2;
+  const AtmosphereTables a = precompute(shellAtmosphere({closed}, 0.0, 2), o);
+  const AtmosphereTables b = precompute(shellAtmosphere({tabulated}, 0.0, 2), o);
+  double worst = 0.0, scale = 0.0, differ = 0.0;
+  const std::vector<double>& va = a.multipleScattering.values;
+  const std::vector<double>& vb = b.multipleScattering.values;
+  ASSERT_EQ(va.size(), vb.size());
+  for (std::size_t i = 0; i + 1 < va.size(); i += 2) {
+    worst = std::max({worst, std::abs(va[i] - vb[i]), std::abs(va[i + 1] - vb[i + 1])});
+    scale = std::max({scale, va[i], va[i + 1]});
+    differ = std::max(differ, std::abs(va[i] - va[i + 1]));
+  }
+  EXPECT_GT(differ, 0.1 * scale);   // the two wavelengths' phases give different skies...
+  EXPECT_LT(worst, 0.01 * scale);   // ...and each tabulated one its own closed form's
+}
+
 TEST(Precompute, EarthSecondOrderPositiveAndSmallerThanSingle) {
   const Atmosphere earth = loadAtmosphere("earth", {680.0, 550.0, 440.0});
   PrecomputeOptions o = smallOptions();

@@ -227,6 +227,19 @@ TEST(AtmosphereGlsl, PhaseLobesReproduceThePhaseFunctions) {
       EXPECT_NEAR(lobe(a) + lobe(b), p(c), 1e-12 * std::max(1.0, p(c))) << p.describe() << " at " << c;
     }
   }
+  // A table (e.g. Lorenz-Mie's) has no GLSL form: one Henyey-Greenstein lobe with the
+  // table's asymmetry parameter stands in for it (exact for a flat table).
   PhaseLobe a, b;
-  EXPECT_THROW(phaseLobes(PhaseFunction::tabulated({-1.0, 1.0}, {1.0, 1.0}), a, b), std::invalid_argument);
+  phaseLobes(PhaseFunction::tabulated({-1.0, 1.0}, {1.0, 1.0}), a, b);
+  EXPECT_NEAR(a.a, 1.0 / (4.0 * 3.14159265358979323846), 1e-15);
+  EXPECT_NEAR(a.g, 0.0, 1e-15);
+  EXPECT_EQ(b.a, 0.0);
+  std::vector<double> mu, v;
+  for (int i = 0; i <= 2000; ++i) mu.push_back(-1.0 + i / 1000.0);
+  for (double m : mu) v.push_back(PhaseFunction::henyeyGreenstein(0.6)(m));
+  const PhaseFunction table = PhaseFunction::tabulated(mu, v);
+  phaseLobes(table, a, b);
+  EXPECT_NEAR(a.g, table.asymmetry(), 1e-15);
+  EXPECT_NEAR(a.g, 0.6, 1e-3);
+  EXPECT_EQ(b.a, 0.0);
 }
