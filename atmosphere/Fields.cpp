@@ -62,6 +62,13 @@ const std::vector<Field>& atmosphereFields() {
       {"components.*.optics", "anomalous-diffraction", "refractiveIndexImag", "", ">= 0, spectrum", "0.006"},
       {"components.*.optics", "anomalous-diffraction", "vanDeHulst", "", "object: scattering from Costa Eq. 17", R"({"turbidity": 2, "jungeExponent": 4, "K": 0})", false},
 
+      {"components.*.optics", "mie", "model", "", "", "\"mie\""},
+      {"components.*.optics", "mie", "effectiveRadiusM", "m", "(0, 2e-5]", "1.5e-6"},
+      {"components.*.optics", "mie", "effectiveVariance", "", "[0, 2] (0: one radius)", "0.3", false},
+      {"components.*.optics", "mie", "numberDensityPerM3", "1/m^3", "> 0", "5.8e6"},
+      {"components.*.optics", "mie", "refractiveIndexReal", "", "> 0, spectrum", "1.52"},
+      {"components.*.optics", "mie", "refractiveIndexImag", "", ">= 0, spectrum", "0.006"},
+
       {"components.*.optics.refractiveIndex", "", "formula", "", "peck-reeder-1972, bideau-mehu-1973-co2", "\"peck-reeder-1972\"", false},
       {"components.*.optics.refractiveIndex", "", "refractivity", "", "n - 1 in (0, 1), spectrum (instead of formula; needs atNumberDensityPerM3)", nullptr, false},
       {"components.*.optics.refractiveIndex", "", "atNumberDensityPerM3", "1/m^3", "> 0", "2.545e25", false},
