@@ -111,6 +111,26 @@ TEST(RenderBaselines, TerrainScene) {
   expectSceneMatches(cache, "lunar-south-pole-landing-site", "lunar-south-pole-landing-site");
 }
 
+// Its animation: the patch is built for the first frame and moved for the next (the Moon
+// turned by 3.3 deg in 6 hours); that frame equals a single render at its time.
+TEST(RenderBaselines, TerrainSceneAnimationFrameEqualsASingleRender) {
+  TempDir cache, dir;
+  const std::string scene = kScenes + "lunar-south-pole-landing-site.json";
+  const std::vector<std::string> env = {"UMBRA_CACHE_DIR=" + cache / "cache"};
+  const RunResult animation = run(UMBRA_EXE, {"render", scene, "--size", kSize, "--from", "2024-03-01T00:00:00Z", "--to",
+                                              "2024-03-01T06:00:00Z", "--step", "6h", "--output", dir / "f-%d.exr"},
+                                  env);
+  ASSERT_EQ(animation.exitCode, 0) << animation.err;
+  const RunResult single = run(UMBRA_EXE, {"render", scene, "--size", kSize, "--time", "2024-03-01T06:00:00Z",
+                                           "--output", dir / "single.exr"},
+                               env);
+  ASSERT_EQ(single.exitCode, 0) << single.err;
+  const tables::Table first = tables::readExr(dir / "f-0.exr", {"R", "G", "B"});
+  const tables::Table later = tables::readExr(dir / "f-1.exr", {"R", "G", "B"});
+  EXPECT_EQ(later.data, tables::readExr(dir / "single.exr", {"R", "G", "B"}).data);
+  EXPECT_NE(later.data, first.data);
+}
+
 // A render of `scene` (with flags, environment) against baseline `baseline`.
 ImageDifference renderedDifference(const TempDir& cache, const std::string& scene, const std::string& baseline,
                                    const std::vector<std::string>& flags = {},
