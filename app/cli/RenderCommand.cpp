@@ -33,11 +33,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <optional>
 #include <regex>
-#include <tuple>
 
 namespace umbra::cli {
 namespace {
@@ -182,7 +180,6 @@ void addRenderCommand(CLI::App& app, Action& action) {
       if (o->atmosphereTables == "small") render::useSmallLimbLuminanceTables(limb);
       view.GetAtmosphere().SetLimbRingThresholdPixels(o->limbRingThresholdPx);
       std::vector<std::unique_ptr<render::TerrainRendering>> terrains;  // (drawn by the view)
-      std::map<std::tuple<std::string, double, double>, terrain::HeightField> dems;  // by path, spacing, radius
       std::optional<ProgressLine> progress;
       if (animation) progress.emplace("frames (" + std::to_string(frames.size()) + ")");
       for (std::size_t k = 0; k < frames.size(); ++k) {
@@ -217,15 +214,15 @@ void addRenderCommand(CLI::App& app, Action& action) {
           if (k == 0 && tables->GetLastCacheHits() > 0) std::cerr << "atmosphere tables: cache hit\n";
         }
         view.SetCamera(in.camera);
-        for (const auto& t : terrains) view.GetRenderer()->RemoveActor(t->GetActor());  // the last frame's
         try {
-          terrains = render::addSceneTerrains(view, s, in, [&dems](const std::string& path, double spacingM, double radiusM) {
-            // Read each DEM once for all frames of an animation.
-            const auto key = std::make_tuple(path, spacingM, radiusM);
-            auto it = dems.find(key);
-            if (it == dems.end()) it = dems.emplace(key, readDem(path, spacingM, radiusM).field).first;
-            return it->second;
-          });
+          // The patches (mesh, mipmap, textures; a DEM read once) are built for the first
+          // frame; later frames only move them with their bodies and the Sun.
+          if (k == 0)
+            terrains = render::addSceneTerrains(view, s, in, [](const std::string& path, double spacingM, double radiusM) {
+              return readDem(path, spacingM, radiusM).field;
+            });
+          else
+            render::placeSceneTerrains(terrains, view, s, in);
         } catch (const std::invalid_argument& e) {
           throw CommandError(o->scene + ": " + e.what());
         }

@@ -50,17 +50,12 @@ struct SunSetting {
 };
 
 SunSetting sunFromTime(const Options& o, const scene::BodyPreset& body, double latDeg, double lonDeg) {
-  scene::UtcTime t;
   try {
-    t = scene::parseUtc(o.time);
-  } catch (const std::exception& e) {
+    const scene::SunFromBody sun = scene::sunFromBody(body.name, scene::parseUtc(o.time));
+    return {terrain::bodyFixedToTangent(latDeg, lonDeg) * sun.directionBodyFixed, sun.angularRadiusRad};
+  } catch (const std::invalid_argument& e) {
     throw CommandError(std::string("--time: ") + e.what());
   }
-  if (!scene::hasEphemeris(body.name) || !scene::hasRotationModel(body.name))
-    throw CommandError("--time: no ephemeris or rotation model for " + body.name + " (Moon, Earth, Mars have them)");
-  const glm::dvec3 toSun = scene::heliocentricPositionM("Sun", t) - scene::heliocentricPositionM(body.name, t);
-  const glm::dvec3 bodyFixed = glm::transpose(scene::bodyFixedToInertial(body.name, t)) * glm::normalize(toSun);
-  return {terrain::bodyFixedToTangent(latDeg, lonDeg) * bodyFixed, std::asin(eclipse::kSunRadiusM / glm::length(toSun))};
 }
 
 void writePng(const std::string& path, vtkImageData* result) {

@@ -27,4 +27,11 @@ TerrainPatch sceneTerrainPatch(const scene::Scene& scene, const std::string& bod
 std::vector<std::unique_ptr<TerrainRendering>> addSceneTerrains(BodyView& view, const scene::Scene& scene,
                                                                 const SceneInputs& in, const DemLoader& loadDem);
 
+/// The terrains of addSceneTerrains moved to the scene's present time (another frame of
+/// an animation: the scene and `in` at the new time, the view's camera set): each body's
+/// centre and rotation, the Sun, the camera origin. The meshes, mipmaps and textures are
+/// kept (the height fields do not change with time).
+void placeSceneTerrains(const std::vector<std::unique_ptr<TerrainRendering>>& terrains, BodyView& view,
+                        const scene::Scene& scene, const SceneInputs& in);
+
 } // namespace umbra::render

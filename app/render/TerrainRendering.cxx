@@ -194,12 +194,18 @@ TerrainRendering::~TerrainRendering() {
   if (impl_->mapper && impl_->observerTag) impl_->mapper->RemoveObserver(impl_->observerTag);
 }
 
+namespace {
+void validatePlacement(const glm::dvec3& bodyCentreM, const glm::dmat3& tangentToWorld) {
+  for (int c = 0; c < 3; ++c)
+    if (!finite(tangentToWorld[c]) || std::abs(glm::length(tangentToWorld[c]) - 1.0) > 1e-6)
+      throw std::invalid_argument("terrain: the tangent-to-world rotation must have unit columns");
+  if (!finite(bodyCentreM)) throw std::invalid_argument("terrain: the body centre is not finite");
+}
+} // namespace
+
 void TerrainRendering::SetTerrain(const TerrainPatch& patch) {
   patch.field.validate();
-  for (int c = 0; c < 3; ++c)
-    if (!finite(patch.tangentToWorld[c]) || std::abs(glm::length(patch.tangentToWorld[c]) - 1.0) > 1e-6)
-      throw std::invalid_argument("terrain: the tangent-to-world rotation must have unit columns");
-  if (!finite(patch.bodyCentreM)) throw std::invalid_argument("terrain: the body centre is not finite");
+  validatePlacement(patch.bodyCentreM, patch.tangentToWorld);
   if (!finite(patch.albedoRgb) || patch.albedoRgb.r < 0 || patch.albedoRgb.g < 0 || patch.albedoRgb.b < 0)
     throw std::invalid_argument("terrain: the albedo must be finite and >= 0");
   if (patch.meshStep < 0) throw std::invalid_argument("terrain: the mesh step must be >= 0");
@@ -235,6 +241,14 @@ void TerrainRendering::SetTerrain(const TerrainPatch& patch) {
   prop->SetTexture("umbraMipAtlas", floatTexture(m.textures.atlasWidth, m.textures.atlasHeight, m.textures.atlas));
   m.place();
   m.actor->Modified();
+}
+
+void TerrainRendering::SetPlacement(const glm::dvec3& bodyCentreM, const glm::dmat3& tangentToWorld) {
+  if (!impl_->mip) throw std::logic_error("TerrainRendering: no terrain set");
+  validatePlacement(bodyCentreM, tangentToWorld);
+  impl_->patch.bodyCentreM = bodyCentreM;
+  impl_->patch.tangentToWorld = tangentToWorld;
+  impl_->place();
 }
 
 void TerrainRendering::SetSun(const SunLight& sun) {

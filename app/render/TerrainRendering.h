@@ -54,6 +54,10 @@ public:
   /// Builds the mesh, the mipmap and the textures. Throws std::invalid_argument (bad
   /// field, no tangent rotation, bad albedo).
   void SetTerrain(const TerrainPatch& patch);
+  /// Moves the patch (the body's centre and the tangent-to-world rotation, e.g. at another
+  /// time of an animation) without rebuilding the mesh, mipmap or textures. Throws
+  /// std::invalid_argument as SetTerrain.
+  void SetPlacement(const glm::dvec3& bodyCentreM, const glm::dmat3& tangentToWorld);
   /// The Sun (position in the world frame). Throws std::invalid_argument.
   void SetSun(const SunLight& sun);
   /// Camera-relative placement: the actor goes to (tangent point - origin). The origin

@@ -1,5 +1,7 @@
 #include "scene/Ephemeris.hpp"
 
+#include "SolarDisc.hpp"  // kSunRadiusM
+
 #include "scene/Units.hpp"
 
 #include <erfa.h>
@@ -139,6 +141,18 @@ glm::dmat3 bodyFixedToInertial(const std::string& body, UtcTime time) {
                                   176.630 + 350.89198226 * d);
   throw std::invalid_argument("no rotation model for '" + body +
                               "': body-fixed coordinates are not available");
+}
+
+SunFromBody sunFromBody(const std::string& body, UtcTime time) {
+  if (body == "Sun") throw std::invalid_argument("the Sun seen from itself has no direction");
+  if (!hasEphemeris(body) || !hasRotationModel(body))
+    throw std::invalid_argument("no ephemeris or rotation model for '" + body + "' (Earth, Moon, Mars have them)");
+  const glm::dvec3 toSunM = heliocentricPositionM("Sun", time) - heliocentricPositionM(body, time);
+  SunFromBody sun;
+  sun.distanceM = glm::length(toSunM);
+  sun.directionBodyFixed = glm::transpose(bodyFixedToInertial(body, time)) * (toSunM / sun.distanceM);
+  sun.angularRadiusRad = std::asin(eclipse::kSunRadiusM / sun.distanceM);
+  return sun;
 }
 
 } // namespace umbra::scene

@@ -25,6 +25,19 @@ bool hasRotationModel(const std::string& body);
 /// ICRS-aligned frame. Throws std::invalid_argument for bodies without a model.
 glm::dmat3 bodyFixedToInertial(const std::string& body, UtcTime time);
 
+/// The Sun seen from the centre of a body (heliocentricPositionM, bodyFixedToInertial).
+struct SunFromBody {
+  glm::dvec3 directionBodyFixed{0.0, 0.0, 1.0};  ///< unit vector towards the Sun, body-fixed frame
+  double distanceM = 0.0;
+  double angularRadiusRad = 0.0;                 ///< of the Sun's disc
+};
+
+/// The Sun from `body` at `time`: what a terrain on it is lit by (terrain::bodyFixedToTangent
+/// turns the direction into a grid's tangent frame; over a 100 km patch it changes by
+/// < 1e-6 rad). Throws std::invalid_argument for the Sun and for a body without an
+/// ephemeris or a rotation model.
+SunFromBody sunFromBody(const std::string& body, UtcTime time);
+
 /// Rotation from the body-fixed frame to ICRS for an IAU pole (alpha0, delta0) and
 /// prime meridian angle W, all in degrees.
 glm::dmat3 iauBodyFixedToInertial(double alpha0Deg, double delta0Deg, double wDeg);

@@ -11,10 +11,12 @@
 
 #include "CraterField.hpp"
 #include "scene/Scene.hpp"
+#include "scene/Time.hpp"
 
 #include <vtkActor.h>
 #include <vtkActorCollection.h>
 #include <vtkCamera.h>
+#include <vtkMapper.h>
 #include <vtkNew.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -249,4 +251,52 @@ TEST(TerrainScene, LunarSouthPoleShadowsWhereTheCpuMapSays) {
   EXPECT_EQ(umbraBlack, umbra);
   EXPECT_GT(lit, 20);
   EXPECT_GE(litBright, lit * 95 / 100);  // (a lit slope facing away from the Sun is black too)
+}
+
+// A later frame of an animation (`umbra render --from/--to/--step`): the patch built for
+// the first frame and moved to the new time by placeSceneTerrains (its mesh kept) renders
+// the frame that a patch built at the new time renders, value for value; 6 hours on, the
+// Sun has moved (the Moon turned by 3.3 deg) and the frame differs from the first.
+TEST(TerrainScene, PatchMovedToAnotherTimeRendersAsOneBuiltThere) {
+  scene::Scene s = scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/lunar-south-pole-landing-site.json");
+  const int W = 64, H = 36;
+  auto frame = [](render::BodyView& view) {
+    std::vector<float> hdr;
+    int w = 0, h = 0;
+    view.Render();
+    view.ReadHdr(hdr, w, h);
+    return hdr;
+  };
+  auto show = [](render::BodyView& view, const render::SceneInputs& in) {
+    view.SetBodies(in.sun, in.bodies, render::test::testLutImage());
+    view.SetCamera(in.camera);
+  };
+  render::BodyView moved(W, H, true), built(W, H, true);
+  render::test::useSharedDisplay(moved.GetRenderWindow());
+  render::test::useSharedDisplay(built.GetRenderWindow());
+
+  const render::SceneInputs first = render::sceneInputs(s);
+  show(moved, first);
+  const auto terrains = render::addSceneTerrains(moved, s, first, {});
+  ASSERT_EQ(terrains.size(), 1u);
+  vtkDataObject* mesh = terrains.front()->GetActor()->GetMapper()->GetInputDataObject(0, 0);
+  const std::vector<float> firstFrame = frame(moved);
+
+  scene::setTime(s, scene::addSeconds(s.time, 6.0 * 3600.0));
+  const render::SceneInputs later = render::sceneInputs(s);
+  show(moved, later);
+  render::placeSceneTerrains(terrains, moved, s, later);
+  EXPECT_EQ(terrains.front()->GetActor()->GetMapper()->GetInputDataObject(0, 0), mesh);
+  const std::vector<float> movedFrame = frame(moved);
+
+  show(built, later);
+  const auto rebuilt = render::addSceneTerrains(built, s, later, {});
+  const std::vector<float> builtFrame = frame(built);
+
+  ASSERT_EQ(movedFrame.size(), builtFrame.size());
+  EXPECT_EQ(movedFrame, builtFrame);
+  std::size_t changed = 0;
+  for (std::size_t k = 0; k < firstFrame.size(); ++k) changed += firstFrame[k] != movedFrame[k];
+  std::printf("  %zu of %zu values changed in 6 hours\n", changed, firstFrame.size());
+  EXPECT_GT(changed, firstFrame.size() / 20);
 }

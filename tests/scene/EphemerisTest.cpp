@@ -152,3 +152,26 @@ TEST(Ephemeris, MoonsSpinAxisStaysAtCassinisInclinationToTheEcliptic) {
     EXPECT_NEAR(angleDeg(pole, eclipticPole), 1.54, 0.07);  // + the monthly terms (E2, E3)
   }
 }
+
+// The Sun from a body's centre in its body-fixed frame (scene::sunFromBody, the Sun of
+// `umbra terrain shadow --time`): on Earth its declination is 0 at the March equinox
+// (2024-03-20 03:06 UTC) and +23.44 deg at the June solstice (2024-06-20 20:51 UTC); at
+// 12:00 UTC on 2024-03-20 it stands 1.8 deg east of Greenwich (the equation of time,
+// -7.3 min: it transits at 12:07 UTC); at perihelion (2024-01-03) it is 0.98331 au away,
+// 16.27' in radius (16'16" for the Sun's 696 342 km). From the Moon (axis 1.54 deg to the ecliptic) it stays within 1.6 deg
+// of the equator.
+TEST(Ephemeris, SunFromBodyGivesDeclinationHourAngleAndDistance) {
+  const auto declinationDeg = [](const SunFromBody& s) { return std::asin(s.directionBodyFixed.z) / kDeg; };
+  EXPECT_NEAR(declinationDeg(sunFromBody("Earth", parseUtc("2024-03-20T03:06Z"))), 0.0, 0.01);
+  EXPECT_NEAR(declinationDeg(sunFromBody("Earth", parseUtc("2024-06-20T20:51Z"))), 23.44, 0.01);
+  const SunFromBody noon = sunFromBody("Earth", parseUtc("2024-03-20T12:00Z"));
+  EXPECT_NEAR(std::atan2(noon.directionBodyFixed.y, noon.directionBodyFixed.x) / kDeg, 1.8, 0.1);
+  EXPECT_NEAR(glm::length(noon.directionBodyFixed), 1.0, 1e-12);
+  const SunFromBody perihelion = sunFromBody("Earth", parseUtc("2024-01-03T00:39Z"));
+  EXPECT_NEAR(perihelion.distanceM / 1.495978707e11, 0.98331, 0.00003);
+  EXPECT_NEAR(perihelion.angularRadiusRad / kDeg * 60.0, 16.27, 0.01);
+  for (const char* time : {"2024-01-01T00:00Z", "2024-04-10T00:00Z", "2024-07-15T00:00Z", "2024-11-02T00:00Z"})
+    EXPECT_LT(std::abs(declinationDeg(sunFromBody("Moon", parseUtc(time)))), 1.6) << time;
+  EXPECT_THROW(sunFromBody("Sun", parseUtc("2024-01-01T00:00Z")), std::invalid_argument);
+  EXPECT_THROW(sunFromBody("Phobos", parseUtc("2024-01-01T00:00Z")), std::invalid_argument);
+}
