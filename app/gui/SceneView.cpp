@@ -40,6 +40,9 @@ struct SceneView::Impl {
   vtkSmartPointer<vtkEclipseShadowLutSource> ranged;
   std::optional<eclipse::LutRange> rangedFor;
   int rangedHeight = 0;
+  // The atmospheric shadow LuT of the other bodies (small tables: about a second, on
+  // this thread), as `umbra render` shades them (render::applySceneAtmosphereShadow).
+  vtkSmartPointer<vtkEclipseShadowLutSource> atmosphereShadow;
 };
 
 SceneView::SceneView(QVTKOpenGLNativeWidget* widget) : impl(std::make_unique<Impl>()) {
@@ -93,6 +96,15 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
   } else {
     atmosphere.ClearAtmosphere();
     impl->applied = nullptr;
+  }
+  if (drawn) {
+    if (!impl->atmosphereShadow) {
+      impl->atmosphereShadow = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
+      render::useSmallEclipseShadowTables(impl->atmosphereShadow);
+    }
+    render::applySceneAtmosphereShadow(impl->bodies->GetShading(), in, impl->atmosphereShadow);
+  } else {
+    impl->bodies->GetShading().SetAtmosphereShadowLut("", nullptr);
   }
   impl->bodies->SetCamera(in.camera);
 }

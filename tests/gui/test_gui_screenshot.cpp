@@ -3,6 +3,7 @@
 // and the plot panel lie, and the status line. The PNG and the status are checked.
 #include "CliRunner.hpp"
 
+#include <array>
 #include <QColor>
 #include <QImage>
 #include <QRect>
@@ -222,6 +223,33 @@ TEST(GuiScreenshot, AtmosphereOnOffAndPreset) {
   EXPECT_NE(bad.err.find("venus"), std::string::npos) << bad.err;
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
+// The Moon in totality through Earth's atmosphere (small tables): shaded with the
+// atmospheric shadow LuT it is copper (summed R > G > B over the Moon's pixels), as
+// `umbra render` draws it; without the atmosphere (airless umbra) it is dark.
+TEST(GuiScreenshot, MoonInTotalityIsCopperWithTheAtmosphere) {
+  TempDir dir;
+  const std::string moon = std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/lunar-eclipse-2015-09-28-moon.json";
+  const Shot on = screenshotOf(moon, dir, "on.png", {"--time", "2015-09-28T02:47:00Z", "--atmosphere-tables", "small"});
+  const Shot off = screenshotOf(moon, dir, "off.png", {"--time", "2015-09-28T02:47:00Z", "--atmosphere", "none"});
+  ASSERT_EQ(on.run.exitCode, 0) << on.run.err;
+  ASSERT_EQ(off.run.exitCode, 0) << off.run.err;
+  auto sums = [](const Shot& s) {
+    std::array<double, 3> rgb{0.0, 0.0, 0.0};
+    for (int y = s.view.top(); y <= s.view.bottom(); ++y)
+      for (int x = s.view.left(); x <= s.view.right(); ++x) {
+        const QRgb c = s.image.pixel(x, y);
+        rgb[0] += qRed(c), rgb[1] += qGreen(c), rgb[2] += qBlue(c);
+      }
+    return rgb;
+  };
+  const auto a = sums(on), b = sums(off);
+  std::printf("  Moon's summed RGB with the atmosphere %.0f %.0f %.0f, without %.0f %.0f %.0f\n", a[0], a[1], a[2],
+              b[0], b[1], b[2]);
+  EXPECT_GT(a[0], 1.3 * a[1]);
+  EXPECT_GT(a[1], a[2]);
+  EXPECT_GT(a[0], 3.0 * b[0]);
 }
 
 // --atmosphere-set goes through the editor: a bad value is one line naming the field, exit 1.
