@@ -35,34 +35,34 @@ double Atmosphere::refractivity(double altitudeM, double wavelengthNm) const {
          rho;
 }
 
-std::vector<double> Atmosphere::scatteringPerM(double altitudeM) const {
-  std::vector<double> sum(wavelengthsNm.size(), 0.0);
+namespace {
+// Sum over the components of density(altitude) * coefficient(component, wavelength index).
+template <class Coefficient>
+std::vector<double> densityWeightedSum(const std::vector<Component>& components, std::size_t wavelengths,
+                                       double altitudeM, Coefficient coefficient) {
+  std::vector<double> sum(wavelengths, 0.0);
   for (const Component& c : components) {
     const double rho = c.density.at(altitudeM);
     if (rho == 0.0) continue;
-    for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += rho * c.scatteringPerM[i];
+    for (std::size_t i = 0; i < wavelengths; ++i) sum[i] += rho * coefficient(c, i);
   }
   return sum;
+}
+}  // namespace
+
+std::vector<double> Atmosphere::scatteringPerM(double altitudeM) const {
+  return densityWeightedSum(components, wavelengthsNm.size(), altitudeM,
+                            [](const Component& c, std::size_t i) { return c.scatteringPerM[i]; });
 }
 
 std::vector<double> Atmosphere::absorptionPerM(double altitudeM) const {
-  std::vector<double> sum(wavelengthsNm.size(), 0.0);
-  for (const Component& c : components) {
-    const double rho = c.density.at(altitudeM);
-    if (rho == 0.0) continue;
-    for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += rho * c.absorptionPerM[i];
-  }
-  return sum;
+  return densityWeightedSum(components, wavelengthsNm.size(), altitudeM,
+                            [](const Component& c, std::size_t i) { return c.absorptionPerM[i]; });
 }
 
 std::vector<double> Atmosphere::extinctionPerM(double altitudeM) const {
-  std::vector<double> sum(wavelengthsNm.size(), 0.0);
-  for (const Component& c : components) {
-    const double rho = c.density.at(altitudeM);
-    if (rho == 0.0) continue;
-    for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += rho * c.extinctionPerM(i);
-  }
-  return sum;
+  return densityWeightedSum(components, wavelengthsNm.size(), altitudeM,
+                            [](const Component& c, std::size_t i) { return c.extinctionPerM(i); });
 }
 
 std::vector<double> Atmosphere::verticalOpticalDepth(const Component& c, double fromAltitudeM,
