@@ -1,6 +1,8 @@
 // `umbra render` on the example scene (needs an X display: runs under xvfb-run).
 // The frame must be finite and not black, and the Moon darker on its umbral side.
 #include "CliRunner.hpp"
+#include "CraterField.hpp"
+#include "GeoTiffSupport.hpp"
 #include "RenderCliSupport.hpp"
 
 #include "scene/Scene.hpp"
@@ -227,4 +229,38 @@ TEST(RenderCli, UnknownAtmosphereNamesTheFileAndField) {
   EXPECT_NE(r.err.find(scene + ": bodies[1].atmosphere: unknown atmosphere preset 'venus'"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path / "x.png"));
+}
+
+// A scene's terrain read from a DEM (GeoTIFF, lunar south polar stereographic) renders
+// exactly as the synthetic crater field the DEM was written from, and unlike another
+// field: the scene's "dem" path (relative to the scene file) reaches the renderer.
+TEST(RenderCli, SceneTerrainFromADemRendersAsTheFieldItHolds) {
+  TempDir dir;
+  terrain::CraterFieldOptions o;
+  o.seed = 7;
+  o.size = 96;
+  writeGeoTiff(dir / "dem.tif", terrain::makeCraterField(o), 0.0);
+  auto writeScene = [&](const std::string& name, const std::string& terrain) {
+    std::ofstream(dir / name) << R"({"time": "2024-03-01T00:00:00Z",
+      "bodies": [{"preset": "Sun"}, {"preset": "Earth"},
+                 {"preset": "Moon", "terrain": )" << terrain << R"(}],
+      "camera": {"observer": {"body": "Moon", "latDeg": -90.0, "lonDeg": 0.0, "altM": 400},
+                 "target": "Sun", "up": "zenith", "fovDeg": 60},
+      "exposure": -5.0})";
+    return dir / name;
+  };
+  const std::string place = R"("spacing": "30m", "latDeg": -90.0, "lonDeg": 0.0)";
+  const std::string fromDem = writeScene("dem.json", R"({"dem": "dem.tif", )" + place + "}");
+  const std::string seed7 = writeScene("seed7.json", R"({"seed": 7, "size": 96, )" + place + "}");
+  const std::string seed8 = writeScene("seed8.json", R"({"seed": 8, "size": 96, )" + place + "}");
+  TempDir a, b, c;
+  const tables::Table dem = renderExr(a, fromDem, "64x36", {}, &dir);
+  const tables::Table same = renderExr(b, seed7, "64x36", {}, &dir);
+  const tables::Table other = renderExr(c, seed8, "64x36", {}, &dir);
+  EXPECT_EQ(dem.data, same.data);
+  // Another crater field changes a visible part of the frame (the terrain is in view).
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < dem.data.size(); ++i)
+    if (std::abs(dem.data[i] - other.data[i]) > 0.05f * std::max(std::abs(dem.data[i]), 1e-6f)) ++differing;
+  EXPECT_GT(differing, dem.data.size() / 20) << differing << " of " << dem.data.size() << " values differ";
 }
