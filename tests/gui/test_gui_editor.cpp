@@ -5,6 +5,7 @@
 // time slider moves the Sun under the same tables.
 #include "AtmosphereEditor.hpp"
 #include "MainWindow.hpp"
+#include "SceneView.hpp"
 
 #include "Atmosphere.hpp"
 #include "Describe.hpp"
@@ -15,6 +16,7 @@
 
 #include <QApplication>
 #include <QComboBox>
+#include <QProgressBar>
 #include <QElapsedTimer>
 #include <QImage>
 #include <QSurfaceFormat>
@@ -24,6 +26,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdlib>
 #include <optional>
 #include <fstream>
@@ -52,11 +55,13 @@ void settle(MainWindow& w) {
 struct Window {
   umbra::test::TempDir dir;
   MainWindow w;
-  explicit Window(std::optional<umbra::scene::UtcTime> time = std::nullopt) {
+  explicit Window(std::optional<umbra::scene::UtcTime> time = std::nullopt) : Window(time, kSunset, time, true) {}
+  Window(std::optional<umbra::scene::UtcTime>, const std::string& scene, std::optional<umbra::scene::UtcTime> time,
+         bool settleNow) {
     w.useSmallAtmosphereTables(true);
-    w.loadScene(kSunset, time);
+    w.loadScene(scene, time);
     w.show();
-    settle(w);
+    if (settleNow) settle(w);
   }
   QImage shot(const std::string& name) {
     w.saveScreenshot(dir / name);
@@ -289,13 +294,103 @@ TEST(GuiEditor, TimeSliderKeepsTheTablesAndDarkensTheSky) {
   const QRgb before = win.sky(win.shot("sunset.png"));
   const std::string model = win.w.drawnAtmosphere();
   win.w.showTime(umbra::scene::parseUtc("2024-03-20T19:05:00Z"));
-  EXPECT_FALSE(win.w.atmosphereBusy());
+  EXPECT_FALSE(win.w.atmosphereTablesBusy());  // (the Moon's atmospheric shadow LuT may be)
   EXPECT_EQ(win.w.drawnAtmosphere(), model);
   const QRgb after = win.sky(win.shot("dusk.png"));
   std::printf("  sky at 18:05 %s, at 19:05 %s\n", describe(before).c_str(), describe(after).c_str());
   EXPECT_LT(qBlue(after) + qGreen(after), qBlue(before) + qGreen(before) - 20);
   EXPECT_NE(win.w.statusText().indexOf("2024-03-20T19:05:00Z"), -1) << win.w.statusText().toStdString();
   EXPECT_GT(win.w.plotRect().width(), 100);
+}
+
+namespace {
+
+const std::string kMoon = std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/lunar-eclipse-2015-09-28-moon.json";
+
+/// Runs the event loop until the atmospheric shadow LuT's job has started (at most 60 s).
+bool untilShadowJob(MainWindow& w) {
+  QElapsedTimer clock;
+  clock.start();
+  while (!w.atmosphereShadowBusy() && w.atmosphereBusy() && clock.elapsed() < 60000)
+    QApplication::processEvents(QEventLoop::AllEvents, 20);
+  return w.atmosphereShadowBusy();
+}
+
+/// The summed R, G, B of the 3D view (the Moon on a black sky).
+std::array<double, 3> viewSums(Window& win, const std::string& name) {
+  const QImage image = win.shot(name);
+  const QRect v = win.w.viewRect();
+  std::array<double, 3> rgb{0.0, 0.0, 0.0};
+  for (int y = v.top(); y <= v.bottom(); ++y)
+    for (int x = v.left(); x <= v.right(); ++x) {
+      const QRgb c = image.pixel(x, y);
+      rgb[0] += qRed(c), rgb[1] += qGreen(c), rgb[2] += qBlue(c);
+    }
+  return rgb;
+}
+
+bool copper(const std::array<double, 3>& rgb) { return rgb[0] > 1.3 * rgb[1] && rgb[1] > rgb[2] && rgb[0] > 1e6; }
+
+}  // namespace
+
+// The Moon in totality: after the atmosphere's tables the worker computes the atmospheric
+// shadow LuT (the GUI thread keeps running its event loop meanwhile: the job is seen
+// busy), the progress bar moves through intermediate values, and the Moon is copper.
+TEST(GuiEditor, AtmosphereShadowLutInTheWorkerWithProgress) {
+  Window win(std::nullopt, kMoon, umbra::scene::parseUtc("2015-09-28T02:47:00Z"), /*settleNow=*/false);
+  auto* bar = win.w.findChild<QProgressBar*>();
+  ASSERT_NE(bar, nullptr);
+  std::vector<int> values;
+  QObject::connect(bar, &QProgressBar::valueChanged, [&](int v) {
+    if (win.w.atmosphereShadowBusy()) values.push_back(v);
+  });
+  ASSERT_TRUE(untilShadowJob(win.w)) << "no atmospheric shadow LuT job after the tables";
+  EXPECT_FALSE(win.w.sceneView().atmosphereShadowCurrent());
+  settle(win.w);
+  EXPECT_TRUE(win.w.sceneView().atmosphereShadowCurrent());
+  EXPECT_FALSE(bar->isVisible());
+  const auto between = std::count_if(values.begin(), values.end(), [](int v) { return v > 0 && v < 100; });
+  std::printf("  progress values during the shadow job: %zu, %ld of them in (0, 100)\n", values.size(), long(between));
+  EXPECT_GE(between, 3);
+  const auto rgb = viewSums(win, "copper.png");
+  std::printf("  Moon's summed RGB %.0f %.0f %.0f\n", rgb[0], rgb[1], rgb[2]);
+  EXPECT_TRUE(copper(rgb));
+}
+
+// Cancel: with no table before, the Moon stays airless-dark in the umbra; with one, the
+// view keeps shading with it (copper) after a cancelled recomputation for a new time,
+// which is not started again until the time changes again.
+TEST(GuiEditor, CancelTheAtmosphereShadowLutKeepsThePreviousShading) {
+  Window win(std::nullopt, kMoon, umbra::scene::parseUtc("2015-09-28T02:50:00Z"), /*settleNow=*/false);
+  ASSERT_TRUE(untilShadowJob(win.w));
+  win.w.cancelAtmosphereTables();
+  settle(win.w);
+  EXPECT_NE(win.w.statusText().indexOf("atmosphere shadow: cancelled"), -1) << win.w.statusText().toStdString();
+  EXPECT_EQ(win.w.sceneView().atmosphereShadowLut(), nullptr);
+  const auto airless = viewSums(win, "airless.png");
+  EXPECT_FALSE(win.w.atmosphereBusy()) << "a cancelled table is not asked for again";
+
+  win.w.showTime(umbra::scene::parseUtc("2015-09-28T02:47:00Z"));
+  settle(win.w);
+  const auto before = viewSums(win, "before.png");
+  EXPECT_TRUE(copper(before));
+  win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:17:00Z"));
+  ASSERT_TRUE(win.w.atmosphereShadowBusy());
+  win.w.cancelAtmosphereTables();
+  settle(win.w);
+  EXPECT_NE(win.w.statusText().indexOf("atmosphere shadow: cancelled"), -1) << win.w.statusText().toStdString();
+  EXPECT_NE(win.w.sceneView().atmosphereShadowLut(), nullptr);
+  EXPECT_FALSE(win.w.sceneView().atmosphereShadowCurrent());
+  const auto after = viewSums(win, "after.png");
+  std::printf("  Moon's summed R: cancelled at 02:50 (airless) %.0f, 02:47 %.0f, cancelled at 03:17 (02:47's table) %.0f\n",
+              airless[0], before[0], after[0]);
+  EXPECT_LT(airless[0], 0.1 * before[0]);
+  EXPECT_TRUE(copper(after));
+  EXPECT_FALSE(win.w.atmosphereBusy());
+  win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:18:00Z"));
+  EXPECT_TRUE(win.w.atmosphereShadowBusy());
+  settle(win.w);
+  EXPECT_TRUE(win.w.sceneView().atmosphereShadowCurrent());
 }
 
 int main(int argc, char** argv) {
