@@ -577,6 +577,7 @@ void MainWindow::refresh() {
   const scene::Scene& s = *this->current;
   this->shadow = scene::receiverShadow(s);
   this->view->setScene(s, this->plot->prepareLut(s.shadowLutSize, this->shadow));
+  this->plot->setAtmosphereShadowLut(this->view->atmosphereShadowLut(), this->atmosphereBody);
   this->shadowFactor = this->plot->update(this->shadow);
   this->view->render();
   this->startAtmosphereShadow();  // the atmospheric shadow LuT the scene needs, in the worker

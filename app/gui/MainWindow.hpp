@@ -73,6 +73,8 @@ public:
   AtmosphereEditor& atmosphereEditor() const { return *this->editor; }
   /// The 3D view (e.g. whether it shades with the atmospheric shadow LuT).
   const SceneView& sceneView() const { return *this->view; }
+  /// The plot panel (its profile: the atmospheric shadow's when the view shades with it).
+  const ProfilePanel& profilePanel() const { return *this->plot; }
   /// Shows the editor's dock (the "Edit..." button).
   void showAtmosphereEditor();
   /// Writes the edited atmosphere as JSON (atomically). Throws std::runtime_error naming the path.
