@@ -15,6 +15,7 @@
 
 #include <QAction>
 #include <QApplication>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
 #include <QDockWidget>
@@ -229,6 +230,11 @@ MainWindow::MainWindow() {
   this->atmosphereEdit->setToolTip("Show the atmosphere's fields: every component's profile, optics and phase");
   connect(this->atmosphereEdit, &QPushButton::clicked, this, [this] { this->showAtmosphereEditor(); });
 
+  this->refractionBox = new QCheckBox("Refraction");
+  this->refractionBox->setToolTip("Bend the rays through the atmosphere: a lifted, flattened Sun at the horizon "
+                                  "(the tables are made again with refracted paths)");
+  connect(this->refractionBox, &QCheckBox::toggled, this, [this](bool on) { this->setRefraction(on); });
+
   auto* controls = new QHBoxLayout;
   controls->addWidget(new QLabel("Time (UTC)"));
   controls->addWidget(this->slider, 1);
@@ -242,6 +248,7 @@ MainWindow::MainWindow() {
   controls->addWidget(new QLabel("Atmosphere"));
   controls->addWidget(this->atmosphereChoice);
   controls->addWidget(this->atmosphereEdit);
+  controls->addWidget(this->refractionBox);
   controls->addWidget(this->atmosphereProgress);
   controls->addWidget(this->atmosphereCancel);
 
@@ -270,6 +277,20 @@ void MainWindow::setGlare(double strength) {
 void MainWindow::useSmallAtmosphereTables(bool small) {
   this->smallTables = small;
   this->view->useSmallAtmosphereShadowTables(small);
+}
+
+bool MainWindow::refraction() const { return this->refractionBox->isChecked(); }
+
+void MainWindow::setRefraction(bool on) {
+  if (on != this->refractionBox->isChecked()) {
+    const QSignalBlocker block(this->refractionBox);
+    this->refractionBox->setChecked(on);
+  }
+  // The tables drawn (or being made) again, with or without refraction.
+  const std::string model = this->job && this->job->source ? std::string(this->job->source->GetAtmosphere()) : this->drawnModel;
+  const bool drawnWith = this->view->atmosphereTables() && this->view->atmosphereTables()->GetRefractedPaths();
+  if (!this->current || model.empty() || (!(this->job && this->job->source) && drawnWith == on)) return;
+  this->startAtmosphere(model);
 }
 
 void MainWindow::setExposure(double ev) { this->exposure->setValue(ev); }
@@ -362,8 +383,9 @@ void MainWindow::startAtmosphere(const std::string& model) {
   j->source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
   j->source->SetAtmosphere(model.c_str());
   j->source->SetWavelengths(3);
-  j->source->SetTables(vtkAtmosphereTablesSource::Bruneton);
-  j->source->SetRefractedPaths(false);
+  const bool refraction = this->refraction();
+  j->source->SetTables(vtkAtmosphereTablesSource::Bruneton | (refraction ? vtkAtmosphereTablesSource::Refraction : 0));
+  j->source->SetRefractedPaths(refraction);
   if (this->smallTables) render::useSmallAtmosphereTables(j->source);
   j->observe(j->source, 0.0, 1.0);
   vtkAtmosphereTablesSource* source = j->source;

@@ -22,6 +22,7 @@
 #include <optional>
 #include <string>
 
+class QCheckBox;
 class QComboBox;
 class QDockWidget;
 class QDoubleSpinBox;
@@ -82,6 +83,11 @@ public:
   /// Small tables (useSmallAtmosphereTables) for the next setAtmosphere: quick looks, tests.
   /// The atmospheric shadow LuT follows (render::useSmallEclipseShadowTables).
   void useSmallAtmosphereTables(bool small);
+  /// Refraction (the "Refraction" check box; `umbra render --refraction`): the atmosphere's
+  /// tables are made again in the worker with the refraction table and refracted paths,
+  /// and the view bends its rays (a lifted, flattened Sun at the horizon).
+  void setRefraction(bool on);
+  bool refraction() const;
   /// Exposure of the 3D view in EV (the spin box follows).
   void setExposure(double ev);
   /// Glare strength of the 3D view (0..10).
@@ -129,6 +135,7 @@ private:
   QPushButton* atmosphereCancel = nullptr;
   QDoubleSpinBox* glare = nullptr;
   QPushButton* atmosphereEdit = nullptr;
+  QCheckBox* refractionBox = nullptr;
   QDockWidget* editorDock = nullptr;
   AtmosphereEditor* editor = nullptr;
 

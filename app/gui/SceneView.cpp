@@ -95,7 +95,7 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
   if (drawn && impl->applied == impl->tables && atmosphere.HasAtmosphere() && body != in.bodies.end()) {
     atmosphere.SetCentre(body->centreM);  // the time moved: the same tables, no upload
   } else if (drawn) {
-    render::applySceneAtmosphere(*impl->bodies, in, impl->tables, /*refraction=*/false);
+    render::applySceneAtmosphere(*impl->bodies, in, impl->tables, impl->tables->GetRefractedPaths());
     impl->applied = impl->tables;
   } else {
     atmosphere.ClearAtmosphere();
@@ -151,6 +151,8 @@ void SceneView::setAtmosphereTables(vtkAtmosphereTablesSource* tables) {
   impl->tables = tables;
   impl->applied = nullptr;  // applied again on the next setScene
 }
+
+vtkAtmosphereTablesSource* SceneView::atmosphereTables() const { return impl->tables; }
 
 void SceneView::setExposureEV(double ev) { impl->bodies->SetExposureEV(ev); }
 

@@ -37,7 +37,10 @@ public:
   /// Tables (already updated) for the atmosphere the scene asks for; nullptr: none. The
   /// atmosphere is drawn while the scene's atmosphere is the one the tables were made for
   /// (they are applied again on every setScene, as the body moves). Call setScene next.
+  /// Tables made with refracted paths and the refraction table (SetRefractedPaths): the
+  /// view bends its rays (render::applySceneAtmosphere with refraction).
   void setAtmosphereTables(vtkAtmosphereTablesSource* tables);
+  vtkAtmosphereTablesSource* atmosphereTables() const;
 
   /// The other bodies in the shadow of the body with the atmosphere are shaded with its
   /// atmospheric shadow LuT (render::sceneAtmosphereShadowRequest: their columns only), as

@@ -7,6 +7,7 @@
 #include "MainWindow.hpp"
 #include "ProfilePanel.hpp"
 #include "SceneView.hpp"
+#include "vtkAtmosphereTablesSource.h"
 
 #include "Atmosphere.hpp"
 #include "Describe.hpp"
@@ -14,6 +15,7 @@
 #include "scene/Time.hpp"
 
 #include "CliRunner.hpp"
+#include "DiscExtent.hpp"
 
 #include <QApplication>
 #include <QComboBox>
@@ -304,6 +306,60 @@ TEST(GuiEditor, TimeSliderKeepsTheTablesAndDarkensTheSky) {
   EXPECT_LT(qBlue(after) + qGreen(after), qBlue(before) + qGreen(before) - 20);
   EXPECT_NE(win.w.statusText().indexOf("2024-03-20T19:05:00Z"), -1) << win.w.statusText().toStdString();
   EXPECT_GT(win.w.plotRect().width(), 100);
+}
+
+// The "Refraction" check box (umbra-gui --refraction) on the sunset seen through a
+// 3-degree field at 18:06 (the Sun just above the horizon; a minute later its disc would
+// be cut by it without refraction): the tables are made again in the worker with
+// refracted paths and the refraction table, and the Sun's disc is flattened (height /
+// width < 0.9; measured 0.865) and lifted, measured as the render pass's test measures
+// it (umbra::test::discOf: the bounding box of the pixels above a fraction of the
+// brightest; here the screenshot's luma, 80 % of the brightest, above the sky's); without
+// refraction it is round (> 0.95; measured 1.0). Off again: the tables from the cache.
+TEST(GuiEditor, RefractionCheckBoxFlattensTheSettingSun) {
+  umbra::test::TempDir dir;
+  std::ifstream in(kSunset);
+  std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  json = std::regex_replace(json, std::regex("\"fovDeg\": 30"), "\"fovDeg\": 3");
+  const std::string scene = dir / "sunset-3deg.json";
+  std::ofstream(scene) << json;
+  Window win(std::nullopt, scene, umbra::scene::parseUtc("2024-03-20T18:06:00Z"), /*settleNow=*/true);
+  win.w.setExposure(-11.0);
+  auto disc = [&](const std::string& name) {
+    const QImage image = win.shot(name);
+    const QRect v = win.w.viewRect();
+    return umbra::test::discOf(
+        v.width(), v.height(),
+        [&](int i, int j) {
+          const QRgb c = image.pixel(v.left() + i, v.top() + j);
+          return 0.2126 * qRed(c) + 0.7152 * qGreen(c) + 0.0722 * qBlue(c);
+        },
+        0.8);
+  };
+  ASSERT_NE(win.w.sceneView().atmosphereTables(), nullptr);
+  EXPECT_FALSE(win.w.sceneView().atmosphereTables()->GetRefractedPaths());
+  const umbra::test::DiscExtent o = disc("straight.png");
+  win.w.setRefraction(true);
+  EXPECT_TRUE(win.w.atmosphereTablesBusy());
+  settle(win.w);
+  EXPECT_TRUE(win.w.refraction());
+  EXPECT_TRUE(win.w.sceneView().atmosphereTables()->GetRefractedPaths());
+  EXPECT_EQ(win.w.drawnAtmosphere(), "earth");
+  const umbra::test::DiscExtent d = disc("bent.png");
+  std::printf("  disc %d x %d px with refraction (height / width %.3f), %d x %d px without (%.3f)\n", d.width(),
+              d.height(), double(d.height()) / d.width(), o.width(), o.height(), double(o.height()) / o.width());
+  ASSERT_GT(o.width(), 50) << "the Sun's disc is about 110 px wide";
+  EXPECT_LT(double(d.height()) / d.width(), 0.9);
+  EXPECT_GT(double(o.height()) / o.width(), 0.95);
+  EXPECT_NEAR(d.width(), o.width(), 3);
+  EXPECT_LT(d.bottom, o.bottom);  // lifted
+
+  win.w.setRefraction(true);  // no change: nothing to do
+  EXPECT_FALSE(win.w.atmosphereTablesBusy());
+  win.w.setRefraction(false);
+  settle(win.w);
+  EXPECT_FALSE(win.w.sceneView().atmosphereTables()->GetRefractedPaths());
+  EXPECT_GT(win.w.sceneView().atmosphereTables()->GetLastCacheHits(), 0);
 }
 
 namespace {
