@@ -235,11 +235,13 @@ MainWindow::MainWindow() {
                                   "(the tables are made again with refracted paths)");
   connect(this->refractionBox, &QCheckBox::toggled, this, [this](bool on) { this->setRefraction(on); });
 
+  // Two rows: the time slider (as wide as the window), then exposure, glare and the
+  // atmosphere's controls.
+  auto* timeRow = new QHBoxLayout;
+  timeRow->addWidget(new QLabel("Time (UTC)"));
+  timeRow->addWidget(this->slider, 1);
+  timeRow->addWidget(this->timeLabel);
   auto* controls = new QHBoxLayout;
-  controls->addWidget(new QLabel("Time (UTC)"));
-  controls->addWidget(this->slider, 1);
-  controls->addWidget(this->timeLabel);
-  controls->addSpacing(16);
   controls->addWidget(new QLabel("Exposure"));
   controls->addWidget(this->exposure);
   controls->addWidget(new QLabel("Glare"));
@@ -251,10 +253,12 @@ MainWindow::MainWindow() {
   controls->addWidget(this->refractionBox);
   controls->addWidget(this->atmosphereProgress);
   controls->addWidget(this->atmosphereCancel);
+  controls->addStretch(1);
 
   auto* central = new QWidget;
   auto* layout = new QVBoxLayout(central);
   layout->addWidget(splitter, 1);
+  layout->addLayout(timeRow);
   layout->addLayout(controls);
   this->setCentralWidget(central);
 

@@ -216,8 +216,11 @@ double ProfilePanel::update(const scene::ReceiverShadow& g) {
   vtkAxis* bottom = this->chart->GetAxis(vtkAxis::BOTTOM);
   bottom->SetRange(0.0, xMax);
   bottom->SetBehavior(vtkAxis::FIXED);
-  this->chart->SetTitle(g.occluder + "'s shadow" + (atmospheric ? " through its atmosphere" : "") + " at " + km(g.receiverDistanceM) + (g.antumbraRadiusM > 0.0 ? " (antumbra " : " (umbra ") +
-                        km(std::max(g.umbraRadiusM, g.antumbraRadiusM)) + ", penumbra " + km(g.penumbraRadiusM) + ")");
+  // (Through the atmosphere the penumbra's edge is plain on the log scale: left out, to fit.)
+  const std::string cone = (g.antumbraRadiusM > 0.0 ? "antumbra " : "umbra ") + km(std::max(g.umbraRadiusM, g.antumbraRadiusM));
+  this->chart->SetTitle(atmospheric ? g.occluder + "'s shadow through its atmosphere at " + km(g.receiverDistanceM) + " (" + cone + ")"
+                                    : g.occluder + "'s shadow at " + km(g.receiverDistanceM) + " (" + cone + ", penumbra " +
+                                          km(g.penumbraRadiusM) + ")");
   this->render();
   return factor;
 }

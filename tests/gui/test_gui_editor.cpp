@@ -405,7 +405,10 @@ TEST(GuiEditor, AtmosphereShadowLutInTheWorkerWithProgress) {
   });
   ASSERT_TRUE(untilShadowJob(win.w)) << "no atmospheric shadow LuT job after the tables";
   EXPECT_FALSE(win.w.sceneView().atmosphereShadowCurrent());
+  QElapsedTimer clock;
+  clock.start();
   settle(win.w);
+  const qint64 computedMs = clock.elapsed();
   EXPECT_TRUE(win.w.sceneView().atmosphereShadowCurrent());
   EXPECT_FALSE(bar->isVisible());
   const auto between = std::count_if(values.begin(), values.end(), [](int v) { return v > 0 && v < 100; });
@@ -414,6 +417,15 @@ TEST(GuiEditor, AtmosphereShadowLutInTheWorkerWithProgress) {
   const auto rgb = viewSums(win, "copper.png");
   std::printf("  Moon's summed RGB %.0f %.0f %.0f\n", rgb[0], rgb[1], rgb[2]);
   EXPECT_TRUE(copper(rgb));
+
+  // Again in a new window: the table from the cache (by its parameters' hash).
+  Window again(std::nullopt, kMoon, umbra::scene::parseUtc("2015-09-28T02:47:00Z"), /*settleNow=*/false);
+  ASSERT_TRUE(untilShadowJob(again.w));
+  clock.restart();
+  settle(again.w);
+  std::printf("  the shadow LuT job (64x32, limb views of 32 rows): computed %lld ms, from the cache %lld ms\n",
+              static_cast<long long>(computedMs), static_cast<long long>(clock.elapsed()));
+  EXPECT_TRUE(again.w.sceneView().atmosphereShadowCurrent());
 }
 
 // Cancel: with no table before, the Moon stays airless-dark in the umbra; with one, the
