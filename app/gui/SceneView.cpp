@@ -143,6 +143,10 @@ vtkImageData* SceneView::atmosphereShadowLut() const {
   return impl->shadowApplied ? impl->atmosphereShadow->GetOutput() : nullptr;
 }
 
+bool SceneView::atmosphereShadowFromCache() const {
+  return impl->atmosphereShadow && impl->atmosphereShadow->GetLastUpdateWasCacheHit();
+}
+
 bool SceneView::atmosphereShadowCurrent() const { return impl->shadowApplied && impl->shadowCurrent; }
 
 void SceneView::setGlareStrength(double strength) { impl->bodies->GetRenderPass()->SetGlareStrength(strength); }

@@ -60,6 +60,8 @@ public:
   /// extent), or null (airless), and whether it is the one the scene shown needs.
   vtkImageData* atmosphereShadowLut() const;
   bool atmosphereShadowCurrent() const;
+  /// Whether that table was read from the table cache (vs computed).
+  bool atmosphereShadowFromCache() const;
   void render();
   vtkRenderer* renderer() const;
 

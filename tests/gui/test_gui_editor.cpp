@@ -410,6 +410,7 @@ TEST(GuiEditor, AtmosphereShadowLutInTheWorkerWithProgress) {
   settle(win.w);
   const qint64 computedMs = clock.elapsed();
   EXPECT_TRUE(win.w.sceneView().atmosphereShadowCurrent());
+  EXPECT_FALSE(win.w.sceneView().atmosphereShadowFromCache());
   EXPECT_FALSE(bar->isVisible());
   const auto between = std::count_if(values.begin(), values.end(), [](int v) { return v > 0 && v < 100; });
   std::printf("  progress values during the shadow job: %zu, %ld of them in (0, 100)\n", values.size(), long(between));
@@ -426,11 +427,13 @@ TEST(GuiEditor, AtmosphereShadowLutInTheWorkerWithProgress) {
   std::printf("  the shadow LuT job (64x32, limb views of 32 rows): computed %lld ms, from the cache %lld ms\n",
               static_cast<long long>(computedMs), static_cast<long long>(clock.elapsed()));
   EXPECT_TRUE(again.w.sceneView().atmosphereShadowCurrent());
+  EXPECT_TRUE(again.w.sceneView().atmosphereShadowFromCache());
 }
 
 // Cancel: with no table before, the Moon stays airless-dark in the umbra; with one, the
 // view keeps shading with it (copper) after a cancelled recomputation for a new time,
-// which is not started again until the time changes again.
+// which is not started again until the time changes again. Time steps while a table is
+// being made: the last one's is made next.
 TEST(GuiEditor, CancelTheAtmosphereShadowLutKeepsThePreviousShading) {
   Window win(std::nullopt, kMoon, umbra::scene::parseUtc("2015-09-28T02:50:00Z"), /*settleNow=*/false);
   ASSERT_TRUE(untilShadowJob(win.w));
@@ -458,10 +461,14 @@ TEST(GuiEditor, CancelTheAtmosphereShadowLutKeepsThePreviousShading) {
   EXPECT_LT(airless[0], 0.1 * before[0]);
   EXPECT_TRUE(copper(after));
   EXPECT_FALSE(win.w.atmosphereBusy());
+  // Slider steps while a job runs: the latest time's table follows the running one.
   win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:18:00Z"));
   EXPECT_TRUE(win.w.atmosphereShadowBusy());
+  win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:19:00Z"));
+  win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:20:00Z"));
   settle(win.w);
   EXPECT_TRUE(win.w.sceneView().atmosphereShadowCurrent());
+  EXPECT_NE(win.w.statusText().indexOf("03:20:00Z"), -1) << win.w.statusText().toStdString();
 }
 
 // The plot panel through Earth's atmosphere (the Moon in totality, small tables): the
