@@ -7,7 +7,11 @@
 // editor (a dock: every field of the model, AtmosphereEditor.hpp; an accepted edit
 // recomputes the tables the same way; Load/Save JSON), and a status bar with the
 // receiver's place in the shadow. While new tables are computed the view keeps the ones
-// it has; a cancelled or failed computation leaves them.
+// it has; a cancelled or failed computation leaves them. The same worker job, after the
+// tables and whenever the atmosphere or the time changes what the view needs, makes the
+// atmospheric shadow LuT that shades the other bodies (SceneView) and that the plot
+// panel's profile is read from; a "Refraction" check box makes the tables again with
+// refracted paths.
 #include "AtmosphereShadow.h"
 #include "scene/ReceiverShadow.hpp"
 #include "scene/Scene.hpp"
