@@ -5,6 +5,8 @@
 #include "ProfilePanel.hpp"
 #include "SceneInputs.h"
 #include "SceneView.hpp"
+#include "AtmosphereShadow.h"
+#include "vtkEclipseShadowLutSource.h"
 #include "scene/Time.hpp"
 #include "vtkAtmosphereTablesSource.h"
 
@@ -13,6 +15,7 @@
 
 #include <QAction>
 #include <QApplication>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
 #include <QDockWidget>
@@ -40,7 +43,10 @@
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
 
+#include <algorithm>
 #include <atomic>
+#include <functional>
+#include <vector>
 #include <thread>
 #include <cmath>
 #include <cstdio>
@@ -66,16 +72,52 @@ void checkAtmosphere(const std::string& model) {
 
 } // namespace
 
-/// Atmosphere tables being made in a worker thread: the source is only touched by the
-/// worker until it has finished (then by the GUI thread), except SetAbortExecute. The
-/// worker's progress callback sets AbortExecute again from `cancelled`: VTK clears it when
-/// the execution starts, so a cancel that comes before that is not lost.
+/// Tables being made in a worker thread: the atmosphere's (`source`, for the view's sky)
+/// or the atmospheric shadow LuT (`shadow`, for `request`: the other bodies' shading and
+/// the profile). The algorithms are only touched by the worker until it has finished (then
+/// by the GUI thread), except SetAbortExecute. The worker's progress callbacks set
+/// AbortExecute again from `cancelled`: VTK clears it when an execution starts, so a
+/// cancel that comes before that is not lost. Each observed algorithm's progress is
+/// mapped to its part [from, to] of the bar.
 struct MainWindow::AtmosphereJob {
   vtkSmartPointer<vtkAtmosphereTablesSource> source;
-  vtkNew<vtkCallbackCommand> onProgress;
+  vtkSmartPointer<vtkEclipseShadowLutSource> shadow;
+  std::optional<render::AtmosphereShadowRequest> request;
+  std::string error;  // the shadow's, set by the worker
+  struct Stage {
+    AtmosphereJob* job;
+    double from, to;
+    vtkSmartPointer<vtkAlgorithm> algorithm;
+    vtkNew<vtkCallbackCommand> onProgress;
+  };
+  std::vector<std::unique_ptr<Stage>> stages;
   std::thread thread;
   std::atomic<bool> cancelled{false};
   QProgressBar* bar = nullptr;
+
+  void observe(vtkAlgorithm* algorithm, double from, double to) {
+    if (!algorithm) return;
+    auto stage = std::make_unique<Stage>();
+    stage->job = this, stage->from = from, stage->to = to, stage->algorithm = algorithm;
+    stage->onProgress->SetClientData(stage.get());
+    stage->onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
+      const auto* st = static_cast<const Stage*>(client);
+      if (st->job->cancelled) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+      QProgressBar* progress = st->job->bar;
+      const double f = std::clamp(*static_cast<double*>(data), 0.0, 1.0);
+      const int percent = static_cast<int>(100.0 * (st->from + (st->to - st->from) * f));
+      QMetaObject::invokeMethod(progress, [progress, percent] { progress->setValue(percent); }, Qt::QueuedConnection);
+    });
+    algorithm->AddObserver(vtkCommand::ProgressEvent, stage->onProgress);
+    this->stages.push_back(std::move(stage));
+  }
+  void cancel() {
+    this->cancelled = true;
+    for (const auto& st : this->stages) st->algorithm->SetAbortExecute(1);
+  }
+  void stopObserving() {
+    for (const auto& st : this->stages) st->algorithm->RemoveObserver(st->onProgress);
+  }
 };
 
 MainWindow::MainWindow() {
@@ -188,11 +230,18 @@ MainWindow::MainWindow() {
   this->atmosphereEdit->setToolTip("Show the atmosphere's fields: every component's profile, optics and phase");
   connect(this->atmosphereEdit, &QPushButton::clicked, this, [this] { this->showAtmosphereEditor(); });
 
+  this->refractionBox = new QCheckBox("Refraction");
+  this->refractionBox->setToolTip("Bend the rays through the atmosphere: a lifted, flattened Sun at the horizon "
+                                  "(the tables are made again with refracted paths)");
+  connect(this->refractionBox, &QCheckBox::toggled, this, [this](bool on) { this->setRefraction(on); });
+
+  // Two rows: the time slider (as wide as the window), then exposure, glare and the
+  // atmosphere's controls.
+  auto* timeRow = new QHBoxLayout;
+  timeRow->addWidget(new QLabel("Time (UTC)"));
+  timeRow->addWidget(this->slider, 1);
+  timeRow->addWidget(this->timeLabel);
   auto* controls = new QHBoxLayout;
-  controls->addWidget(new QLabel("Time (UTC)"));
-  controls->addWidget(this->slider, 1);
-  controls->addWidget(this->timeLabel);
-  controls->addSpacing(16);
   controls->addWidget(new QLabel("Exposure"));
   controls->addWidget(this->exposure);
   controls->addWidget(new QLabel("Glare"));
@@ -201,12 +250,15 @@ MainWindow::MainWindow() {
   controls->addWidget(new QLabel("Atmosphere"));
   controls->addWidget(this->atmosphereChoice);
   controls->addWidget(this->atmosphereEdit);
+  controls->addWidget(this->refractionBox);
   controls->addWidget(this->atmosphereProgress);
   controls->addWidget(this->atmosphereCancel);
+  controls->addStretch(1);
 
   auto* central = new QWidget;
   auto* layout = new QVBoxLayout(central);
   layout->addWidget(splitter, 1);
+  layout->addLayout(timeRow);
   layout->addLayout(controls);
   this->setCentralWidget(central);
 
@@ -226,6 +278,25 @@ void MainWindow::setGlare(double strength) {
   this->view->render();
 }
 
+void MainWindow::useSmallAtmosphereTables(bool small) {
+  this->smallTables = small;
+  this->view->useSmallAtmosphereShadowTables(small);
+}
+
+bool MainWindow::refraction() const { return this->refractionBox->isChecked(); }
+
+void MainWindow::setRefraction(bool on) {
+  if (on != this->refractionBox->isChecked()) {
+    const QSignalBlocker block(this->refractionBox);
+    this->refractionBox->setChecked(on);
+  }
+  // The tables drawn (or being made) again, with or without refraction.
+  const std::string model = this->job && this->job->source ? std::string(this->job->source->GetAtmosphere()) : this->drawnModel;
+  const bool drawnWith = this->view->atmosphereTables() && this->view->atmosphereTables()->GetRefractedPaths();
+  if (!this->current || model.empty() || (!(this->job && this->job->source) && drawnWith == on)) return;
+  this->startAtmosphere(model);
+}
+
 void MainWindow::setExposure(double ev) { this->exposure->setValue(ev); }
 
 void MainWindow::overrideAtmosphere(const std::string& model) {
@@ -235,16 +306,17 @@ void MainWindow::overrideAtmosphere(const std::string& model) {
 
 bool MainWindow::atmosphereBusy() const { return this->job != nullptr; }
 
+bool MainWindow::atmosphereTablesBusy() const { return this->job && this->job->source; }
+
+bool MainWindow::atmosphereShadowBusy() const { return this->job && this->job->shadow; }
+
 void MainWindow::cancelAtmosphereTables() {
-  if (!this->job) return;
-  this->job->cancelled = true;
-  this->job->source->SetAbortExecute(1);
+  if (this->job) this->job->cancel();
 }
 
 void MainWindow::cancelAtmosphere() {
   if (!this->job) return;
-  this->job->cancelled = true;
-  this->job->source->SetAbortExecute(1);
+  this->job->cancel();
   if (this->job->thread.joinable()) this->job->thread.join();
   this->job.reset();
   ++this->jobGeneration;  // a queued "finished" of that job is ignored
@@ -311,33 +383,57 @@ void MainWindow::startAtmosphere(const std::string& model) {
 
   // The source is configured as render::applySceneAtmosphere configures it, so that its
   // Update there (GUI thread) finds it up to date. The view keeps its tables meanwhile.
-  this->job = std::make_unique<AtmosphereJob>();
-  AtmosphereJob& j = *this->job;
-  j.source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
-  j.source->SetAtmosphere(model.c_str());
-  j.source->SetWavelengths(3);
-  j.source->SetTables(vtkAtmosphereTablesSource::Bruneton);
-  j.source->SetRefractedPaths(false);
-  if (this->smallTables) render::useSmallAtmosphereTables(j.source);
-  QProgressBar* bar = this->atmosphereProgress;
-  j.bar = bar;
-  j.onProgress->SetClientData(&j);
-  j.onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
-    const auto* job = static_cast<const AtmosphereJob*>(client);
-    if (job->cancelled) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
-    QProgressBar* progress = job->bar;
-    const int percent = static_cast<int>(100.0 * *static_cast<double*>(data));
-    QMetaObject::invokeMethod(progress, [progress, percent] { progress->setValue(percent); }, Qt::QueuedConnection);
+  auto j = std::make_unique<AtmosphereJob>();
+  j->source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
+  j->source->SetAtmosphere(model.c_str());
+  j->source->SetWavelengths(3);
+  const bool refraction = this->refraction();
+  j->source->SetTables(vtkAtmosphereTablesSource::Bruneton | (refraction ? vtkAtmosphereTablesSource::Refraction : 0));
+  j->source->SetRefractedPaths(refraction);
+  if (this->smallTables) render::useSmallAtmosphereTables(j->source);
+  j->observe(j->source, 0.0, 1.0);
+  vtkAtmosphereTablesSource* source = j->source;
+  this->runJob(std::move(j), "computing the " + this->atmosphereChoice->currentText().toStdString() +
+                                 " atmosphere tables...",
+               [source] { source->Update(); });
+}
+
+void MainWindow::startAtmosphereShadow() {
+  if (this->job || !this->current) return;
+  const auto& missing = this->view->missingAtmosphereShadow();
+  if (!missing || (this->failedShadow && *this->failedShadow == *missing)) return;
+  auto j = std::make_unique<AtmosphereJob>();
+  j->shadow = this->view->newAtmosphereShadowSource();
+  j->request = *missing;
+  try {
+    // The atmosphere's tables with refraction (from their cache), then the texels.
+    j->observe(render::setUpAtmosphereShadow(j->shadow, *missing), 0.0, 0.5);
+  } catch (const std::exception& e) {
+    this->failedShadow = *missing;
+    this->setStatus(qs(std::string("atmosphere: ") + e.what()));
+    return;
+  }
+  j->observe(j->shadow, 0.5, 1.0);
+  AtmosphereJob* raw = j.get();
+  this->runJob(std::move(j), "computing the shadow through the atmosphere of " + missing->occluder + "...", [raw] {
+    try {
+      render::updateAtmosphereShadow(raw->shadow, *raw->request);
+    } catch (const std::exception& e) {
+      raw->error = e.what();
+    }
   });
-  j.source->AddObserver(vtkCommand::ProgressEvent, j.onProgress);
-  bar->setValue(0);
-  bar->setVisible(true);
+}
+
+void MainWindow::runJob(std::unique_ptr<AtmosphereJob> j, const std::string& status, std::function<void()> work) {
+  this->job = std::move(j);
+  this->job->bar = this->atmosphereProgress;
+  this->atmosphereProgress->setValue(0);
+  this->atmosphereProgress->setVisible(true);
   this->atmosphereCancel->setVisible(true);
-  this->setStatus(qs("computing the " + this->atmosphereChoice->currentText().toStdString() + " atmosphere tables..."));
+  this->setStatus(qs(status));
   const int generation = ++this->jobGeneration;
-  vtkAtmosphereTablesSource* source = j.source;
-  j.thread = std::thread([this, source, generation] {
-    source->Update();
+  this->job->thread = std::thread([this, generation, work = std::move(work)] {
+    work();
     QMetaObject::invokeMethod(this, [this, generation] { this->atmosphereFinished(generation); }, Qt::QueuedConnection);
   });
 }
@@ -348,6 +444,20 @@ void MainWindow::atmosphereFinished(int generation) {
   const std::unique_ptr<AtmosphereJob> done = std::move(this->job);
   this->atmosphereProgress->setVisible(false);
   this->atmosphereCancel->setVisible(false);
+  done->stopObserving();
+  if (done->shadow) {
+    // The atmospheric shadow LuT: a cancelled or failed one is not asked for again (until
+    // the scene needs another); the view keeps the table it has.
+    if (done->cancelled || !done->error.empty()) {
+      this->failedShadow = done->request;
+      this->refresh();
+      this->setStatus(qs("atmosphere shadow: " + (done->cancelled ? std::string("cancelled") : done->error)));
+      return;
+    }
+    this->view->setAtmosphereShadow(done->shadow, *done->request);
+    this->refresh();
+    return;
+  }
   const std::string error = done->source->GetLastError();
   if (!error.empty()) {
     // The view keeps what it drew; the choice goes back to it.
@@ -357,7 +467,6 @@ void MainWindow::atmosphereFinished(int generation) {
     this->setStatus(qs("atmosphere: " + (done->cancelled ? std::string("cancelled") : error)));
     return;
   }
-  done->source->RemoveObserver(done->onProgress);
   const std::string model = done->source->GetAtmosphere();
   for (scene::Body& b : this->current->bodies)
     b.atmosphereModel = b.name == this->atmosphereBody ? model : std::string();
@@ -494,8 +603,10 @@ void MainWindow::refresh() {
   const scene::Scene& s = *this->current;
   this->shadow = scene::receiverShadow(s);
   this->view->setScene(s, this->plot->prepareLut(s.shadowLutSize, this->shadow));
+  this->plot->setAtmosphereShadowLut(this->view->atmosphereShadowLut(), this->atmosphereBody);
   this->shadowFactor = this->plot->update(this->shadow);
   this->view->render();
+  this->startAtmosphereShadow();  // the atmospheric shadow LuT the scene needs, in the worker
 
   if (s.hasTime) {
     const int v = this->slider->value();

@@ -7,7 +7,12 @@
 // editor (a dock: every field of the model, AtmosphereEditor.hpp; an accepted edit
 // recomputes the tables the same way; Load/Save JSON), and a status bar with the
 // receiver's place in the shadow. While new tables are computed the view keeps the ones
-// it has; a cancelled or failed computation leaves them.
+// it has; a cancelled or failed computation leaves them. The same worker job, after the
+// tables and whenever the atmosphere or the time changes what the view needs, makes the
+// atmospheric shadow LuT that shades the other bodies (SceneView) and that the plot
+// panel's profile is read from; a "Refraction" check box makes the tables again with
+// refracted paths.
+#include "AtmosphereShadow.h"
 #include "scene/ReceiverShadow.hpp"
 #include "scene/Scene.hpp"
 
@@ -16,10 +21,12 @@
 #include <QString>
 #include <QTemporaryDir>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 
+class QCheckBox;
 class QComboBox;
 class QDockWidget;
 class QDoubleSpinBox;
@@ -55,9 +62,13 @@ public:
   /// The atmosphere later loadScene calls draw instead of the scene's ("" : none).
   /// Throws std::runtime_error for an unknown preset or a bad file.
   void overrideAtmosphere(const std::string& model);
-  /// True while atmosphere tables are being computed.
+  /// True while atmosphere tables or the atmospheric shadow LuT are being computed (in
+  /// the worker, one job at a time); the first, the second.
   bool atmosphereBusy() const;
-  /// The Cancel button: stops the tables being computed; the view keeps the ones it has.
+  bool atmosphereTablesBusy() const;
+  bool atmosphereShadowBusy() const;
+  /// The Cancel button: stops the tables being computed; the view keeps the ones it has
+  /// (a cancelled shadow LuT is not asked for again until the scene needs another one).
   void cancelAtmosphereTables();
   /// The model (preset or file) whose tables the view draws ("" : none). An edit's model
   /// is a file in a private temporary folder.
@@ -65,12 +76,22 @@ public:
   /// The atmosphere editor (its document follows setAtmosphere; its accepted edits
   /// recompute the tables).
   AtmosphereEditor& atmosphereEditor() const { return *this->editor; }
+  /// The 3D view (e.g. whether it shades with the atmospheric shadow LuT).
+  const SceneView& sceneView() const { return *this->view; }
+  /// The plot panel (its profile: the atmospheric shadow's when the view shades with it).
+  const ProfilePanel& profilePanel() const { return *this->plot; }
   /// Shows the editor's dock (the "Edit..." button).
   void showAtmosphereEditor();
   /// Writes the edited atmosphere as JSON (atomically). Throws std::runtime_error naming the path.
   void saveAtmosphereJson(const std::string& path) const;
   /// Small tables (useSmallAtmosphereTables) for the next setAtmosphere: quick looks, tests.
-  void useSmallAtmosphereTables(bool small) { this->smallTables = small; }
+  /// The atmospheric shadow LuT follows (render::useSmallEclipseShadowTables).
+  void useSmallAtmosphereTables(bool small);
+  /// Refraction (the "Refraction" check box; `umbra render --refraction`): the atmosphere's
+  /// tables are made again in the worker with the refraction table and refracted paths,
+  /// and the view bends its rays (a lifted, flattened Sun at the horizon).
+  void setRefraction(bool on);
+  bool refraction() const;
   /// Exposure of the 3D view in EV (the spin box follows).
   void setExposure(double ev);
   /// Glare strength of the 3D view (0..10).
@@ -100,6 +121,9 @@ private:
   void cancelAtmosphere();  // stops and joins the worker, if any
   void atmosphereFinished(int generation);
   void startAtmosphere(const std::string& model);  // the tables in the worker
+  void startAtmosphereShadow();  // the view's missing atmospheric shadow LuT in the worker
+  struct AtmosphereJob;
+  void runJob(std::unique_ptr<AtmosphereJob> job, const std::string& status, std::function<void()> work);
   void atmosphereEdited();  // the editor's accepted document -> a file -> startAtmosphere
   void loadAtmosphereDialog();
   void saveAtmosphereDialog();
@@ -115,6 +139,7 @@ private:
   QPushButton* atmosphereCancel = nullptr;
   QDoubleSpinBox* glare = nullptr;
   QPushButton* atmosphereEdit = nullptr;
+  QCheckBox* refractionBox = nullptr;
   QDockWidget* editorDock = nullptr;
   AtmosphereEditor* editor = nullptr;
 
@@ -133,8 +158,8 @@ private:
   int editCount = 0;
   std::string editedFrom;  // the name the edits started from (the editor's name for them)
   bool smallTables = false;
-  struct AtmosphereJob;
   std::unique_ptr<AtmosphereJob> job;
+  std::optional<render::AtmosphereShadowRequest> failedShadow;  // cancelled or failed: not again
   int jobGeneration = 0;
 };
 

@@ -122,6 +122,11 @@ vtkImageData* ProfilePanel::prepareLut(int size, const scene::ReceiverShadow& g)
   return this->lutSource->GetOutput();
 }
 
+void ProfilePanel::setAtmosphereShadowLut(vtkImageData* lut, const std::string& occluder) {
+  this->atmosphereLut = lut;
+  this->atmosphereOccluder = lut ? occluder : std::string();
+}
+
 double ProfilePanel::update(const scene::ReceiverShadow& g) {
   const bool show = g.valid && this->lutSource;
   if (!show) {
@@ -133,8 +138,14 @@ double ProfilePanel::update(const scene::ReceiverShadow& g) {
 
   // The profile reaches past the penumbra and past the receiver's far edge.
   const double maxOffset = std::max(1.25 * g.penumbraRadiusM, 1.05 * (g.offsetM + g.receiverRadiusM));
+  const bool atmospheric = this->atmosphereLut && g.occluder == this->atmosphereOccluder;
+  if (atmospheric) {
+    this->filter->SetInputData(this->atmosphereLut);
+  } else if (this->filter->GetInputAlgorithm() != this->lutSource.Get()) {
+    this->filter->SetInputConnection(this->lutSource->GetOutputPort());
+  }
   this->filter->SetSunRadiusM(g.sunRadiusM);
-  this->filter->SetOccluderRadiusM(g.occluderRadiusM);
+  this->filter->SetOccluderRadiusM(atmospheric ? 0.0 : g.occluderRadiusM);  // 0: the table's (bottom radius)
   this->filter->SetSunOccluderDistanceM(g.sunOccluderDistanceM);
   this->filter->SetReceiverDistanceM(g.receiverDistanceM);
   this->filter->SetMaxOffsetM(maxOffset);
@@ -149,15 +160,21 @@ double ProfilePanel::update(const scene::ReceiverShadow& g) {
   const double centreKm = g.offsetM / 1e3;
   const double factor = interpolate(x, lum, centreKm);
 
+  // Through an atmosphere the umbra is lit at 1e-3 .. 1e-2 of the Sun: a log scale.
+  const double bottomY = atmospheric ? plot::logAxisMinimum(this->table) : 0.0;
+  vtkAxis* left = this->chart->GetAxis(vtkAxis::LEFT);
+  left->SetLogScale(atmospheric);
+  left->SetRange(bottomY, kTop);
+  left->SetBehavior(vtkAxis::FIXED);
   const double xMax = maxOffset / 1e3;
   const double lo = std::max(0.0, (g.offsetM - g.receiverRadiusM) / 1e3);
   const double hi = std::min(xMax, (g.offsetM + g.receiverRadiusM) / 1e3);
   setColumn(this->band, "x", {lo, 0.5 * (lo + hi), hi});
-  setColumn(this->band, "y0", {0.0, 0.0, 0.0});
+  setColumn(this->band, "y0", {bottomY, bottomY, bottomY});
   setColumn(this->band, "y1", {kTop, kTop, kTop});
   this->band->Modified();
   setColumn(this->centre, "x", {centreKm, centreKm});
-  setColumn(this->centre, "y", {0.0, kTop});
+  setColumn(this->centre, "y", {bottomY, kTop});
   this->centre->Modified();
   setColumn(this->point, "x", {centreKm});
   setColumn(this->point, "y", {factor});
@@ -199,8 +216,11 @@ double ProfilePanel::update(const scene::ReceiverShadow& g) {
   vtkAxis* bottom = this->chart->GetAxis(vtkAxis::BOTTOM);
   bottom->SetRange(0.0, xMax);
   bottom->SetBehavior(vtkAxis::FIXED);
-  this->chart->SetTitle(g.occluder + "'s shadow at " + km(g.receiverDistanceM) + (g.antumbraRadiusM > 0.0 ? " (antumbra " : " (umbra ") +
-                        km(std::max(g.umbraRadiusM, g.antumbraRadiusM)) + ", penumbra " + km(g.penumbraRadiusM) + ")");
+  // (Through the atmosphere the penumbra's edge is plain on the log scale: left out, to fit.)
+  const std::string cone = (g.antumbraRadiusM > 0.0 ? "antumbra " : "umbra ") + km(std::max(g.umbraRadiusM, g.antumbraRadiusM));
+  this->chart->SetTitle(atmospheric ? g.occluder + "'s shadow through its atmosphere at " + km(g.receiverDistanceM) + " (" + cone + ")"
+                                    : g.occluder + "'s shadow at " + km(g.receiverDistanceM) + " (" + cone + ", penumbra " +
+                                          km(g.penumbraRadiusM) + ")");
   this->render();
   return factor;
 }

@@ -5,7 +5,11 @@
 // point at the shadow factor there) and its extent (a band of +- its radius).
 //
 // The LuT source is built once per LuT size (from the table cache when it is there); a
-// change of time only changes the profile filter's parameters.
+// change of time only changes the profile filter's parameters. When the occluder has an
+// atmosphere and the 3D view shades with its atmospheric shadow LuT, the profile comes
+// from that table (its columns around the receiver's distance) through the same filter, on
+// a log scale, as `umbra profile shadow --atmosphere` plots it (the occluder's radius is
+// then the atmosphere's bottom radius, from the table's field data).
 #include "scene/ReceiverShadow.hpp"
 
 #include <vtkSmartPointer.h>
@@ -36,6 +40,10 @@ public:
   /// when the size changed. Throws std::runtime_error when it cannot be computed.
   vtkImageData* prepareLut(int size, const scene::ReceiverShadow& geometry);
 
+  /// The atmospheric shadow LuT of `occluder` (SceneView::atmosphereShadowLut: a part of
+  /// the table) to plot while the geometry's occluder is that body; null: the airless one.
+  void setAtmosphereShadowLut(vtkImageData* lut, const std::string& occluder);
+
   /// Recomputes the profile for this geometry and redraws. Returns the shadow factor
   /// (luminance, I / I_sun) at the receiver's centre; 1 when there is no valid geometry.
   double update(const scene::ReceiverShadow& geometry);
@@ -59,6 +67,8 @@ private:
   vtkPlot* bandPlot = nullptr;
   vtkPlot* centrePlot = nullptr;
   vtkPlot* pointPlot = nullptr;
+  vtkSmartPointer<vtkImageData> atmosphereLut;
+  std::string atmosphereOccluder;
   int lutSize = 0;
   bool linesAdded = false;
 };

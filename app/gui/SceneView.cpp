@@ -19,6 +19,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <optional>
 #include <stdexcept>
 
@@ -40,9 +41,12 @@ struct SceneView::Impl {
   vtkSmartPointer<vtkEclipseShadowLutSource> ranged;
   std::optional<eclipse::LutRange> rangedFor;
   int rangedHeight = 0;
-  // The atmospheric shadow LuT of the other bodies (small tables: about a second, on
-  // this thread), as `umbra render` shades them (render::applySceneAtmosphereShadow).
+  // The atmospheric shadow LuT of the other bodies (computed by the caller), the request
+  // it was made for, the one the scene shown needs when it differs, and whether the
+  // shading has it.
   vtkSmartPointer<vtkEclipseShadowLutSource> atmosphereShadow;
+  std::optional<render::AtmosphereShadowRequest> shadowMadeFor, shadowMissing;
+  bool shadowApplied = false, shadowCurrent = false;
 };
 
 SceneView::SceneView(QVTKOpenGLNativeWidget* widget) : impl(std::make_unique<Impl>()) {
@@ -91,23 +95,59 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
   if (drawn && impl->applied == impl->tables && atmosphere.HasAtmosphere() && body != in.bodies.end()) {
     atmosphere.SetCentre(body->centreM);  // the time moved: the same tables, no upload
   } else if (drawn) {
-    render::applySceneAtmosphere(*impl->bodies, in, impl->tables, /*refraction=*/false);
+    render::applySceneAtmosphere(*impl->bodies, in, impl->tables, impl->tables->GetRefractedPaths());
     impl->applied = impl->tables;
   } else {
     atmosphere.ClearAtmosphere();
     impl->applied = nullptr;
   }
-  if (drawn) {
-    if (!impl->atmosphereShadow) {
-      impl->atmosphereShadow = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
-      render::useSmallEclipseShadowTables(impl->atmosphereShadow);
-    }
-    render::applySceneAtmosphereShadow(impl->bodies->GetShading(), in, impl->atmosphereShadow);
-  } else {
-    impl->bodies->GetShading().SetAtmosphereShadowLut("", nullptr);
+  // The atmospheric shadow: the table the view has for this body while the caller makes
+  // the one the scene needs.
+  const std::array<int, 2> size = this->sizeOfShadow();
+  const auto wanted = drawn ? render::sceneAtmosphereShadowRequest(in, size[0], size[1]) : std::nullopt;
+  impl->shadowCurrent = wanted && impl->shadowMadeFor && *wanted == *impl->shadowMadeFor;
+  impl->shadowMissing = wanted && !impl->shadowCurrent ? wanted : std::nullopt;
+  const bool usable = wanted && impl->shadowMadeFor && impl->shadowMadeFor->occluder == wanted->occluder;
+  if (!usable) {
+    if (impl->shadowApplied) impl->bodies->GetShading().SetAtmosphereShadowLut("", nullptr);
+    impl->shadowApplied = false;
+  } else if (!impl->shadowApplied) {
+    impl->bodies->GetShading().SetAtmosphereShadowLut(impl->shadowMadeFor->occluder, impl->atmosphereShadow->GetOutput());
+    impl->shadowApplied = true;
   }
   impl->bodies->SetCamera(in.camera);
 }
+
+std::array<int, 2> SceneView::sizeOfShadow() const {
+  const auto sizes = this->newAtmosphereShadowSource();
+  return {sizes->GetWidth(), sizes->GetHeight()};
+}
+
+const std::optional<render::AtmosphereShadowRequest>& SceneView::missingAtmosphereShadow() const {
+  return impl->shadowMissing;
+}
+
+vtkSmartPointer<vtkEclipseShadowLutSource> SceneView::newAtmosphereShadowSource() const {
+  auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
+  if (this->smallShadowTables) render::useSmallEclipseShadowTables(source);
+  return source;
+}
+
+void SceneView::setAtmosphereShadow(vtkEclipseShadowLutSource* source, const render::AtmosphereShadowRequest& request) {
+  impl->atmosphereShadow = source;
+  impl->shadowMadeFor = request;
+  impl->shadowApplied = false;  // applied on the next setScene
+}
+
+vtkImageData* SceneView::atmosphereShadowLut() const {
+  return impl->shadowApplied ? impl->atmosphereShadow->GetOutput() : nullptr;
+}
+
+bool SceneView::atmosphereShadowFromCache() const {
+  return impl->atmosphereShadow && impl->atmosphereShadow->GetLastUpdateWasCacheHit();
+}
+
+bool SceneView::atmosphereShadowCurrent() const { return impl->shadowApplied && impl->shadowCurrent; }
 
 void SceneView::setGlareStrength(double strength) { impl->bodies->GetRenderPass()->SetGlareStrength(strength); }
 
@@ -115,6 +155,8 @@ void SceneView::setAtmosphereTables(vtkAtmosphereTablesSource* tables) {
   impl->tables = tables;
   impl->applied = nullptr;  // applied again on the next setScene
 }
+
+vtkAtmosphereTablesSource* SceneView::atmosphereTables() const { return impl->tables; }
 
 void SceneView::setExposureEV(double ev) { impl->bodies->SetExposureEV(ev); }
 

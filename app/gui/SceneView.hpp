@@ -2,12 +2,18 @@
 // The 3D view: a scene's bodies seen from its camera, drawn into a Qt VTK widget's render
 // window. The glue between umbra::scene and the render library lives here and nowhere
 // else in the GUI, so that the GUI follows the render library with small changes.
+#include "AtmosphereShadow.h"
 #include "scene/Scene.hpp"
 
+#include <vtkSmartPointer.h>
+
+#include <array>
 #include <memory>
+#include <optional>
 
 class QVTKOpenGLNativeWidget;
 class vtkAtmosphereTablesSource;
+class vtkEclipseShadowLutSource;
 class vtkImageData;
 class vtkRenderer;
 
@@ -31,13 +37,40 @@ public:
   /// Tables (already updated) for the atmosphere the scene asks for; nullptr: none. The
   /// atmosphere is drawn while the scene's atmosphere is the one the tables were made for
   /// (they are applied again on every setScene, as the body moves). Call setScene next.
+  /// Tables made with refracted paths and the refraction table (SetRefractedPaths): the
+  /// view bends its rays (render::applySceneAtmosphere with refraction).
   void setAtmosphereTables(vtkAtmosphereTablesSource* tables);
+  vtkAtmosphereTablesSource* atmosphereTables() const;
+
+  /// The other bodies in the shadow of the body with the atmosphere are shaded with its
+  /// atmospheric shadow LuT (render::sceneAtmosphereShadowRequest: their columns only), as
+  /// `umbra render` shades them. The view does not compute it: after setScene this is the
+  /// request for the scene shown when the view has no table for it (none when it has, or
+  /// needs none); the caller computes it (MainWindow: in its worker, with
+  /// newAtmosphereShadowSource) and hands it over with setAtmosphereShadow. Meanwhile the
+  /// view shades with the table it has for that body (another time or model), or airless.
+  const std::optional<render::AtmosphereShadowRequest>& missingAtmosphereShadow() const;
+  /// A source with the view's table sizes (small: render::useSmallEclipseShadowTables, else
+  /// the defaults, as `umbra render --atmosphere-tables`), the default cache.
+  vtkSmartPointer<vtkEclipseShadowLutSource> newAtmosphereShadowSource() const;
+  void useSmallAtmosphereShadowTables(bool small) { this->smallShadowTables = small; }
+  /// The table for `request` (render::updateAtmosphereShadow done). Call setScene next.
+  void setAtmosphereShadow(vtkEclipseShadowLutSource* source, const render::AtmosphereShadowRequest& request);
+  /// The atmospheric shadow LuT the view shades with (a part of the whole table: its
+  /// extent), or null (airless), and whether it is the one the scene shown needs.
+  vtkImageData* atmosphereShadowLut() const;
+  bool atmosphereShadowCurrent() const;
+  /// Whether that table was read from the table cache (vs computed).
+  bool atmosphereShadowFromCache() const;
   void render();
   vtkRenderer* renderer() const;
 
 private:
   struct Impl;
+  std::array<int, 2> sizeOfShadow() const;  // width, height of newAtmosphereShadowSource's tables
+
   std::unique_ptr<Impl> impl;
+  bool smallShadowTables = false;
 };
 
 } // namespace umbra::gui

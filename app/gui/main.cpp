@@ -1,5 +1,5 @@
 // umbra-gui [SCENE.json] [--time ISO] [--atmosphere NAME|FILE|none] [--atmosphere-set FIELD=VALUE ...]
-//           [--atmosphere-tables default|small] [--exposure EV] [--glare S] [--screenshot FILE.png]
+//           [--atmosphere-tables default|small] [--refraction] [--exposure EV] [--glare S] [--screenshot FILE.png]
 //           [--editor] [--quit-after-screenshot]
 //
 // The desktop GUI: a scene's bodies in 3D, a time slider that moves them, and the
@@ -92,12 +92,16 @@ int main(int argc, char** argv) {
   const QCommandLineOption editorOption("editor", "Show the atmosphere editor (every field of the model).");
   const QCommandLineOption tablesOption(
       "atmosphere-tables", "Atmosphere table sizes: default, or small (quick looks and tests).", "SIZES", "default");
+  const QCommandLineOption refractionOption(
+      "refraction", "Bend the rays through the atmosphere (a lifted, flattened Sun at the horizon), as umbra render "
+                    "--refraction.");
   const QCommandLineOption exposureOption("exposure", "Exposure in EV (default: the scene's).", "EV");
   const QCommandLineOption glareOption("glare", "Glare strength, 0..10 (default 0).", "S");
   parser.addOption(atmosphereOption);
   parser.addOption(setOption);
   parser.addOption(editorOption);
   parser.addOption(tablesOption);
+  parser.addOption(refractionOption);
   parser.addOption(exposureOption);
   parser.addOption(glareOption);
   parser.addOption(timeOption);
@@ -127,6 +131,7 @@ int main(int argc, char** argv) {
     if (tables != "default" && tables != "small")
       throw std::runtime_error("--atmosphere-tables: expected default or small, got '" + tables.toStdString() + "'");
     window.useSmallAtmosphereTables(tables == "small");
+    window.setRefraction(parser.isSet(refractionOption));
     auto number = [&](const QCommandLineOption& option, double lo, double hi) {
       bool ok = false;
       const double v = parser.value(option).toDouble(&ok);

@@ -60,17 +60,6 @@ std::string xmlEscaped(const std::string& text) {
   return out;
 }
 
-/// The lower end of a log-scale axis: the decade below the smallest positive value (>= 1e-9).
-double logAxisMinimum(vtkTable* t) {
-  double lo = 1.0;
-  for (const Line& line : kLines) {
-    auto* y = column(t, line.column);
-    for (vtkIdType i = 0; i < y->GetNumberOfTuples(); ++i)
-      if (y->GetValue(i) > 0.0) lo = std::min(lo, y->GetValue(i));
-  }
-  return std::pow(10.0, std::floor(std::log10(std::max(lo, 1e-9))));
-}
-
 void writeSvg(vtkTable* t, const std::string& path, const std::string& title, const ProfilePlotStyle& style) {
   const double W = 800, H = 500, left = 70, right = 20, top = 40, bottom = 60;
   auto* x = column(t, "offset_km");
@@ -226,6 +215,16 @@ void writeProfilePlot(vtkTable* t, const std::string& path, const std::string& t
   if (ext == ".svg") return writeSvg(t, path, title, style);
   if (ext == ".png") return writePng(t, path, title, style);
   throw std::runtime_error(path + ": unsupported plot type (expected .png or .svg)");
+}
+
+double logAxisMinimum(vtkTable* t) {
+  double lo = 1.0;
+  for (const Line& line : kLines) {
+    auto* y = column(t, line.column);
+    for (vtkIdType i = 0; i < y->GetNumberOfTuples(); ++i)
+      if (y->GetValue(i) > 0.0) lo = std::min(lo, y->GetValue(i));
+  }
+  return std::pow(10.0, std::floor(std::log10(std::max(lo, 1e-9))));
 }
 
 } // namespace umbra::plot

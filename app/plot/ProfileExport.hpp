@@ -29,6 +29,10 @@ struct ProfilePlotStyle {
 void writeProfilePlot(vtkTable* profile, const std::string& path, const std::string& title,
                       const ProfilePlotStyle& style = {});
 
+/// The lower end of a log-scale axis for a profile: the decade below its smallest
+/// positive value (>= 1e-9).
+double logAxisMinimum(vtkTable* profile);
+
 /// The lines of a profile plot, added to a chart (shared by the PNG export and the GUI).
 void addProfileLines(vtkChartXY* chart, vtkTable* profile);
 

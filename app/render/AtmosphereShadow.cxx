@@ -151,49 +151,90 @@ int rangedLutWidth(const eclipse::LutRange& range, int width) {
   return std::clamp(w, 2, std::max(width, 2));
 }
 
-void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, vtkEclipseShadowLutSource* source) {
-  if (!in.atmosphere) {
-    shading.SetAtmosphereShadowLut("", nullptr);
-    return;
-  }
-  const SphereBody* occ = &setUpFor(source, in);
+bool AtmosphereShadowRequest::operator==(const AtmosphereShadowRequest& o) const {
+  return occluder == o.occluder && model == o.model && occluderRadiusM == o.occluderRadiusM &&
+         sunRadiusM == o.sunRadiusM && sunOccluderDistanceM == o.sunOccluderDistanceM && width == o.width &&
+         height == o.height && range == o.range && extent == o.extent;
+}
+
+std::optional<AtmosphereShadowRequest> sceneAtmosphereShadowRequest(const SceneInputs& in, int width, int height) {
+  if (!in.atmosphere) return std::nullopt;
+  const auto occ = std::find_if(in.bodies.begin(), in.bodies.end(),
+                                [&](const SphereBody& b) { return b.name == in.atmosphere->body; });
+  if (occ == in.bodies.end()) throw std::invalid_argument("atmosphere of '" + in.atmosphere->body + "': no such body");
+  AtmosphereShadowRequest r;
+  r.occluder = occ->name;
+  r.model = in.atmosphere->model;
+  r.occluderRadiusM = occ->radiusM;
+  r.sunRadiusM = in.sun.radiusM;
+  r.sunOccluderDistanceM = glm::length(occ->centreM - in.sun.positionM);
+  r.width = width;
+  r.height = height;
   std::vector<SphereBody> others;
   for (const SphereBody& b : in.bodies)
     if (b.name != occ->name) others.push_back(b);
-  const auto range = sceneLutRange(in.sun, {*occ}, others, /*darkUmbra=*/false, source->GetHeight());
-  int extent[6] = {0, 0, 0, source->GetHeight() - 1, 0, 0};
-  if (range) {
-    extent[1] = rangedLutWidth(*range, source->GetWidth()) - 1;  // all of the ranged table
-  } else {
-    int first = source->GetWidth(), last = -1;
-    for (const SphereBody& b : others) {
-      const auto cols = shadowLutColumns(in.sun, *occ, b, source->GetWidth());
-      first = std::min(first, cols[0]);
-      last = std::max(last, cols[1]);
-    }
-    if (last < first) {  // nothing else to shade
-      shading.SetAtmosphereShadowLut("", nullptr);
-      return;
-    }
-    if (last == first) {  // at least 2 columns (a texture of >= 2x2 texels)
-      if (last + 1 < source->GetWidth()) ++last;
-      else --first;
-    }
-    extent[0] = first, extent[1] = last;
+  r.range = sceneLutRange(in.sun, {*occ}, others, /*darkUmbra=*/false, height);
+  r.extent = {0, 0, 0, height - 1, 0, 0};
+  if (r.range) {
+    r.extent[1] = rangedLutWidth(*r.range, width) - 1;  // all of the ranged table
+    return r;
   }
+  int first = width, last = -1;
+  for (const SphereBody& b : others) {
+    const auto cols = shadowLutColumns(in.sun, *occ, b, width);
+    first = std::min(first, cols[0]);
+    last = std::max(last, cols[1]);
+  }
+  if (last < first) return std::nullopt;  // nothing else to shade
+  if (last == first) {  // at least 2 columns (a texture of >= 2x2 texels)
+    if (last + 1 < width) ++last;
+    else --first;
+  }
+  r.extent[0] = first, r.extent[1] = last;
+  return r;
+}
+
+vtkAlgorithm* setUpAtmosphereShadow(vtkEclipseShadowLutSource* source, const AtmosphereShadowRequest& r) {
+  if (!source) throw std::invalid_argument("no eclipse table source for the atmosphere");
+  source->SetOccluderName(r.occluder.c_str());
+  source->SetOccluderRadiusM(r.occluderRadiusM);
+  source->SetSunRadiusM(r.sunRadiusM);
+  source->SetSunOccluderDistanceM(r.sunOccluderDistanceM);
+  source->SetAtmosphere(r.model.c_str());
+  source->SetWidth(r.width);
+  source->SetHeight(r.height);
   try {
-    source->ConnectAtmosphereTables();  // the atmosphere tables from their cache
-    updateRanged(source, range, [&] { source->UpdateExtent(extent); });
+    return source->ConnectAtmosphereTables();  // the atmosphere tables from their cache
   } catch (const std::exception& e) {
-    throw std::runtime_error("shadow through the atmosphere of '" + occ->name + "': " + e.what());
+    throw std::runtime_error("shadow through the atmosphere of '" + r.occluder + "': " + e.what());
   }
-  vtkImageData* lut = source->GetOutput();
+}
+
+void updateAtmosphereShadow(vtkEclipseShadowLutSource* source, const AtmosphereShadowRequest& r) {
+  setUpAtmosphereShadow(source, r);
+  int extent[6];
+  std::copy(r.extent.begin(), r.extent.end(), extent);
+  try {
+    updateRanged(source, r.range, [&] { source->UpdateExtent(extent); });
+  } catch (const std::exception& e) {
+    throw std::runtime_error("shadow through the atmosphere of '" + r.occluder + "': " + e.what());
+  }
   int got[6];
-  lut->GetExtent(got);
+  source->GetOutput()->GetExtent(got);
   if (got[1] < got[0] + 1 || got[3] < got[2] + 1) {
-    throw std::runtime_error("shadow through the atmosphere of '" + occ->name + "': the table could not be made");
+    throw std::runtime_error("shadow through the atmosphere of '" + r.occluder + "': the table could not be made");
   }
-  shading.SetAtmosphereShadowLut(occ->name, lut);
+}
+
+void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, vtkEclipseShadowLutSource* source) {
+  if (!source) throw std::invalid_argument("no eclipse table source for the atmosphere");
+  const auto request = sceneAtmosphereShadowRequest(in, source->GetWidth(), source->GetHeight());
+  if (!request) {
+    shading.SetAtmosphereShadowLut("", nullptr);
+    return;
+  }
+  updateAtmosphereShadow(source, *request);
+  shading.SetAtmosphereShadowLut(request->occluder, source->GetOutput());
 }
 
 void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs& in, vtkLimbLuminanceSource* source) {

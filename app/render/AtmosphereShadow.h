@@ -11,8 +11,10 @@
 
 #include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
+class vtkAlgorithm;
 class vtkEclipseAtmosphereSource;
 class vtkEclipseShadowLutSource;
 class vtkLimbLuminanceSource;
@@ -49,6 +51,38 @@ std::optional<eclipse::LutRange> pointLutRange(const SunLight& sun, const Sphere
 /// Columns of a ranged LuT: its u texel spacing no coarser than that of a whole LuT of
 /// `width` columns (ceil(width (uMax - uMin)) + 1), in [2, width].
 int rangedLutWidth(const eclipse::LutRange& range, int width);
+
+/// What applySceneAtmosphereShadow computes for a scene: the occluder (the body with the
+/// atmosphere), its model and geometry, the ranges (sceneLutRange of the other bodies;
+/// none: the whole table) and the texels [extent[0], extent[1]] x [extent[2], extent[3]]
+/// of a `width` x `height` table (ranged: rangedLutWidth columns, all of them). Equal
+/// requests give the same table: a GUI computes one in a worker and keeps it while the
+/// request stays the same.
+struct AtmosphereShadowRequest {
+  std::string occluder, model;
+  double occluderRadiusM = 0.0, sunRadiusM = 0.0, sunOccluderDistanceM = 0.0;
+  int width = 0, height = 0;
+  std::optional<eclipse::LutRange> range;
+  std::array<int, 6> extent{};
+  bool operator==(const AtmosphereShadowRequest& o) const;
+  bool operator!=(const AtmosphereShadowRequest& o) const { return !(*this == o); }
+};
+
+/// The request for `in` with a table of `width` x `height` texels; none without an
+/// atmosphere or when no other body can be shaded. Cheap (no table is touched).
+std::optional<AtmosphereShadowRequest> sceneAtmosphereShadowRequest(const SceneInputs& in, int width, int height);
+
+/// Sets `source` up for `request` (bodies, model, width, height; table sizes, limb views,
+/// cache as the caller set them) and connects its atmosphere tables
+/// (ConnectAtmosphereTables: from their cache); returns that tables source (to observe
+/// its progress), or null.
+vtkAlgorithm* setUpAtmosphereShadow(vtkEclipseShadowLutSource* source, const AtmosphereShadowRequest& request);
+
+/// The long part: sets `source` up (setUpAtmosphereShadow) and computes the request's
+/// texels (the source caches them by parameter hash; its width is given back after).
+/// Throws std::runtime_error naming the body when the table cannot be made (or the
+/// computation was aborted).
+void updateAtmosphereShadow(vtkEclipseShadowLutSource* source, const AtmosphereShadowRequest& request);
 
 /// When `in` has an atmosphere, sets `source` up for it (occluder = the body with the
 /// atmosphere, its model, the Sun; table sizes, limb views, cache as the caller set them),

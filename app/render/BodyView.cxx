@@ -130,7 +130,15 @@ void BodyView::SetBodies(const SunLight& sun, const std::vector<SphereBody>& bod
     m.renderer->AddActor(p.actor);
     m.bodies.push_back(std::move(p));
   }
-  if (m.cameraSet) UpdateClippingRange();
+  // Bodies and camera move together (SetBodies, then SetCamera for the same time): the
+  // camera of the time before may lie inside a body that has moved (an observer on Earth,
+  // 1 minute: 1800 km), which SetCamera checks with the new camera.
+  if (m.cameraSet) {
+    try {
+      UpdateClippingRange();
+    } catch (const std::invalid_argument&) {
+    }
+  }
 }
 
 void BodyView::SetCamera(const ViewCamera& c) {

@@ -120,7 +120,30 @@ eclipse::ShadowLut fromImageData(vtkImageData* image) {
   lut.width = dims[0];
   lut.height = dims[1];
   lut.rgb.assign(values->GetPointer(0), values->GetPointer(0) + 3 * static_cast<std::size_t>(dims[0]) * dims[1]);
-  const eclipse::LutRange r = lutRangeOf(fieldParameters(image), "shadow LuT");
+  const auto fields = fieldParameters(image);
+  eclipse::LutRange r = lutRangeOf(fields, "shadow LuT");
+  // A part of the whole table: the ranges of its texels (texel i of n spans [i, i + 1] / n).
+  int ext[6];
+  image->GetExtent(ext);
+  auto whole = [&](const char* key, int n) {
+    const auto it = fields.find(key);
+    return it == fields.end() ? n : std::stoi(it->second);
+  };
+  const int width = whole("width", dims[0]), height = whole("height", dims[1]);
+  if (ext[0] < 0 || ext[1] >= width || ext[2] < 0 || ext[3] >= height)
+    throw std::runtime_error("shadow LuT: extent outside the table's " + std::to_string(width) + "x" +
+                             std::to_string(height) + " texels");
+  if (ext[0] > 0 || ext[1] < width - 1) {
+    const double span = r.uMax - r.uMin, uMin = r.uMin;
+    r.uMin = uMin + span * ext[0] / width;
+    r.uMax = uMin + span * (ext[1] + 1) / width;
+  }
+  if (ext[2] > 0 || ext[3] < height - 1) {
+    if (r.vLowFraction > 0.0) throw std::runtime_error("shadow LuT: a part of the rows of a split v axis");
+    const double span = r.vMax - r.vMin, vMin = r.vMin;
+    r.vMin = vMin + span * ext[2] / height;
+    r.vMax = vMin + span * (ext[3] + 1) / height;
+  }
   lut.uMin = r.uMin, lut.uMax = r.uMax, lut.vMin = r.vMin, lut.vMax = r.vMax, lut.vLowFraction = r.vLowFraction;
   return lut;
 }

@@ -51,7 +51,10 @@ eclipse::ShadowLut fromTable(const tables::Table& table, const std::string& orig
 /// point scalars; the ranges also go to field data (addLutRange).
 vtkSmartPointer<vtkImageData> toImageData(const eclipse::ShadowLut& lut);
 /// Throws std::runtime_error if the image is not a 2D float RGB LuT. The ranges come from
-/// the field data (lutRangeOf).
+/// the field data (lutRangeOf). A part of a table (an update extent of
+/// vtkEclipseShadowLutSource: its field data's "width" and "height" are the whole table's)
+/// becomes a LuT over its texels' part of the ranges (same texel centres); a part of the
+/// rows of a split v axis cannot (throws).
 eclipse::ShadowLut fromImageData(vtkImageData* image);
 
 /// A shadow profile as a table: columns offset_km, r, g, b, luminance.

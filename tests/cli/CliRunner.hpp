@@ -2,6 +2,7 @@
 // Runs the umbra executable for tests and captures exit code, stdout and stderr.
 #include <sys/wait.h>
 
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,27 @@ inline std::string quote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
   return q + "'";
+}
+
+/// A profile CSV (`umbra profile shadow`: offset_km,r,g,b,luminance).
+struct Csv {
+  std::string header;
+  std::vector<std::array<double, 5>> rows;
+};
+
+inline Csv readCsv(const std::string& path) {
+  std::ifstream f(path);
+  Csv c;
+  std::getline(f, c.header);
+  std::string line;
+  while (std::getline(f, line)) {
+    std::array<double, 5> row{};
+    std::stringstream s(line);
+    char comma;
+    s >> row[0] >> comma >> row[1] >> comma >> row[2] >> comma >> row[3] >> comma >> row[4];
+    c.rows.push_back(row);
+  }
+  return c;
 }
 
 inline std::string readAll(const std::filesystem::path& p) {

@@ -14,26 +14,6 @@ using namespace umbra::test;
 namespace {
 constexpr double kAu = 149597870700.0, kSunR = 696342e3, kEarthR = 6371.0084e3;
 
-struct Csv {
-  std::string header;
-  std::vector<std::array<double, 5>> rows;
-};
-
-Csv readCsv(const std::string& path) {
-  std::ifstream f(path);
-  Csv c;
-  std::getline(f, c.header);
-  std::string line;
-  while (std::getline(f, line)) {
-    std::array<double, 5> row{};
-    std::stringstream s(line);
-    char comma;
-    s >> row[0] >> comma >> row[1] >> comma >> row[2] >> comma >> row[3] >> comma >> row[4];
-    c.rows.push_back(row);
-  }
-  return c;
-}
-
 // First offset [km] where the luminance crosses `level` going outwards (linear interpolation).
 double crossing(const Csv& c, double level) {
   for (std::size_t i = 1; i < c.rows.size(); ++i) {

@@ -162,6 +162,19 @@ TEST(EclipseAtmosphereFilters, UpdateExtentComputesOnlyThatPart) {
       EXPECT_EQ(scalars(image)->GetComponent(image->ComputePointId(at), 1),
                 scalars(full->GetOutput())->GetComponent(j * 8 + i, 1));
     }
+  // As a LuT: the part's ranges, the same texel centres and values, so that a lookup
+  // between its texel centres (e.g. a profile through it) equals the whole table's.
+  const eclipse::ShadowLut p = filters::fromImageData(image), f = filters::fromImageData(full->GetOutput());
+  EXPECT_EQ(p.width, 4);
+  EXPECT_EQ(p.height, 4);
+  EXPECT_DOUBLE_EQ(p.uMin, 2.0 / 8);
+  EXPECT_DOUBLE_EQ(p.uMax, 6.0 / 8);
+  EXPECT_DOUBLE_EQ(p.vMin, 1.0 / 6);
+  EXPECT_DOUBLE_EQ(p.vMax, 5.0 / 6);
+  EXPECT_DOUBLE_EQ(p.texelU(1), f.texelU(3));
+  EXPECT_DOUBLE_EQ(p.texelV(2), f.texelV(3));
+  for (const eclipse::LutCoords c : {eclipse::LutCoords{0.40, 0.45}, eclipse::LutCoords{0.33, 0.62}})
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(p.sample(c)[k], f.sample(c)[k], 1e-6 * (1.0 + std::abs(f.sample(c)[k])));
 }
 
 TEST(EclipseAtmosphereFilters, LimbLuminanceSourceIsA3dRgbTexture) {

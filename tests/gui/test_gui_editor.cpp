@@ -5,6 +5,9 @@
 // time slider moves the Sun under the same tables.
 #include "AtmosphereEditor.hpp"
 #include "MainWindow.hpp"
+#include "ProfilePanel.hpp"
+#include "SceneView.hpp"
+#include "vtkAtmosphereTablesSource.h"
 
 #include "Atmosphere.hpp"
 #include "Describe.hpp"
@@ -12,18 +15,23 @@
 #include "scene/Time.hpp"
 
 #include "CliRunner.hpp"
+#include "DiscExtent.hpp"
 
 #include <QApplication>
 #include <QComboBox>
+#include <QProgressBar>
 #include <QElapsedTimer>
 #include <QImage>
 #include <QSurfaceFormat>
 #include <QTreeWidget>
 #include <QTreeWidgetItemIterator>
 #include <QVTKOpenGLNativeWidget.h>
+#include <vtkDoubleArray.h>
+#include <vtkTable.h>
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdlib>
 #include <optional>
 #include <fstream>
@@ -52,11 +60,13 @@ void settle(MainWindow& w) {
 struct Window {
   umbra::test::TempDir dir;
   MainWindow w;
-  explicit Window(std::optional<umbra::scene::UtcTime> time = std::nullopt) {
+  explicit Window(std::optional<umbra::scene::UtcTime> time = std::nullopt) : Window(time, kSunset, time, true) {}
+  Window(std::optional<umbra::scene::UtcTime>, const std::string& scene, std::optional<umbra::scene::UtcTime> time,
+         bool settleNow) {
     w.useSmallAtmosphereTables(true);
-    w.loadScene(kSunset, time);
+    w.loadScene(scene, time);
     w.show();
-    settle(w);
+    if (settleNow) settle(w);
   }
   QImage shot(const std::string& name) {
     w.saveScreenshot(dir / name);
@@ -289,13 +299,233 @@ TEST(GuiEditor, TimeSliderKeepsTheTablesAndDarkensTheSky) {
   const QRgb before = win.sky(win.shot("sunset.png"));
   const std::string model = win.w.drawnAtmosphere();
   win.w.showTime(umbra::scene::parseUtc("2024-03-20T19:05:00Z"));
-  EXPECT_FALSE(win.w.atmosphereBusy());
+  EXPECT_FALSE(win.w.atmosphereTablesBusy());  // (the Moon's atmospheric shadow LuT may be)
   EXPECT_EQ(win.w.drawnAtmosphere(), model);
   const QRgb after = win.sky(win.shot("dusk.png"));
   std::printf("  sky at 18:05 %s, at 19:05 %s\n", describe(before).c_str(), describe(after).c_str());
   EXPECT_LT(qBlue(after) + qGreen(after), qBlue(before) + qGreen(before) - 20);
   EXPECT_NE(win.w.statusText().indexOf("2024-03-20T19:05:00Z"), -1) << win.w.statusText().toStdString();
   EXPECT_GT(win.w.plotRect().width(), 100);
+}
+
+// The "Refraction" check box (umbra-gui --refraction) on the sunset seen through a
+// 3-degree field at 18:06 (the Sun just above the horizon; a minute later its disc would
+// be cut by it without refraction): the tables are made again in the worker with
+// refracted paths and the refraction table, and the Sun's disc is flattened (height /
+// width < 0.9; measured 0.865) and lifted, measured as the render pass's test measures
+// it (umbra::test::discOf: the bounding box of the pixels above a fraction of the
+// brightest; here the screenshot's luma, 80 % of the brightest, above the sky's); without
+// refraction it is round (> 0.95; measured 1.0). Off again: the tables from the cache.
+TEST(GuiEditor, RefractionCheckBoxFlattensTheSettingSun) {
+  umbra::test::TempDir dir;
+  std::ifstream in(kSunset);
+  std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  json = std::regex_replace(json, std::regex("\"fovDeg\": 30"), "\"fovDeg\": 3");
+  const std::string scene = dir / "sunset-3deg.json";
+  std::ofstream(scene) << json;
+  Window win(std::nullopt, scene, umbra::scene::parseUtc("2024-03-20T18:06:00Z"), /*settleNow=*/true);
+  win.w.setExposure(-11.0);
+  auto disc = [&](const std::string& name) {
+    const QImage image = win.shot(name);
+    const QRect v = win.w.viewRect();
+    return umbra::test::discOf(
+        v.width(), v.height(),
+        [&](int i, int j) {
+          const QRgb c = image.pixel(v.left() + i, v.top() + j);
+          return 0.2126 * qRed(c) + 0.7152 * qGreen(c) + 0.0722 * qBlue(c);
+        },
+        0.8);
+  };
+  ASSERT_NE(win.w.sceneView().atmosphereTables(), nullptr);
+  EXPECT_FALSE(win.w.sceneView().atmosphereTables()->GetRefractedPaths());
+  const umbra::test::DiscExtent o = disc("straight.png");
+  win.w.setRefraction(true);
+  EXPECT_TRUE(win.w.atmosphereTablesBusy());
+  settle(win.w);
+  EXPECT_TRUE(win.w.refraction());
+  EXPECT_TRUE(win.w.sceneView().atmosphereTables()->GetRefractedPaths());
+  EXPECT_EQ(win.w.drawnAtmosphere(), "earth");
+  const umbra::test::DiscExtent d = disc("bent.png");
+  std::printf("  disc %d x %d px with refraction (height / width %.3f), %d x %d px without (%.3f)\n", d.width(),
+              d.height(), double(d.height()) / d.width(), o.width(), o.height(), double(o.height()) / o.width());
+  ASSERT_GT(o.width(), 50) << "the Sun's disc is about 110 px wide";
+  EXPECT_LT(double(d.height()) / d.width(), 0.9);
+  EXPECT_GT(double(o.height()) / o.width(), 0.95);
+  EXPECT_NEAR(d.width(), o.width(), 3);
+  EXPECT_LT(d.bottom, o.bottom);  // lifted
+
+  win.w.setRefraction(true);  // no change: nothing to do
+  EXPECT_FALSE(win.w.atmosphereTablesBusy());
+  win.w.setRefraction(false);
+  settle(win.w);
+  EXPECT_FALSE(win.w.sceneView().atmosphereTables()->GetRefractedPaths());
+  EXPECT_GT(win.w.sceneView().atmosphereTables()->GetLastCacheHits(), 0);
+}
+
+namespace {
+
+const std::string kMoon = std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/lunar-eclipse-2015-09-28-moon.json";
+
+/// Runs the event loop until the atmospheric shadow LuT's job has started (at most 60 s).
+bool untilShadowJob(MainWindow& w) {
+  QElapsedTimer clock;
+  clock.start();
+  while (!w.atmosphereShadowBusy() && w.atmosphereBusy() && clock.elapsed() < 60000)
+    QApplication::processEvents(QEventLoop::AllEvents, 20);
+  return w.atmosphereShadowBusy();
+}
+
+/// The summed R, G, B of the 3D view (the Moon on a black sky).
+std::array<double, 3> viewSums(Window& win, const std::string& name) {
+  const QImage image = win.shot(name);
+  const QRect v = win.w.viewRect();
+  std::array<double, 3> rgb{0.0, 0.0, 0.0};
+  for (int y = v.top(); y <= v.bottom(); ++y)
+    for (int x = v.left(); x <= v.right(); ++x) {
+      const QRgb c = image.pixel(x, y);
+      rgb[0] += qRed(c), rgb[1] += qGreen(c), rgb[2] += qBlue(c);
+    }
+  return rgb;
+}
+
+bool copper(const std::array<double, 3>& rgb) { return rgb[0] > 1.3 * rgb[1] && rgb[1] > rgb[2] && rgb[0] > 1e6; }
+
+}  // namespace
+
+// The Moon in totality: after the atmosphere's tables the worker computes the atmospheric
+// shadow LuT (the GUI thread keeps running its event loop meanwhile: the job is seen
+// busy), the progress bar moves through intermediate values, and the Moon is copper.
+TEST(GuiEditor, AtmosphereShadowLutInTheWorkerWithProgress) {
+  Window win(std::nullopt, kMoon, umbra::scene::parseUtc("2015-09-28T02:47:00Z"), /*settleNow=*/false);
+  auto* bar = win.w.findChild<QProgressBar*>();
+  ASSERT_NE(bar, nullptr);
+  std::vector<int> values;
+  QObject::connect(bar, &QProgressBar::valueChanged, [&](int v) {
+    if (win.w.atmosphereShadowBusy()) values.push_back(v);
+  });
+  ASSERT_TRUE(untilShadowJob(win.w)) << "no atmospheric shadow LuT job after the tables";
+  EXPECT_FALSE(win.w.sceneView().atmosphereShadowCurrent());
+  QElapsedTimer clock;
+  clock.start();
+  settle(win.w);
+  const qint64 computedMs = clock.elapsed();
+  EXPECT_TRUE(win.w.sceneView().atmosphereShadowCurrent());
+  EXPECT_FALSE(win.w.sceneView().atmosphereShadowFromCache());
+  EXPECT_FALSE(bar->isVisible());
+  const auto between = std::count_if(values.begin(), values.end(), [](int v) { return v > 0 && v < 100; });
+  std::printf("  progress values during the shadow job: %zu, %ld of them in (0, 100)\n", values.size(), long(between));
+  EXPECT_GE(between, 3);
+  const auto rgb = viewSums(win, "copper.png");
+  std::printf("  Moon's summed RGB %.0f %.0f %.0f\n", rgb[0], rgb[1], rgb[2]);
+  EXPECT_TRUE(copper(rgb));
+
+  // Again in a new window: the table from the cache (by its parameters' hash).
+  Window again(std::nullopt, kMoon, umbra::scene::parseUtc("2015-09-28T02:47:00Z"), /*settleNow=*/false);
+  ASSERT_TRUE(untilShadowJob(again.w));
+  clock.restart();
+  settle(again.w);
+  std::printf("  the shadow LuT job (64x32, limb views of 32 rows): computed %lld ms, from the cache %lld ms\n",
+              static_cast<long long>(computedMs), static_cast<long long>(clock.elapsed()));
+  EXPECT_TRUE(again.w.sceneView().atmosphereShadowCurrent());
+  EXPECT_TRUE(again.w.sceneView().atmosphereShadowFromCache());
+}
+
+// Cancel: with no table before, the Moon stays airless-dark in the umbra; with one, the
+// view keeps shading with it (copper) after a cancelled recomputation for a new time,
+// which is not started again until the time changes again. Time steps while a table is
+// being made: the last one's is made next.
+TEST(GuiEditor, CancelTheAtmosphereShadowLutKeepsThePreviousShading) {
+  Window win(std::nullopt, kMoon, umbra::scene::parseUtc("2015-09-28T02:50:00Z"), /*settleNow=*/false);
+  ASSERT_TRUE(untilShadowJob(win.w));
+  win.w.cancelAtmosphereTables();
+  settle(win.w);
+  EXPECT_NE(win.w.statusText().indexOf("atmosphere shadow: cancelled"), -1) << win.w.statusText().toStdString();
+  EXPECT_EQ(win.w.sceneView().atmosphereShadowLut(), nullptr);
+  const auto airless = viewSums(win, "airless.png");
+  EXPECT_FALSE(win.w.atmosphereBusy()) << "a cancelled table is not asked for again";
+
+  win.w.showTime(umbra::scene::parseUtc("2015-09-28T02:47:00Z"));
+  settle(win.w);
+  const auto before = viewSums(win, "before.png");
+  EXPECT_TRUE(copper(before));
+  win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:17:00Z"));
+  ASSERT_TRUE(win.w.atmosphereShadowBusy());
+  win.w.cancelAtmosphereTables();
+  settle(win.w);
+  EXPECT_NE(win.w.statusText().indexOf("atmosphere shadow: cancelled"), -1) << win.w.statusText().toStdString();
+  EXPECT_NE(win.w.sceneView().atmosphereShadowLut(), nullptr);
+  EXPECT_FALSE(win.w.sceneView().atmosphereShadowCurrent());
+  const auto after = viewSums(win, "after.png");
+  std::printf("  Moon's summed R: cancelled at 02:50 (airless) %.0f, 02:47 %.0f, cancelled at 03:17 (02:47's table) %.0f\n",
+              airless[0], before[0], after[0]);
+  EXPECT_LT(airless[0], 0.1 * before[0]);
+  EXPECT_TRUE(copper(after));
+  EXPECT_FALSE(win.w.atmosphereBusy());
+  // Slider steps while a job runs: the latest time's table follows the running one.
+  win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:18:00Z"));
+  EXPECT_TRUE(win.w.atmosphereShadowBusy());
+  win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:19:00Z"));
+  win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:20:00Z"));
+  settle(win.w);
+  EXPECT_TRUE(win.w.sceneView().atmosphereShadowCurrent());
+  EXPECT_NE(win.w.statusText().indexOf("03:20:00Z"), -1) << win.w.statusText().toStdString();
+}
+
+// The plot panel through Earth's atmosphere (the Moon in totality, small tables): the
+// profile comes from the atmospheric shadow LuT the view shades with, red-dominant at the
+// umbra's centre, and it matches `umbra profile shadow --atmosphere` (the same tables,
+// limb views and rows: --draft-tables --orders 2 --limb-size 32 --scattering-cells 4
+// --size 32; both LuTs ranged, over the Moon's distances in the view, over the
+// cross-section's in the CLI: 0.5 % apart) inside the umbra within kTolerance per channel.
+// (With --size 64, 64 rows to the view's 32, they differ by up to 45 % in blue at 4000 km.)
+TEST(GuiEditor, ProfileThroughTheAtmosphereMatchesTheCli) {
+  constexpr double kTolerance = 0.02;
+  Window win(std::nullopt, kMoon, umbra::scene::parseUtc("2015-09-28T02:47:00Z"), /*settleNow=*/true);
+  ASSERT_TRUE(win.w.sceneView().atmosphereShadowCurrent());
+  vtkTable* t = win.w.profilePanel().profile();
+  auto column = [&](const char* name) { return vtkDoubleArray::SafeDownCast(t->GetColumnByName(name)); };
+  ASSERT_NE(column("offset_km"), nullptr);
+  // Linear interpolation over the offsets (as the panel's marker does).
+  auto at = [](const std::vector<double>& x, const std::vector<double>& y, double km) {
+    const auto k = std::upper_bound(x.begin(), x.end(), km) - x.begin();
+    if (k == 0) return y.front();
+    if (k == static_cast<long>(x.size())) return y.back();
+    const double f = (km - x[k - 1]) / (x[k] - x[k - 1]);
+    return (1.0 - f) * y[k - 1] + f * y[k];
+  };
+  std::array<std::vector<double>, 4> gui;  // offset, r, g, b
+  const char* names[] = {"offset_km", "r", "g", "b"};
+  for (int c = 0; c < 4; ++c)
+    for (vtkIdType i = 0; i < t->GetNumberOfRows(); ++i) gui[c].push_back(column(names[c])->GetValue(i));
+  EXPECT_GT(gui[1][0], 2.0 * gui[2][0]);
+  EXPECT_GT(gui[2][0], 2.0 * gui[3][0]);
+  EXPECT_GT(gui[1][0], 1e-5) << "red light reaches the umbra's centre";
+
+  const std::string csv = win.dir / "cli.csv";
+  const umbra::test::RunResult r = umbra::test::run(
+      UMBRA_EXE, {"profile", "shadow", "--scene", kMoon, "--time", "2015-09-28T02:47:00Z", "--atmosphere",
+                  "earth-2015-calbuco", "--draft-tables", "--orders", "2", "--limb-size", "32", "--scattering-cells",
+                  "4", "--size", "32", "--csv", csv},
+      {"UMBRA_CACHE_DIR=" + std::string(std::getenv("UMBRA_CACHE_DIR"))});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const umbra::test::Csv cli = umbra::test::readCsv(csv);
+  std::array<std::vector<double>, 4> ref;
+  for (const auto& row : cli.rows)
+    for (int c = 0; c < 4; ++c) ref[c].push_back(row[c]);
+  double worst = 0.0;
+  for (double km : {0.0, 1000.0, 2000.0, 3000.0, 4000.0}) {
+    std::printf("  %4.0f km: GUI", km);
+    for (int c = 1; c < 4; ++c) std::printf(" %.3e", at(gui[0], gui[c], km));
+    std::printf(", CLI");
+    for (int c = 1; c < 4; ++c) {
+      const double a = at(gui[0], gui[c], km), b = at(ref[0], ref[c], km);
+      std::printf(" %.3e", b);
+      worst = std::max(worst, std::abs(a - b) / b);
+      EXPECT_NEAR(a, b, kTolerance * b) << "channel " << c << " at " << km << " km";
+    }
+    std::printf("\n");
+  }
+  std::printf("  largest relative difference %.3f\n", worst);
 }
 
 int main(int argc, char** argv) {

@@ -2,6 +2,7 @@
 // top boundary, 1 au away; the Sun on the horizon, the Sun behind the planet) and what a
 // sky must look like (bluer at the zenith than at the horizon at noon, a reddened Sun
 // low down), on the HDR frame with the display colour matrix.
+#include "DiscExtent.hpp"
 #include "AtmosphereTestSupport.hpp"
 
 #include "Refraction.hpp"
@@ -154,26 +155,9 @@ const RefractionFixture& refractionFixture() {
   return f;
 }
 
-struct DiscExtent {
-  int top = -1, bottom = -1, left = -1, right = -1;  // rows from the top, columns
-  int height() const { return bottom - top + 1; }
-  int width() const { return right - left + 1; }
-};
 // The pixels whose red channel exceeds 5 % of the brightest one: the Sun's disc.
-DiscExtent discOf(const Frame& f) {
-  double peak = 0.0;
-  for (int j = 0; j < f.h; ++j)
-    for (int i = 0; i < f.w; ++i) peak = std::max(peak, f.at(i, j).r);
-  DiscExtent d;
-  for (int j = 0; j < f.h; ++j)
-    for (int i = 0; i < f.w; ++i) {
-      if (f.at(i, j).r < 0.05 * peak) continue;
-      if (d.top < 0) d.top = j;
-      d.bottom = j;
-      d.left = d.left < 0 ? i : std::min(d.left, i);
-      d.right = std::max(d.right, i);
-    }
-  return d;
+umbra::test::DiscExtent discOf(const Frame& f) {
+  return umbra::test::discOf(f.w, f.h, [&](int i, int j) { return f.at(i, j).r; }, 0.05);
 }
 
 // A frame with or without refraction (the refracted-path tables and the refraction table,
@@ -202,7 +186,7 @@ TEST(AtmosphereRender, RefractionLiftsAndFlattensTheSettingSun) {
   const double sunElevationDeg = 0.3;
   const glm::dvec3 sunDir = directionFromAngles(sunElevationDeg, 0.0);
   const Frame bent = renderRefracted(cam, sunDir, 200, true), straight = renderRefracted(cam, sunDir, 200, false);
-  const DiscExtent d = discOf(bent), s = discOf(straight);
+  const umbra::test::DiscExtent d = discOf(bent), s = discOf(straight);
   const double flattening = double(d.height()) / d.width();
   std::printf("  disc %d x %d px with refraction (height / width %.3f), %d x %d px without\n", d.width(),
               d.height(), flattening, s.width(), s.height());
