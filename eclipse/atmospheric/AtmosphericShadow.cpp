@@ -109,16 +109,15 @@ SunRow sunRow(double exitPolarRad, const LimbPosition& p, double theta, double l
 
 /// The rows of a view: gamma edges, polar angles, solid angle per unit beta.
 struct RowGeometry {
-  std::vector<double> edge, theta, impactM, solidAnglePerBeta;  ///< edge: rows + 1
+  std::vector<double> edge, theta, solidAnglePerBeta;  ///< edge: rows + 1
 };
 RowGeometry rowGeometry(const LimbPosition& p, int rows) {
   RowGeometry g;
-  g.edge.resize(rows + 1), g.theta.resize(rows), g.impactM.resize(rows), g.solidAnglePerBeta.resize(rows);
+  g.edge.resize(rows + 1), g.theta.resize(rows), g.solidAnglePerBeta.resize(rows);
   const double span = p.atmosphereAngularRadiusRad - p.occluderAngularRadiusRad;
   for (int i = 0; i <= rows; ++i) g.edge[i] = p.occluderAngularRadiusRad + span * i / rows;
   for (int i = 0; i < rows; ++i) {
     g.theta[i] = p.occluderAngularRadiusRad + span * (i + 0.5) / rows;
-    g.impactM[i] = p.occluderDistanceM * std::sin(g.theta[i]);
     g.solidAnglePerBeta[i] = cosDifference(g.edge[i], g.edge[i + 1]);
   }
   return g;
@@ -422,7 +421,8 @@ LimbView renderLimbView(const AtmosphericShadowModel& m, const LimbPosition& p, 
   for (int i = 0; i < R; ++i) {
     view.solidAngleSr[i] = g.solidAnglePerBeta[i] * dBeta;
     if (!m.refractedSun) continue;
-    forEachSunSubRow(m, p, g, i, params.subRowsPerSunDiameter, T.data(), [&](const SunRow& row, const double* w, double fraction) {
+    const double sub = params.subRowsPerSunDiameter;
+    forEachSunSubRow(m, p, g, i, sub, T.data(), [&](const SunRow& row, const double* w, double fraction) {
       const int j0 = std::max(0, static_cast<int>(row.betaBegin / dBeta));
       const int j1 = std::min(C - 1, static_cast<int>(row.betaEnd / dBeta));
       for (int j = j0; j <= j1; ++j) {
@@ -460,8 +460,9 @@ Illuminance illuminanceAt(const AtmosphericShadowModel& m, const LimbPosition& p
   std::vector<double> T(nc);
   if (m.refractedSun) {
     const RowGeometry g = rowGeometry(p, params.rows);
+    const double sub = params.subRowsPerSunDiameter;
     for (int i = 0; i < params.rows; ++i)
-      forEachSunSubRow(m, p, g, i, params.subRowsPerSunDiameter, T.data(), [&](const SunRow& row, const double* w, double fraction) {
+      forEachSunSubRow(m, p, g, i, sub, T.data(), [&](const SunRow& row, const double* w, double fraction) {
         const double e = 2.0 * g.solidAnglePerBeta[i] * fraction * row.integral<12>(row.betaBegin, row.betaEnd);
         for (int c = 0; c < nc; ++c) I.indirect[c] += e * w[c];
       });
@@ -592,7 +593,8 @@ LimbLuminanceLut buildLimbLuminanceLut(const AtmosphericShadowModel& m, const Li
     const LimbView view = renderLimbView(m, limbPosition(m, c), lp);
     const std::vector<double> avg = layerAverages(view, lut.layers);
     for (int d = 0; d < lut.depth(); ++d) {
-      const glm::dvec3 rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, avg.data() + static_cast<std::size_t>(d) * view.channels);
+      const double* spectral = avg.data() + static_cast<std::size_t>(d) * view.channels;
+      const glm::dvec3 rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, spectral);
       const std::size_t o = ((static_cast<std::size_t>(d) * lut.height + j) * lut.width + i) * 3;
       for (int q = 0; q < 3; ++q) lut.rgb[o + q] = static_cast<float>(rgb[q]);
     }
