@@ -9,7 +9,12 @@
 // mean distance (0 to 1.1 x the penumbra's radius), where the reference is above 1e-5.
 // Prints Markdown tables for docs/accuracy-vs-speed.md.
 //
-//   build/bench/umbra-bench-eclipse-atmosphere [--sections set,scaling,extent,error] [--profile-points 41]
+//   build/bench/umbra-bench-eclipse-atmosphere [--sections set,scaling,extent,error,columns] [--profile-points 41]
+//
+// `columns`: single beta columns of limb views (the limb-luminance LuT's, one layer) at 0,
+// 0.25, 0.5, 0.75, 0.9 and 0.99 of the umbra's radius and halfway through the penumbra,
+// against a view of --column-reference rows, for --column-sub sub-rows per solar diameter
+// (0: point samples), and the precomputation's time for each.
 #include "AtmosphericShadow.hpp"
 #include "EclipseAtmosphere.hpp"
 #include "SightLines.hpp"
@@ -21,6 +26,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -105,6 +111,11 @@ int main(int argc, char** argv) {
   int points = 41, referenceRows = 2048;
   double distanceKm = 384400.0, sunDistanceM = 1.496e11;
   std::vector<int> lutSizes{64, 128, 256};
+  std::vector<int> columnRows{64, 128, 256, 512};
+  int columnReferenceRows = 16384;
+  std::vector<double> columnSubRows{0, 32, 128};
+  bool columnTiming = true;
+  double columnReferenceSub = 512;
   app.add_option("--sections", sections, "Which parts to run")->delimiter(',');
   app.add_option("--atmosphere", preset, "Atmosphere preset")->capture_default_str();
   app.add_option("--profile-points", points, "Points of the error profile")->capture_default_str();
@@ -112,6 +123,13 @@ int main(int argc, char** argv) {
   app.add_option("--distance-km", distanceKm, "Distance of the error profile behind the occluder")->capture_default_str();
   app.add_option("--sun-distance-m", sunDistanceM, "Sun-occluder distance")->capture_default_str();
   app.add_option("--lut-sizes", lutSizes, "Shadow-LuT sizes of the error section")->delimiter(',');
+  app.add_option("--column-rows", columnRows, "Limb-view rows of the columns section")->delimiter(',');
+  app.add_option("--column-reference", columnReferenceRows, "Rows of the columns section's reference")->capture_default_str();
+  app.add_option("--column-sub", columnSubRows, "Sub-rows per solar diameter of the columns section")
+      ->delimiter(',');
+  app.add_option("--column-reference-sub", columnReferenceSub, "Sub-rows per solar diameter of its reference")
+      ->capture_default_str();
+  app.add_option("--column-timing", columnTiming, "Time the precomputation in the columns section")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   kMoonM = distanceKm * 1e3;
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // lines as they come, also into a file
@@ -186,6 +204,82 @@ int main(int argc, char** argv) {
                 (ext.uEnd - ext.uBegin) * n, partS);
   }
 
+  if (run.count("columns")) {
+    // Single beta columns of the limb-luminance LuT (one layer: the column averaged over the
+    // rows, as the LuT stores it) at points of the umbra, against --column-reference rows.
+    // Error: the largest relative error per channel over the columns whose reference is above
+    // 1 % of the brightest column of that channel (the others are dark ends of the Sun's image).
+    // "sub" is LimbViewParams::subRowsPerSunDiameter (0: point samples, the old way).
+    const double umbra = eclipse::shadowConeRadii(m.system, kMoonM).umbraRadiusM;
+    const double penumbra = eclipse::shadowConeRadii(m.system, kMoonM).penumbraRadiusM;
+    std::printf("## limb-luminance columns (%s, %.0f km; umbra radius %.0f km; 64 columns, 32^2 cells; "
+                "reference %d rows, sub %g)\n\n| offset / umbra radius | rows | sub | max rel. error R | G | B |\n"
+                "|---|---|---|---|---|---|\n",
+                preset.c_str(), distanceKm, umbra / 1e3, columnReferenceRows, columnReferenceSub);
+    auto columnsOf = [&](const eclipse::LimbPosition& p, int rows, double sub) {
+      eclipse::LimbViewParams limb{64, rows, 32, 32};
+      limb.subRowsPerSunDiameter = sub;
+      return eclipse::layerAverages(eclipse::renderLimbView(m, p, limb), 1);
+    };
+    const int nc = m.rays.channels;
+    std::vector<double> worst(columnSubRows.size() * columnRows.size() * 3, 0.0);
+    for (double f : {0.0, 0.25, 0.5, 0.75, 0.9, 0.99, 0.5 * (1.0 + penumbra / umbra)}) {
+      const eclipse::LimbPosition p = eclipse::limbPositionBehind(m, kMoonM, f * umbra);
+      const std::vector<double> ref = columnsOf(p, columnReferenceRows, columnReferenceSub);
+      for (std::size_t a = 0; a < columnSubRows.size(); ++a)
+        for (std::size_t b = 0; b < columnRows.size(); ++b) {
+          const std::vector<double> v = columnsOf(p, columnRows[b], columnSubRows[a]);
+          std::printf("| %.2f | %d | %g |", f, columnRows[b], columnSubRows[a]);
+          int q = 0;
+          for (double nm : {680.0, 550.0, 440.0}) {
+            int c = 0;  // the channel of this wavelength (or the nearest)
+            for (int k = 1; k < nc; ++k)
+              if (std::abs(m.rays.wavelengthsNm[k] - nm) < std::abs(m.rays.wavelengthsNm[c] - nm)) c = k;
+            double top = 0.0, e = 0.0;
+            for (int col = 0; col < 64; ++col) top = std::max(top, ref[col * nc + c]);
+            for (int col = 0; col < 64; ++col)
+              if (ref[col * nc + c] > 0.01 * top) e = std::max(e, std::abs(v[col * nc + c] / ref[col * nc + c] - 1.0));
+            std::printf(" %.2e |", e);
+            double& w = worst[(a * columnRows.size() + b) * 3 + q++];
+            w = std::max(w, e);
+          }
+          std::printf("\n");
+        }
+    }
+    std::printf("\n| worst over the points: rows | sub | R | G | B |\n|---|---|---|---|---|\n");
+    for (std::size_t a = 0; a < columnSubRows.size(); ++a)
+      for (std::size_t b = 0; b < columnRows.size(); ++b) {
+        const double* w = &worst[(a * columnRows.size() + b) * 3];
+        std::printf("| %d | %g | %.2e | %.2e | %.2e |\n", columnRows[b], columnSubRows[a], w[0], w[1], w[2]);
+      }
+    // Precomputation time, the settings interleaved (three rounds; the machine may be shared):
+    // CPU seconds of the process (all threads), steadier than the wall time under load.
+    std::printf("\n| precomputation, CPU seconds (3 rounds) | sub | |\n|---|---|---|\n");
+    auto cpuTimed = [](const auto& f) {
+      const std::clock_t c0 = std::clock();
+      f();
+      return static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+    };
+    std::vector<std::vector<double>> limbS(columnSubRows.size()), shadowS(columnSubRows.size());
+    for (int round = 0; round < (columnTiming ? 3 : 0); ++round)
+      for (std::size_t a = 0; a < columnSubRows.size(); ++a) {
+        eclipse::LimbLuminanceLutParams lp;  // 64 x 64 x 64, views of 256 rows
+        lp.limb.subRowsPerSunDiameter = columnSubRows[a];
+        eclipse::AtmosphericShadowLutParams sp;  // limb views 256^2, 16^2 cells
+        sp.width = sp.height = 128;
+        sp.limb.subRowsPerSunDiameter = columnSubRows[a];
+        limbS[a].push_back(cpuTimed([&] { eclipse::buildLimbLuminanceLut(m, lp); }));
+        shadowS[a].push_back(cpuTimed([&] { eclipse::buildAtmosphericShadowLut(m, sp); }));
+      }
+    for (std::size_t a = 0; a < (columnTiming ? columnSubRows.size() : 0); ++a) {
+      std::printf("| limb-luminance LuT 64x64x64 (views 64x256) | %g | %.2f %.2f %.2f |\n", columnSubRows[a], limbS[a][0],
+                  limbS[a][1], limbS[a][2]);
+      std::printf("| shadow LuT 128^2 (limb views 256^2) | %g | %.2f %.2f %.2f |\n", columnSubRows[a], shadowS[a][0],
+                  shadowS[a][1], shadowS[a][2]);
+    }
+    std::printf("\n");
+  }
+
   if (run.count("error")) {
     // The reference: a fine deviation table and fine limb views, evaluated at each point.
     atmosphere::RefractionTable fine;
@@ -211,13 +305,16 @@ int main(int argc, char** argv) {
       const Errors e = compare(r, sampled(m, r, lut));
       std::printf("| shadow LuT (sampled) | %d^2 | %s | %.2e | %.2e |\n", n, s > 0 ? std::to_string(s).substr(0, 5).c_str() : "(set)", e.rg, e.luminance);
     }
-    for (int rows : {32, 64, 128, 256, 512}) {
-      eclipse::LimbViewParams limb{rows, rows, 16, 16};
-      std::vector<glm::dvec3> v;
-      const double s = timed([&] { v = direct(m, r, limb); });
-      const Errors e = compare(r, v);
-      std::printf("| limb view rows (direct, %d points) | %d | %.3f | %.2e | %.2e |\n", points, rows, s, e.rg, e.luminance);
-    }
+    for (double sub : {0.0, eclipse::LimbViewParams{}.subRowsPerSunDiameter})
+      for (int rows : {32, 64, 128, 256, 512}) {
+        eclipse::LimbViewParams limb{rows, rows, 16, 16};
+        limb.subRowsPerSunDiameter = sub;
+        std::vector<glm::dvec3> v;
+        const double s = timed([&] { v = direct(m, r, limb); });
+        const Errors e = compare(r, v);
+        std::printf("| limb view rows (direct, %d points, sub-rows %g) | %d | %.3f | %.2e | %.2e |\n", points, sub, rows, s,
+                    e.rg, e.luminance);
+      }
     for (int cells : {8, 16, 32, 64}) {
       eclipse::LimbViewParams limb{256, 256, cells, cells};
       const Errors e = compare(r, direct(m, r, limb));

@@ -109,18 +109,16 @@ SunRow sunRow(double exitPolarRad, const LimbPosition& p, double theta, double l
 
 /// The rows of a view: gamma edges, polar angles, solid angle per unit beta.
 struct RowGeometry {
-  std::vector<double> theta, impactM, solidAnglePerBeta;
+  std::vector<double> edge, theta, solidAnglePerBeta;  ///< edge: rows + 1
 };
 RowGeometry rowGeometry(const LimbPosition& p, int rows) {
   RowGeometry g;
-  g.theta.resize(rows), g.impactM.resize(rows), g.solidAnglePerBeta.resize(rows);
+  g.edge.resize(rows + 1), g.theta.resize(rows), g.solidAnglePerBeta.resize(rows);
   const double span = p.atmosphereAngularRadiusRad - p.occluderAngularRadiusRad;
+  for (int i = 0; i <= rows; ++i) g.edge[i] = p.occluderAngularRadiusRad + span * i / rows;
   for (int i = 0; i < rows; ++i) {
-    const double lo = p.occluderAngularRadiusRad + span * i / rows;
-    const double hi = p.occluderAngularRadiusRad + span * (i + 1) / rows;
     g.theta[i] = p.occluderAngularRadiusRad + span * (i + 0.5) / rows;
-    g.impactM[i] = p.occluderDistanceM * std::sin(g.theta[i]);
-    g.solidAnglePerBeta[i] = cosDifference(lo, hi);
+    g.solidAnglePerBeta[i] = cosDifference(g.edge[i], g.edge[i + 1]);
   }
   return g;
 }
@@ -147,17 +145,54 @@ void scatteredRadiance(const AtmosphericShadowModel& m, const LimbPosition& p, d
   std::copy(L.begin(), L.end(), out);
 }
 
-/// The Sun seen through row i of a view: its chord (empty when the row sees no Sun) and,
-/// per channel, transmittance x terrain / (the Sun's solid angle) in `weight`.
-SunRow sunThroughRow(const AtmosphericShadowModel& m, const LimbPosition& p, const RowGeometry& g, int i,
-                     double* weight) {
+/// The Sun seen along polar angle theta: its chord (empty when the ray sees no Sun) and, per
+/// channel, transmittance x terrain / (the Sun's solid angle) in `weight`.
+SunRow sunAlong(const AtmosphericShadowModel& m, const LimbPosition& p, double theta, double* weight) {
   double dev = 0.0, contact = 0.0;
-  m.rays.at(g.impactM[i], dev, contact, weight);
+  m.rays.at(p.occluderDistanceM * std::sin(theta), dev, contact, weight);
   const double terrain = m.terrain.transmission(contact);
   if (terrain <= 0.0) return {};
   const double scale = terrain / (4.0 * kPi * sq(std::sin(0.5 * p.sunAngularRadiusRad)));
   for (int c = 0; c < m.rays.channels; ++c) weight[c] *= scale;
-  return sunRow(g.theta[i] - dev, p, g.theta[i], m.limbDarkening);
+  return sunRow(theta - dev, p, theta, m.limbDarkening);
+}
+
+/// At most this many sub-rows per row (forEachSunSubRow).
+constexpr int kMaxSubRows = 1024;
+
+/// The refracted Sun through row i, integrated over the row's extent in theta. Near the
+/// periapsis of the bright band the deviation changes so fast with the impact parameter that
+/// the exit direction sweeps across much of the Sun within one row: a point sample at the
+/// row's centre then either hits or misses the Sun's image at a given beta. So the row is cut
+/// into sub-rows across which the exit direction moves by at most 1 / subRowsPerSunDiameter
+/// of the Sun's diameter (one where the deviation is slow; one, the row's centre, when
+/// subRowsPerSunDiameter is 0); body(row, weight, fraction) is called for each sub-row that
+/// sees the Sun, `fraction` its share of the row's solid angle, `weight` as sunAlong's.
+template <class Body>
+void forEachSunSubRow(const AtmosphericShadowModel& m, const LimbPosition& p, const RowGeometry& g, int i,
+                      double subRowsPerSunDiameter, double* weight, const Body& body) {
+  const double lo = g.edge[i], hi = g.edge[i + 1];
+  int n = 1;
+  if (subRowsPerSunDiameter > 0.0) {
+    // The exit direction's polar angle e = theta - deviation lies in [lo - devMax, hi - devMin]
+    // over the row; the Sun (polar angle delta) is seen at some beta iff ||e| - delta| <= phi_sun,
+    // so rows whose range of |e| misses [delta - phi_sun, delta + phi_sun] see no Sun.
+    double devMin = 0.0, devMax = 0.0;
+    m.rays.deviationRange(p.occluderDistanceM * std::sin(lo), p.occluderDistanceM * std::sin(hi), devMin, devMax);
+    const double eLo = lo - devMax, eHi = hi - devMin;
+    const double aMin = eLo <= 0.0 && eHi >= 0.0 ? 0.0 : std::min(std::abs(eLo), std::abs(eHi));
+    const double aMax = std::max(std::abs(eLo), std::abs(eHi));
+    const double margin = 1.001 * p.sunAngularRadiusRad;
+    if (aMax < p.separationRad - margin || aMin > p.separationRad + margin) return;
+    const double sweep = (eHi - eLo) / (2.0 * p.sunAngularRadiusRad);
+    n = std::clamp(static_cast<int>(std::ceil(sweep * subRowsPerSunDiameter)), 1, kMaxSubRows);
+  }
+  for (int k = 0; k < n; ++k) {
+    const double a = lo + (hi - lo) * k / n, b = lo + (hi - lo) * (k + 1) / n;
+    const SunRow row = sunAlong(m, p, n == 1 ? g.theta[i] : 0.5 * (a + b), weight);
+    if (row.empty()) continue;
+    body(row, static_cast<const double*>(weight), n == 1 ? 1.0 : cosDifference(a, b) / g.solidAnglePerBeta[i]);
+  }
 }
 
 void checkLimbParams(const LimbViewParams& p) {
@@ -221,6 +256,21 @@ void LimbRayProfile::at(double b, double& dev, double& contact, double* T) const
   contact = (1 - f) * contactAltitudeM[k0] + f * contactAltitudeM[k0 + 1];
   const double* t0 = transmittance.data() + static_cast<std::size_t>(k0) * channels;
   for (int c = 0; c < channels; ++c) T[c] = (1 - f) * t0[c] + f * t0[c + channels];
+}
+
+void LimbRayProfile::deviationRange(double bLo, double bHi, double& lo, double& hi) const {
+  const int n = samples();
+  const double scale = (n - 1) / (atmosphereRadiusM - occluderRadiusM);
+  auto deviation = [&](double b) {
+    const double x = std::clamp((b - occluderRadiusM) * scale, 0.0, n - 1.0);
+    const int k = std::min(static_cast<int>(x), n - 2);
+    return deviationRad[k] + (x - k) * (deviationRad[k + 1] - deviationRad[k]);
+  };
+  lo = std::min(deviation(bLo), deviation(bHi)), hi = std::max(deviation(bLo), deviation(bHi));
+  // The nodes strictly inside (the profile is linear between them).
+  const int k0 = std::max(0, static_cast<int>(std::floor((std::min(bLo, bHi) - occluderRadiusM) * scale)) + 1);
+  const int k1 = std::min(n - 1, static_cast<int>(std::ceil((std::max(bLo, bHi) - occluderRadiusM) * scale)) - 1);
+  for (int k = k0; k <= k1; ++k) lo = std::min(lo, deviationRad[k]), hi = std::max(hi, deviationRad[k]);
 }
 
 void refractedTransmittanceToTop(const atmosphere::AtmosphereTables& tables, double r, double mu, double contact,
@@ -371,18 +421,19 @@ LimbView renderLimbView(const AtmosphericShadowModel& m, const LimbPosition& p, 
   for (int i = 0; i < R; ++i) {
     view.solidAngleSr[i] = g.solidAnglePerBeta[i] * dBeta;
     if (!m.refractedSun) continue;
-    const SunRow row = sunThroughRow(m, p, g, i, T.data());
-    if (row.empty()) continue;
-    const int j0 = std::max(0, static_cast<int>(row.betaBegin / dBeta));
-    const int j1 = std::min(C - 1, static_cast<int>(row.betaEnd / dBeta));
-    for (int j = j0; j <= j1; ++j) {
-      // The mean over the pixel's beta range; the cosine is divided back out (radiance).
-      const double mean = row.integral<4>(j * dBeta, (j + 1) * dBeta) / dBeta;
-      const double beta = (j + 0.5) * dBeta;
-      const double cosine = row.cosTheta * row.cosDelta + row.sinTheta * row.sinDelta * std::cos(beta);
-      const double L = mean / std::max(cosine, 1e-12);
-      for (int c = 0; c < nc; ++c) view.at(i, j, c) += L * T[c];
-    }
+    const double sub = params.subRowsPerSunDiameter;
+    forEachSunSubRow(m, p, g, i, sub, T.data(), [&](const SunRow& row, const double* w, double fraction) {
+      const int j0 = std::max(0, static_cast<int>(row.betaBegin / dBeta));
+      const int j1 = std::min(C - 1, static_cast<int>(row.betaEnd / dBeta));
+      for (int j = j0; j <= j1; ++j) {
+        // The mean over the pixel's beta range; the cosine is divided back out (radiance).
+        const double mean = row.integral<4>(j * dBeta, (j + 1) * dBeta) / dBeta;
+        const double beta = (j + 0.5) * dBeta;
+        const double cosine = row.cosTheta * row.cosDelta + row.sinTheta * row.sinDelta * std::cos(beta);
+        const double L = fraction * mean / std::max(cosine, 1e-12);
+        for (int c = 0; c < nc; ++c) view.at(i, j, c) += L * w[c];
+      }
+    });
   }
   if (useScattering(m)) {
     const int SC = params.scatteringColumns, SR = params.scatteringRows;
@@ -409,12 +460,12 @@ Illuminance illuminanceAt(const AtmosphericShadowModel& m, const LimbPosition& p
   std::vector<double> T(nc);
   if (m.refractedSun) {
     const RowGeometry g = rowGeometry(p, params.rows);
-    for (int i = 0; i < params.rows; ++i) {
-      const SunRow row = sunThroughRow(m, p, g, i, T.data());
-      if (row.empty()) continue;
-      const double e = 2.0 * g.solidAnglePerBeta[i] * row.integral<12>(row.betaBegin, row.betaEnd);
-      for (int c = 0; c < nc; ++c) I.indirect[c] += e * T[c];
-    }
+    const double sub = params.subRowsPerSunDiameter;
+    for (int i = 0; i < params.rows; ++i)
+      forEachSunSubRow(m, p, g, i, sub, T.data(), [&](const SunRow& row, const double* w, double fraction) {
+        const double e = 2.0 * g.solidAnglePerBeta[i] * fraction * row.integral<12>(row.betaBegin, row.betaEnd);
+        for (int c = 0; c < nc; ++c) I.indirect[c] += e * w[c];
+      });
   }
   if (useScattering(m)) {
     const int SC = params.scatteringColumns, SR = params.scatteringRows;
@@ -499,6 +550,23 @@ ShadowLut buildAtmosphericShadowLut(const AtmosphericShadowModel& m, const Atmos
   return lut;
 }
 
+std::vector<double> layerAverages(const LimbView& view, int layers) {
+  const int nc = view.channels, C = view.columns;
+  std::vector<double> out(static_cast<std::size_t>(layers) * C * nc, 0.0);
+  for (int layer = 0; layer < layers; ++layer) {
+    const int r0 = layer * view.rows / layers, r1 = (layer + 1) * view.rows / layers;
+    double omega = 0.0;
+    for (int r = r0; r < r1; ++r) omega += view.solidAngleSr[r];
+    for (int col = 0; col < C; ++col) {
+      double* sum = out.data() + (static_cast<std::size_t>(layer) * C + col) * nc;
+      for (int r = r0; r < r1; ++r)
+        for (int q = 0; q < nc; ++q) sum[q] += view.at(r, col, q) * view.solidAngleSr[r];
+      for (int q = 0; q < nc; ++q) sum[q] /= omega > 0.0 ? omega : 1.0;
+    }
+  }
+  return out;
+}
+
 glm::dvec3 LimbLuminanceLut::texel(int i, int j, int k) const {
   const std::size_t o = ((static_cast<std::size_t>(k) * height + j) * width + i) * 3;
   return {rgb[o], rgb[o + 1], rgb[o + 2]};
@@ -523,22 +591,12 @@ LimbLuminanceLut buildLimbLuminanceLut(const AtmosphericShadowModel& m, const Li
     const int i = k % lut.width, j = k / lut.width;
     const LutCoords c{r.texelU(i, lut.width), r.texelV(j, lut.height)};
     const LimbView view = renderLimbView(m, limbPosition(m, c), lp);
-    const int nc = view.channels;
-    std::vector<double> sum(nc);
-    for (int layer = 0; layer < lut.layers; ++layer) {
-      const int r0 = layer * view.rows / lut.layers, r1 = (layer + 1) * view.rows / lut.layers;
-      for (int col = 0; col < lut.columns; ++col) {
-        std::fill(sum.begin(), sum.end(), 0.0);
-        double omega = 0.0;
-        for (int r = r0; r < r1; ++r) {
-          omega += view.solidAngleSr[r];
-          for (int q = 0; q < nc; ++q) sum[q] += view.at(r, col, q) * view.solidAngleSr[r];
-        }
-        for (double& s : sum) s /= omega > 0.0 ? omega : 1.0;
-        const glm::dvec3 rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, sum.data());
-        const std::size_t o = ((static_cast<std::size_t>(layer * lut.columns + col) * lut.height + j) * lut.width + i) * 3;
-        for (int q = 0; q < 3; ++q) lut.rgb[o + q] = static_cast<float>(rgb[q]);
-      }
+    const std::vector<double> avg = layerAverages(view, lut.layers);
+    for (int d = 0; d < lut.depth(); ++d) {
+      const double* spectral = avg.data() + static_cast<std::size_t>(d) * view.channels;
+      const glm::dvec3 rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, spectral);
+      const std::size_t o = ((static_cast<std::size_t>(d) * lut.height + j) * lut.width + i) * 3;
+      for (int q = 0; q < 3; ++q) lut.rgb[o + q] = static_cast<float>(rgb[q]);
     }
   });
   if (!finished) return {};

@@ -74,6 +74,8 @@ struct LimbRayProfile {
   /// Linear interpolation in b (clamped to the range); `transmittanceOut` gets `channels` values.
   void at(double impactParameterM, double& deviationRad, double& contactAltitudeM,
           double* transmittanceOut) const;
+  /// The smallest and largest deviation over impact parameters [bLo, bHi] (the interpolant's).
+  void deviationRange(double bLo, double bHi, double& minRad, double& maxRad) const;
 };
 
 /// T along a refracted ray from (r, mu) to the top (per channel into `out`), given its contact
@@ -116,6 +118,10 @@ struct LimbViewParams {
   int rows = 256;              ///< gamma over [0, phi_atmo - phi_occ]
   int scatteringColumns = 16;  ///< cells the in-scattered radiance is sampled on (docs/accuracy-vs-speed.md)
   int scatteringRows = 16;
+  /// The refracted Sun is integrated over each row's extent: sub-rows across which the exit
+  /// direction moves by at most 1 / subRowsPerSunDiameter of the Sun's diameter; 0: one point
+  /// sample at each row's centre (docs/accuracy-vs-speed.md, "Single columns of the limb ring").
+  double subRowsPerSunDiameter = 128.0;
 };
 
 /// Where a texel stands: the angles of Eq. 3 and the distance to the occluder's centre.
@@ -145,9 +151,13 @@ struct LimbView {
   }
 };
 /// The view from `position` (pixels are exact averages over their beta range of the
-/// refracted Sun, point samples in gamma; in-scattering from the coarse cells).
+/// refracted Sun, integrated over their gamma range by sub-rows; in-scattering from the
+/// coarse cells).
 LimbView renderLimbView(const AtmosphericShadowModel& model, const LimbPosition& position,
                         const LimbViewParams& params);
+/// The view averaged over the rows of each of `layers` bands by solid angle (what the
+/// limb-luminance LuT stores): [(layer * columns + column) * channels + c].
+std::vector<double> layerAverages(const LimbView& view, int layers);
 
 /// I / I_sun per channel at `position`: the limb view summed by solid angle (twice: both
 /// halves) plus the direct light past an opaque sphere of radius r_atmo.

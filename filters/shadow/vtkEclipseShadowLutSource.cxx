@@ -110,7 +110,7 @@ int vtkEclipseShadowLutSource::RequestAtmospheric(vtkInformation* outInfo, vtkIm
     eclipse::checkLutRange(params.uMin, params.uMax, params.vMin, params.vMax, params.vLowFraction);
     auto parameters = this->AtmosphereParameters();
     parameters["kind"] = filters::kAtmosphereShadowLutKind;
-    parameters["model"] = "limb views of the refracted Sun and in-scattered light + direct light past r_atmo (eclipse paper 5.2); v1";
+    parameters["model"] = "limb views of the refracted Sun and in-scattered light + direct light past r_atmo (eclipse paper 5.2), rows integrated by sub-rows; v2";
     parameters["width"] = std::to_string(this->Width);
     parameters["height"] = std::to_string(this->Height);
     parameters["limbView"] = std::to_string(this->LimbSize) + "x" + std::to_string(this->LimbSize) + " scattering " +

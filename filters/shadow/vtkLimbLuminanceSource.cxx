@@ -40,7 +40,7 @@ int vtkLimbLuminanceSource::RequestData(vtkInformation*, vtkInformationVector**,
                            params.range.vLowFraction);
     auto parameters = this->AtmosphereParameters();
     parameters["kind"] = filters::kLimbLuminanceLutKind;
-    parameters["model"] = "limb views averaged to layers (eclipse paper 5.3); v1";
+    parameters["model"] = "limb views averaged to layers (eclipse paper 5.3), rows integrated by sub-rows; v2";
     parameters["size"] = std::to_string(this->Width) + "x" + std::to_string(this->Height) + "x" +
                          std::to_string(this->Columns) + "x" + std::to_string(this->Layers);
     parameters["limbView"] = std::to_string(this->LimbRows) + " rows, scattering " +
