@@ -171,16 +171,16 @@ struct EclipseShading::Impl {
     return mask;
   }
 
-  // The receiver's fragment code with its occluder count, atmospheric occluder and
-  // the shadows it computes exactly as constants
-  // (ReceiverFragment.glsl): the shadow loop unrolls to exactly its occluders, one LuT
-  // lookup each, nothing for a receiver without any.
+  // The receiver's fragment code with its occluder count, atmospheric occluder and the
+  // shadows it computes exactly as constants (ReceiverFragment.glsl): the shadow loop
+  // unrolls to exactly its occluders, one LuT lookup each, nothing for a receiver
+  // without any.
   std::string fragmentDeclFor(const SphereBody& receiver) const {
     const std::size_t n = std::min(occludersOf(receiver).size(), static_cast<std::size_t>(kMaxOccluders));
     return "#define UMBRA_OCCLUDER_COUNT " + std::to_string(n) + "\n#define UMBRA_ATMOSPHERE_OCCLUDER " +
            std::to_string(atmosphereIndexOf(receiver)) + "\n#define UMBRA_EXACT_SHADOW " +
-           std::to_string(exactShadowsOf(receiver)) + "\n" + eclipseGlslWithoutSampler() + "\n" + checkedGlsl("ReceiverFragment.glsl", glsl::kReceiverFragment) + "\n" +
-           kFsDec.tag;
+           std::to_string(exactShadowsOf(receiver)) + "\n" + eclipseGlslWithoutSampler() + "\n" +
+           checkedGlsl("ReceiverFragment.glsl", glsl::kReceiverFragment) + "\n" + kFsDec.tag;
   }
 
   // Gives the receiver's shader the code for its present occluders (a rebuild when they changed).

@@ -25,8 +25,9 @@ float umbraAngularRadiusNear(vec4 x, float invDist) {
 }
 
 // Eq. 4 from the directions to the Sun and to the occluder as unit vectors and their
-// angular radii. The angle between the directions as atan(|a x b|, a . b): accurate for
-// tiny angles (to the float ulp of the unit vectors), one arctangent.
+// angular radii. The angle between the directions as atan(|a x b|, a . b), accurate for
+// tiny angles but for the atan itself: Mesa's errs by -2e-5 of small angles, as does
+// umbraAngularRadius' one, so that the ratios of Eq. 4 cancel it (use the two together).
 vec2 umbraShadowUvFrom(vec3 sunDir, float phiSun, vec3 occDir, float phiOcc) {
   float delta = atan(length(cross(sunDir, occDir)), dot(sunDir, occDir));
   return vec2(phiSun, delta) * (1.0 / (phiOcc + phiSun));
