@@ -38,6 +38,24 @@ double LutRange::textureV(double v) const {
   return vLowFraction + (1.0 - vLowFraction) * (v - vMin) / (vMax - vMin);
 }
 
+LutRange::TextureMap LutRange::textureMap() const {
+  TextureMap m;
+  m.uOrigin = uMin;
+  m.uScale = 1.0 / (uMax - uMin);
+  // f + (1 - f)(v - vMin) / (vMax - vMin) = (v - (vMin - f / s)) s with s = (1 - f) / (vMax - vMin).
+  m.vScale = (1.0 - vLowFraction) / (vMax - vMin);
+  m.vOrigin = vMin - vLowFraction / m.vScale;
+  if (vLowFraction > 0.0) {  // f v / vMin below vMin
+    m.vSplit = vMin;
+    m.vLowOrigin = 0.0;
+    m.vLowScale = vLowFraction / vMin;
+  } else {
+    m.vLowOrigin = m.vOrigin;
+    m.vLowScale = m.vScale;
+  }
+  return m;
+}
+
 double LutRange::texelV(int j, int height) const {
   if (vLowFraction <= 0.0) return vMin + (vMax - vMin) * (j + 0.5) / height;
   const double t = (j + 0.5) / height;

@@ -38,6 +38,14 @@ struct LutRange {
   double texelV(int j, int height) const;
   double textureU(double u) const { return (u - uMin) / (uMax - uMin); }
   double textureV(double v) const;
+  /// textureU and textureV in the form a shader evaluates without division or branch:
+  /// (u - uOrigin) uScale, and (v - vOrigin) vScale for v >= vSplit, (v - vLowOrigin)
+  /// vLowScale below (a split v axis; without one the two pairs are the same).
+  struct TextureMap {
+    double uOrigin = 0.0, uScale = 1.0, vOrigin = 0.0, vScale = 1.0;
+    double vSplit = 0.0, vLowOrigin = 0.0, vLowScale = 1.0;
+  };
+  TextureMap textureMap() const;
   bool operator==(const LutRange& o) const {
     return uMin == o.uMin && uMax == o.uMax && vMin == o.vMin && vMax == o.vMax && vLowFraction == o.vLowFraction;
   }

@@ -15,6 +15,36 @@ double angularRadiusRad(double radiusM, double distanceM) {
   return distanceM <= radiusM ? kHalfPi : std::asin(radiusM / distanceM);
 }
 
+double AngularRadiusExpansion::at(double d) const {
+  const double e = distanceM / d - 1.0;
+  return phi0Rad + e * (c1Rad + e * c2Rad);
+}
+
+AngularRadiusExpansion angularRadiusExpansion(double radiusM, double distanceM, double halfWidthM) {
+  AngularRadiusExpansion x;
+  x.distanceM = distanceM;
+  x.phi0Rad = angularRadiusRad(radiusM, distanceM);
+  x.maxPhiRad = angularRadiusRad(radiusM, distanceM - halfWidthM);
+  if (!(distanceM - halfWidthM > radiusM)) {
+    x.maxErrorRad = std::numeric_limits<double>::infinity();
+    return x;
+  }
+  // d/dw asin(r w) = r / s, d2/dw2 = r^3 w / s^3 (s = sqrt(1 - r^2 w^2)); times w0 and w0^2.
+  const double q = radiusM / distanceM, s = std::sqrt((1.0 - q) * (1.0 + q));
+  x.c1Rad = q / s;
+  x.c2Rad = 0.5 * q * q * q / (s * s * s);
+  constexpr int kPoints = 65;
+  for (int k = 0; k < kPoints; ++k) {
+    const double d = distanceM - halfWidthM + 2.0 * halfWidthM * k / (kPoints - 1);
+    x.maxErrorRad = std::max(x.maxErrorRad, std::abs(angularRadiusRad(radiusM, d) - x.at(d)));
+  }
+  return x;
+}
+
+bool receiverShadowExpands(const AngularRadiusExpansion& sun, const AngularRadiusExpansion& occluder) {
+  return sun.exactToFloat() && occluder.exactToFloat() && sun.maxPhiRad + occluder.maxPhiRad <= kSmallAngleSeriesMaxRad;
+}
+
 double angleBetweenRad(const glm::dvec3& a, const glm::dvec3& b) {
   const glm::dvec3 na = a / glm::length(a), nb = b / glm::length(b);
   return 2.0 * std::atan2(glm::length(na - nb), glm::length(na + nb));

@@ -21,6 +21,37 @@ struct LutCoords {
 /// Angular radius of a sphere of radius r seen from distance d (Eq. 3); pi/2 inside it.
 double angularRadiusRad(double radiusM, double distanceM);
 
+/// Eq. 3 for distances near d0 (the points of a receiver around its centre): a quadratic
+/// in e = d0 / d - 1, phi(d) = phi0 + e (c1 + e c2), the Taylor expansion of asin(r w) in
+/// the inverse distance w = 1 / d, in which it is nearly linear (the cubic term is
+/// (r / d0)^3 (1 + 2 (r / d0)^2) / (6 (1 - (r / d0)^2)^(5/2)) e^3). A shader evaluates it
+/// with two multiply-adds instead of an arctangent.
+struct AngularRadiusExpansion {
+  double distanceM = 0.0;  ///< d0
+  double phi0Rad = 0.0, c1Rad = 0.0, c2Rad = 0.0;
+  /// max |angularRadiusRad - at| over [d0 - h, d0 + h] (65 points, both ends included;
+  /// the error grows as |e|^3, so it is largest at an end); +infinity when the range
+  /// reaches the sphere (d0 - h <= r: no expansion there).
+  double maxErrorRad = 0.0;
+  double maxPhiRad = 0.0;  ///< Eq. 3 at d0 - h (pi/2 where that is inside the sphere)
+  double at(double distanceM) const;
+  /// True when the expansion is exact to float precision: maxErrorRad at most 2^-26 (an
+  /// eighth of float's epsilon) of phi0. A renderer uses it only then (else Eq. 3 itself).
+  bool exactToFloat() const { return maxErrorRad <= 0x1p-26 * phi0Rad; }
+};
+AngularRadiusExpansion angularRadiusExpansion(double radiusM, double distanceM, double halfWidthM);
+
+/// The largest angle up to which a shader takes the angle between two unit vectors as
+/// asin |a x b| by its series to the 7th power (no arctangent): the first term left out,
+/// 35/1152 s^9, is below 2^-26 of the angle there.
+constexpr double kSmallAngleSeriesMaxRad = 0.15;
+
+/// True when a receiver's shader may compute Eq. 3-4 for one occluder from the
+/// expansions of the Sun's and the occluder's angular radius over the receiver and the
+/// series angle (both expansions exact to float, and the penumbra, phi_sun + phi_occ,
+/// narrower than kSmallAngleSeriesMaxRad everywhere on it). Else Eq. 3-4 exactly.
+bool receiverShadowExpands(const AngularRadiusExpansion& sun, const AngularRadiusExpansion& occluder);
+
 /// Angle between two directions, accurate for tiny angles (no acos of a dot product).
 double angleBetweenRad(const glm::dvec3& a, const glm::dvec3& b);
 

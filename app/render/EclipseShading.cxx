@@ -94,7 +94,7 @@ struct Receiver {
 struct EclipseShading::Impl {
   vtkSmartPointer<vtkTexture> lutTexture;
   // The u and v ranges of lutTexture (its field data, filters::lutRangeOf): the
-  // umbraShadowLutURange, VRange and VLowFraction uniforms.
+  // umbraShadowLutMap and MapLow uniforms (LutRange::textureMap).
   eclipse::LutRange lutRange;
   SunLight sun;
   std::vector<SphereBody> occluders;
@@ -105,9 +105,12 @@ struct EclipseShading::Impl {
   std::string atmosphereOccluder;
   vtkSmartPointer<vtkTexture> atmosphereTexture;
   vtkSmartPointer<vtkImageData> atmosphereNone;
-  std::array<float, 4> atmosphereMap{0.25f, 0.5f, 0.25f, 0.5f};
-  // The u and v ranges of the whole atmospheric table (its field data): the
-  // umbraAtmosphereLutURange, VRange and VLowFraction uniforms.
+  // The place of the part held in the whole table: (texture coordinate of its first
+  // texel, step, the same in v) in the whole table's texture coordinates, and its size.
+  std::array<double, 4> atmospherePart{0.25, 0.5, 0.25, 0.5};
+  std::array<int, 2> atmospherePartSize{2, 2};
+  // The u and v ranges of the whole atmospheric table (its field data); with the part,
+  // the umbraAtmosphereLutMap and MapLow uniforms (atmosphereTextureMap).
   eclipse::LutRange atmosphereRange;
 
   std::vector<const SphereBody*> occludersOf(const SphereBody& receiver) const {
@@ -142,13 +145,41 @@ struct EclipseShading::Impl {
     return -1;
   }
 
-  // The receiver's fragment code with its occluder count and atmospheric occluder as
-  // constants (ReceiverFragment.glsl): the shadow loop unrolls to exactly its occluders,
-  // one LuT lookup each, nothing for a receiver without any.
+  // The angular radii (Eq. 3) of the Sun ([kMaxOccluders]) and of the receiver's
+  // occluders over the receiver's surface, expanded about its centre
+  // (umbraSunAngularRadius, umbraOccluderAngularRadius).
+  std::array<eclipse::AngularRadiusExpansion, kMaxOccluders + 1> angularRadiiOver(const SphereBody& receiver) const {
+    std::array<eclipse::AngularRadiusExpansion, kMaxOccluders + 1> x{};
+    const double h = receiver.radiusM;
+    x[kMaxOccluders] = eclipse::angularRadiusExpansion(sun.radiusM, glm::length(sun.positionM - receiver.centreM), h);
+    int n = 0;
+    for (const SphereBody* o : occludersOf(receiver)) {
+      if (n == kMaxOccluders) break;
+      x[n++] = eclipse::angularRadiusExpansion(o->radiusM, glm::length(o->centreM - receiver.centreM), h);
+    }
+    return x;
+  }
+
+  // UMBRA_EXACT_SHADOW: bit i for an occluder whose shadow the receiver's shader must
+  // compute exactly (eclipse::receiverShadowExpands false, e.g. a receiver close to it).
+  int exactShadowsOf(const SphereBody& receiver) const {
+    const auto x = angularRadiiOver(receiver);
+    const std::size_t n = std::min(occludersOf(receiver).size(), static_cast<std::size_t>(kMaxOccluders));
+    int mask = 0;
+    for (std::size_t k = 0; k < n; ++k)
+      if (!eclipse::receiverShadowExpands(x[kMaxOccluders], x[k])) mask |= 1 << k;
+    return mask;
+  }
+
+  // The receiver's fragment code with its occluder count, atmospheric occluder and the
+  // shadows it computes exactly as constants (ReceiverFragment.glsl): the shadow loop
+  // unrolls to exactly its occluders, one LuT lookup each, nothing for a receiver
+  // without any.
   std::string fragmentDeclFor(const SphereBody& receiver) const {
     const std::size_t n = std::min(occludersOf(receiver).size(), static_cast<std::size_t>(kMaxOccluders));
     return "#define UMBRA_OCCLUDER_COUNT " + std::to_string(n) + "\n#define UMBRA_ATMOSPHERE_OCCLUDER " +
-           std::to_string(atmosphereIndexOf(receiver)) + "\n" + eclipseGlslWithoutSampler() + "\n" +
+           std::to_string(atmosphereIndexOf(receiver)) + "\n#define UMBRA_EXACT_SHADOW " +
+           std::to_string(exactShadowsOf(receiver)) + "\n" + eclipseGlslWithoutSampler() + "\n" +
            checkedGlsl("ReceiverFragment.glsl", glsl::kReceiverFragment) + "\n" + kFsDec.tag;
   }
 
@@ -183,17 +214,39 @@ struct EclipseShading::Impl {
       ++n;
     }
     program.SetUniform4fv("umbraOccluders", kMaxOccluders, occ);
-    program.SetUniform4f("umbraAtmosphereLutMap", atmosphereMap.data());
-    setRangeUniforms(program, "umbraShadowLut", lutRange);
-    setRangeUniforms(program, "umbraAtmosphereLut", atmosphereRange);
+    const auto radii = angularRadiiOver(b);
+    float phi[kMaxOccluders + 1][4];
+    for (int k = 0; k <= kMaxOccluders; ++k) {
+      const eclipse::AngularRadiusExpansion& x = radii[k];
+      phi[k][0] = float(x.distanceM), phi[k][1] = float(x.phi0Rad), phi[k][2] = float(x.c1Rad), phi[k][3] = float(x.c2Rad);
+    }
+    program.SetUniform4f("umbraSunAngularRadius", phi[kMaxOccluders]);
+    program.SetUniform4fv("umbraOccluderAngularRadius", kMaxOccluders, phi);
+    setMapUniforms(program, "umbraShadowLut", lutRange.textureMap());
+    setMapUniforms(program, "umbraAtmosphereLut", atmosphereTextureMap());
   }
 
-  static void setRangeUniforms(vtkShaderProgram& program, const std::string& prefix, const eclipse::LutRange& r) {
-    const float uRange[2] = {float(r.uMin), float(r.uMax)};
-    const float vRange[2] = {float(r.vMin), float(r.vMax)};
-    program.SetUniform2f((prefix + "URange").c_str(), uRange);
-    program.SetUniform2f((prefix + "VRange").c_str(), vRange);
-    program.SetUniformf((prefix + "VLowFraction").c_str(), float(r.vLowFraction));
+  // The atmospheric table's texture coordinates in the part held: texel k of the part
+  // is the whole's at coordinate first + k step, at (k + 0.5) / size in its own texture.
+  eclipse::LutRange::TextureMap atmosphereTextureMap() const {
+    eclipse::LutRange::TextureMap m = atmosphereRange.textureMap();
+    auto fold = [](double& origin, double& scale, double first, double step, int size) {
+      origin += (first - 0.5 * step) / scale;
+      scale /= step * size;
+    };
+    const auto& part = atmospherePart;
+    fold(m.uOrigin, m.uScale, part[0], part[1], atmospherePartSize[0]);
+    fold(m.vOrigin, m.vScale, part[2], part[3], atmospherePartSize[1]);
+    fold(m.vLowOrigin, m.vLowScale, part[2], part[3], atmospherePartSize[1]);
+    return m;
+  }
+
+  static void setMapUniforms(vtkShaderProgram& program, const std::string& prefix,
+                             const eclipse::LutRange::TextureMap& m) {
+    const float map[4] = {float(m.uOrigin), float(m.uScale), float(m.vOrigin), float(m.vScale)};
+    const float low[3] = {float(m.vSplit), float(m.vLowOrigin), float(m.vLowScale)};
+    program.SetUniform4f((prefix + "Map").c_str(), map);
+    program.SetUniform3f((prefix + "MapLow").c_str(), low);
   }
 
   void detach(Receiver& r) const {
@@ -268,7 +321,8 @@ vtkSmartPointer<vtkImageData> checkedLutCopy(vtkImageData* lut) {
 
 // The texels of a checked LuT as RGBA (alpha 1), the form the texture gets: Mesa's
 // llvmpipe samples four-channel float textures much faster than RGB32F ones (as
-// AtmosphereRendering's tables).
+// AtmosphereRendering's tables). (One channel for an airless LuT would not do:
+// vtkOpenGLTexture makes one-component float scalars an RGBA8 texture.)
 vtkSmartPointer<vtkImageData> rgbaTexels(vtkImageData* lut) {
   auto out = vtkSmartPointer<vtkImageData>::New();
   out->CopyStructure(lut);
@@ -313,7 +367,8 @@ void EclipseShading::SetAtmosphereShadowLut(const std::string& occluderName, vtk
   if (occluderName.empty() || !lut) {
     m.atmosphereOccluder.clear();
     m.atmosphereTexture->SetInputData(rgbaTexels(m.atmosphereNone));
-    m.atmosphereMap = {0.25f, 0.5f, 0.25f, 0.5f};
+    m.atmospherePart = {0.25, 0.5, 0.25, 0.5};
+    m.atmospherePartSize = {2, 2};
     m.atmosphereRange = {};
     for (auto& r : m.receivers) m.updateFragmentDecl(*r);
     return;
@@ -339,11 +394,12 @@ void EclipseShading::SetAtmosphereShadowLut(const std::string& occluderName, vtk
   const double uSpan = range.uMax - range.uMin;
   const bool splitV = range.vLowFraction > 0.0;
   const double vMin = splitV ? 0.0 : range.vMin, vSpan = splitV ? 1.0 : range.vMax - range.vMin;
-  m.atmosphereMap = {float((first[0] - range.uMin) / uSpan), float(spacing[0] / uSpan),
-                     float((first[1] - vMin) / vSpan), float(spacing[1] / vSpan)};
+  m.atmospherePart = {(first[0] - range.uMin) / uSpan, spacing[0] / uSpan, (first[1] - vMin) / vSpan,
+                      spacing[1] / vSpan};
   m.atmosphereRange = range;
   int ext[6];
   copy->GetExtent(ext);
+  m.atmospherePartSize = {ext[1] - ext[0] + 1, ext[3] - ext[2] + 1};
   copy->SetExtent(0, ext[1] - ext[0], 0, ext[3] - ext[2], 0, 0);
   copy->SetOrigin(0.0, 0.0, 0.0);
   copy->SetSpacing(1.0, 1.0, 1.0);
@@ -369,6 +425,7 @@ void validateSun(const SunLight& sun) {
 void EclipseShading::SetSun(const SunLight& sun) {
   validateSun(sun);
   impl_->sun = sun;
+  for (auto& r : impl_->receivers) impl_->updateFragmentDecl(*r);
 }
 
 void EclipseShading::SetOccluders(const std::vector<SphereBody>& occluders) {

@@ -4,19 +4,11 @@
 // single precision keeps the angles accurate.
 
 uniform sampler2D umbraShadowLut;
-// The u and v ranges the LuT's width and height cover (eclipse::ShadowLut::uMin, uMax,
-// vMin, vMax) and the fraction of the rows for v in [0, vMin] (vLowFraction: a split v
-// axis); [0, 1] and 0 unless set.
-uniform vec2 umbraShadowLutURange = vec2(0.0, 1.0);
-uniform vec2 umbraShadowLutVRange = vec2(0.0, 1.0);
-uniform float umbraShadowLutVLowFraction = 0.0;
-
-// Angle between two directions without acos, accurate for tiny angles.
-float umbraAngleBetween(vec3 a, vec3 b) {
-  vec3 na = normalize(a);
-  vec3 nb = normalize(b);
-  return 2.0 * atan(length(na - nb), length(na + nb));
-}
+// umbraShadowLut's texture coordinates from (u, v) (eclipse::LutRange::textureMap, set
+// from the LuT's u and v ranges and low-v fraction): (u - map.x) map.y; (v - map.z) map.w
+// for v >= mapLow.x, (v - mapLow.y) mapLow.z below (a split v axis). Identity unless set.
+uniform vec4 umbraShadowLutMap = vec4(0.0, 1.0, 0.0, 1.0);
+uniform vec3 umbraShadowLutMapLow = vec3(0.0, 0.0, 1.0);
 
 // Angular radius of a sphere (Eq. 3); pi/2 from inside it. asin(r / d) as an atan: GLSL's
 // asin may be a coarse polynomial (Mesa: ~1e-4 rad near 0.4 rad, i.e. close to an occluder).
@@ -24,33 +16,77 @@ float umbraAngularRadius(float radius, float dist) {
   return dist <= radius ? 1.5707963 : atan(radius, sqrt((dist - radius) * (dist + radius)));
 }
 
+// The same near a reference distance d0, from the inverse distance w = 1 / d:
+// eclipse::AngularRadiusExpansion x = (d0, phi0, c1, c2), a quadratic in e = d0 w - 1.
+// Exact to float precision where its maxErrorRad says so (the renderer checks it).
+float umbraAngularRadiusNear(vec4 x, float invDist) {
+  float e = x.x * invDist - 1.0;
+  return x.y + e * (x.z + e * x.w);
+}
+
+// Eq. 4 from the directions to the Sun and to the occluder as unit vectors and their
+// angular radii. The angle between the directions as atan(|a x b|, a . b), accurate for
+// tiny angles but for the atan itself: Mesa's errs by -2e-5 of small angles, as does
+// umbraAngularRadius' one, so that the ratios of Eq. 4 cancel it (use the two together).
+vec2 umbraShadowUvFrom(vec3 sunDir, float phiSun, vec3 occDir, float phiOcc) {
+  float delta = atan(length(cross(sunDir, occDir)), dot(sunDir, occDir));
+  return vec2(phiSun, delta) * (1.0 / (phiOcc + phiSun));
+}
+
 // Eq. 3-4: the LuT coordinates (u, v) of p for one occluder; v >= 1 where p gets all the
 // light (outside the penumbra, or the occluder behind the Sun).
 vec2 umbraShadowUv(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float occRadius) {
   vec3 toSun = sunPos - p;
   vec3 toOcc = occPos - p;
-  if (length(toOcc) >= length(toSun)) return vec2(0.0, 2.0);   // occluder behind the Sun
-  float phiSun = umbraAngularRadius(sunRadius, length(toSun));
-  float phiOcc = umbraAngularRadius(occRadius, length(toOcc));
-  float delta = umbraAngleBetween(toSun, toOcc);
-  return vec2(phiSun / (phiOcc + phiSun), delta / (phiOcc + phiSun));
+  float dSun = length(toSun), dOcc = length(toOcc);
+  if (dOcc >= dSun) return vec2(0.0, 2.0);   // occluder behind the Sun
+  return umbraShadowUvFrom(toSun / dSun, umbraAngularRadius(sunRadius, dSun), toOcc / dOcc,
+                           umbraAngularRadius(occRadius, dOcc));
 }
 
-// (u, v) -> the coordinate in a LuT's texture, through its u and v ranges and low-v
-// fraction (identity at [0, 1], [0, 1], 0).
-vec2 umbraShadowLutCoordIn(vec2 uv, vec2 uRange, vec2 vRange, float vLowFraction) {
-  float u = (uv.x - uRange.x) / (uRange.y - uRange.x);
-  float f = vLowFraction;
-  float v = (f > 0.0 && uv.y < vRange.x)
-      ? f * uv.y / vRange.x
-      : f + (1.0 - f) * (uv.y - vRange.x) / (vRange.y - vRange.x);
-  return vec2(u, v);
+// The angle between two unit vectors where it is below eclipse::kSmallAngleSeriesMaxRad:
+// asin |a x b| by its series to s^7 (exact to float there, without an arctangent; Mesa's
+// atan errs by 2e-5 of small angles). From pi/2 on (a . b <= 0) it gives 4.
+float umbraSmallAngleBetween(vec3 a, vec3 b) {
+  vec3 c = cross(a, b);
+  float s2 = dot(c, c);
+  float delta = sqrt(s2) * (1.0 + s2 * (1.0 / 6.0 + s2 * (3.0 / 40.0 + s2 * (5.0 / 112.0))));
+  return dot(a, b) > 0.0 ? delta : 4.0;
 }
 
-// The same for umbraShadowLut (its umbraShadowLutURange, VRange, VLowFraction).
-vec2 umbraShadowLutCoord(vec2 uv) {
-  return umbraShadowLutCoordIn(uv, umbraShadowLutURange, umbraShadowLutVRange, umbraShadowLutVLowFraction);
+// Eq. 3-4 at a point of a receiver, as the receiver's shader has it: toOcc from the point
+// to the occluder; sunDir and invSun the unit vector and inverse distance to the Sun.
+// Unless `exact` (a constant: the other branch compiles away; eclipse::
+// receiverShadowExpands false): the angular radii from their expansions about the
+// receiver's centre (umbraAngularRadiusNear: sunX of the Sun, x of the occluder) and the
+// angle between the directions from umbraSmallAngleBetween. With `exact`: Eq. 3-4 as
+// umbraShadowUv (the Sun's radius sunRadius, the occluder's radius), where the atan's
+// errors cancel in the ratios. v >= 1 where the point gets all the light (the occluder
+// behind the Sun too).
+vec2 umbraReceiverShadowUv(vec3 sunDir, float invSun, vec4 sunX, float sunRadius, vec3 toOcc, vec4 x, float radius,
+                           bool exact) {
+  float invOcc = inversesqrt(dot(toOcc, toOcc));
+  vec3 occDir = toOcc * invOcc;
+  vec2 uv;
+  if (exact) {
+    uv = umbraShadowUvFrom(sunDir, umbraAngularRadius(sunRadius, 1.0 / invSun), occDir,
+                           umbraAngularRadius(radius, 1.0 / invOcc));
+  } else {
+    float phiSun = umbraAngularRadiusNear(sunX, invSun);
+    uv = vec2(phiSun, umbraSmallAngleBetween(sunDir, occDir)) * (1.0 / (phiSun + umbraAngularRadiusNear(x, invOcc)));
+  }
+  return invOcc <= invSun ? vec2(0.0, 2.0) : uv;
 }
+
+// (u, v) -> the texture coordinate of a LuT whose map is (map, mapLow) (umbraShadowLutMap):
+// a subtraction and a multiplication per axis, the split a selection.
+vec2 umbraShadowLutCoordIn(vec2 uv, vec4 map, vec3 mapLow) {
+  vec2 v = uv.y < mapLow.x ? mapLow.yz : map.zw;
+  return vec2((uv.x - map.x) * map.y, (uv.y - v.x) * v.y);
+}
+
+// The same for umbraShadowLut.
+vec2 umbraShadowLutCoord(vec2 uv) { return umbraShadowLutCoordIn(uv, umbraShadowLutMap, umbraShadowLutMapLow); }
 
 // umbraShadowLut at (u, v) (v < 1: in the shadow).
 vec3 umbraShadowLutAt(vec2 uv) { return texture(umbraShadowLut, umbraShadowLutCoord(uv)).rgb; }
@@ -60,22 +96,4 @@ vec3 umbraEclipseFactor(vec3 p, vec3 sunPos, float sunRadius, vec3 occPos, float
   vec2 uv = umbraShadowUv(p, sunPos, sunRadius, occPos, occRadius);
   if (uv.y >= 1.0) return vec3(1.0);
   return umbraShadowLutAt(uv);
-}
-
-// The same lookup in `lut`, a part of a table (an update extent, e.g. the u range a
-// receiver can be in): `map` = (coordinate of its first texel, step, the same in v) in the
-// whole table's texture coordinates, whose texel centres are at (i + 0.5) * step. Outside
-// the part the edge texels are used (clamp to edge). The whole table's u and v ranges
-// (uRange, vRange, vLowFraction: umbraShadowLutCoordIn) are its own, not umbraShadowLut's.
-// With the whole table, the texture coordinate is umbraShadowLutCoordIn(u, v, ...) itself.
-// umbraShadowLutAtIn: the lookup alone at (u, v) (v < 1).
-vec3 umbraShadowLutAtIn(sampler2D lut, vec4 map, vec2 uRange, vec2 vRange, float vLowFraction, vec2 uv) {
-  vec2 texel = (umbraShadowLutCoordIn(uv, uRange, vRange, vLowFraction) - map.xz) / map.yw + 0.5;
-  return texture(lut, texel / vec2(textureSize(lut, 0))).rgb;
-}
-vec3 umbraEclipseFactorIn(sampler2D lut, vec4 map, vec2 uRange, vec2 vRange, float vLowFraction, vec3 p,
-                          vec3 sunPos, float sunRadius, vec3 occPos, float occRadius) {
-  vec2 uv = umbraShadowUv(p, sunPos, sunRadius, occPos, occRadius);
-  if (uv.y >= 1.0) return vec3(1.0);
-  return umbraShadowLutAtIn(lut, map, uRange, vRange, vLowFraction, uv);
 }

@@ -215,3 +215,17 @@ TEST(ShadowLutURange, ARangeOverPhobosDistancesResolvesItsShadow) {
   EXPECT_THROW(lutRangeForDistances(mars, 0.0, 1e6), std::invalid_argument);
   EXPECT_THROW(lutRangeForDistances(mars, 2e6, 1e6), std::invalid_argument);
 }
+
+// LutRange::textureMap (the shader's form) gives textureU and textureV, split axis included.
+TEST(ShadowLutURange, TextureMapIsTextureUAndV) {
+  for (const LutRange& r : {LutRange{}, LutRange{0.2, 0.3, 0.4, 0.9, 0.0}, LutRange{0.006, 0.0061, 0.95, 1.0, 0.25}}) {
+    const LutRange::TextureMap m = r.textureMap();
+    for (int k = 0; k <= 200; ++k) {
+      const double x = k / 200.0;
+      EXPECT_NEAR((x - m.uOrigin) * m.uScale, r.textureU(x), 1e-9 * (1.0 + std::abs(r.textureU(x))));
+      const bool low = x < m.vSplit;
+      EXPECT_NEAR((x - (low ? m.vLowOrigin : m.vOrigin)) * (low ? m.vLowScale : m.vScale), r.textureV(x),
+                  1e-9 * (1.0 + std::abs(r.textureV(x))));
+    }
+  }
+}

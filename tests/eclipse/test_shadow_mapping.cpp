@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -138,4 +139,44 @@ TEST(ShadowMapping, EarthShadowAtTheMoonMatchesTheClassicalFigures) {
   EXPECT_NEAR(r.umbraRadiusM, 6371e3 - 384400e3 * (kSunRadiusM - 6371e3) / kAu, 2e3);
   EXPECT_NEAR(r.penumbraRadiusM, 6371e3 + 384400e3 * (kSunRadiusM + 6371e3) / kAu, 2e3);
   EXPECT_NEAR(r.umbraLengthM, 1.384e9, 0.01e9);  // ~1.38 million km
+}
+
+// The expansion of Eq. 3 over a receiver (AngularRadiusExpansion): its coefficients are
+// the derivatives of asin(r / d) in e = d0 / d - 1 (central differences), its error bound
+// holds between the sampled points (1000 distances across the receiver), and it is exact
+// to float for the Moon behind Earth, Phobos by Mars and the Sun seen from 0.1 au, not for
+// a receiver that nearly touches its occluder.
+TEST(ShadowMapping, AngularRadiusExpansionOverAReceiver) {
+  struct Case {
+    double radiusM, distanceM, halfWidthM;
+    bool exactToFloat;
+  };
+  for (const Case& c : {Case{6371e3, 384400e3, 1737.4e3, true}, Case{3389.5e3, 9376e3, 11.1e3, true},
+                        Case{kSunRadiusM, 0.1 * kAu, 2439.7e3, true}, Case{6371e3, 30000e3, 20000e3, false}}) {
+    const AngularRadiusExpansion x = angularRadiusExpansion(c.radiusM, c.distanceM, c.halfWidthM);
+    EXPECT_EQ(x.exactToFloat(), c.exactToFloat) << c.distanceM << ": max error " << x.maxErrorRad;
+    EXPECT_NEAR(x.phi0Rad, std::asin(c.radiusM / c.distanceM), 1e-16);
+    EXPECT_NEAR(x.maxPhiRad, std::asin(c.radiusM / (c.distanceM - c.halfWidthM)), 1e-16);
+    const double h = 1e-4;
+    auto phiAt = [&](double e) { return std::asin(c.radiusM / (c.distanceM / (1.0 + e))); };
+    EXPECT_NEAR(x.c1Rad, (phiAt(h) - phiAt(-h)) / (2 * h), 1e-7 * x.c1Rad);
+    EXPECT_NEAR(x.c2Rad, (phiAt(h) - 2 * phiAt(0.0) + phiAt(-h)) / (2 * h * h), 1e-4 * x.c2Rad + 1e-9);
+    double worst = 0.0;
+    for (int k = 0; k <= 1000; ++k) {
+      const double d = c.distanceM - c.halfWidthM + 2.0 * c.halfWidthM * k / 1000;
+      worst = std::max(worst, std::abs(std::asin(c.radiusM / d) - x.at(d)));
+    }
+    EXPECT_LE(worst, 1.01 * x.maxErrorRad + 1e-18);
+  }
+  // A receiver reaching into the occluder's sphere: no expansion.
+  EXPECT_FALSE(angularRadiusExpansion(6371e3, 7000e3, 1000e3).exactToFloat());
+}
+
+// The series of asin to s^7 is exact to 2^-26 up to kSmallAngleSeriesMaxRad.
+TEST(ShadowMapping, SmallAngleSeriesIsExactToFloatUpToItsLimit) {
+  for (double a = 1e-6; a <= kSmallAngleSeriesMaxRad; a *= 1.1) {
+    const double s = std::sin(a), t = s * s;
+    const double series = s * (1.0 + t * (1.0 / 6.0 + t * (3.0 / 40.0 + t * (5.0 / 112.0))));
+    EXPECT_LE(std::abs(series - a), 0x1p-26 * a) << a;
+  }
 }

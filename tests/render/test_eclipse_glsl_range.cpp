@@ -1,5 +1,5 @@
-// eclipse/glsl/EclipseShadow.glsl with a range-limited LuT (umbraShadowLutURange,
-// umbraShadowLutVRange, umbraShadowLutVLowFraction) against the CPU lookup
+// eclipse/glsl/EclipseShadow.glsl with a range-limited LuT (umbraShadowLutMap,
+// umbraShadowLutMapLow from eclipse::LutRange::textureMap) against the CPU lookup
 // (eclipse::eclipseFactor with the same eclipse::ShadowLut), point by point: Mars' shadow
 // over Phobos' distances, run as a full-screen quad into a float framebuffer.
 #include "RenderTestSupport.hpp"
@@ -20,8 +20,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <string>
 #include <vector>
 
 using namespace umbra;
@@ -40,25 +43,24 @@ struct Scene {
   }
 };
 
-// The GLSL factor at every point of the scene's grid.
-std::vector<float> gpuFactors(const Scene& s, const eclipse::ShadowLut& lut) {
-  vtkNew<vtkRenderWindow> window;
+// An offscreen kSize x kSize window with its context current.
+vtkSmartPointer<vtkRenderWindow> quadWindow() {
+  auto window = vtkSmartPointer<vtkRenderWindow>::New();
   window->SetOffScreenRendering(1);
   window->SetSize(kSize, kSize);
   render::test::useSharedDisplay(window);
   auto* w = vtkOpenGLRenderWindow::SafeDownCast(window);
   w->Initialize();
   w->MakeCurrent();
-  vtkNew<vtkTextureObject> table;
-  table->SetContext(w);
-  table->SetMinificationFilter(vtkTextureObject::Linear);
-  table->SetMagnificationFilter(vtkTextureObject::Linear);
-  table->SetWrapS(vtkTextureObject::ClampToEdge);
-  table->SetWrapT(vtkTextureObject::ClampToEdge);
-  table->SetInternalFormat(GL_RGB32F);
-  table->SetFormat(GL_RGB);
-  table->SetDataType(GL_FLOAT);
-  EXPECT_TRUE(table->Create2DFromRaw(lut.width, lut.height, 3, VTK_FLOAT, const_cast<float*>(lut.rgb.data())));
+  return window;
+}
+
+// Runs `impl` (GLSL writing gl_FragData[0]; gl_FragCoord gives the pixel) over a kSize^2
+// full-screen quad into a float framebuffer, after eclipse/glsl/EclipseShadow.glsl and
+// `decl`; `setUp` sets the uniforms. Returns RGBA per pixel, row by row (empty on failure).
+std::vector<float> quadPixels(vtkRenderWindow* window, const std::string& decl, const std::string& impl,
+                              const std::function<void(vtkShaderProgram&)>& setUp) {
+  auto* w = vtkOpenGLRenderWindow::SafeDownCast(window);
   vtkNew<vtkTextureObject> colour;
   colour->SetContext(w);
   colour->SetInternalFormat(GL_RGBA32F);
@@ -68,38 +70,13 @@ std::vector<float> gpuFactors(const Scene& s, const eclipse::ShadowLut& lut) {
   vtkNew<vtkOpenGLFramebufferObject> fbo;
   fbo->SetContext(w);
   std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
-  vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl",
-                               std::string(eclipse::kEclipseShadowGlsl) +
-                                   "\nuniform vec3 sunPos; uniform float sunRadius, occRadius, dMin, dMax, minAngle, maxAngle;\n"
-                                   "//VTK::FSQ::Decl");
-  vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
-                               "  vec2 ij = floor(gl_FragCoord.xy);\n"
-                               "  float dist = dMin + (dMax - dMin) * ij.y / float(" + std::to_string(kSize - 1) + ");\n"
-                               "  float a = minAngle + (maxAngle - minAngle) * ij.x / float(" + std::to_string(kSize - 1) + ");\n"
-                               "  vec3 p = dist * vec3(cos(a), sin(a), 0.0);\n"
-                               "  gl_FragData[0] = vec4(umbraEclipseFactor(p, sunPos, sunRadius, vec3(0.0), occRadius), texCoord.x);\n"
-                               "//VTK::FSQ::Impl");
+  vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl", std::string(eclipse::kEclipseShadowGlsl) + "\n" + decl +
+                                                           "\n//VTK::FSQ::Decl");
+  vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl", impl + "\n//VTK::FSQ::Impl");
   vtkOpenGLQuadHelper quad(w, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), fs.c_str(), "");
   EXPECT_TRUE(quad.Program && quad.Program->GetCompiled());
   if (!quad.Program || !quad.Program->GetCompiled()) return {};
-  vtkShaderProgram* program = quad.Program;
-  table->Activate();
-  program->SetUniformi("umbraShadowLut", table->GetTextureUnit());
-  const float uRange[2] = {float(lut.uMin), float(lut.uMax)}, vRange[2] = {float(lut.vMin), float(lut.vMax)};
-  // Left unset for the whole range: the declarations' defaults must read it.
-  if (lut.uMin != 0.0 || lut.uMax != 1.0 || lut.vMin != 0.0 || lut.vMax != 1.0 || lut.vLowFraction != 0.0) {
-    program->SetUniform2f("umbraShadowLutURange", uRange);
-    program->SetUniform2f("umbraShadowLutVRange", vRange);
-    program->SetUniformf("umbraShadowLutVLowFraction", float(lut.vLowFraction));
-  }
-  const float sun[3] = {float(-s.sunDistanceM), 0.0f, 0.0f};
-  program->SetUniform3f("sunPos", sun);
-  program->SetUniformf("sunRadius", float(s.sunRadiusM));
-  program->SetUniformf("occRadius", float(s.occluderRadiusM));
-  program->SetUniformf("dMin", float(s.minDistanceM));
-  program->SetUniformf("dMax", float(s.maxDistanceM));
-  program->SetUniformf("minAngle", float(s.minAngleRad));
-  program->SetUniformf("maxAngle", float(s.maxAngleRad));
+  setUp(*quad.Program);
   vtkOpenGLState* state = w->GetState();
   state->PushFramebufferBindings();
   fbo->Bind();
@@ -115,6 +92,49 @@ std::vector<float> gpuFactors(const Scene& s, const eclipse::ShadowLut& lut) {
   fbo->ActivateReadBuffer(0);
   glReadPixels(0, 0, kSize, kSize, GL_RGBA, GL_FLOAT, pixels.data());
   state->PopFramebufferBindings();
+  return pixels;
+}
+
+// The GLSL factor at every point of the scene's grid.
+std::vector<float> gpuFactors(const Scene& s, const eclipse::ShadowLut& lut) {
+  auto window = quadWindow();
+  vtkNew<vtkTextureObject> table;
+  table->SetContext(vtkOpenGLRenderWindow::SafeDownCast(window));
+  table->SetMinificationFilter(vtkTextureObject::Linear);
+  table->SetMagnificationFilter(vtkTextureObject::Linear);
+  table->SetWrapS(vtkTextureObject::ClampToEdge);
+  table->SetWrapT(vtkTextureObject::ClampToEdge);
+  table->SetInternalFormat(GL_RGB32F);
+  table->SetFormat(GL_RGB);
+  table->SetDataType(GL_FLOAT);
+  EXPECT_TRUE(table->Create2DFromRaw(lut.width, lut.height, 3, VTK_FLOAT, const_cast<float*>(lut.rgb.data())));
+  table->Activate();
+  const std::vector<float> pixels = quadPixels(
+      window, "uniform vec3 sunPos; uniform float sunRadius, occRadius, dMin, dMax, minAngle, maxAngle;",
+      "  vec2 ij = floor(gl_FragCoord.xy);\n"
+      "  float dist = dMin + (dMax - dMin) * ij.y / float(" + std::to_string(kSize - 1) + ");\n"
+      "  float a = minAngle + (maxAngle - minAngle) * ij.x / float(" + std::to_string(kSize - 1) + ");\n"
+      "  vec3 p = dist * vec3(cos(a), sin(a), 0.0);\n"
+      "  gl_FragData[0] = vec4(umbraEclipseFactor(p, sunPos, sunRadius, vec3(0.0), occRadius), texCoord.x);",
+      [&](vtkShaderProgram& program) {
+        program.SetUniformi("umbraShadowLut", table->GetTextureUnit());
+        // Left unset for the whole range: the declarations' defaults must read it.
+        if (lut.uMin != 0.0 || lut.uMax != 1.0 || lut.vMin != 0.0 || lut.vMax != 1.0 || lut.vLowFraction != 0.0) {
+          const auto m = eclipse::LutRange{lut.uMin, lut.uMax, lut.vMin, lut.vMax, lut.vLowFraction}.textureMap();
+          const float map[4] = {float(m.uOrigin), float(m.uScale), float(m.vOrigin), float(m.vScale)};
+          const float low[3] = {float(m.vSplit), float(m.vLowOrigin), float(m.vLowScale)};
+          program.SetUniform4f("umbraShadowLutMap", map);
+          program.SetUniform3f("umbraShadowLutMapLow", low);
+        }
+        const float sun[3] = {float(-s.sunDistanceM), 0.0f, 0.0f};
+        program.SetUniform3f("sunPos", sun);
+        program.SetUniformf("sunRadius", float(s.sunRadiusM));
+        program.SetUniformf("occRadius", float(s.occluderRadiusM));
+        program.SetUniformf("dMin", float(s.minDistanceM));
+        program.SetUniformf("dMax", float(s.maxDistanceM));
+        program.SetUniformf("minAngle", float(s.minAngleRad));
+        program.SetUniformf("maxAngle", float(s.maxAngleRad));
+      });
   table->Deactivate();
   return pixels;
 }
@@ -177,4 +197,104 @@ TEST(EclipseGlslRange, RangedLutAgreesWithTheCpuAtPhobos) {
 TEST(EclipseGlslRange, DefaultUniformsReadTheWholeLut) {
   const eclipse::ShadowLut lut = eclipse::buildAirlessShadowLut({64, 64});
   compare(lut, "whole LuT");
+}
+
+namespace {
+
+// A receiver (centre at the origin, as the renderer hands positions over) with the Sun and
+// one occluder around it.
+struct ReceiverGeometry {
+  const char* name;
+  double receiverRadiusM;
+  glm::dvec3 sunM;
+  double sunRadiusM;
+  glm::dvec3 occluderM;
+  double occluderRadiusM;
+  bool expands;  ///< eclipse::receiverShadowExpands: Phobos is too close to Mars (0.37 rad)
+};
+
+// The point of the receiver's sphere that pixel (i, j) stands for (the shader's formula).
+glm::dvec3 receiverPoint(const ReceiverGeometry& g, int i, int j) {
+  const double th = 3.14159265358979 * (j + 0.5) / kSize, ph = 6.28318530717959 * (i + 0.5) / kSize;
+  return g.receiverRadiusM * glm::dvec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
+}
+
+void setVec4(vtkShaderProgram& program, const char* name, const eclipse::AngularRadiusExpansion& x) {
+  const float v[4] = {float(x.distanceM), float(x.phi0Rad), float(x.c1Rad), float(x.c2Rad)};
+  program.SetUniform4f(name, v);
+}
+
+} // namespace
+
+// The receiver's (u, v) (umbraReceiverShadowUv: both angular radii expanded about the
+// receiver's centre, eclipse::AngularRadiusExpansion, and the series angle, where
+// eclipse::receiverShadowExpands) against Eq. 3-4 in double, over the whole receiver, at
+// the extremes: Phobos by Mars (exact: too close), the Moon behind Earth, a Moon at the
+// tip of Earth's umbra, and a receiver 0.1 au from the Sun. Where the point is in the
+// shadow (v < 1) it must be no less accurate than Eq. 3-4 computed exactly in float
+// (umbraShadowUv, the GLSL of eclipseFactor, as the receiver had it before).
+TEST(EclipseGlslRange, ReceiverShadowUvAgreesWithEquations3And4AtTheExtremes) {
+  constexpr double au = 1.495978707e11, sunR = eclipse::kSunRadiusM;
+  const std::vector<ReceiverGeometry> geometries = {
+      {"Phobos by Mars", 11.1e3, {-9376e3 - 1.523679 * au, 3389e3, 0.0}, sunR, {-9376e3, 3389e3, 0.0}, 3389.5e3, false},
+      {"Moon behind Earth", 1737.4e3, {-384400e3 - au, 5000e3, 0.0}, sunR, {-384400e3, 5000e3, 0.0}, 6371e3, true},
+      {"Moon at Earth's umbra tip", 1737.4e3, {-1.38e9 - au, 0.0, 0.0}, sunR, {-1.38e9, 0.0, 0.0}, 6371e3, true},
+      {"receiver 0.1 au from the Sun", 2439.7e3, {-384400e3 - 0.1 * au, 0.0, 0.0}, sunR, {-384400e3, 0.0, 0.0},
+       1737.4e3, true}};
+  for (const ReceiverGeometry& g : geometries) {
+    const auto sunX = eclipse::angularRadiusExpansion(g.sunRadiusM, glm::length(g.sunM), g.receiverRadiusM);
+    const auto occX = eclipse::angularRadiusExpansion(g.occluderRadiusM, glm::length(g.occluderM), g.receiverRadiusM);
+    const bool expands = eclipse::receiverShadowExpands(sunX, occX);
+    EXPECT_EQ(expands, g.expands) << g.name;
+    auto window = quadWindow();
+    const std::vector<float> px = quadPixels(
+        window, "uniform vec3 sunPos, occPos; uniform float receiverRadius, sunRadius, occRadius; uniform vec4 sunX, occX;\n"
+        "uniform int exact;",
+        "  vec2 ij = floor(gl_FragCoord.xy);\n"
+        "  float th = 3.14159265 * (ij.y + 0.5) / float(" + std::to_string(kSize) + ");\n"
+        "  float ph = 6.28318531 * (ij.x + 0.5) / float(" + std::to_string(kSize) + ");\n"
+        "  vec3 p = receiverRadius * vec3(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));\n"
+        "  vec3 toSun = sunPos - p;\n"
+        "  float invSun = 1.0 / length(toSun);\n"
+        "  vec2 near = umbraReceiverShadowUv(toSun * invSun, invSun, sunX, sunRadius, occPos - p, occX, occRadius,\n"
+        "                                    exact != 0);\n"
+        "  gl_FragData[0] = vec4(near, umbraShadowUv(p, sunPos, sunRadius, occPos, occRadius));",
+        [&](vtkShaderProgram& program) {
+          const float sun[3] = {float(g.sunM.x), float(g.sunM.y), float(g.sunM.z)};
+          const float occ[3] = {float(g.occluderM.x), float(g.occluderM.y), float(g.occluderM.z)};
+          program.SetUniform3f("sunPos", sun);
+          program.SetUniform3f("occPos", occ);
+          program.SetUniformf("receiverRadius", float(g.receiverRadiusM));
+          program.SetUniformf("sunRadius", float(g.sunRadiusM));
+          program.SetUniformf("occRadius", float(g.occluderRadiusM));
+          setVec4(program, "sunX", sunX);
+          setVec4(program, "occX", occX);
+          program.SetUniformi("exact", expands ? 0 : 1);
+        });
+    ASSERT_EQ(px.size(), 4u * kSize * kSize) << g.name;
+    double nearU = 0.0, nearV = 0.0, exactU = 0.0, exactV = 0.0;
+    int shadowed = 0;
+    for (int j = 0; j < kSize; ++j)
+      for (int i = 0; i < kSize; ++i) {
+        const glm::dvec3 p = receiverPoint(g, i, j);
+        const eclipse::LutCoords c =
+            eclipse::lutCoords(eclipse::shadowAngles(p, g.sunM, g.sunRadiusM, g.occluderM, g.occluderRadiusM));
+        const float* q = &px[4 * (static_cast<std::size_t>(j) * kSize + i)];
+        if (c.v >= 1.0) {
+          if (c.v > 1.0 + 1e-5) EXPECT_GE(q[1], 1.0f) << g.name << " at (" << i << ", " << j << ")";
+          continue;
+        }
+        ++shadowed;
+        nearU = std::max(nearU, std::abs(q[0] - c.u));
+        nearV = std::max(nearV, std::abs(q[1] - c.v));
+        exactU = std::max(exactU, std::abs(q[2] - c.u));
+        exactV = std::max(exactV, std::abs(q[3] - c.v));
+      }
+    std::printf("  %s: %d of %d points in the shadow; max |u - Eq. 4|: expanded %.3g, exact in float %.3g; "
+                "max |v - Eq. 4|: %.3g, %.3g\n",
+                g.name, shadowed, kSize * kSize, nearU, exactU, nearV, exactV);
+    EXPECT_GT(shadowed, kSize) << g.name;
+    EXPECT_LE(nearU, 1.5 * exactU + 1e-7) << g.name;
+    EXPECT_LE(nearV, 1.5 * exactV + 1e-7) << g.name;
+  }
 }

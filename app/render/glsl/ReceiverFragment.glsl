@@ -22,12 +22,16 @@ uniform float umbraSunIrradiance;  // W m^-2 at 1 au
 // occluders present with one lookup each: a SIMD rasteriser (Mesa's llvmpipe) runs both
 // sides of a branch and one more, masked, iteration of a loop whose count is a uniform.
 uniform vec4 umbraOccluders[4];    // xyz: centre relative to the body's centre (m), w: radius (m)
-// The part of the atmospheric table held and its place in the whole, and the whole's u
-// and v ranges (umbraEclipseFactorIn).
+// The angular radii (Eq. 3) of the Sun and of each occluder over the receiver, as
+// expansions about its centre (eclipse::AngularRadiusExpansion: umbraAngularRadiusNear).
+// UMBRA_EXACT_SHADOW (#defined by EclipseShading) has bit i set for an occluder whose
+// shadow needs Eq. 3-4 exactly (eclipse::receiverShadowExpands false: umbraReceiverShadowUv).
+uniform vec4 umbraSunAngularRadius;
+uniform vec4 umbraOccluderAngularRadius[4];
+// The atmospheric table's texture coordinates from (u, v) (umbraShadowLutCoordIn), with
+// the part of the table held folded in.
 uniform vec4 umbraAtmosphereLutMap;
-uniform vec2 umbraAtmosphereLutURange;
-uniform vec2 umbraAtmosphereLutVRange;
-uniform float umbraAtmosphereLutVLowFraction;
+uniform vec3 umbraAtmosphereLutMapLow;
 
 const float umbraAuM = 1.495978707e11;
 const float umbraInvPi = 0.31830988618;
@@ -56,20 +60,24 @@ void umbraReceiverShade() {
   float dAu = dSun / umbraAuM;
   float eSun = umbraSunIrradiance / (dAu * dAu);
 
-  // umbraEclipseFactor of each occluder (umbraEclipseFactorIn for the atmospheric one),
-  // (u, v) computed once.
+  // umbraEclipseFactor of each occluder: Eq. 3-4 (umbraReceiverShadowUv: expanded about
+  // the centre unless exact is needed), then one lookup in its LuT
+  // (umbraAtmosphereShadowLut for the atmospheric occluder).
   vec3 shadow = vec3(1.0);
+#if UMBRA_OCCLUDER_COUNT > 0
+  float invSun = 1.0 / dSun;
+  vec3 sunDir = toSun * invSun;
   for (int i = 0; i < UMBRA_OCCLUDER_COUNT; ++i) {
-    vec2 uv = umbraShadowUv(p, umbraSunPos, umbraSunRadius, umbraOccluders[i].xyz, umbraOccluders[i].w);
-    if (uv.y < 1.0) {
-      if (i == UMBRA_ATMOSPHERE_OCCLUDER) {
-        shadow *= umbraShadowLutAtIn(umbraAtmosphereShadowLut, umbraAtmosphereLutMap, umbraAtmosphereLutURange,
-                                     umbraAtmosphereLutVRange, umbraAtmosphereLutVLowFraction, uv);
-      } else {
-        shadow *= umbraShadowLutAt(uv);
-      }
-    }
+    vec2 uv = umbraReceiverShadowUv(sunDir, invSun, umbraSunAngularRadius, umbraSunRadius, umbraOccluders[i].xyz - p,
+                                    umbraOccluderAngularRadius[i], umbraOccluders[i].w,
+                                    (UMBRA_EXACT_SHADOW & (1 << i)) != 0);
+    vec3 lut = i == UMBRA_ATMOSPHERE_OCCLUDER
+                   ? texture(umbraAtmosphereShadowLut,
+                             umbraShadowLutCoordIn(uv, umbraAtmosphereLutMap, umbraAtmosphereLutMapLow)).rgb
+                   : umbraShadowLutAt(uv);
+    shadow *= uv.y >= 1.0 ? vec3(1.0) : lut;
   }
+#endif
   vec3 radiance = umbraAlbedo * (umbraInvPi * eSun * cosi) * shadow;
   fragOutput0 = vec4(radiance, 1.0);
 
