@@ -207,7 +207,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
             // The other bodies in its shadow: the atmospheric shadow LuT (their columns only);
             // its ring, when thin on screen: the limb-luminance LuT (eclipse paper, 5.4).
             render::applySceneAtmosphereShadow(view.GetShading(), in, shadow);
-            if (o->limbRingThresholdPx > 0.0) render::applySceneLimbLuminance(view.GetAtmosphere(), in, limb);
+            render::applySceneLimbLuminance(view.GetAtmosphere(), in, limb);  // (none at threshold 0)
           } catch (const std::runtime_error& e) {
             throw CommandError(e.what());
           }

@@ -7,6 +7,7 @@
 #include "SceneView.hpp"
 #include "AtmosphereShadow.h"
 #include "vtkEclipseShadowLutSource.h"
+#include "vtkLimbLuminanceSource.h"
 #include "scene/Time.hpp"
 #include "vtkAtmosphereTablesSource.h"
 
@@ -72,9 +73,10 @@ void checkAtmosphere(const std::string& model) {
 
 } // namespace
 
-/// Tables being made in a worker thread: the atmosphere's (`source`, for the view's sky)
-/// or the atmospheric shadow LuT (`shadow`, for `request`: the other bodies' shading and
-/// the profile). The algorithms are only touched by the worker until it has finished (then
+/// Tables being made in a worker thread: the atmosphere's (`source`, for the view's sky),
+/// or the eclipse LuTs of its body, one after the other: the atmospheric shadow LuT
+/// (`shadow`, for `request`: the other bodies' shading and the profile) and the
+/// limb-luminance LuT (`limb`, for `limbRequest`: the thin ring). The algorithms are only touched by the worker until it has finished (then
 /// by the GUI thread), except SetAbortExecute. The worker's progress callbacks set
 /// AbortExecute again from `cancelled`: VTK clears it when an execution starts, so a
 /// cancel that comes before that is not lost. Each observed algorithm's progress is
@@ -83,7 +85,11 @@ struct MainWindow::AtmosphereJob {
   vtkSmartPointer<vtkAtmosphereTablesSource> source;
   vtkSmartPointer<vtkEclipseShadowLutSource> shadow;
   std::optional<render::AtmosphereShadowRequest> request;
-  std::string error;  // the shadow's, set by the worker
+  vtkSmartPointer<vtkLimbLuminanceSource> limb;
+  std::optional<render::LimbLuminanceRequest> limbRequest;
+  // Set by the worker: each LuT's error, and whether it was made.
+  std::string error, limbError;
+  bool shadowMade = false, limbMade = false;
   struct Stage {
     AtmosphereJob* job;
     double from, to;
@@ -308,7 +314,16 @@ bool MainWindow::atmosphereBusy() const { return this->job != nullptr; }
 
 bool MainWindow::atmosphereTablesBusy() const { return this->job && this->job->source; }
 
-bool MainWindow::atmosphereShadowBusy() const { return this->job && this->job->shadow; }
+bool MainWindow::atmosphereShadowBusy() const { return this->job && (this->job->shadow || this->job->limb); }
+
+bool MainWindow::limbLuminanceBusy() const { return this->job && this->job->limb; }
+
+void MainWindow::setLimbRingThreshold(double px) {
+  this->view->setLimbRingThresholdPixels(px);
+  this->refresh();  // the limb-luminance LuT in the worker when the scene needs one now
+}
+
+double MainWindow::limbRingThreshold() const { return this->view->limbRingThresholdPixels(); }
 
 void MainWindow::cancelAtmosphereTables() {
   if (this->job) this->job->cancel();
@@ -398,28 +413,56 @@ void MainWindow::startAtmosphere(const std::string& model) {
                [source] { source->Update(); });
 }
 
-void MainWindow::startAtmosphereShadow() {
+void MainWindow::startEclipseLuts() {
   if (this->job || !this->current) return;
-  const auto& missing = this->view->missingAtmosphereShadow();
-  if (!missing || (this->failedShadow && *this->failedShadow == *missing)) return;
+  auto wanted = [](const auto& missing, const auto& failed) { return missing && !(failed && *failed == *missing); };
+  const auto& shadow = this->view->missingAtmosphereShadow();
+  const auto& limb = this->view->missingLimbLuminance();
+  const bool makeShadow = wanted(shadow, this->failedShadow), makeLimb = wanted(limb, this->failedLimb);
+  if (!makeShadow && !makeLimb) return;
   auto j = std::make_unique<AtmosphereJob>();
-  j->shadow = this->view->newAtmosphereShadowSource();
-  j->request = *missing;
+  // Each LuT's part of the bar: the atmosphere's tables with refraction (from their
+  // cache) in its first half, the texels in its second.
+  const double split = makeShadow && makeLimb ? 0.5 : makeShadow ? 1.0 : 0.0;
+  std::string occluder;
   try {
-    // The atmosphere's tables with refraction (from their cache), then the texels.
-    j->observe(render::setUpAtmosphereShadow(j->shadow, *missing), 0.0, 0.5);
+    if (makeShadow) {
+      occluder = shadow->occluder;
+      j->shadow = this->view->newAtmosphereShadowSource();
+      j->request = *shadow;
+      j->observe(render::setUpAtmosphereShadow(j->shadow, *shadow), 0.0, 0.5 * split);
+      j->observe(j->shadow, 0.5 * split, split);
+    }
+    if (makeLimb) {
+      occluder = limb->occluder;
+      j->limb = this->view->newLimbLuminanceSource();
+      j->limbRequest = *limb;
+      j->observe(render::setUpLimbLuminance(j->limb, *limb), split, 0.5 * (split + 1.0));
+      j->observe(j->limb, 0.5 * (split + 1.0), 1.0);
+    }
   } catch (const std::exception& e) {
-    this->failedShadow = *missing;
+    if (makeShadow) this->failedShadow = *shadow;
+    if (makeLimb) this->failedLimb = *limb;
     this->setStatus(qs(std::string("atmosphere: ") + e.what()));
     return;
   }
-  j->observe(j->shadow, 0.5, 1.0);
+  const std::string what = makeShadow && makeLimb ? "the shadow and the limb luminance"
+                           : makeShadow           ? "the shadow"
+                                                  : "the limb luminance";
   AtmosphereJob* raw = j.get();
-  this->runJob(std::move(j), "computing the shadow through the atmosphere of " + missing->occluder + "...", [raw] {
+  this->runJob(std::move(j), "computing " + what + " through the atmosphere of " + occluder + "...", [raw] {
     try {
-      render::updateAtmosphereShadow(raw->shadow, *raw->request);
+      if (raw->shadow) render::updateAtmosphereShadow(raw->shadow, *raw->request);
+      raw->shadowMade = raw->shadow != nullptr;
     } catch (const std::exception& e) {
       raw->error = e.what();
+    }
+    if (!raw->limb || raw->cancelled) return;
+    try {
+      render::updateLimbLuminance(raw->limb, *raw->limbRequest);
+      raw->limbMade = true;
+    } catch (const std::exception& e) {
+      raw->limbError = e.what();
     }
   });
 }
@@ -445,17 +488,27 @@ void MainWindow::atmosphereFinished(int generation) {
   this->atmosphereProgress->setVisible(false);
   this->atmosphereCancel->setVisible(false);
   done->stopObserving();
-  if (done->shadow) {
-    // The atmospheric shadow LuT: a cancelled or failed one is not asked for again (until
-    // the scene needs another); the view keeps the table it has.
-    if (done->cancelled || !done->error.empty()) {
+  if (done->shadow || done->limb) {
+    // The eclipse LuTs: a cancelled job (also one that ended meanwhile) or a failed LuT is
+    // not asked for again (until the scene needs another); the view keeps the table it has.
+    std::string problem;
+    auto outcome = [&](bool asked, bool made, const std::string& name, const std::string& error) {
+      if (!asked || (made && !done->cancelled)) return true;
+      problem += (problem.empty() ? "" : "; ") + name + ": " + (done->cancelled ? std::string("cancelled") : error);
+      return false;
+    };
+    if (outcome(done->shadow != nullptr, done->shadowMade, "atmosphere shadow", done->error)) {
+      if (done->shadow) this->view->setAtmosphereShadow(done->shadow, *done->request);
+    } else {
       this->failedShadow = done->request;
-      this->refresh();
-      this->setStatus(qs("atmosphere shadow: " + (done->cancelled ? std::string("cancelled") : done->error)));
-      return;
     }
-    this->view->setAtmosphereShadow(done->shadow, *done->request);
+    if (outcome(done->limb != nullptr, done->limbMade, "limb luminance", done->limbError)) {
+      if (done->limb) this->view->setLimbLuminance(done->limb, *done->limbRequest);
+    } else {
+      this->failedLimb = done->limbRequest;
+    }
     this->refresh();
+    if (!problem.empty()) this->setStatus(qs(problem));
     return;
   }
   const std::string error = done->source->GetLastError();
@@ -606,7 +659,7 @@ void MainWindow::refresh() {
   this->plot->setAtmosphereShadowLut(this->view->atmosphereShadowLut(), this->atmosphereBody);
   this->shadowFactor = this->plot->update(this->shadow);
   this->view->render();
-  this->startAtmosphereShadow();  // the atmospheric shadow LuT the scene needs, in the worker
+  this->startEclipseLuts();  // the atmospheric shadow and limb-luminance LuTs the scene needs, in the worker
 
   if (s.hasTime) {
     const int v = this->slider->value();

@@ -10,7 +10,9 @@
 // it has; a cancelled or failed computation leaves them. The same worker job, after the
 // tables and whenever the atmosphere or the time changes what the view needs, makes the
 // atmospheric shadow LuT that shades the other bodies (SceneView) and that the plot
-// panel's profile is read from; a "Refraction" check box makes the tables again with
+// panel's profile is read from, and, when the camera is in the shadow of the body with the
+// atmosphere (Earth from the Moon in totality), the limb-luminance LuT that draws the thin
+// ring as `umbra render` does; a "Refraction" check box makes the tables again with
 // refracted paths.
 #include "AtmosphereShadow.h"
 #include "scene/ReceiverShadow.hpp"
@@ -62,13 +64,21 @@ public:
   /// The atmosphere later loadScene calls draw instead of the scene's ("" : none).
   /// Throws std::runtime_error for an unknown preset or a bad file.
   void overrideAtmosphere(const std::string& model);
-  /// True while atmosphere tables or the atmospheric shadow LuT are being computed (in
-  /// the worker, one job at a time); the first, the second.
+  /// True while atmosphere tables or the eclipse LuTs of its body (the atmospheric shadow
+  /// LuT, the limb-luminance LuT) are being computed (in the worker, one job at a time);
+  /// the first; the second (either LuT); a job making the limb-luminance LuT.
   bool atmosphereBusy() const;
   bool atmosphereTablesBusy() const;
   bool atmosphereShadowBusy() const;
+  bool limbLuminanceBusy() const;
+  /// Ring width on screen below which the atmosphere's ring is drawn from the
+  /// limb-luminance LuT (default 5 px; 0: always ray marched; `umbra-gui
+  /// --limb-ring-threshold`, as `umbra render`'s). Throws std::invalid_argument below 0.
+  void setLimbRingThreshold(double px);
+  double limbRingThreshold() const;
   /// The Cancel button: stops the tables being computed; the view keeps the ones it has
-  /// (a cancelled shadow LuT is not asked for again until the scene needs another one).
+  /// (a cancelled LuT is not asked for again until the scene needs another one). A cancel
+  /// is not an error: nothing is printed.
   void cancelAtmosphereTables();
   /// The model (preset or file) whose tables the view draws ("" : none). An edit's model
   /// is a file in a private temporary folder.
@@ -121,7 +131,7 @@ private:
   void cancelAtmosphere();  // stops and joins the worker, if any
   void atmosphereFinished(int generation);
   void startAtmosphere(const std::string& model);  // the tables in the worker
-  void startAtmosphereShadow();  // the view's missing atmospheric shadow LuT in the worker
+  void startEclipseLuts();  // the view's missing atmospheric shadow / limb-luminance LuTs in the worker
   struct AtmosphereJob;
   void runJob(std::unique_ptr<AtmosphereJob> job, const std::string& status, std::function<void()> work);
   void atmosphereEdited();  // the editor's accepted document -> a file -> startAtmosphere
@@ -160,6 +170,7 @@ private:
   bool smallTables = false;
   std::unique_ptr<AtmosphereJob> job;
   std::optional<render::AtmosphereShadowRequest> failedShadow;  // cancelled or failed: not again
+  std::optional<render::LimbLuminanceRequest> failedLimb;
   int jobGeneration = 0;
 };
 

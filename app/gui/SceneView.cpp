@@ -6,6 +6,7 @@
 #include "SceneInputs.h"
 #include "vtkAtmosphereTablesSource.h"
 #include "vtkEclipseShadowLutSource.h"
+#include "vtkLimbLuminanceSource.h"
 #include "vtkUmbraRenderPass.h"
 
 #include <QVTKOpenGLNativeWidget.h>
@@ -20,6 +21,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 
@@ -29,6 +31,47 @@
 // range.
 
 namespace umbra::gui {
+namespace {
+
+// An eclipse table of the atmosphere's body computed by the caller: the source, the request
+// it was made for, the one the scene shown needs when it differs, and whether the view
+// draws with it.
+template <class Source, class Request>
+struct HeldTable {
+  vtkSmartPointer<Source> source;
+  std::optional<Request> madeFor, missing;
+  bool applied = false, current = false;
+
+  // The scene shown wants `wanted`: the table is current when made for it, else missing;
+  // the view draws with it while it is for the same body (apply(its output)), else with
+  // none (apply(nullptr)).
+  template <class Apply>
+  void follow(const std::optional<Request>& wanted, const Apply& apply) {
+    this->current = wanted && this->madeFor && *wanted == *this->madeFor;
+    this->missing = wanted && !this->current ? wanted : std::nullopt;
+    const bool usable = wanted && this->madeFor && this->madeFor->occluder == wanted->occluder;
+    if (!usable) {
+      if (this->applied) apply(nullptr);
+      this->applied = false;
+    } else if (!this->applied) {
+      apply(this->source->GetOutput());
+      this->applied = true;
+    }
+  }
+  void set(Source* s, const Request& request) {
+    this->source = s;
+    this->madeFor = request;
+    this->applied = false;  // applied on the next setScene
+  }
+  vtkImageData* output() const { return this->applied ? this->source->GetOutput() : nullptr; }
+};
+
+template <class Source>
+std::array<int, 2> sizeOf(const vtkSmartPointer<Source>& source) {
+  return {source->GetWidth(), source->GetHeight()};
+}
+
+} // namespace
 
 struct SceneView::Impl {
   QVTKOpenGLNativeWidget* widget = nullptr;
@@ -41,12 +84,10 @@ struct SceneView::Impl {
   vtkSmartPointer<vtkEclipseShadowLutSource> ranged;
   std::optional<eclipse::LutRange> rangedFor;
   int rangedHeight = 0;
-  // The atmospheric shadow LuT of the other bodies (computed by the caller), the request
-  // it was made for, the one the scene shown needs when it differs, and whether the
-  // shading has it.
-  vtkSmartPointer<vtkEclipseShadowLutSource> atmosphereShadow;
-  std::optional<render::AtmosphereShadowRequest> shadowMadeFor, shadowMissing;
-  bool shadowApplied = false, shadowCurrent = false;
+  // The atmospheric shadow LuT of the other bodies and the limb-luminance LuT of the ring.
+  HeldTable<vtkEclipseShadowLutSource, render::AtmosphereShadowRequest> shadow;
+  HeldTable<vtkLimbLuminanceSource, render::LimbLuminanceRequest> limb;
+  double ringThresholdPx = 5.0;
 };
 
 SceneView::SceneView(QVTKOpenGLNativeWidget* widget) : impl(std::make_unique<Impl>()) {
@@ -101,30 +142,23 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
     atmosphere.ClearAtmosphere();
     impl->applied = nullptr;
   }
-  // The atmospheric shadow: the table the view has for this body while the caller makes
-  // the one the scene needs.
-  const std::array<int, 2> size = this->sizeOfShadow();
-  const auto wanted = drawn ? render::sceneAtmosphereShadowRequest(in, size[0], size[1]) : std::nullopt;
-  impl->shadowCurrent = wanted && impl->shadowMadeFor && *wanted == *impl->shadowMadeFor;
-  impl->shadowMissing = wanted && !impl->shadowCurrent ? wanted : std::nullopt;
-  const bool usable = wanted && impl->shadowMadeFor && impl->shadowMadeFor->occluder == wanted->occluder;
-  if (!usable) {
-    if (impl->shadowApplied) impl->bodies->GetShading().SetAtmosphereShadowLut("", nullptr);
-    impl->shadowApplied = false;
-  } else if (!impl->shadowApplied) {
-    impl->bodies->GetShading().SetAtmosphereShadowLut(impl->shadowMadeFor->occluder, impl->atmosphereShadow->GetOutput());
-    impl->shadowApplied = true;
-  }
+  // The atmospheric shadow and the limb luminance: the tables the view has for this body
+  // while the caller makes the ones the scene needs.
+  const auto shadowSize = sizeOf(this->newAtmosphereShadowSource());
+  impl->shadow.follow(drawn ? render::sceneAtmosphereShadowRequest(in, shadowSize[0], shadowSize[1]) : std::nullopt,
+                      [&](vtkImageData* lut) {
+                        impl->bodies->GetShading().SetAtmosphereShadowLut(lut ? impl->shadow.madeFor->occluder : "", lut);
+                      });
+  const auto limbSize = sizeOf(this->newLimbLuminanceSource());
+  atmosphere.SetLimbRingThresholdPixels(impl->ringThresholdPx);
+  impl->limb.follow(drawn ? render::sceneLimbLuminanceRequest(in, limbSize[0], limbSize[1], impl->ringThresholdPx)
+                          : std::nullopt,
+                    [&](vtkImageData* lut) { atmosphere.SetLimbLuminance(lut); });
   impl->bodies->SetCamera(in.camera);
 }
 
-std::array<int, 2> SceneView::sizeOfShadow() const {
-  const auto sizes = this->newAtmosphereShadowSource();
-  return {sizes->GetWidth(), sizes->GetHeight()};
-}
-
 const std::optional<render::AtmosphereShadowRequest>& SceneView::missingAtmosphereShadow() const {
-  return impl->shadowMissing;
+  return impl->shadow.missing;
 }
 
 vtkSmartPointer<vtkEclipseShadowLutSource> SceneView::newAtmosphereShadowSource() const {
@@ -134,20 +168,43 @@ vtkSmartPointer<vtkEclipseShadowLutSource> SceneView::newAtmosphereShadowSource(
 }
 
 void SceneView::setAtmosphereShadow(vtkEclipseShadowLutSource* source, const render::AtmosphereShadowRequest& request) {
-  impl->atmosphereShadow = source;
-  impl->shadowMadeFor = request;
-  impl->shadowApplied = false;  // applied on the next setScene
+  impl->shadow.set(source, request);
 }
 
-vtkImageData* SceneView::atmosphereShadowLut() const {
-  return impl->shadowApplied ? impl->atmosphereShadow->GetOutput() : nullptr;
-}
+vtkImageData* SceneView::atmosphereShadowLut() const { return impl->shadow.output(); }
 
 bool SceneView::atmosphereShadowFromCache() const {
-  return impl->atmosphereShadow && impl->atmosphereShadow->GetLastUpdateWasCacheHit();
+  return impl->shadow.source && impl->shadow.source->GetLastUpdateWasCacheHit();
 }
 
-bool SceneView::atmosphereShadowCurrent() const { return impl->shadowApplied && impl->shadowCurrent; }
+bool SceneView::atmosphereShadowCurrent() const { return impl->shadow.applied && impl->shadow.current; }
+
+const std::optional<render::LimbLuminanceRequest>& SceneView::missingLimbLuminance() const { return impl->limb.missing; }
+
+vtkSmartPointer<vtkLimbLuminanceSource> SceneView::newLimbLuminanceSource() const {
+  auto source = vtkSmartPointer<vtkLimbLuminanceSource>::New();
+  if (this->smallShadowTables) render::useSmallLimbLuminanceTables(source);
+  return source;
+}
+
+void SceneView::setLimbLuminance(vtkLimbLuminanceSource* source, const render::LimbLuminanceRequest& request) {
+  impl->limb.set(source, request);
+}
+
+bool SceneView::hasLimbLuminance() const { return impl->limb.applied; }
+
+bool SceneView::limbLuminanceCurrent() const { return impl->limb.applied && impl->limb.current; }
+
+void SceneView::setLimbRingThresholdPixels(double px) {
+  if (!(std::isfinite(px) && px >= 0.0)) throw std::invalid_argument("limb ring threshold must be finite and >= 0 px");
+  impl->ringThresholdPx = px;
+}
+
+double SceneView::limbRingThresholdPixels() const { return impl->ringThresholdPx; }
+
+bool SceneView::lastDrawUsedLimbLuminance() const { return impl->bodies->GetAtmosphere().GetLastDrawUsedLimbLuminance(); }
+
+double SceneView::lastRingWidthPixels() const { return impl->bodies->GetAtmosphere().GetLastRingWidthPixels(); }
 
 void SceneView::setGlareStrength(double strength) { impl->bodies->GetRenderPass()->SetGlareStrength(strength); }
 

@@ -15,6 +15,7 @@ class QVTKOpenGLNativeWidget;
 class vtkAtmosphereTablesSource;
 class vtkEclipseShadowLutSource;
 class vtkImageData;
+class vtkLimbLuminanceSource;
 class vtkRenderer;
 
 namespace umbra::gui {
@@ -62,12 +63,32 @@ public:
   bool atmosphereShadowCurrent() const;
   /// Whether that table was read from the table cache (vs computed).
   bool atmosphereShadowFromCache() const;
+
+  /// The thin ring of the atmosphere seen from its body's shadow is drawn from the
+  /// limb-luminance LuT (render::sceneLimbLuminanceRequest: a camera in the shadow, outside
+  /// the atmosphere; the ring thinner than the threshold on screen), as `umbra render`
+  /// draws it. As for the shadow: the missing table's request after setScene, a source with
+  /// the view's sizes (small: render::useSmallLimbLuminanceTables), the table handed over
+  /// when made (render::updateLimbLuminance done; call setScene next). Meanwhile the ring is
+  /// drawn from the table the view has for that body, or ray marched.
+  const std::optional<render::LimbLuminanceRequest>& missingLimbLuminance() const;
+  vtkSmartPointer<vtkLimbLuminanceSource> newLimbLuminanceSource() const;
+  void setLimbLuminance(vtkLimbLuminanceSource* source, const render::LimbLuminanceRequest& request);
+  /// Whether the view draws with a limb-luminance LuT, and whether it is the one the scene needs.
+  bool hasLimbLuminance() const;
+  bool limbLuminanceCurrent() const;
+  /// Ring width on screen below which the LuT draws it (default 5 px, as `umbra render
+  /// --limb-ring-threshold`; 0: always ray marched, no table asked for). Call setScene next.
+  void setLimbRingThresholdPixels(double px);
+  double limbRingThresholdPixels() const;
+  /// After render: whether the ring was drawn from the LuT, and its width on screen.
+  bool lastDrawUsedLimbLuminance() const;
+  double lastRingWidthPixels() const;
   void render();
   vtkRenderer* renderer() const;
 
 private:
   struct Impl;
-  std::array<int, 2> sizeOfShadow() const;  // width, height of newAtmosphereShadowSource's tables
 
   std::unique_ptr<Impl> impl;
   bool smallShadowTables = false;

@@ -1,5 +1,6 @@
 // umbra-gui [SCENE.json] [--time ISO] [--atmosphere NAME|FILE|none] [--atmosphere-set FIELD=VALUE ...]
-//           [--atmosphere-tables default|small] [--refraction] [--exposure EV] [--glare S] [--screenshot FILE.png]
+//           [--atmosphere-tables default|small] [--refraction] [--limb-ring-threshold PX] [--exposure EV] [--glare S]
+//           [--screenshot FILE.png]
 //           [--editor] [--quit-after-screenshot]
 //
 // The desktop GUI: a scene's bodies in 3D, a time slider that moves them, and the
@@ -95,6 +96,11 @@ int main(int argc, char** argv) {
   const QCommandLineOption refractionOption(
       "refraction", "Bend the rays through the atmosphere (a lifted, flattened Sun at the horizon), as umbra render "
                     "--refraction.");
+  const QCommandLineOption limbOption(
+      "limb-ring-threshold",
+      "Draw an atmosphere's ring from the limb-luminance LuT when it is thinner than this on screen (pixels; "
+      "default 5; 0: always ray march), as umbra render --limb-ring-threshold.",
+      "PX", "5");
   const QCommandLineOption exposureOption("exposure", "Exposure in EV (default: the scene's).", "EV");
   const QCommandLineOption glareOption("glare", "Glare strength, 0..10 (default 0).", "S");
   parser.addOption(atmosphereOption);
@@ -102,6 +108,7 @@ int main(int argc, char** argv) {
   parser.addOption(editorOption);
   parser.addOption(tablesOption);
   parser.addOption(refractionOption);
+  parser.addOption(limbOption);
   parser.addOption(exposureOption);
   parser.addOption(glareOption);
   parser.addOption(timeOption);
@@ -141,6 +148,7 @@ int main(int argc, char** argv) {
                                  parser.value(option).toStdString() + "'");
       return v;
     };
+    window.setLimbRingThreshold(number(limbOption, 0.0, 1.0e6));  // (before the scene: its LuT in the first job)
     if (parser.isSet(atmosphereOption)) {
       const std::string name = parser.value(atmosphereOption).toStdString();
       try {

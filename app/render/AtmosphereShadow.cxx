@@ -24,18 +24,45 @@ double lutU(double sunRadiusM, double sunDistanceM, double occRadiusM, double oc
   return phiSun / (phiOcc + phiSun);
 }
 
-// The body with the scene's atmosphere, and `source` set up for it (bodies, Sun, model).
-const SphereBody& setUpFor(vtkEclipseAtmosphereSource* source, const SceneInputs& in) {
-  if (!source) throw std::invalid_argument("no eclipse table source for the atmosphere");
+// The body with the scene's atmosphere (throws when it is not one of the scene's).
+const SphereBody& atmosphereBody(const SceneInputs& in) {
   const auto occ = std::find_if(in.bodies.begin(), in.bodies.end(),
                                 [&](const SphereBody& b) { return b.name == in.atmosphere->body; });
   if (occ == in.bodies.end()) throw std::invalid_argument("atmosphere of '" + in.atmosphere->body + "': no such body");
-  source->SetOccluderName(occ->name.c_str());
-  source->SetOccluderRadiusM(occ->radiusM);
-  source->SetSunRadiusM(in.sun.radiusM);
-  source->SetSunOccluderDistanceM(glm::length(occ->centreM - in.sun.positionM));
-  source->SetAtmosphere(in.atmosphere->model.c_str());
   return *occ;
+}
+
+// The request's occluder, model and geometry for `in`'s atmosphere; a table of `width` x `height`.
+EclipseTableRequest tableRequest(const SceneInputs& in, int width, int height) {
+  const SphereBody& occ = atmosphereBody(in);
+  EclipseTableRequest r;
+  r.occluder = occ.name;
+  r.model = in.atmosphere->model;
+  r.occluderRadiusM = occ.radiusM;
+  r.sunRadiusM = in.sun.radiusM;
+  r.sunOccluderDistanceM = glm::length(occ.centreM - in.sun.positionM);
+  r.width = width;
+  r.height = height;
+  return r;
+}
+
+// `source` set up for `r` (bodies, Sun, model, size) and its atmosphere tables connected
+// (from their cache); `what` names the table in errors.
+template <class Source>
+vtkAlgorithm* setUpTable(Source* source, const EclipseTableRequest& r, const std::string& what) {
+  if (!source) throw std::invalid_argument("no source for the " + what);
+  source->SetOccluderName(r.occluder.c_str());
+  source->SetOccluderRadiusM(r.occluderRadiusM);
+  source->SetSunRadiusM(r.sunRadiusM);
+  source->SetSunOccluderDistanceM(r.sunOccluderDistanceM);
+  source->SetAtmosphere(r.model.c_str());
+  source->SetWidth(r.width);
+  source->SetHeight(r.height);
+  try {
+    return source->ConnectAtmosphereTables();  // the atmosphere tables from their cache
+  } catch (const std::exception& e) {
+    throw std::runtime_error(what + " of '" + r.occluder + "': " + e.what());
+  }
 }
 
 // Adds to `u` (min, max) the u range of the points at [lo, hi] from `occluder`'s centre;
@@ -73,6 +100,23 @@ void updateRanged(Source* source, const std::optional<eclipse::LutRange>& range,
     ~Restore() { s->SetWidth(w); }
   } restore{source, width};
   update();
+}
+
+// `source` set up for `r` (setUpTable) and `update` run over its ranges (updateRanged);
+// throws naming `what` and the body when that fails, was cancelled, or `made` (of the
+// output) is false.
+template <class Source, class Update, class Made>
+void updateTable(Source* source, const EclipseTableRequest& r, const std::string& what, const Update& update,
+                 const Made& made) {
+  setUpTable(source, r, what);
+  const std::string prefix = what + " of '" + r.occluder + "': ";
+  try {
+    updateRanged(source, r.range, update);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(prefix + e.what());
+  }
+  if (!made(source->GetOutput()))
+    throw std::runtime_error(prefix + (source->GetLastUpdateAborted() ? "cancelled" : "the table could not be made"));
 }
 
 // The tables of the atmosphere shared by the small shadow and limb-luminance LuTs.
@@ -151,29 +195,25 @@ int rangedLutWidth(const eclipse::LutRange& range, int width) {
   return std::clamp(w, 2, std::max(width, 2));
 }
 
-bool AtmosphereShadowRequest::operator==(const AtmosphereShadowRequest& o) const {
+bool EclipseTableRequest::operator==(const EclipseTableRequest& o) const {
   return occluder == o.occluder && model == o.model && occluderRadiusM == o.occluderRadiusM &&
          sunRadiusM == o.sunRadiusM && sunOccluderDistanceM == o.sunOccluderDistanceM && width == o.width &&
-         height == o.height && range == o.range && extent == o.extent;
+         height == o.height && range == o.range;
+}
+
+bool AtmosphereShadowRequest::operator==(const AtmosphereShadowRequest& o) const {
+  return EclipseTableRequest::operator==(o) && extent == o.extent;
 }
 
 std::optional<AtmosphereShadowRequest> sceneAtmosphereShadowRequest(const SceneInputs& in, int width, int height) {
   if (!in.atmosphere) return std::nullopt;
-  const auto occ = std::find_if(in.bodies.begin(), in.bodies.end(),
-                                [&](const SphereBody& b) { return b.name == in.atmosphere->body; });
-  if (occ == in.bodies.end()) throw std::invalid_argument("atmosphere of '" + in.atmosphere->body + "': no such body");
   AtmosphereShadowRequest r;
-  r.occluder = occ->name;
-  r.model = in.atmosphere->model;
-  r.occluderRadiusM = occ->radiusM;
-  r.sunRadiusM = in.sun.radiusM;
-  r.sunOccluderDistanceM = glm::length(occ->centreM - in.sun.positionM);
-  r.width = width;
-  r.height = height;
+  static_cast<EclipseTableRequest&>(r) = tableRequest(in, width, height);
+  const SphereBody& occ = atmosphereBody(in);
   std::vector<SphereBody> others;
   for (const SphereBody& b : in.bodies)
-    if (b.name != occ->name) others.push_back(b);
-  r.range = sceneLutRange(in.sun, {*occ}, others, /*darkUmbra=*/false, height);
+    if (b.name != occ.name) others.push_back(b);
+  r.range = sceneLutRange(in.sun, {occ}, others, /*darkUmbra=*/false, height);
   r.extent = {0, 0, 0, height - 1, 0, 0};
   if (r.range) {
     r.extent[1] = rangedLutWidth(*r.range, width) - 1;  // all of the ranged table
@@ -181,7 +221,7 @@ std::optional<AtmosphereShadowRequest> sceneAtmosphereShadowRequest(const SceneI
   }
   int first = width, last = -1;
   for (const SphereBody& b : others) {
-    const auto cols = shadowLutColumns(in.sun, *occ, b, width);
+    const auto cols = shadowLutColumns(in.sun, occ, b, width);
     first = std::min(first, cols[0]);
     last = std::max(last, cols[1]);
   }
@@ -195,35 +235,18 @@ std::optional<AtmosphereShadowRequest> sceneAtmosphereShadowRequest(const SceneI
 }
 
 vtkAlgorithm* setUpAtmosphereShadow(vtkEclipseShadowLutSource* source, const AtmosphereShadowRequest& r) {
-  if (!source) throw std::invalid_argument("no eclipse table source for the atmosphere");
-  source->SetOccluderName(r.occluder.c_str());
-  source->SetOccluderRadiusM(r.occluderRadiusM);
-  source->SetSunRadiusM(r.sunRadiusM);
-  source->SetSunOccluderDistanceM(r.sunOccluderDistanceM);
-  source->SetAtmosphere(r.model.c_str());
-  source->SetWidth(r.width);
-  source->SetHeight(r.height);
-  try {
-    return source->ConnectAtmosphereTables();  // the atmosphere tables from their cache
-  } catch (const std::exception& e) {
-    throw std::runtime_error("shadow through the atmosphere of '" + r.occluder + "': " + e.what());
-  }
+  return setUpTable(source, r, "shadow through the atmosphere");
 }
 
 void updateAtmosphereShadow(vtkEclipseShadowLutSource* source, const AtmosphereShadowRequest& r) {
-  setUpAtmosphereShadow(source, r);
   int extent[6];
   std::copy(r.extent.begin(), r.extent.end(), extent);
-  try {
-    updateRanged(source, r.range, [&] { source->UpdateExtent(extent); });
-  } catch (const std::exception& e) {
-    throw std::runtime_error("shadow through the atmosphere of '" + r.occluder + "': " + e.what());
-  }
-  int got[6];
-  source->GetOutput()->GetExtent(got);
-  if (got[1] < got[0] + 1 || got[3] < got[2] + 1) {
-    throw std::runtime_error("shadow through the atmosphere of '" + r.occluder + "': the table could not be made");
-  }
+  updateTable(source, r, "shadow through the atmosphere", [&] { source->UpdateExtent(extent); },
+              [](vtkImageData* lut) {
+                int got[6];
+                lut->GetExtent(got);
+                return got[1] >= got[0] + 1 && got[3] >= got[2] + 1;
+              });
 }
 
 void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, vtkEclipseShadowLutSource* source) {
@@ -237,38 +260,45 @@ void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, 
   shading.SetAtmosphereShadowLut(request->occluder, source->GetOutput());
 }
 
-void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs& in, vtkLimbLuminanceSource* source) {
-  if (!in.atmosphere) {
-    atmosphere.SetLimbLuminance(nullptr);
-    return;
-  }
+std::optional<LimbLuminanceRequest> sceneLimbLuminanceRequest(const SceneInputs& in, int width, int height,
+                                                              double ringThresholdPx) {
+  if (!in.atmosphere || !(ringThresholdPx > 0.0)) return std::nullopt;
   // Only a camera in the shadow, outside the atmosphere, can use it (AtmosphereRendering).
-  const SphereBody& body = *std::find_if(in.bodies.begin(), in.bodies.end(),
-                                         [&](const SphereBody& b) { return b.name == in.atmosphere->body; });
-  const double topM =
-      atmosphere::loadAtmosphere(in.atmosphere->model, atmosphere::WavelengthSet::rgb().nm).topRadiusM;
+  const SphereBody& occ = atmosphereBody(in);
   const glm::dvec3 cam = in.camera.positionM;
   const bool inShadow =
-      eclipse::occluderInFront(cam, in.sun.positionM, body.centreM) &&
-      eclipse::lutCoords(eclipse::shadowAngles(cam, in.sun.positionM, in.sun.radiusM, body.centreM, body.radiusM)).v < 1.0;
-  if (glm::length(cam - body.centreM) <= topM || !inShadow) {
+      eclipse::occluderInFront(cam, in.sun.positionM, occ.centreM) &&
+      eclipse::lutCoords(eclipse::shadowAngles(cam, in.sun.positionM, in.sun.radiusM, occ.centreM, occ.radiusM)).v < 1.0;
+  if (!inShadow) return std::nullopt;
+  const double topM = atmosphere::loadAtmosphere(in.atmosphere->model, atmosphere::WavelengthSet::rgb().nm).topRadiusM;
+  if (glm::length(cam - occ.centreM) <= topM) return std::nullopt;
+  LimbLuminanceRequest r;
+  static_cast<EclipseTableRequest&>(r) = tableRequest(in, width, height);
+  // Near the occluder (Phobos by Mars) the whole LuT's v rows are too coarse: one around
+  // the camera's distance.
+  r.range = pointLutRange(in.sun, occ, cam, /*darkUmbra=*/false, height);
+  return r;
+}
+
+vtkAlgorithm* setUpLimbLuminance(vtkLimbLuminanceSource* source, const LimbLuminanceRequest& r) {
+  return setUpTable(source, r, "limb luminance of the atmosphere");
+}
+
+void updateLimbLuminance(vtkLimbLuminanceSource* source, const LimbLuminanceRequest& r) {
+  updateTable(source, r, "limb luminance of the atmosphere", [&] { source->Update(); },
+              [](vtkImageData* lut) { return lut && lut->GetNumberOfPoints() > 0; });
+}
+
+void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs& in, vtkLimbLuminanceSource* source) {
+  if (!source) throw std::invalid_argument("no source for the limb luminance of the atmosphere");
+  const auto request = sceneLimbLuminanceRequest(in, source->GetWidth(), source->GetHeight(),
+                                                 atmosphere.GetLimbRingThresholdPixels());
+  if (!request) {
     atmosphere.SetLimbLuminance(nullptr);
     return;
   }
-  const SphereBody& occ = setUpFor(source, in);
-  // Near the occluder (Phobos by Mars) the whole LuT's v rows are too coarse: one around
-  // the camera's distance.
-  const auto range = pointLutRange(in.sun, occ, cam, /*darkUmbra=*/false, source->GetHeight());
-  try {
-    source->ConnectAtmosphereTables();
-    updateRanged(source, range, [&] { source->Update(); });
-  } catch (const std::exception& e) {
-    throw std::runtime_error("limb luminance of the atmosphere of '" + occ.name + "': " + e.what());
-  }
-  vtkImageData* lut = source->GetOutput();
-  if (!lut || lut->GetNumberOfPoints() == 0)
-    throw std::runtime_error("limb luminance of the atmosphere of '" + occ.name + "': the table could not be made");
-  atmosphere.SetLimbLuminance(lut);
+  updateLimbLuminance(source, *request);
+  atmosphere.SetLimbLuminance(source->GetOutput());
 }
 
 void useSmallEclipseShadowTables(vtkEclipseShadowLutSource* s) {

@@ -52,21 +52,32 @@ std::optional<eclipse::LutRange> pointLutRange(const SunLight& sun, const Sphere
 /// `width` columns (ceil(width (uMax - uMin)) + 1), in [2, width].
 int rangedLutWidth(const eclipse::LutRange& range, int width);
 
-/// What applySceneAtmosphereShadow computes for a scene: the occluder (the body with the
-/// atmosphere), its model and geometry, the ranges (sceneLutRange of the other bodies;
-/// none: the whole table) and the texels [extent[0], extent[1]] x [extent[2], extent[3]]
-/// of a `width` x `height` table (ranged: rangedLutWidth columns, all of them). Equal
-/// requests give the same table: a GUI computes one in a worker and keeps it while the
-/// request stays the same.
-struct AtmosphereShadowRequest {
+/// What an eclipse table of a scene's atmosphere is made for: the occluder (the body with
+/// the atmosphere), its model and geometry, the table's `width` x `height` texels and its u,
+/// v ranges (none: the whole table; ranged: rangedLutWidth columns). Equal requests give
+/// the same table: a GUI computes one in a worker and keeps it while the request stays the
+/// same.
+struct EclipseTableRequest {
   std::string occluder, model;
   double occluderRadiusM = 0.0, sunRadiusM = 0.0, sunOccluderDistanceM = 0.0;
   int width = 0, height = 0;
   std::optional<eclipse::LutRange> range;
+  bool operator==(const EclipseTableRequest& o) const;
+  bool operator!=(const EclipseTableRequest& o) const { return !(*this == o); }
+};
+
+/// What applySceneAtmosphereShadow computes for a scene: the ranges of sceneLutRange of the
+/// other bodies and the texels [extent[0], extent[1]] x [extent[2], extent[3]] of the
+/// table (ranged: all of its columns).
+struct AtmosphereShadowRequest : EclipseTableRequest {
   std::array<int, 6> extent{};
   bool operator==(const AtmosphereShadowRequest& o) const;
   bool operator!=(const AtmosphereShadowRequest& o) const { return !(*this == o); }
 };
+
+/// What applySceneLimbLuminance computes for a scene: the ranges of pointLutRange of the
+/// camera (the whole table when none).
+struct LimbLuminanceRequest : EclipseTableRequest {};
 
 /// The request for `in` with a table of `width` x `height` texels; none without an
 /// atmosphere or when no other body can be shaded. Cheap (no table is touched).
@@ -94,12 +105,27 @@ void updateAtmosphereShadow(vtkEclipseShadowLutSource* source, const AtmosphereS
 /// Throws std::runtime_error naming the body when the table cannot be made.
 void applySceneAtmosphereShadow(EclipseShading& shading, const SceneInputs& in, vtkEclipseShadowLutSource* source);
 
-/// When `in` has an atmosphere and its camera is in that body's shadow (v < 1) outside the
-/// atmosphere, sets `source` up for it as applySceneAtmosphereShadow does (ranged around
-/// the camera's distance when pointLutRange gives ranges: rangedLutWidth columns), updates it and
-/// hands the limb-luminance LuT to `atmosphere`
-/// (AtmosphereRendering::SetLimbLuminance: the ring drawn from it when thin on screen).
-/// Otherwise removes any (nothing computed). Throws std::runtime_error naming the body.
+/// The limb-luminance LuT `in` needs with a table of `width` x `height` texels and a ring
+/// drawn from it below `ringThresholdPx` on screen: when `in` has an atmosphere, the
+/// threshold is > 0 and the camera is in that body's shadow (v < 1) outside the atmosphere
+/// (where AtmosphereRendering can draw the ring from it); ranged around the camera's
+/// distance when pointLutRange gives ranges (near the occluder: Phobos by Mars). None
+/// otherwise. Cheap (no table is touched; the model is read for its top radius).
+std::optional<LimbLuminanceRequest> sceneLimbLuminanceRequest(const SceneInputs& in, int width, int height,
+                                                              double ringThresholdPx);
+
+/// Sets `source` up for `request` as setUpAtmosphereShadow does; returns the tables source.
+vtkAlgorithm* setUpLimbLuminance(vtkLimbLuminanceSource* source, const LimbLuminanceRequest& request);
+
+/// The long part: sets `source` up (setUpLimbLuminance) and computes the table (the
+/// source caches it by parameter hash; its width is given back after). Throws
+/// std::runtime_error naming the body when the table cannot be made (or was aborted).
+void updateLimbLuminance(vtkLimbLuminanceSource* source, const LimbLuminanceRequest& request);
+
+/// When `in` needs a limb-luminance LuT (sceneLimbLuminanceRequest with the source's sizes
+/// and `atmosphere`'s GetLimbRingThresholdPixels), updates `source` for it and hands it to
+/// `atmosphere` (AtmosphereRendering::SetLimbLuminance: the ring drawn from it when thin on
+/// screen). Otherwise removes any (nothing computed). Throws std::runtime_error naming the body.
 void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs& in, vtkLimbLuminanceSource* source);
 
 /// Small tables for quick looks and tests (about a second): Bruneton tables as

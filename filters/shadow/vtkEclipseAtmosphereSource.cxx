@@ -5,6 +5,7 @@
 #include "vtkAtmosphereTablesSource.h"
 #include "EclipseAtmosphere.hpp"
 #include "FieldParameters.h"
+#include "Precompute.hpp"
 #include "Spectrum.hpp"
 #include "umbra/tables/TableCache.h"
 
@@ -234,7 +235,7 @@ std::vector<float> vtkEclipseAtmosphereSource::CachedOrComputed(const char* kind
     this->UpdateProgress(0.5 + 0.5 * f);
     return !this->GetAbortExecute();
   });
-  if (t.data.empty()) throw std::runtime_error(std::string(kind) + ": computation aborted");
+  if (t.data.empty()) throw umbra::atmosphere::PrecomputeCancelled();
   if (this->UseCache) {
     try {
       cache.store(kind, parameters, t);
@@ -243,6 +244,16 @@ std::vector<float> vtkEclipseAtmosphereSource::CachedOrComputed(const char* kind
     }
   }
   return t.data;
+}
+
+int vtkEclipseAtmosphereSource::RequestFailed(const std::exception& e, vtkDataObject* output) {
+  if (this->GetAbortExecute() || dynamic_cast<const umbra::atmosphere::PrecomputeCancelled*>(&e)) {
+    this->LastAborted = true;
+    if (output) output->Initialize();
+    return 1;
+  }
+  vtkErrorMacro(<< e.what());
+  return 0;
 }
 
 void vtkEclipseAtmosphereSource::SetLutInformation(vtkInformationVector* out, int width, int height, int depth,

@@ -120,6 +120,10 @@ public:
   const std::string& GetCachePath() const { return this->CachePath; }
   /// After an update: a cache store that failed (the table is still produced), or empty.
   const std::string& GetCacheWarning() const { return this->CacheWarning; }
+  /// After an update: whether it was aborted (SetAbortExecute, e.g. from a progress
+  /// observer; a cancel of the input's precomputation). A cancel is not an error: the
+  /// output is empty and nothing is printed; the next update computes it.
+  bool GetLastUpdateAborted() const { return this->LastAborted; }
 
 protected:
   vtkEclipseAtmosphereSource();
@@ -143,6 +147,12 @@ protected:
                                                    const umbra::eclipse::Progress&)>;
   std::vector<float> CachedOrComputed(const char* kind, const std::map<std::string, std::string>& parameters,
                                       int width, int height, double limbDarkening, const Compute& compute);
+  /// What RequestData returns when it caught `e`: after an abort (GetAbortExecute, or
+  /// atmosphere::PrecomputeCancelled) 1 with `output` emptied and LastAborted set (the
+  /// executive would print a failure); else the error is reported (vtkErrorMacro) and 0.
+  /// RequestData clears LastAborted first.
+  int RequestFailed(const std::exception& e, vtkDataObject* output);
+
   /// Whole extent, spacing and origin of a LuT with texel centres at
   /// uMin + (uMax - uMin)(i + 0.5) / width, vMin + (vMax - vMin)(j + 0.5) / height and
   /// `depth` slices.
@@ -178,6 +188,7 @@ protected:
   /// The atmosphere this source prepared last (keeps it shared while the source lives).
   std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> Prepared;
   bool LastCacheHit = false;
+  bool LastAborted = false;
   std::string CachePath;
   std::string CacheWarning;
 

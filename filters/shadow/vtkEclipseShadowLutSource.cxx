@@ -1,6 +1,7 @@
 #include "vtkEclipseShadowLutSource.h"
 
 #include "EclipseAtmosphere.hpp"
+#include "Precompute.hpp"
 #include "ShadowLutData.h"
 #include "umbra/tables/TableCache.h"
 
@@ -32,6 +33,7 @@ int vtkEclipseShadowLutSource::RequestData(vtkInformation*, vtkInformationVector
                                            vtkInformationVector* out) {
   using namespace umbra;
   vtkImageData* output = vtkImageData::GetData(out);
+  this->LastAborted = false;
   if (this->HasAtmosphere()) return this->RequestAtmospheric(out->GetInformationObject(0), output);
   eclipse::ShadowLutParams params{this->Width, this->Height, this->LimbDarkening, this->RelativeTolerance};
   params.uMin = this->URange[0], params.uMax = this->URange[1];
@@ -66,10 +68,7 @@ int vtkEclipseShadowLutSource::RequestData(vtkInformation*, vtkInformationVector
       this->UpdateProgress(f);
       return !this->GetAbortExecute();
     });
-    if (lut.rgb.empty()) {
-      vtkErrorMacro("shadow LuT computation was aborted");
-      return 0;
-    }
+    if (lut.rgb.empty()) return this->RequestFailed(atmosphere::PrecomputeCancelled(), output);
     if (this->UseCache) {
       try {
         cache.store(filters::kAirlessShadowLutKind, parameters, filters::toTable(lut, parameters));
@@ -140,8 +139,7 @@ int vtkEclipseShadowLutSource::RequestAtmospheric(vtkInformation* outInfo, vtkIm
     parameters["sunRadiusM"] = filters::formatNumber(this->SunRadiusM);
     filters::setFieldParameters(output, parameters);
   } catch (const std::exception& e) {
-    vtkErrorMacro(<< e.what());
-    return 0;
+    return this->RequestFailed(e, output);
   }
   this->UpdateProgress(1.0);
   return 1;

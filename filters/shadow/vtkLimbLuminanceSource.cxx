@@ -28,6 +28,7 @@ int vtkLimbLuminanceSource::RequestInformation(vtkInformation*, vtkInformationVe
 int vtkLimbLuminanceSource::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) {
   using namespace umbra;
   vtkImageData* output = vtkImageData::GetData(out);
+  this->LastAborted = false;
   try {
     if (!this->HasAtmosphere()) throw std::invalid_argument("the limb-luminance LuT needs an atmosphere");
     if (this->Layers > this->LimbRows) throw std::invalid_argument("more layers than limb-view rows");
@@ -69,8 +70,7 @@ int vtkLimbLuminanceSource::RequestData(vtkInformation*, vtkInformationVector**,
     output->GetPointData()->SetScalars(values);
     filters::setFieldParameters(output, parameters);
   } catch (const std::exception& e) {
-    vtkErrorMacro(<< e.what());
-    return 0;
+    return this->RequestFailed(e, output);
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -48,6 +48,19 @@ void configure(Source* s, const CacheDir& cache) {
   s->SetCacheDirectory(cache.path.c_str());
 }
 
+/// A 4 x 3 limb-luminance LuT of 8 columns, 2 layers, views of 16 rows.
+vtkSmartPointer<vtkLimbLuminanceSource> limbSource(const CacheDir& cache) {
+  auto s = vtkSmartPointer<vtkLimbLuminanceSource>::New();
+  configure(s.Get(), cache);
+  s->SetWidth(4);
+  s->SetHeight(3);
+  s->SetColumns(8);
+  s->SetLayers(2);
+  s->SetLimbRows(16);
+  s->SetScatteringCells(4);
+  return s;
+}
+
 vtkSmartPointer<vtkEclipseShadowLutSource> shadowSource(const CacheDir& cache) {
   auto s = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
   configure(s.Get(), cache);
@@ -179,14 +192,7 @@ TEST(EclipseAtmosphereFilters, UpdateExtentComputesOnlyThatPart) {
 
 TEST(EclipseAtmosphereFilters, LimbLuminanceSourceIsA3dRgbTexture) {
   CacheDir cache;
-  auto source = vtkSmartPointer<vtkLimbLuminanceSource>::New();
-  configure(source.Get(), cache);
-  source->SetWidth(4);
-  source->SetHeight(3);
-  source->SetColumns(8);
-  source->SetLayers(2);
-  source->SetLimbRows(16);
-  source->SetScatteringCells(4);
+  auto source = limbSource(cache);
   source->Update();
   int dims[3];
   source->GetOutput()->GetDimensions(dims);
@@ -204,14 +210,7 @@ TEST(EclipseAtmosphereFilters, LimbLuminanceSourceIsA3dRgbTexture) {
     }
   EXPECT_GT(brightest, 0.0);
   EXPECT_FALSE(source->GetLastUpdateWasCacheHit());
-  auto again = vtkSmartPointer<vtkLimbLuminanceSource>::New();
-  configure(again.Get(), cache);
-  again->SetWidth(4);
-  again->SetHeight(3);
-  again->SetColumns(8);
-  again->SetLayers(2);
-  again->SetLimbRows(16);
-  again->SetScatteringCells(4);
+  auto again = limbSource(cache);
   again->Update();
   EXPECT_TRUE(again->GetLastUpdateWasCacheHit());
   EXPECT_EQ(scalars(again->GetOutput())->GetComponent(7, 0), values->GetComponent(7, 0));
@@ -220,6 +219,38 @@ TEST(EclipseAtmosphereFilters, LimbLuminanceSourceIsA3dRgbTexture) {
   airless->SetAtmosphere("");
   airless->Update();  // an error, no crash
   EXPECT_EQ(scalars(airless->GetOutput()), nullptr);
+}
+
+// Cancel (SetAbortExecute(1) from a progress observer, as the GUI's worker does): both
+// eclipse sources stop with an empty output, GetLastUpdateAborted, and no error event (a
+// cancel is not an error: VTK printed the source's error and the executive's failure);
+// cleared, the next update computes the table.
+TEST(EclipseAtmosphereFilters, AbortIsQuietAndTheNextUpdateComputes) {
+  CacheDir cache;
+  const auto limb = limbSource(cache);
+  const auto shadow = shadowSource(cache);
+  for (vtkEclipseAtmosphereSource* source : {static_cast<vtkEclipseAtmosphereSource*>(shadow), static_cast<vtkEclipseAtmosphereSource*>(limb)}) {
+    int errors = 0;
+    vtkNew<vtkCallbackCommand> onError;
+    onError->SetClientData(&errors);
+    onError->SetCallback([](vtkObject*, unsigned long, void* client, void*) { ++*static_cast<int*>(client); });
+    vtkNew<vtkCallbackCommand> onProgress;
+    onProgress->SetCallback([](vtkObject* caller, unsigned long, void*, void* data) {
+      if (*static_cast<double*>(data) > 0.6) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    });
+    source->AddObserver(vtkCommand::ErrorEvent, onError);
+    source->AddObserver(vtkCommand::ProgressEvent, onProgress);
+    source->Update();
+    EXPECT_TRUE(source->GetLastUpdateAborted()) << source->GetClassName();
+    EXPECT_EQ(source->GetOutput()->GetNumberOfPoints(), 0) << source->GetClassName();
+    EXPECT_EQ(errors, 0) << source->GetClassName();
+    source->RemoveObserver(onProgress);
+    source->SetAbortExecute(0);
+    source->Update();
+    EXPECT_FALSE(source->GetLastUpdateAborted()) << source->GetClassName();
+    EXPECT_GT(source->GetOutput()->GetNumberOfPoints(), 0) << source->GetClassName();
+    EXPECT_EQ(errors, 0) << source->GetClassName();
+  }
 }
 
 // Ranged (u, v in [0.5, 1], 2 x 2 texels): its texels are the whole 4 x 4 LuT's texels

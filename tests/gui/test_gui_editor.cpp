@@ -31,6 +31,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <array>
 #include <cstdlib>
 #include <optional>
@@ -388,6 +391,31 @@ std::array<double, 3> viewSums(Window& win, const std::string& name) {
   return rgb;
 }
 
+/// What is written on stderr (file descriptor 2, where VTK's log goes) while it lives.
+class StderrCapture {
+public:
+  explicit StderrCapture(std::string path) : path_(std::move(path)) {
+    std::fflush(stderr);
+    saved_ = ::dup(2);
+    const int fd = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    ::dup2(fd, 2);
+    ::close(fd);
+  }
+  ~StderrCapture() {
+    std::fflush(stderr);
+    ::dup2(saved_, 2);
+    ::close(saved_);
+  }
+  std::string text() const {
+    std::fflush(stderr);
+    return umbra::test::readAll(path_);
+  }
+
+private:
+  std::string path_;
+  int saved_ = -1;
+};
+
 bool copper(const std::array<double, 3>& rgb) { return rgb[0] > 1.3 * rgb[1] && rgb[1] > rgb[2] && rgb[0] > 1e6; }
 
 }  // namespace
@@ -433,9 +461,11 @@ TEST(GuiEditor, AtmosphereShadowLutInTheWorkerWithProgress) {
 // Cancel: with no table before, the Moon stays airless-dark in the umbra; with one, the
 // view keeps shading with it (copper) after a cancelled recomputation for a new time,
 // which is not started again until the time changes again. Time steps while a table is
-// being made: the last one's is made next.
+// being made: the last one's is made next. A cancel is not an error: nothing on stderr
+// (VTK printed the source's error and the executive's failure, 12 lines).
 TEST(GuiEditor, CancelTheAtmosphereShadowLutKeepsThePreviousShading) {
   Window win(std::nullopt, kMoon, umbra::scene::parseUtc("2015-09-28T02:50:00Z"), /*settleNow=*/false);
+  const StderrCapture err(win.dir / "stderr.txt");
   ASSERT_TRUE(untilShadowJob(win.w));
   win.w.cancelAtmosphereTables();
   settle(win.w);
@@ -469,6 +499,7 @@ TEST(GuiEditor, CancelTheAtmosphereShadowLutKeepsThePreviousShading) {
   settle(win.w);
   EXPECT_TRUE(win.w.sceneView().atmosphereShadowCurrent());
   EXPECT_NE(win.w.statusText().indexOf("03:20:00Z"), -1) << win.w.statusText().toStdString();
+  EXPECT_EQ(err.text(), "");
 }
 
 // The plot panel through Earth's atmosphere (the Moon in totality, small tables): the
@@ -526,6 +557,113 @@ TEST(GuiEditor, ProfileThroughTheAtmosphereMatchesTheCli) {
     std::printf("\n");
   }
   std::printf("  largest relative difference %.3f\n", worst);
+}
+
+namespace {
+
+const std::string kPole = std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/earth-from-lunar-north-pole-2015-09-28.json";
+
+/// The ring: the pixels of `a` or `b` (same size) with a channel above `floor`, and the mean
+/// R, G, B of each image over them.
+struct Ring {
+  int pixels = 0;
+  std::array<double, 3> a{}, b{};
+};
+
+Ring ringOf(const QImage& a, const QImage& b, int floor) {
+  Ring r;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) {
+      const QRgb p = a.pixel(x, y), q = b.pixel(x, y);
+      if (std::max({qRed(p), qGreen(p), qBlue(p), qRed(q), qGreen(q), qBlue(q)}) <= floor) continue;
+      ++r.pixels;
+      r.a[0] += qRed(p), r.a[1] += qGreen(p), r.a[2] += qBlue(p);
+      r.b[0] += qRed(q), r.b[1] += qGreen(q), r.b[2] += qBlue(q);
+    }
+  for (int c = 0; c < 3; ++c) r.a[c] /= std::max(r.pixels, 1), r.b[c] /= std::max(r.pixels, 1);
+  return r;
+}
+
+}  // namespace
+
+// Earth from the lunar north pole in totality (the example scene at its time, 2015-09-28
+// 02:30, eclipse paper Figure 11 bottom row; small tables, refraction, a 443x280 view):
+// the worker makes the limb-luminance LuT in the job of the atmospheric shadow LuT, and the
+// ring, 1.7 px wide, is drawn from it as `umbra render` draws it: the view's pixels and
+// the CLI's PNG of the same scene, time, size and exposure (the same table cache) were
+// measured equal (0 pixels differ: one code path, render::applySceneLimbLuminance's
+// request and update), so the ring's mean R, G, B (over the pixels above 8 in either) must
+// agree within kTolerance, which leaves room for a driver's rounding; the ray-marched ring
+// (threshold 0) is far from it (mean R 93 vs 226), so the comparison tells the two paths
+// apart.
+TEST(GuiEditor, LimbRingFromTheLutAsTheCliDrawsIt) {
+  constexpr double kTolerance = 0.02;
+  umbra::test::TempDir dir;
+  MainWindow w;
+  w.useSmallAtmosphereTables(true);
+  w.setRefraction(true);
+  w.resize(640, 400);
+  w.loadScene(kPole);
+  w.show();
+  ASSERT_TRUE(untilShadowJob(w));
+  EXPECT_TRUE(w.limbLuminanceBusy());
+  EXPECT_FALSE(w.sceneView().limbLuminanceCurrent());
+  settle(w);
+  ASSERT_TRUE(w.sceneView().limbLuminanceCurrent());
+  EXPECT_TRUE(w.sceneView().atmosphereShadowCurrent());  // the lunar ground in the umbra
+  const std::string png = dir / "gui.png";
+  w.saveScreenshot(png);
+  const double ringPx = w.sceneView().lastRingWidthPixels();
+  EXPECT_TRUE(w.sceneView().lastDrawUsedLimbLuminance()) << "ring " << ringPx << " px";
+  EXPECT_LT(ringPx, w.limbRingThreshold());
+  const QRect v = w.viewRect();
+  auto read = [&](const std::string& path, const QRect& part) {
+    const QImage image(QString::fromStdString(path));
+    return (part.isNull() ? image : image.copy(part)).convertToFormat(QImage::Format_RGB32);
+  };
+  const QImage gui = read(png, v);
+
+  const std::string cliPng = dir / "cli.png";
+  const std::string size = std::to_string(v.width()) + "x" + std::to_string(v.height());
+  const umbra::test::RunResult r =
+      umbra::test::run(UMBRA_EXE, {"render", kPole, "--size", size, "--atmosphere-tables", "small", "--refraction",
+                                   "--output", cliPng},
+                       {"UMBRA_CACHE_DIR=" + std::string(std::getenv("UMBRA_CACHE_DIR"))});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const QImage cli = read(cliPng, QRect());
+  ASSERT_EQ(cli.size(), gui.size());
+  const Ring ring = ringOf(gui, cli, 8);
+  int differ = 0, worst = 0;
+  for (int y = 0; y < gui.height(); ++y)
+    for (int x = 0; x < gui.width(); ++x) {
+      const QRgb p = gui.pixel(x, y), q = cli.pixel(x, y);
+      const int d = std::max({std::abs(qRed(p) - qRed(q)), std::abs(qGreen(p) - qGreen(q)), std::abs(qBlue(p) - qBlue(q))});
+      differ += d > 0;
+      worst = std::max(worst, d);
+    }
+  std::printf("  view %s, ring %.2f px wide: %d pixels, mean R G B GUI %.1f %.1f %.1f, CLI %.1f %.1f %.1f; "
+              "%d pixels differ, by at most %d\n",
+              size.c_str(), ringPx, ring.pixels, ring.a[0], ring.a[1], ring.a[2], ring.b[0], ring.b[1], ring.b[2],
+              differ, worst);
+  EXPECT_GT(ring.pixels, 500);  // around Earth's 110 px radius
+  EXPECT_GT(ring.a[0], 1.3 * ring.a[1]);  // red
+  EXPECT_GT(ring.a[1], ring.a[2]);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(ring.a[c], ring.b[c], kTolerance * ring.b[c]) << "channel " << c;
+
+  // Threshold 0: ray marched (the view keeps the table: back at 5 px it draws from it again).
+  w.setLimbRingThreshold(0.0);
+  EXPECT_FALSE(w.atmosphereBusy());
+  const std::string marchedPng = dir / "marched.png";
+  w.saveScreenshot(marchedPng);
+  EXPECT_FALSE(w.sceneView().lastDrawUsedLimbLuminance());
+  const Ring marched = ringOf(gui, read(marchedPng, v), 8);
+  std::printf("  ray marched: mean R G B %.1f %.1f %.1f over %d pixels (the LuT's %.1f %.1f %.1f)\n", marched.b[0],
+              marched.b[1], marched.b[2], marched.pixels, marched.a[0], marched.a[1], marched.a[2]);
+  EXPECT_GT(std::abs(marched.b[0] / marched.a[0] - 1.0), 5.0 * kTolerance);
+  w.setLimbRingThreshold(5.0);
+  EXPECT_FALSE(w.atmosphereBusy());
+  w.renderViews();
+  EXPECT_TRUE(w.sceneView().lastDrawUsedLimbLuminance());
 }
 
 int main(int argc, char** argv) {
