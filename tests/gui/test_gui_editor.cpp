@@ -588,14 +588,14 @@ Ring ringOf(const QImage& a, const QImage& b, int floor) {
 
 // Earth from the lunar north pole in totality (the example scene at its time, 2015-09-28
 // 02:30, eclipse paper Figure 11 bottom row; small tables, refraction, a 443x280 view):
-// the worker makes the limb-luminance LuT in the job of the atmospheric shadow LuT, and the
-// ring, 1.7 px wide, is drawn from it as `umbra render` draws it: the view's pixels and
-// the CLI's PNG of the same scene, time, size and exposure (the same table cache) were
-// measured equal (0 pixels differ: one code path, render::applySceneLimbLuminance's
-// request and update), so the ring's mean R, G, B (over the pixels above 8 in either) must
-// agree within kTolerance, which leaves room for a driver's rounding; the ray-marched ring
-// (threshold 0) is far from it (mean R 93 vs 226), so the comparison tells the two paths
-// apart.
+// the worker makes the limb-luminance LuT in the job of the atmospheric shadow LuT (and
+// again for another atmosphere), and the ring, 1.7 px wide, is drawn from it as `umbra
+// render` draws it: the view's pixels and the CLI's PNG of the same scene, time, size and
+// exposure (the same table cache) were measured equal (0 pixels differ: one code path,
+// render::applySceneLimbLuminance's request and update), so the ring's mean R, G, B (over
+// the pixels above 8 in either) must agree within kTolerance, which leaves room for a
+// driver's rounding; the ray-marched ring (threshold 0) is far from it (mean R 93 vs 226),
+// so the comparison tells the two paths apart.
 TEST(GuiEditor, LimbRingFromTheLutAsTheCliDrawsIt) {
   constexpr double kTolerance = 0.02;
   umbra::test::TempDir dir;
@@ -664,6 +664,23 @@ TEST(GuiEditor, LimbRingFromTheLutAsTheCliDrawsIt) {
   EXPECT_FALSE(w.atmosphereBusy());
   w.renderViews();
   EXPECT_TRUE(w.sceneView().lastDrawUsedLimbLuminance());
+
+  // Another atmosphere (the preset without Calbuco's aerosols): its tables, then its LuTs
+  // in the worker; less extinction along the limb, a brighter ring (measured R 246 vs 226,
+  // G 168 vs 125).
+  w.setAtmosphere("earth");
+  ASSERT_TRUE(untilShadowJob(w));
+  EXPECT_TRUE(w.limbLuminanceBusy());
+  settle(w);
+  EXPECT_TRUE(w.sceneView().limbLuminanceCurrent());
+  const std::string clearPng = dir / "clear.png";
+  w.saveScreenshot(clearPng);
+  EXPECT_TRUE(w.sceneView().lastDrawUsedLimbLuminance());
+  const Ring clear = ringOf(gui, read(clearPng, v), 8);
+  std::printf("  earth (no Calbuco aerosols): mean R G B %.1f %.1f %.1f over %d pixels\n", clear.b[0], clear.b[1],
+              clear.b[2], clear.pixels);
+  EXPECT_GT(clear.b[0], ring.a[0]);
+  EXPECT_GT(clear.b[1], 1.1 * ring.a[1]);
 }
 
 int main(int argc, char** argv) {

@@ -182,6 +182,12 @@ TEST(GuiScreenshot, BadSceneIsOneLineAndExitOne) {
   EXPECT_EQ(t.exitCode, 1);
   EXPECT_NE(t.err.find("--time"), std::string::npos) << t.err;
 
+  const RunResult limb =
+      umbra::test::run(UMBRA_GUI_EXE, {kExample, "--limb-ring-threshold", "-1", "--screenshot", dir / "x.png"});
+  EXPECT_EQ(limb.exitCode, 1);
+  EXPECT_EQ(std::count(limb.err.begin(), limb.err.end(), '\n'), 1) << limb.err;
+  EXPECT_NE(limb.err.find("--limb-ring-threshold: expected a number"), std::string::npos) << limb.err;
+
   const RunResult ext = umbra::test::run(UMBRA_GUI_EXE, {kExample, "--screenshot", dir / "x.jpg"});
   EXPECT_EQ(ext.exitCode, 1);
   EXPECT_NE(ext.err.find("x.jpg"), std::string::npos) << ext.err;
@@ -276,4 +282,5 @@ TEST(GuiScreenshot, Help) {
   EXPECT_NE(r.out.find("--time"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--atmosphere"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--atmosphere-set"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--limb-ring-threshold"), std::string::npos) << r.out;
 }
