@@ -64,6 +64,7 @@ struct HeldTable {
     this->applied = false;  // applied on the next setScene
   }
   vtkImageData* output() const { return this->applied ? this->source->GetOutput() : nullptr; }
+  bool fromCache() const { return this->source && this->source->GetLastUpdateWasCacheHit(); }
 };
 
 template <class Source>
@@ -173,9 +174,7 @@ void SceneView::setAtmosphereShadow(vtkEclipseShadowLutSource* source, const ren
 
 vtkImageData* SceneView::atmosphereShadowLut() const { return impl->shadow.output(); }
 
-bool SceneView::atmosphereShadowFromCache() const {
-  return impl->shadow.source && impl->shadow.source->GetLastUpdateWasCacheHit();
-}
+bool SceneView::atmosphereShadowFromCache() const { return impl->shadow.fromCache(); }
 
 bool SceneView::atmosphereShadowCurrent() const { return impl->shadow.applied && impl->shadow.current; }
 
@@ -194,6 +193,8 @@ void SceneView::setLimbLuminance(vtkLimbLuminanceSource* source, const render::L
 bool SceneView::hasLimbLuminance() const { return impl->limb.applied; }
 
 bool SceneView::limbLuminanceCurrent() const { return impl->limb.applied && impl->limb.current; }
+
+bool SceneView::limbLuminanceFromCache() const { return impl->limb.fromCache(); }
 
 void SceneView::setLimbRingThresholdPixels(double px) {
   if (!(std::isfinite(px) && px >= 0.0)) throw std::invalid_argument("limb ring threshold must be finite and >= 0 px");

@@ -77,6 +77,8 @@ public:
   /// Whether the view draws with a limb-luminance LuT, and whether it is the one the scene needs.
   bool hasLimbLuminance() const;
   bool limbLuminanceCurrent() const;
+  /// Whether that table was read from the table cache (vs computed).
+  bool limbLuminanceFromCache() const;
   /// Ring width on screen below which the LuT draws it (default 5 px, as `umbra render
   /// --limb-ring-threshold`; 0: always ray marched, no table asked for). Call setScene next.
   void setLimbRingThresholdPixels(double px);

@@ -588,8 +588,8 @@ Ring ringOf(const QImage& a, const QImage& b, int floor) {
 
 // Earth from the lunar north pole in totality (the example scene at its time, 2015-09-28
 // 02:30, eclipse paper Figure 11 bottom row; small tables, refraction, a 443x280 view):
-// the worker makes the limb-luminance LuT in the job of the atmospheric shadow LuT (and
-// again for another atmosphere), and the ring, 1.7 px wide, is drawn from it as `umbra
+// the worker makes the limb-luminance LuT in the job of the atmospheric shadow LuT (again
+// for another atmosphere; from the table cache for one seen before), and the ring, 1.7 px wide, is drawn from it as `umbra
 // render` draws it: the view's pixels and the CLI's PNG of the same scene, time, size and
 // exposure (the same table cache) were measured equal (0 pixels differ: one code path,
 // render::applySceneLimbLuminance's request and update), so the ring's mean R, G, B (over
@@ -681,6 +681,18 @@ TEST(GuiEditor, LimbRingFromTheLutAsTheCliDrawsIt) {
               clear.b[2], clear.pixels);
   EXPECT_GT(clear.b[0], ring.a[0]);
   EXPECT_GT(clear.b[1], 1.1 * ring.a[1]);
+  EXPECT_FALSE(w.sceneView().limbLuminanceFromCache());
+
+  // Back to Calbuco's: both LuTs from the table cache, the same ring.
+  w.setAtmosphere("earth-2015-calbuco");
+  settle(w);
+  ASSERT_TRUE(w.sceneView().limbLuminanceCurrent());
+  EXPECT_TRUE(w.sceneView().limbLuminanceFromCache());
+  EXPECT_TRUE(w.sceneView().atmosphereShadowFromCache());
+  const std::string againPng = dir / "again.png";
+  w.saveScreenshot(againPng);
+  const Ring again = ringOf(gui, read(againPng, v), 8);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(again.b[c], ring.a[c]) << "channel " << c;
 }
 
 int main(int argc, char** argv) {
