@@ -76,8 +76,9 @@ void checkAtmosphere(const std::string& model) {
 /// Tables being made in a worker thread: the atmosphere's (`source`, for the view's sky),
 /// or the eclipse LuTs of its body, one after the other: the atmospheric shadow LuT
 /// (`shadow`, for `request`: the other bodies' shading and the profile) and the
-/// limb-luminance LuT (`limb`, for `limbRequest`: the thin ring). The algorithms are only touched by the worker until it has finished (then
-/// by the GUI thread), except SetAbortExecute. The worker's progress callbacks set
+/// limb-luminance LuT (`limb`, for `limbRequest`: the thin ring). The algorithms are only
+/// touched by the worker until it has finished (then by the GUI thread), except
+/// SetAbortExecute. The worker's progress callbacks set
 /// AbortExecute again from `cancelled`: VTK clears it when an execution starts, so a
 /// cancel that comes before that is not lost. Each observed algorithm's progress is
 /// mapped to its part [from, to] of the bar.

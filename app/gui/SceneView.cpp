@@ -24,6 +24,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 // The render library's BodyView (vtkUmbraRenderPass + EclipseShading) builds the renderer;
 // the renderer is moved into the widget's render window and drawn there. BodyView's own
@@ -148,7 +149,8 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
   const auto shadowSize = sizeOf(this->newAtmosphereShadowSource());
   impl->shadow.follow(drawn ? render::sceneAtmosphereShadowRequest(in, shadowSize[0], shadowSize[1]) : std::nullopt,
                       [&](vtkImageData* lut) {
-                        impl->bodies->GetShading().SetAtmosphereShadowLut(lut ? impl->shadow.madeFor->occluder : "", lut);
+                        const std::string occluder = lut ? impl->shadow.madeFor->occluder : "";
+                        impl->bodies->GetShading().SetAtmosphereShadowLut(occluder, lut);
                       });
   const auto limbSize = sizeOf(this->newLimbLuminanceSource());
   atmosphere.SetLimbRingThresholdPixels(impl->ringThresholdPx);
@@ -178,7 +180,9 @@ bool SceneView::atmosphereShadowFromCache() const { return impl->shadow.fromCach
 
 bool SceneView::atmosphereShadowCurrent() const { return impl->shadow.applied && impl->shadow.current; }
 
-const std::optional<render::LimbLuminanceRequest>& SceneView::missingLimbLuminance() const { return impl->limb.missing; }
+const std::optional<render::LimbLuminanceRequest>& SceneView::missingLimbLuminance() const {
+  return impl->limb.missing;
+}
 
 vtkSmartPointer<vtkLimbLuminanceSource> SceneView::newLimbLuminanceSource() const {
   auto source = vtkSmartPointer<vtkLimbLuminanceSource>::New();
@@ -203,7 +207,9 @@ void SceneView::setLimbRingThresholdPixels(double px) {
 
 double SceneView::limbRingThresholdPixels() const { return impl->ringThresholdPx; }
 
-bool SceneView::lastDrawUsedLimbLuminance() const { return impl->bodies->GetAtmosphere().GetLastDrawUsedLimbLuminance(); }
+bool SceneView::lastDrawUsedLimbLuminance() const {
+  return impl->bodies->GetAtmosphere().GetLastDrawUsedLimbLuminance();
+}
 
 double SceneView::lastRingWidthPixels() const { return impl->bodies->GetAtmosphere().GetLastRingWidthPixels(); }
 

@@ -266,9 +266,8 @@ std::optional<LimbLuminanceRequest> sceneLimbLuminanceRequest(const SceneInputs&
   // Only a camera in the shadow, outside the atmosphere, can use it (AtmosphereRendering).
   const SphereBody& occ = atmosphereBody(in);
   const glm::dvec3 cam = in.camera.positionM;
-  const bool inShadow =
-      eclipse::occluderInFront(cam, in.sun.positionM, occ.centreM) &&
-      eclipse::lutCoords(eclipse::shadowAngles(cam, in.sun.positionM, in.sun.radiusM, occ.centreM, occ.radiusM)).v < 1.0;
+  const auto angles = eclipse::shadowAngles(cam, in.sun.positionM, in.sun.radiusM, occ.centreM, occ.radiusM);
+  const bool inShadow = eclipse::occluderInFront(cam, in.sun.positionM, occ.centreM) && eclipse::lutCoords(angles).v < 1.0;
   if (!inShadow) return std::nullopt;
   const double topM = atmosphere::loadAtmosphere(in.atmosphere->model, atmosphere::WavelengthSet::rgb().nm).topRadiusM;
   if (glm::length(cam - occ.centreM) <= topM) return std::nullopt;

@@ -229,7 +229,8 @@ TEST(EclipseAtmosphereFilters, AbortIsQuietAndTheNextUpdateComputes) {
   CacheDir cache;
   const auto limb = limbSource(cache);
   const auto shadow = shadowSource(cache);
-  for (vtkEclipseAtmosphereSource* source : {static_cast<vtkEclipseAtmosphereSource*>(shadow), static_cast<vtkEclipseAtmosphereSource*>(limb)}) {
+  for (vtkEclipseAtmosphereSource* source :
+       {static_cast<vtkEclipseAtmosphereSource*>(shadow), static_cast<vtkEclipseAtmosphereSource*>(limb)}) {
     int errors = 0;
     vtkNew<vtkCallbackCommand> onError;
     onError->SetClientData(&errors);

@@ -561,7 +561,8 @@ TEST(GuiEditor, ProfileThroughTheAtmosphereMatchesTheCli) {
 
 namespace {
 
-const std::string kPole = std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/earth-from-lunar-north-pole-2015-09-28.json";
+const std::string kPole =
+    std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/earth-from-lunar-north-pole-2015-09-28.json";
 
 /// The ring: the pixels of `a` or `b` (same size) with a channel above `floor`, and the mean
 /// R, G, B of each image over them.
@@ -589,13 +590,13 @@ Ring ringOf(const QImage& a, const QImage& b, int floor) {
 // Earth from the lunar north pole in totality (the example scene at its time, 2015-09-28
 // 02:30, eclipse paper Figure 11 bottom row; small tables, refraction, a 443x280 view):
 // the worker makes the limb-luminance LuT in the job of the atmospheric shadow LuT (again
-// for another atmosphere; from the table cache for one seen before), and the ring, 1.7 px wide, is drawn from it as `umbra
-// render` draws it: the view's pixels and the CLI's PNG of the same scene, time, size and
-// exposure (the same table cache) were measured equal (0 pixels differ: one code path,
-// render::applySceneLimbLuminance's request and update), so the ring's mean R, G, B (over
-// the pixels above 8 in either) must agree within kTolerance, which leaves room for a
-// driver's rounding; the ray-marched ring (threshold 0) is far from it (mean R 93 vs 226),
-// so the comparison tells the two paths apart.
+// for another atmosphere; from the table cache for one seen before), and the ring, 1.7 px
+// wide, is drawn from it as `umbra render` draws it: the view's pixels and the CLI's PNG
+// of the same scene, time, size and exposure (the same table cache) were measured equal
+// (0 pixels differ: one code path, render::applySceneLimbLuminance's request and update),
+// so the ring's mean R, G, B (over the pixels above 8 in either) must agree within
+// kTolerance, which leaves room for a driver's rounding; the ray-marched ring (threshold
+// 0) is far from it (mean R 93 vs 226), so the comparison tells the two paths apart.
 TEST(GuiEditor, LimbRingFromTheLutAsTheCliDrawsIt) {
   constexpr double kTolerance = 0.02;
   umbra::test::TempDir dir;
@@ -608,7 +609,10 @@ TEST(GuiEditor, LimbRingFromTheLutAsTheCliDrawsIt) {
   ASSERT_TRUE(untilShadowJob(w));
   EXPECT_TRUE(w.limbLuminanceBusy());
   EXPECT_FALSE(w.sceneView().limbLuminanceCurrent());
+  QElapsedTimer clock;
+  clock.start();
   settle(w);
+  std::printf("  the shadow and limb-luminance LuT job: %lld ms\n", static_cast<long long>(clock.elapsed()));
   ASSERT_TRUE(w.sceneView().limbLuminanceCurrent());
   EXPECT_TRUE(w.sceneView().atmosphereShadowCurrent());  // the lunar ground in the umbra
   const std::string png = dir / "gui.png";
@@ -637,7 +641,8 @@ TEST(GuiEditor, LimbRingFromTheLutAsTheCliDrawsIt) {
   for (int y = 0; y < gui.height(); ++y)
     for (int x = 0; x < gui.width(); ++x) {
       const QRgb p = gui.pixel(x, y), q = cli.pixel(x, y);
-      const int d = std::max({std::abs(qRed(p) - qRed(q)), std::abs(qGreen(p) - qGreen(q)), std::abs(qBlue(p) - qBlue(q))});
+      const int d =
+          std::max({std::abs(qRed(p) - qRed(q)), std::abs(qGreen(p) - qGreen(q)), std::abs(qBlue(p) - qBlue(q))});
       differ += d > 0;
       worst = std::max(worst, d);
     }
