@@ -32,6 +32,22 @@ const SphereBody& atmosphereBody(const SceneInputs& in) {
   return *occ;
 }
 
+// Tables of a scene in motion (an animation, the GUI's time slider through an eclipse) are
+// asked for on grids, so that the frames of a while make one table, one cache file: the
+// Sun's distance and the ends of a u range on geometric grids of these relative steps
+// (docs/accuracy-vs-speed.md, "Tables for a scene in motion").
+constexpr double kSunDistanceStep = 1e-4;
+constexpr double kRangeUStep = 1e-3;
+
+// The point of the grid {exp(k step)} at or below `x` > 0 (up: at or above).
+double onGeometricGrid(double x, double step, bool up) {
+  const double k = up ? std::ceil(std::log(x) / step) : std::floor(std::log(x) / step);
+  double g = std::exp(k * step);
+  if (up && g < x) g = std::exp((k + 1.0) * step);   // exp/log rounding
+  if (!up && g > x) g = std::exp((k - 1.0) * step);
+  return g;
+}
+
 // The request's occluder, model and geometry for `in`'s atmosphere; a table of `width` x `height`.
 EclipseTableRequest tableRequest(const SceneInputs& in, int width, int height) {
   const SphereBody& occ = atmosphereBody(in);
@@ -40,7 +56,7 @@ EclipseTableRequest tableRequest(const SceneInputs& in, int width, int height) {
   r.model = in.atmosphere->model;
   r.occluderRadiusM = occ.radiusM;
   r.sunRadiusM = in.sun.radiusM;
-  r.sunOccluderDistanceM = glm::length(occ.centreM - in.sun.positionM);
+  r.sunOccluderDistanceM = sunDistanceOnGrid(glm::length(occ.centreM - in.sun.positionM));
   r.width = width;
   r.height = height;
   return r;
@@ -80,9 +96,12 @@ bool addDistances(const SunLight& sun, const SphereBody& occluder, double lo, do
 }
 
 // The ranges for the u range `u` (none when empty or when a whole LuT resolves it).
+// The ends on the grid of kRangeUStep (outward: the range still holds every u asked for).
 std::optional<eclipse::LutRange> rangeForU(const std::array<double, 2>& u, bool darkUmbra, int height) {
   if (!(u[0] < u[1])) return std::nullopt;
-  const eclipse::LutRange r = eclipse::lutRangeForU(u[0], u[1], darkUmbra, height);
+  const double uMin = u[0] > 0.0 ? onGeometricGrid(u[0], kRangeUStep, false) : 0.0;
+  const double uMax = std::min(onGeometricGrid(u[1], kRangeUStep, true), 1.0);
+  const eclipse::LutRange r = eclipse::lutRangeForU(uMin, uMax, darkUmbra, height);
   if (!eclipse::rangedLutPays(r, height)) return std::nullopt;
   return r;
 }
@@ -128,6 +147,13 @@ void useSmallEclipseAtmosphere(vtkEclipseAtmosphereSource* s) {
   s->SetRefractionSize(128, 64);
 }
 } // namespace
+
+double sunDistanceOnGrid(double distanceM) {
+  if (!(distanceM > 0.0) || !std::isfinite(distanceM)) return distanceM;  // validated where it is used
+  const double below = onGeometricGrid(distanceM, kSunDistanceStep, false);
+  const double above = onGeometricGrid(distanceM, kSunDistanceStep, true);
+  return distanceM - below <= above - distanceM ? below : above;
+}
 
 std::array<int, 2> shadowLutColumns(const SunLight& sun, const SphereBody& occluder, const SphereBody& receiver,
                                     int width) {

@@ -38,7 +38,8 @@ bool canBeInPenumbra(const SunLight& sun, const SphereBody& occluder, const Sphe
 /// The ranges of a shadow LuT for a scene (eclipse::lutRangeForDistances, as `umbra profile
 /// shadow` chooses them): for each body of `receivers` that can be in the penumbra of a body
 /// of `occluders` (not itself), its distances from that occluder (centre -+ radius, at least
-/// the occluder's radius); the union of their u ranges, v for it as eclipse::lutRangeForU
+/// the occluder's radius); the union of their u ranges, its ends moved out to a geometric
+/// grid of relative step 1e-3 (a body moving a little keeps the range), v for it as eclipse::lutRangeForU
 /// (`darkUmbra`: airless; `height` rows). None (a whole LuT) when no receiver can be in a
 /// penumbra, when the distances reach the Sun, or when a whole LuT of `height` rows
 /// resolves the penumbra there (eclipse::rangedLutPays is false: e.g. the Moon in Earth's
@@ -51,6 +52,11 @@ std::optional<eclipse::LutRange> pointLutRange(const SunLight& sun, const Sphere
 /// Columns of a ranged LuT: its u texel spacing no coarser than that of a whole LuT of
 /// `width` columns (ceil(width (uMax - uMin)) + 1), in [2, width].
 int rangedLutWidth(const eclipse::LutRange& range, int width);
+
+/// The Sun's distance `distanceM` as eclipse tables are made for it: the nearest point of a
+/// geometric grid of relative step 1e-4 (so that a scene in motion keeps its table for a
+/// while; the Sun's angular radius off by 5e-5 of itself at most).
+double sunDistanceOnGrid(double distanceM);
 
 /// What an eclipse table of a scene's atmosphere is made for: the occluder (the body with
 /// the atmosphere), its model and geometry, the table's `width` x `height` texels and its u,
