@@ -1,6 +1,9 @@
-// TableCache: default directory, keys, hits, misses and failures.
+// TableCache: default directory, keys, hits, misses and failures; the size cap.
 
 #include <unistd.h>
+
+#include <chrono>
+#include <cstdint>
 
 #include "TestSupport.h"
 #include "umbra/tables/Exr.h"
@@ -19,7 +22,29 @@ protected:
     p["kind"] = kind;
     return p;
   }
+  // params_ plus {"n": n}: tables of the same size on disk for n in 0..9.
+  Parameters numbered(int n) const {
+    Parameters p = params_;
+    p["n"] = std::to_string(n);
+    return p;
+  }
+  // Stores the n-th "lut" table through cache; its path.
+  std::string storeNumbered(const TableCache& cache, int n) const {
+    cache.store("lut", numbered(n), makeTable(16, 16, {"R", "G", "B"}));
+    return cache.pathFor("lut", numbered(n));
+  }
+  static void setUsedHoursAgo(const std::string& path, int hours) {
+    fs::last_write_time(path, fs::file_time_type::clock::now() - std::chrono::hours(hours));
+  }
+  static std::string name(const std::string& path) { return fs::path(path).filename().string(); }
+  static std::vector<std::string> sortedNames(std::vector<std::string> paths) {
+    for (std::string& p : paths) p = name(p);
+    std::sort(paths.begin(), paths.end());
+    return paths;
+  }
 };
+
+constexpr std::uint64_t kMiB = 1024 * 1024;
 
 TEST(TableCacheDefaults, DirectoryHonoursUmbraCacheDirThenXdgThenHome) {
   ScopedEnv umbra("UMBRA_CACHE_DIR", "/cache/umbra-here");
@@ -173,6 +198,180 @@ TEST_F(TableCacheTest, StoreIntoAnUnusableDirectoryThrows) {
     fs::permissions(ro, fs::perms::owner_all);
     EXPECT_TRUE(entries(ro).empty());
   }
+}
+
+TEST(TableCacheDefaults, MaxBytesFromUmbraCacheMaxMb) {
+  const std::uint64_t defaultBytes = 2048 * kMiB;
+  {
+    ScopedEnv unset("UMBRA_CACHE_MAX_MB", nullptr);
+    EXPECT_EQ(TableCache::defaultMaxBytes(), defaultBytes);
+    EXPECT_EQ(TableCache("/nowhere").maxBytes(), defaultBytes);
+  }
+  const std::vector<std::pair<const char*, std::uint64_t>> valid = {
+      {"", defaultBytes},  // empty = unset, like UMBRA_CACHE_DIR
+      {"100", 100 * kMiB},
+      {"007", 7 * kMiB},
+      {"0", 0},
+      {"0.0", 0},
+      {"0.5", kMiB / 2},
+      {"1.25", kMiB + kMiB / 4},
+      {"3.", 3 * kMiB},
+      {".5", kMiB / 2},
+      {"0.0000001", 1},  // rounded up: a tiny cap, not "no limit"
+      {"99999999999999999999999", UINT64_MAX}};
+  for (const auto& [text, bytes] : valid) {
+    ScopedEnv env("UMBRA_CACHE_MAX_MB", text);
+    ::testing::internal::CaptureStderr();
+    EXPECT_EQ(TableCache::defaultMaxBytes(), bytes) << text;
+    EXPECT_EQ(TableCache("/nowhere").maxBytes(), bytes) << text;
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << text;
+  }
+  for (const char* text : {"abc", "-5", "-0", "+5", "10MB", "10 ", " 10", "1e3", "0x10", "inf",
+                           "nan", ".", "1.2.3", "1,5"}) {
+    ScopedEnv env("UMBRA_CACHE_MAX_MB", text);
+    ::testing::internal::CaptureStderr();
+    EXPECT_EQ(TableCache::defaultMaxBytes(), defaultBytes) << text;
+    const std::string warning = ::testing::internal::GetCapturedStderr();
+    EXPECT_NE(warning.find("UMBRA_CACHE_MAX_MB='" + std::string(text) + "'"), std::string::npos)
+        << warning;
+    EXPECT_NE(warning.find("2048 MiB"), std::string::npos) << warning;
+    EXPECT_EQ(std::count(warning.begin(), warning.end(), '\n'), 1) << warning;
+    EXPECT_EQ(warning.back(), '\n');
+    // The same value again (a cache made per frame) is not repeated.
+    ::testing::internal::CaptureStderr();
+    EXPECT_EQ(TableCache("/nowhere").maxBytes(), defaultBytes) << text;
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << text;
+  }
+}
+
+TEST_F(TableCacheTest, CapRemovesLeastRecentlyUsedFirst) {
+  const TableCache unlimited(dir_.string(), 0);
+  const std::string a = storeNumbered(unlimited, 1);
+  const std::string b = storeNumbered(unlimited, 2);
+  const std::uintmax_t size = fs::file_size(a);
+  ASSERT_EQ(fs::file_size(b), size);
+  // Not the order of writing nor of names: b is the least recently used.
+  setUsedHoursAgo(a, 1);
+  setUsedHoursAgo(b, 3);
+
+  const TableCache capped(dir_.string(), 2 * size + size / 2);  // fewer than three tables
+  const std::string c = storeNumbered(capped, 3);
+  ASSERT_EQ(fs::file_size(c), size);
+  EXPECT_EQ(entries(dir_), sortedNames({a, c}));
+
+  setUsedHoursAgo(c, 2);  // now older than a
+  const std::string d = storeNumbered(capped, 4);
+  EXPECT_EQ(entries(dir_), sortedNames({a, d}));
+  EXPECT_LE(fs::file_size(a) + fs::file_size(d), capped.maxBytes());
+
+  // Storing a cached table again makes it the most recent: a goes, not d.
+  setUsedHoursAgo(d, 5);
+  EXPECT_EQ(storeNumbered(capped, 4), d);
+  const std::string e = storeNumbered(capped, 5);
+  EXPECT_EQ(entries(dir_), sortedNames({d, e}));
+}
+
+TEST_F(TableCacheTest, LoadRefreshesUse) {
+  const TableCache unlimited(dir_.string(), 0);
+  const std::string a = storeNumbered(unlimited, 1);
+  const std::string b = storeNumbered(unlimited, 2);
+  const std::uintmax_t size = fs::file_size(a);
+  setUsedHoursAgo(a, 3);
+  setUsedHoursAgo(b, 2);
+
+  const TableCache capped(dir_.string(), 2 * size + size / 2);
+  const auto before = fs::file_time_type::clock::now() - std::chrono::minutes(1);
+  ASSERT_TRUE(capped.load("lut", numbered(1)).has_value());
+  EXPECT_GT(fs::last_write_time(a), before);
+  EXPECT_GT(fs::last_write_time(a), fs::last_write_time(b));
+  // A miss (other parameters stored at b's path) is no use: b keeps its time.
+  const auto bUsed = fs::last_write_time(b);
+  Parameters stale = numbered(2);
+  stale["size"] = "8";
+  EXPECT_FALSE(capped.load("lut", stale).has_value());
+  EXPECT_FALSE(capped.load("lut", numbered(7)).has_value());
+  EXPECT_EQ(fs::last_write_time(b), bUsed);
+
+  const std::string c = storeNumbered(capped, 3);
+  EXPECT_EQ(entries(dir_), sortedNames({a, c}));
+}
+
+TEST_F(TableCacheTest, CapLeavesForeignFilesAlone) {
+  const TableCache unlimited(dir_.string(), 0);
+  const std::string a = storeNumbered(unlimited, 1);
+  const std::uintmax_t size = fs::file_size(a);
+  setUsedHoursAgo(a, 5);
+
+  // Not the cache's: none is removed, nor counted in its size.
+  const std::string big(4 * size, 'x');
+  const std::vector<std::string> foreign = {
+      "notes.txt",
+      "x.exr",
+      "lut-0123456789ABCDEF.exr",  // parameterHash is lower case
+      "lut-0123456789abcde.exr",   // 15 digits
+      "lut-0123456789abcdefa.exr",
+      "lut0123456789abcdef.exr",
+      "-0123456789abcdef.exr",
+      ".lut-0123456789abcdef.exr",
+      "lut-0123456789abcdef.exr.bak",
+      name(unlimited.pathFor("lut", numbered(8))) + ".tmp-1234-0123456789abcdef"};  // writeExr's
+  for (const std::string& f : foreign) {
+    writeBytes(file(f), big);
+    setUsedHoursAgo(file(f), 10);
+  }
+  const fs::path sub = dir_ / "sub-0123456789abcdef.exr";  // a directory with a cache name
+  fs::create_directory(sub);
+  writeBytes((sub / name(a)).string(), big);
+  setUsedHoursAgo((sub / name(a)).string(), 10);
+  setUsedHoursAgo(sub.string(), 10);
+  fs::create_symlink("notes.txt", dir_ / "link-0123456789abcdef.exr");
+
+  std::vector<std::string> expected = foreign;
+  expected.push_back(sub.filename().string());
+  expected.push_back("link-0123456789abcdef.exr");
+
+  // a and b fit under the cap; the foreign files (far larger) do not count.
+  const std::string b = storeNumbered(TableCache(dir_.string(), 2 * size + size / 2), 2);
+  std::vector<std::string> now = expected;
+  now.push_back(name(a));
+  now.push_back(name(b));
+  std::sort(now.begin(), now.end());
+  EXPECT_EQ(entries(dir_), now);
+
+  // A cap for one table: a and b go, the foreign files stay.
+  const std::string c = storeNumbered(TableCache(dir_.string(), size + size / 2), 3);
+  now = expected;
+  now.push_back(name(c));
+  std::sort(now.begin(), now.end());
+  EXPECT_EQ(entries(dir_), now);
+  for (const std::string& f : foreign) EXPECT_EQ(fs::file_size(file(f)), big.size()) << f;
+  EXPECT_EQ(entries(sub), std::vector<std::string>{name(a)});
+}
+
+TEST_F(TableCacheTest, JustWrittenFileSurvivesACapSmallerThanItself) {
+  const TableCache tiny(dir_.string(), 1);
+  const std::string a = storeNumbered(tiny, 1);
+  EXPECT_EQ(entries(dir_), std::vector<std::string>{name(a)});
+  EXPECT_GT(fs::file_size(a), tiny.maxBytes());
+  ASSERT_TRUE(tiny.load("lut", numbered(1)).has_value());
+
+  const std::string b = storeNumbered(tiny, 2);
+  EXPECT_EQ(entries(dir_), std::vector<std::string>{name(b)});
+  EXPECT_TRUE(tiny.load("lut", numbered(2)).has_value());
+}
+
+TEST_F(TableCacheTest, ZeroCapIsUnlimited) {
+  ScopedEnv env("UMBRA_CACHE_MAX_MB", "0");
+  const TableCache cache(dir_.string());
+  EXPECT_EQ(cache.maxBytes(), 0u);
+  std::vector<std::string> names;
+  for (int n = 0; n < 6; ++n) {
+    const std::string path = storeNumbered(cache, n);
+    setUsedHoursAgo(path, 10 - n);
+    names.push_back(name(path));
+  }
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(entries(dir_), names);
 }
 
 }  // namespace

@@ -3,10 +3,19 @@
 #include <pwd.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
+#include <limits>
+#include <locale>
+#include <mutex>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -35,18 +44,19 @@ std::string homeFromPasswordDatabase() {
   return {};
 }
 
+bool isKindCharacter(char ch) {
+  return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
+         ch == '_' || ch == '-' || ch == '.';
+}
+
 void checkKind(const std::string& kind, const std::map<std::string, std::string>& parameters) {
   if (kind.empty()) throw std::invalid_argument("TableCache: empty table kind");
   if (kind[0] == '.') {
     throw std::invalid_argument("TableCache: table kind '" + kind + "' starts with '.'");
   }
-  for (char ch : kind) {
-    const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') ||
-                    (ch >= '0' && ch <= '9') || ch == '_' || ch == '-' || ch == '.';
-    if (!ok) {
-      throw std::invalid_argument("TableCache: table kind '" + kind +
-                                  "' may only contain letters, digits, '_', '-' and '.'");
-    }
+  if (!std::all_of(kind.begin(), kind.end(), isKindCharacter)) {
+    throw std::invalid_argument("TableCache: table kind '" + kind +
+                                "' may only contain letters, digits, '_', '-' and '.'");
   }
   const auto it = parameters.find("kind");
   if (it != parameters.end() && it->second != kind) {
@@ -61,7 +71,65 @@ std::map<std::string, std::string> withKind(const std::string& kind,
   return parameters;
 }
 
+// Whether name is one pathFor makes: <kind>-<16 lowercase hex digits (parameterHash)>.exr.
+// The writer's temporaries (<name>.tmp-<pid>-<random>) do not end in .exr.
+bool isCacheFileName(const std::string& name) {
+  constexpr size_t hashLength = 16;
+  const std::string suffix = ".exr";
+  if (name.size() < 1 + 1 + hashLength + suffix.size() ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return false;
+  }
+  const size_t hashStart = name.size() - suffix.size() - hashLength;
+  const std::string kind = name.substr(0, hashStart - 1);
+  const auto hash = name.begin() + static_cast<std::ptrdiff_t>(hashStart);
+  return name[hashStart - 1] == '-' && kind[0] != '.' &&
+         std::all_of(kind.begin(), kind.end(), isKindCharacter) &&
+         std::all_of(hash, hash + hashLength,
+                     [](char ch) { return (ch >= '0' && ch <= '9') || (ch >= 'a' && ch <= 'f'); });
+}
+
+constexpr std::uint64_t kMiB = 1024 * 1024;
+constexpr std::uint64_t kDefaultMaxMiB = 2048;
+
+// MiB as a plain decimal number ("512", "0.5", "0") in bytes, rounded up; nullopt for
+// anything else (sign, exponent, spaces, hex, inf/nan, trailing characters).
+std::optional<std::uint64_t> parseMiB(const std::string& text) {
+  const auto digits = std::count_if(text.begin(), text.end(),
+                                    [](char ch) { return ch >= '0' && ch <= '9'; });
+  const auto points = std::count(text.begin(), text.end(), '.');
+  if (digits == 0 || points > 1 || static_cast<size_t>(digits + points) != text.size()) {
+    return std::nullopt;
+  }
+  std::istringstream in(text);
+  in.imbue(std::locale::classic());  // '.' whatever the program's locale
+  double mib = 0.0;
+  if (!(in >> mib)) return std::nullopt;
+  const double bytes = std::ceil(mib * static_cast<double>(kMiB));
+  if (bytes >= static_cast<double>(std::numeric_limits<std::uint64_t>::max())) {
+    return std::numeric_limits<std::uint64_t>::max();
+  }
+  return static_cast<std::uint64_t>(bytes);
+}
+
 }  // namespace
+
+std::uint64_t TableCache::defaultMaxBytes() {
+  const std::string value = environment("UMBRA_CACHE_MAX_MB");
+  if (value.empty()) return kDefaultMaxMiB * kMiB;
+  if (const std::optional<std::uint64_t> bytes = parseMiB(value)) return *bytes;
+  // Warn once per value: a GUI makes a TableCache per frame.
+  static std::mutex mutex;
+  static std::string lastWarned;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (value != lastWarned) {
+    std::cerr << "umbra: UMBRA_CACHE_MAX_MB='" << value
+              << "' is not a size in MiB (a number >= 0, 0 = no limit); using the default "
+              << kDefaultMaxMiB << " MiB\n";
+    lastWarned = value;
+  }
+  return kDefaultMaxMiB * kMiB;
+}
 
 std::string TableCache::defaultDirectory() {
   if (std::string dir = environment("UMBRA_CACHE_DIR"); !dir.empty()) return dir;
@@ -77,7 +145,8 @@ std::string TableCache::defaultDirectory() {
   return ((ec ? fs::path("/tmp") : tmp) / "umbra-cache").string();
 }
 
-TableCache::TableCache(std::string directory) : directory_(std::move(directory)) {}
+TableCache::TableCache(std::string directory, std::uint64_t maxBytes)
+    : directory_(std::move(directory)), maxBytes_(maxBytes) {}
 
 std::string TableCache::pathFor(const std::string& kind,
                                 const std::map<std::string, std::string>& parameters) const {
@@ -99,6 +168,7 @@ std::optional<Table> TableCache::load(const std::string& kind,
   if (table.parameters != withKind(kind, parameters)) {
     return std::nullopt;  // stale file or hash collision
   }
+  fs::last_write_time(path, fs::file_time_type::clock::now(), ec);  // used now; may fail
   return table;
 }
 
@@ -112,6 +182,46 @@ void TableCache::store(const std::string& kind,
     throw TableError(path, "cannot create cache directory '" + directory_ + "': " + ec.message());
   }
   detail::writeExr(path, table, withKind(kind, parameters));
+  enforceCap(path);
+}
+
+void TableCache::enforceCap(const std::string& keepPath) const {
+  if (maxBytes_ == 0) return;
+  struct CacheFile {
+    fs::file_time_type usedAt;
+    fs::path path;
+    std::uintmax_t bytes;
+  };
+  std::vector<CacheFile> files;
+  std::uintmax_t total = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(directory_, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path& path = it->path();
+    std::error_code fileEc;
+    // symlink_status: a link is never one of ours, even with a cache file's name.
+    if (!isCacheFileName(path.filename().string()) ||
+        !fs::is_regular_file(fs::symlink_status(path, fileEc))) {
+      continue;
+    }
+    const std::uintmax_t bytes = fs::file_size(path, fileEc);
+    if (fileEc) continue;  // removed meanwhile by another process
+    const fs::file_time_type usedAt = fs::last_write_time(path, fileEc);
+    if (fileEc) continue;
+    total += bytes;
+    files.push_back({usedAt, path, bytes});
+  }
+  if (total <= maxBytes_) return;
+  std::sort(files.begin(), files.end(), [](const CacheFile& a, const CacheFile& b) {
+    return std::tie(a.usedAt, a.path) < std::tie(b.usedAt, b.path);
+  });
+  const fs::path keepName = fs::path(keepPath).filename();
+  for (const CacheFile& file : files) {
+    if (total <= maxBytes_) break;
+    if (file.path.filename() == keepName) continue;
+    std::error_code removeEc;
+    fs::remove(file.path, removeEc);  // gone already (another process) counts as removed
+    if (!removeEc) total -= file.bytes;
+  }
 }
 
 }  // namespace umbra::tables

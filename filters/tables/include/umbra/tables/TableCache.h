@@ -1,6 +1,7 @@
 #pragma once
 // On-disk cache of tables, keyed by kind and a hash of every parameter.
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -15,8 +16,15 @@ public:
   // $HOME/.cache/umbra (HOME from the password database if unset), else <tmp>/umbra-cache.
   static std::string defaultDirectory();
 
-  // The directory is created (with parents) on the first store().
-  explicit TableCache(std::string directory);
+  // The size cap in bytes from $UMBRA_CACHE_MAX_MB (MiB, a non-negative decimal number such
+  // as 512 or 0.5; 0 = no limit), default 2048 MiB when unset or empty. Any other value
+  // (negative, not a number, trailing characters) prints one line on stderr naming the
+  // variable and the value (once per distinct value) and gives the default.
+  static std::uint64_t defaultMaxBytes();
+
+  // The directory is created (with parents) on the first store(). maxBytes caps the total
+  // size of the cache's own files in the directory (0 = no limit); see store().
+  explicit TableCache(std::string directory, std::uint64_t maxBytes = defaultMaxBytes());
 
   // <dir>/<kind>-<parameterHash(parameters)>.exr. kind must be non-empty and made of
   // [A-Za-z0-9_.-], not starting with '.', else std::invalid_argument.
@@ -25,7 +33,8 @@ public:
 
   // The cached table, or nullopt when the file is missing, unreadable / corrupt, or its
   // stored parameters differ from parameters plus {"kind": kind}. The returned table's
-  // parameters include "kind".
+  // parameters include "kind". A hit sets the file's modification time to now (its last
+  // use, for the size cap); failing to (a read-only cache) is not an error.
   std::optional<Table> load(const std::string& kind,
                             const std::map<std::string, std::string>& parameters) const;
 
@@ -33,13 +42,21 @@ public:
   // replacing any cached file. table.parameters is ignored. Throws TableError when the
   // directory cannot be created or the file cannot be written. A "kind" entry in
   // parameters that differs from kind throws std::invalid_argument (also in load/pathFor).
+  // Then, while the cache's own files (regular files named <kind>-<16 hex digits>.exr, as
+  // pathFor makes them) total more than maxBytes, removes them least recently used (oldest
+  // modification time) first, never the file just written. Other files, subdirectories and
+  // the writer's temporaries are left alone; removal errors are ignored.
   void store(const std::string& kind, const std::map<std::string, std::string>& parameters,
              const Table& table) const;
 
   const std::string& directory() const { return directory_; }
+  std::uint64_t maxBytes() const { return maxBytes_; }
 
 private:
+  void enforceCap(const std::string& keepPath) const;
+
   std::string directory_;
+  std::uint64_t maxBytes_;
 };
 
 }  // namespace umbra::tables
