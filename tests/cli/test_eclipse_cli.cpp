@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -117,17 +119,22 @@ TEST(EclipseCli, EarthProfileAtTheMoonIsRedWithAFigure12Plot) {
 }
 
 // The atmosphere tables come through vtkAtmosphereTablesSource's cache: a second run with
-// another LuT size computes a new LuT but stores no atmosphere table again.
+// another LuT size computes a new LuT but stores no atmosphere table again (a store writes
+// a temporary file and renames it: a new inode; a load only touches the time, which the
+// cache's LRU cap reads as a use).
 TEST(EclipseCli, PrecomputeEclipseTakesTheAtmosphereTablesFromTheirCache) {
   TempDir dir;
   auto atmosphereTables = [&] {
-    std::map<std::string, std::filesystem::file_time_type> files;
+    std::map<std::string, ino_t> files;
     for (const auto& e : std::filesystem::recursive_directory_iterator(dir / "cache"))
-      if (e.is_regular_file() && e.path().filename().string().rfind("atmosphere-", 0) == 0)
-        files[e.path().string()] = e.last_write_time();
+      if (e.is_regular_file() && e.path().filename().string().rfind("atmosphere-", 0) == 0) {
+        struct stat st {};
+        EXPECT_EQ(::stat(e.path().c_str(), &st), 0) << e.path();
+        files[e.path().string()] = st.st_ino;
+      }
     return files;
   };
-  std::map<std::string, std::filesystem::file_time_type> first;
+  std::map<std::string, ino_t> first;
   for (const std::string size : {"8", "12"}) {
     const RunResult r = run(UMBRA_EXE,
                             with({"precompute", "eclipse", "--occluder", "earth", "--atmosphere", "earth", "--size", size,
