@@ -337,7 +337,7 @@ void useSmallEclipseShadowTables(vtkEclipseShadowLutSource* s) {
 void useSmallLimbLuminanceTables(vtkLimbLuminanceSource* s) {
   useSmallEclipseAtmosphere(s);
   s->SetWidth(8);
-  s->SetHeight(8);
+  s->SetHeight(32);
   s->SetColumns(16);
   s->SetLimbRows(32);
   s->SetScatteringCells(4);

@@ -136,8 +136,9 @@ void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs&
 
 /// Small tables for quick looks and tests (about a second): Bruneton tables as
 /// useSmallAtmosphereTables with 2 orders, a 128x64 deviation table; the shadow LuT 64x32
-/// with limb views of 32 rows and 4x4 scattering cells; the limb-luminance LuT 8x8x16
-/// with views of 32 rows and 4x4 cells.
+/// with limb views of 32 rows and 4x4 scattering cells; the limb-luminance LuT 8 (u) x 32
+/// (v) x 16 (beta) with views of 32 rows and 4x4 cells (8 v rows put the ring's flux off
+/// by up to x1.7 in G: docs/accuracy-vs-speed.md).
 void useSmallEclipseShadowTables(vtkEclipseShadowLutSource* source);
 void useSmallLimbLuminanceTables(vtkLimbLuminanceSource* source);
 
