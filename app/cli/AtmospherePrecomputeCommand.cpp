@@ -19,7 +19,6 @@
 #include "umbra/tables/Exr.h"
 #include "umbra/tables/TableCache.h"
 
-#include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -156,13 +155,7 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       source->SetCacheDirectory(o->cache.directory.c_str());
       source->SetUseCache(!o->cache.disabled);
 
-      ProgressLine progress("atmosphere tables (" + atm.name + ")");
-      vtkNew<vtkCallbackCommand> onProgress;
-      onProgress->SetClientData(&progress);
-      onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
-        static_cast<ProgressLine*>(client)->update(*static_cast<double*>(data));
-      });
-      source->AddObserver(vtkCommand::ProgressEvent, onProgress);
+      ProgressLine progress("atmosphere tables (" + atm.name + ")", source);
       const bool warnings = vtkObject::GetGlobalWarningDisplay() != 0;
       vtkObject::GlobalWarningDisplayOff();  // the error comes back as one line below
       source->Update();

@@ -3,6 +3,8 @@
 // CLI11 app and returns the action to run once the command line has been parsed.
 #include <CLI/CLI.hpp>
 
+class vtkObject;
+
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -31,17 +33,25 @@ void addInspectCommand(CLI::App& app, Action& action);
 void addAtmosphereCommand(CLI::App& app, Action& action);
 void addTerrainCommand(CLI::App& app, Action& action);
 
-/// Progress for long work on stderr: a live percentage on a terminal, quiet otherwise.
+/// Progress for long work on stderr: a live percentage on a terminal, quiet otherwise; the
+/// line is cleared when the work is done (fraction 1) or the ProgressLine ends. With a
+/// `source` it follows that VTK object's vtkCommand::ProgressEvent while it lives.
 class ProgressLine {
 public:
-  explicit ProgressLine(std::string what);
+  explicit ProgressLine(std::string what, vtkObject* source = nullptr);
   ~ProgressLine();
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
   void update(double fraction);
 
 private:
+  void onProgress(vtkObject*, unsigned long, void* fraction);
+  void clear();
   std::string what;
   int lastPercent = -1;
   bool terminal;
+  vtkObject* source = nullptr;
+  unsigned long observer = 0;
 };
 
 } // namespace umbra::cli

@@ -179,6 +179,10 @@ void addRenderCommand(CLI::App& app, Action& action) {
       limb->SetUseCache(!o->cache.disabled);
       if (o->atmosphereTables == "small") render::useSmallLimbLuminanceTables(limb);
       view.GetAtmosphere().SetLimbRingThresholdPixels(o->limbRingThresholdPx);
+      // Tables made on demand (none from the cache) can take minutes: their progress.
+      const ProgressLine tablesProgress("atmosphere tables", tables);
+      const ProgressLine shadowProgress("atmospheric shadow LuT", shadow);
+      const ProgressLine limbProgress("limb-luminance LuT", limb);
       std::vector<std::unique_ptr<render::TerrainRendering>> terrains;  // (drawn by the view)
       std::optional<ProgressLine> progress;
       if (animation) progress.emplace("frames (" + std::to_string(frames.size()) + ")");

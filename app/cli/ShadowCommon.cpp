@@ -11,7 +11,6 @@
 #include "Spectrum.hpp"
 #include "vtkEclipseShadowLutSource.h"
 
-#include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -111,15 +110,8 @@ void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& 
   source->SetCacheDirectory(cache.directory.c_str());
   source->SetUseCache(!cache.disabled);
   source->ConnectAtmosphereTables();  // the Bruneton and refraction tables from their cache
-  ProgressLine progress(what);
-  vtkNew<vtkCallbackCommand> onProgress;
-  onProgress->SetClientData(&progress);
-  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
-    static_cast<ProgressLine*>(client)->update(*static_cast<double*>(data));
-  });
-  source->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  ProgressLine progress(what, source);
   source->Update();
-  source->RemoveObserver(onProgress);
   if (source->GetOutput()->GetNumberOfPoints() == 0) throw CommandError("the " + what + " could not be computed");
   if (source->GetLastUpdateWasCacheHit())
     std::cerr << "cache hit: " << source->GetCachePath() << "\n";
@@ -133,13 +125,7 @@ vtkSmartPointer<vtkTable> atmosphericProfile(const EclipseAtmosphereChoice& atmo
                                              double distanceM, double maxOffsetM, int samples, double limbDarkening) {
   auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
   atmosphere.configure(source, occ);
-  ProgressLine progress("atmosphere tables " + atmosphere.atmosphere);
-  vtkNew<vtkCallbackCommand> onProgress;
-  onProgress->SetClientData(&progress);
-  onProgress->SetCallback([](vtkObject*, unsigned long, void* client, void* data) {
-    static_cast<ProgressLine*>(client)->update(*static_cast<double*>(data));
-  });
-  source->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  ProgressLine progress("atmosphere tables " + atmosphere.atmosphere, source);
   std::shared_ptr<const eclipse::EclipseAtmosphere> prepared;
   try {
     prepared = source->GetPreparedAtmosphere();

@@ -2,6 +2,11 @@
 
 #include <unistd.h>
 
+#include <vtkCommand.h>
+#include <vtkObject.h>
+
+#include <algorithm>
+
 #include <cstdio>
 #include <iostream>
 
@@ -14,17 +19,34 @@ void CacheOptions::addTo(CLI::App* command) {
   command->add_flag("--no-cache", this->disabled, "Neither read nor write the table cache");
 }
 
-ProgressLine::ProgressLine(std::string w) : what(std::move(w)), terminal(::isatty(STDERR_FILENO) != 0) {}
+ProgressLine::ProgressLine(std::string w, vtkObject* s)
+    : what(std::move(w)), terminal(::isatty(STDERR_FILENO) != 0), source(s) {
+  if (this->source) this->observer = this->source->AddObserver(vtkCommand::ProgressEvent, this, &ProgressLine::onProgress);
+}
 
 ProgressLine::~ProgressLine() {
+  if (this->source) this->source->RemoveObserver(this->observer);
+  this->clear();
+}
+
+void ProgressLine::onProgress(vtkObject*, unsigned long, void* fraction) {
+  this->update(*static_cast<double*>(fraction));
+}
+
+void ProgressLine::clear() {
   if (this->terminal && this->lastPercent >= 0) std::cerr << "\r\033[K" << std::flush;
+  this->lastPercent = -1;
 }
 
 void ProgressLine::update(double fraction) {
-  const int percent = static_cast<int>(fraction * 100.0);
+  if (!(fraction < 1.0)) {  // done (or not a number): nothing left to show
+    this->clear();
+    return;
+  }
+  const int percent = static_cast<int>(std::max(fraction, 0.0) * 100.0);
   if (!this->terminal || percent == this->lastPercent) return;
   this->lastPercent = percent;
-  std::cerr << "\r" << this->what << ": " << percent << "%" << std::flush;
+  std::cerr << "\r\033[K" << this->what << ": " << percent << "%" << std::flush;
 }
 
 } // namespace umbra::cli

@@ -14,7 +14,6 @@
 #include "umbra/tables/Exr.h"
 #include "vtkTerrainHorizonShadowFilter.h"
 
-#include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -180,13 +179,7 @@ int runShadow(const Options& o) {
   filter->SetMethod(static_cast<int>(method));
   filter->SetLevels(o.levels);
   filter->SetUniformSteps(o.uniformSteps);
-  ProgressLine progress("terrain shadow");
-  vtkNew<vtkCallbackCommand> onProgress;
-  onProgress->SetClientData(&progress);
-  onProgress->SetCallback([](vtkObject*, unsigned long, void* line, void* fraction) {
-    static_cast<ProgressLine*>(line)->update(*static_cast<double*>(fraction));
-  });
-  filter->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  ProgressLine progress("terrain shadow", filter);
   const auto t0 = std::chrono::steady_clock::now();
   filter->Update();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -12,7 +12,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 using namespace umbra;
@@ -142,6 +144,41 @@ TEST(RenderCli, AnimationWritesOneFramePerStep) {
 
 // ---- scenes with an atmosphere (small tables: --atmosphere-tables small) ----------------
 
+
+// Progress of the tables a render makes on demand (cold cache: the atmosphere's, the
+// atmospheric shadow LuT, the limb-luminance LuT of the ring seen from the Moon): a live
+// percentage per table on a terminal (run under a pseudo-terminal by util-linux `script`),
+// each line cleared when its table is done so that "wrote ..." starts a clean line; and
+// nothing of it when stderr is not a terminal.
+TEST(RenderCli, ProgressOnATerminalOnly) {
+  if (!std::filesystem::exists("/usr/bin/script")) GTEST_SKIP() << "no /usr/bin/script (util-linux)";
+  TempDir dir;
+  const std::string scene = UMBRA_SOURCE_DIR "/examples/scenes/earth-from-lunar-north-pole-2015-09-28.json";
+  const std::vector<std::string> args{"render", scene, "--size", "64x36", "--atmosphere-tables", "small", "--refraction"};
+  std::string command = quote(UMBRA_EXE);
+  for (const std::string& a : args) command += " " + quote(a);
+  command += " --cache-dir " + quote(dir / "tty-cache") + " -o " + quote(dir / "tty.png");
+  const RunResult tty = run("/usr/bin/script", {"-qec", command, "/dev/null"});
+  ASSERT_EQ(tty.exitCode, 0) << tty.out << tty.err;
+  for (const std::string what : {"atmosphere tables", "atmospheric shadow LuT", "limb-luminance LuT"}) {
+    const std::size_t at = tty.out.find("\r\033[K" + what + ": ");
+    ASSERT_NE(at, std::string::npos) << what << " in " << tty.out;
+    EXPECT_TRUE(std::isdigit(static_cast<unsigned char>(tty.out[at + 4 + what.size() + 2]))) << what;
+  }
+  const std::size_t wrote = tty.out.find("wrote ");
+  ASSERT_NE(wrote, std::string::npos) << tty.out;
+  EXPECT_GE(wrote, 4u);
+  EXPECT_EQ(tty.out.substr(wrote - 4, 4), "\r\033[K");  // the last progress line cleared first
+  EXPECT_EQ(tty.out.find('%', wrote), std::string::npos);
+
+  std::vector<std::string> plain = args;
+  plain.insert(plain.end(), {"--cache-dir", dir / "cache", "-o", dir / "plain.png"});
+  const RunResult r = run(UMBRA_EXE, plain);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err.find('%'), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("wrote "), std::string::npos);
+}
 
 // The sunset example: the Sun (the camera's target, at the centre) is reddened, the sky
 // above it is lit and bluer high up than beside the Sun, the ground below is darker.
