@@ -33,8 +33,9 @@ void addInspectCommand(CLI::App& app, Action& action);
 void addAtmosphereCommand(CLI::App& app, Action& action);
 void addTerrainCommand(CLI::App& app, Action& action);
 
-/// Progress for long work on stderr: a live percentage on a terminal, quiet otherwise; the
-/// line is cleared when the work is done (fraction 1) or the ProgressLine ends. With a
+/// Progress for long work on stderr: a live percentage on a terminal, quiet otherwise,
+/// never going back while shown; the line is cleared when the work is done (fraction 1)
+/// or the ProgressLine ends. With a
 /// `source` it follows that VTK object's vtkCommand::ProgressEvent while it lives.
 class ProgressLine {
 public:

@@ -43,7 +43,9 @@ void ProgressLine::update(double fraction) {
     this->clear();
     return;
   }
-  const int percent = static_cast<int>(std::max(fraction, 0.0) * 100.0);
+  // Never back while shown (a VTK pipeline restarts a source's progress at 0 after its
+  // input's tables were its first half).
+  const int percent = std::max(static_cast<int>(std::max(fraction, 0.0) * 100.0), this->lastPercent);
   if (!this->terminal || percent == this->lastPercent) return;
   this->lastPercent = percent;
   std::cerr << "\r\033[K" << this->what << ": " << percent << "%" << std::flush;

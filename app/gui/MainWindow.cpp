@@ -100,6 +100,7 @@ struct MainWindow::AtmosphereJob {
   std::vector<std::unique_ptr<Stage>> stages;
   std::thread thread;
   std::atomic<bool> cancelled{false};
+  std::atomic<int> shownPercent{0};
   QProgressBar* bar = nullptr;
 
   void observe(vtkAlgorithm* algorithm, double from, double to) {
@@ -112,7 +113,11 @@ struct MainWindow::AtmosphereJob {
       if (st->job->cancelled) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
       QProgressBar* progress = st->job->bar;
       const double f = std::clamp(*static_cast<double*>(data), 0.0, 1.0);
-      const int percent = static_cast<int>(100.0 * (st->from + (st->to - st->from) * f));
+      // Never back within a job (a VTK pipeline restarts a source's progress at 0 after its
+      // input's tables, which were already its first half).
+      const int percent = std::max(static_cast<int>(100.0 * (st->from + (st->to - st->from) * f)),
+                                   st->job->shownPercent.load());
+      st->job->shownPercent = percent;
       QMetaObject::invokeMethod(progress, [progress, percent] { progress->setValue(percent); }, Qt::QueuedConnection);
     });
     algorithm->AddObserver(vtkCommand::ProgressEvent, stage->onProgress);
@@ -423,7 +428,8 @@ void MainWindow::startEclipseLuts() {
   if (!makeShadow && !makeLimb) return;
   auto j = std::make_unique<AtmosphereJob>();
   // Each LuT's part of the bar: the atmosphere's tables with refraction (from their
-  // cache) in its first half, the texels in its second.
+  // cache) in its first half, the texels in its second; the LuT source reports both (its
+  // tables' progress is its first half), the tables are observed too, to be cancelled.
   const double split = makeShadow && makeLimb ? 0.5 : makeShadow ? 1.0 : 0.0;
   std::string occluder;
   try {
@@ -432,14 +438,14 @@ void MainWindow::startEclipseLuts() {
       j->shadow = this->view->newAtmosphereShadowSource();
       j->request = *shadow;
       j->observe(render::setUpAtmosphereShadow(j->shadow, *shadow), 0.0, 0.5 * split);
-      j->observe(j->shadow, 0.5 * split, split);
+      j->observe(j->shadow, 0.0, split);
     }
     if (makeLimb) {
       occluder = limb->occluder;
       j->limb = this->view->newLimbLuminanceSource();
       j->limbRequest = *limb;
       j->observe(render::setUpLimbLuminance(j->limb, *limb), split, 0.5 * (split + 1.0));
-      j->observe(j->limb, 0.5 * (split + 1.0), 1.0);
+      j->observe(j->limb, split, 1.0);
     }
   } catch (const std::exception& e) {
     if (makeShadow) this->failedShadow = *shadow;

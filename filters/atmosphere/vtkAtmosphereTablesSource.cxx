@@ -262,9 +262,12 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
       if (table) {
         ++this->CacheHits;
       } else {
+        // After the Bruneton tables made now (0 to 0.95), the rest: progress never goes back.
+        const double from = this->GetProgress() < 1.0 ? this->GetProgress() : 0.0;
         const atmosphere::RefractionTable r = atmosphere::buildRefractionTable(
             atmosphere::refractiveMedium(atm, atm.refractivityReferenceWavelengthNm), this->RefractionWidth,
-            this->RefractionHeight, this->RefractionStepM, [this](double f) { this->UpdateProgress(f); });
+            this->RefractionHeight, this->RefractionStepM,
+            [this, from](double f) { this->UpdateProgress(from + (1.0 - from) * f); });
         table.emplace();
         table->width = r.width;
         table->height = r.height;

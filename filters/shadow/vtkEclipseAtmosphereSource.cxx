@@ -13,6 +13,7 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkAlgorithmOutput.h>
+#include <vtkCommand.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
@@ -99,6 +100,14 @@ Resolved resolve(const std::string& spec, int wavelengths, vtkMultiBlockDataSet*
 
 vtkEclipseAtmosphereSource::vtkEclipseAtmosphereSource() { this->SetNumberOfInputPorts(1); }
 
+vtkEclipseAtmosphereSource::~vtkEclipseAtmosphereSource() {
+  if (this->TablesSource) this->TablesSource->RemoveObserver(this->TablesProgressObserver);
+}
+
+void vtkEclipseAtmosphereSource::TablesProgress(vtkObject*, unsigned long, void* fraction) {
+  this->UpdateProgress(0.5 * *static_cast<double*>(fraction));
+}
+
 int vtkEclipseAtmosphereSource::FillInputPortInformation(int, vtkInformation* info) {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkMultiBlockDataSet");
   info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
@@ -122,8 +131,11 @@ vtkAlgorithm* vtkEclipseAtmosphereSource::ConnectAtmosphereTables() {
   const bool ours = tables && this->GetNumberOfInputConnections(0) > 0 && this->GetInputAlgorithm(0, 0) == tables;
   if (this->Atmosphere.empty() || (this->GetNumberOfInputConnections(0) > 0 && !ours)) return nullptr;
   if (!ours) {
+    if (this->TablesSource) this->TablesSource->RemoveObserver(this->TablesProgressObserver);
     this->TablesSource = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
     tables = vtkAtmosphereTablesSource::SafeDownCast(this->TablesSource);
+    this->TablesProgressObserver =
+        tables->AddObserver(vtkCommand::ProgressEvent, this, &vtkEclipseAtmosphereSource::TablesProgress);
     this->SetInputConnection(tables->GetOutputPort());
   }
   // (Re)configured on every call: the setters mark it modified only on a change.
@@ -226,7 +238,7 @@ std::vector<float> vtkEclipseAtmosphereSource::CachedOrComputed(const char* kind
         this->LastCacheHit = true;
         return table->data;
       }
-  this->UpdateProgress(0.0);
+  if (!this->InputTables()) this->UpdateProgress(0.0);  // (with input: its tables were the first half)
   eclipse::AtmosphericShadowModel model = this->PrepareAtmosphere(0.0, 0.5)->model;
   model.limbDarkening = limbDarkening;
   tables::Table t;

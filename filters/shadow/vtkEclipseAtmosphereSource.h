@@ -110,7 +110,8 @@ public:
 
   /// Feeds the input from a new vtkAtmosphereTablesSource asking for the tables these
   /// properties describe (atmosphere, wavelengths, sizes, orders, refraction, cache): the
-  /// Bruneton and refraction tables then come from their EXR cache across runs. A later
+  /// Bruneton and refraction tables then come from their EXR cache across runs; made on
+  /// demand, their progress is the first half of this source's ProgressEvents. A later
   /// call re-configures that tables source from the properties. Does nothing without an
   /// Atmosphere or when another input is connected. Returns the tables source (or null).
   vtkAlgorithm* ConnectAtmosphereTables();
@@ -127,7 +128,7 @@ public:
 
 protected:
   vtkEclipseAtmosphereSource();
-  ~vtkEclipseAtmosphereSource() override = default;
+  ~vtkEclipseAtmosphereSource() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override { return 1; }
@@ -185,6 +186,8 @@ protected:
   double VLowFraction = 0.0;
 
   vtkSmartPointer<vtkAlgorithm> TablesSource;
+  unsigned long TablesProgressObserver = 0;  ///< on TablesSource: TablesProgress
+  void TablesProgress(vtkObject*, unsigned long, void* fraction);
   /// The atmosphere this source prepared last (keeps it shared while the source lives).
   std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> Prepared;
   bool LastCacheHit = false;

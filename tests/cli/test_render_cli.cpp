@@ -14,8 +14,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 using namespace umbra;
 using namespace umbra::test;
@@ -147,9 +149,9 @@ TEST(RenderCli, AnimationWritesOneFramePerStep) {
 
 // Progress of the tables a render makes on demand (cold cache: the atmosphere's, the
 // atmospheric shadow LuT, the limb-luminance LuT of the ring seen from the Moon): a live
-// percentage per table on a terminal (run under a pseudo-terminal by util-linux `script`),
-// each line cleared when its table is done so that "wrote ..." starts a clean line; and
-// nothing of it when stderr is not a terminal.
+// percentage per table on a terminal (run under a pseudo-terminal by util-linux `script`)
+// that never goes back, each line cleared when its table is done so that "wrote ..."
+// starts a clean line; and nothing of it when stderr is not a terminal.
 TEST(RenderCli, ProgressOnATerminalOnly) {
   if (!std::filesystem::exists("/usr/bin/script")) GTEST_SKIP() << "no /usr/bin/script (util-linux)";
   TempDir dir;
@@ -161,9 +163,16 @@ TEST(RenderCli, ProgressOnATerminalOnly) {
   const RunResult tty = run("/usr/bin/script", {"-qec", command, "/dev/null"});
   ASSERT_EQ(tty.exitCode, 0) << tty.out << tty.err;
   for (const std::string what : {"atmosphere tables", "atmospheric shadow LuT", "limb-luminance LuT"}) {
-    const std::size_t at = tty.out.find("\r\033[K" + what + ": ");
-    ASSERT_NE(at, std::string::npos) << what << " in " << tty.out;
-    EXPECT_TRUE(std::isdigit(static_cast<unsigned char>(tty.out[at + 4 + what.size() + 2]))) << what;
+    // Every "\r\033[K<what>: N%" in order: from below 50 % up to above 50 %, never back
+    // (the LuTs' own tables are the first half of theirs).
+    const std::string prefix = "\r\033[K" + what + ": ";
+    std::vector<int> percents;
+    for (std::size_t at = tty.out.find(prefix); at != std::string::npos; at = tty.out.find(prefix, at + 1))
+      percents.push_back(std::atoi(tty.out.c_str() + at + prefix.size()));
+    ASSERT_GE(percents.size(), 3u) << what << " in " << tty.out;
+    EXPECT_LT(percents.front(), 50) << what;
+    EXPECT_GT(percents.back(), 50) << what;
+    EXPECT_TRUE(std::is_sorted(percents.begin(), percents.end())) << what;
   }
   const std::size_t wrote = tty.out.find("wrote ");
   ASSERT_NE(wrote, std::string::npos) << tty.out;
