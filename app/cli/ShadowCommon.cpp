@@ -16,6 +16,7 @@
 #include <vtkNew.h>
 #include <vtkTable.h>
 
+#include <cstdio>
 #include <iostream>
 
 namespace umbra::cli {
@@ -173,7 +174,11 @@ vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limb
     source->SetSunOccluderDistanceM(occluder->sunDistanceM);
   }
   std::string what = "shadow LuT " + std::to_string(source->GetWidth()) + "x" + std::to_string(size);
-  if (range) what += " (u " + filters::formatNumber(range->uMin) + ".." + filters::formatNumber(range->uMax) + ")";
+  if (range) {
+    char u[64];
+    std::snprintf(u, sizeof u, " (u %.6g..%.6g)", range->uMin, range->uMax);
+    what += u;
+  }
   if (atmosphere && !atmosphere->atmosphere.empty()) {
     if (!occluder) throw CommandError("an atmosphere needs an occluder");
     atmosphere->configure(source, *occluder);
