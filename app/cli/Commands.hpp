@@ -6,6 +6,7 @@
 class vtkObject;
 
 #include <functional>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -51,6 +52,8 @@ private:
   std::string what;
   int lastPercent = -1;
   bool terminal;
+  bool done = false;  ///< the last run reached 1: later reports are dropped until one at 0
+  std::mutex mutex;
   vtkObject* source = nullptr;
   unsigned long observer = 0;
 };

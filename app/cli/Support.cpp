@@ -6,6 +6,7 @@
 #include <vtkObject.h>
 
 #include <algorithm>
+#include <mutex>
 
 #include <cstdio>
 #include <iostream>
@@ -39,10 +40,16 @@ void ProgressLine::clear() {
 }
 
 void ProgressLine::update(double fraction) {
+  const std::lock_guard<std::mutex> lock(this->mutex);  // worker threads report too
   if (!(fraction < 1.0)) {  // done (or not a number): nothing left to show
     this->clear();
+    this->done = true;
     return;
   }
+  // Late reports of the run just done (threads that counted before the last one) are
+  // dropped; a new run starts at 0.
+  if (this->done && fraction > 0.0) return;
+  this->done = false;
   // Never back while shown (a VTK pipeline restarts a source's progress at 0 after its
   // input's tables were its first half).
   const int percent = std::max(static_cast<int>(std::max(fraction, 0.0) * 100.0), this->lastPercent);

@@ -172,7 +172,7 @@ TEST(RenderCli, ProgressOnATerminalOnly) {
     ASSERT_GE(percents.size(), 3u) << what << " in " << tty.out;
     EXPECT_LT(percents.front(), 50) << what;
     EXPECT_GT(percents.back(), 50) << what;
-    EXPECT_TRUE(std::is_sorted(percents.begin(), percents.end())) << what;
+    EXPECT_TRUE(std::is_sorted(percents.begin(), percents.end())) << what << ": " << ::testing::PrintToString(percents);
   }
   const std::size_t wrote = tty.out.find("wrote ");
   ASSERT_NE(wrote, std::string::npos) << tty.out;
