@@ -641,6 +641,7 @@ void MainWindow::showTime(scene::UtcTime time) {
   const bool onSlider = std::abs(minutes) <= kSliderHalfRangeMin && std::abs(minutes - std::round(minutes)) < 1e-6;
   if (!onSlider) this->sliderCentre = time;
   scene::setTime(*this->current, time);
+  this->failedShadow.reset(), this->failedLimb.reset();  // another time: try again
   {
     const QSignalBlocker block(this->slider);
     this->slider->setValue(onSlider ? static_cast<int>(std::lround(minutes)) : 0);
@@ -652,6 +653,7 @@ void MainWindow::sliderMoved(int minutes) {
   if (!this->current || !this->current->hasTime) return;
   try {
     scene::setTime(*this->current, scene::addSeconds(this->sliderCentre, 60.0 * minutes));
+    this->failedShadow.reset(), this->failedLimb.reset();  // another time: try again
     this->refresh();
   } catch (const std::exception& e) {
     this->setStatus(QString("error: ") + e.what());

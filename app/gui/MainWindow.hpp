@@ -169,7 +169,9 @@ private:
   std::string editedFrom;  // the name the edits started from (the editor's name for them)
   bool smallTables = false;
   std::unique_ptr<AtmosphereJob> job;
-  std::optional<render::AtmosphereShadowRequest> failedShadow;  // cancelled or failed: not again
+  // Cancelled or failed: not asked for again until the user moves the time (the eclipse
+  // tables are the same through an eclipse: render::sunDistanceOnGrid) or the request changes.
+  std::optional<render::AtmosphereShadowRequest> failedShadow;
   std::optional<render::LimbLuminanceRequest> failedLimb;
   int jobGeneration = 0;
 };

@@ -54,7 +54,9 @@ EclipseTableRequest tableRequest(const SceneInputs& in, int width, int height) {
   EclipseTableRequest r;
   r.occluder = occ.name;
   r.model = in.atmosphere->model;
-  r.occluderRadiusM = occ.radiusM;
+  // The model's ground: the body's sphere is shrunk below an observer on it (by ~5 m, with
+  // the camera's rounding), which would make every frame ask for another table.
+  r.occluderRadiusM = in.atmosphere->bottomRadiusM > 0.0 ? in.atmosphere->bottomRadiusM : occ.radiusM;
   r.sunRadiusM = in.sun.radiusM;
   r.sunOccluderDistanceM = sunDistanceOnGrid(glm::length(occ.centreM - in.sun.positionM));
   r.width = width;
@@ -295,7 +297,9 @@ std::optional<LimbLuminanceRequest> sceneLimbLuminanceRequest(const SceneInputs&
   const auto angles = eclipse::shadowAngles(cam, in.sun.positionM, in.sun.radiusM, occ.centreM, occ.radiusM);
   const bool inShadow = eclipse::occluderInFront(cam, in.sun.positionM, occ.centreM) && eclipse::lutCoords(angles).v < 1.0;
   if (!inShadow) return std::nullopt;
-  const double topM = atmosphere::loadAtmosphere(in.atmosphere->model, atmosphere::WavelengthSet::rgb().nm).topRadiusM;
+  const double topM = in.atmosphere->topRadiusM > 0.0
+                          ? in.atmosphere->topRadiusM
+                          : atmosphere::loadAtmosphere(in.atmosphere->model, atmosphere::WavelengthSet::rgb().nm).topRadiusM;
   if (glm::length(cam - occ.centreM) <= topM) return std::nullopt;
   LimbLuminanceRequest r;
   static_cast<EclipseTableRequest&>(r) = tableRequest(in, width, height);

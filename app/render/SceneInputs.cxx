@@ -46,9 +46,9 @@ SceneInputs sceneInputs(const scene::Scene& s) {
       throw std::invalid_argument("only one atmosphere per view is drawn so far ('" + in.atmosphere->body +
                                   "' and '" + b.name + "' ask for one)");
     }
-    in.atmosphere = SceneAtmosphere{b.name, b.atmosphereModel};
-    in.bodies.back().radiusM =
-        atmosphere::loadAtmosphere(b.atmosphereModel, atmosphere::WavelengthSet::rgb().nm).bottomRadiusM;
+    const atmosphere::Atmosphere model = atmosphere::loadAtmosphere(b.atmosphereModel, atmosphere::WavelengthSet::rgb().nm);
+    in.atmosphere = SceneAtmosphere{b.name, b.atmosphereModel, model.bottomRadiusM, model.topRadiusM};
+    in.bodies.back().radiusM = model.bottomRadiusM;
   }
   in.camera.positionM = s.camera.positionM;
   in.camera.targetM = s.camera.targetM;

@@ -18,6 +18,10 @@ namespace umbra::render {
 struct SceneAtmosphere {
   std::string body;   ///< the body it surrounds (its SphereBody has the same name)
   std::string model;  ///< preset name or file (vtkAtmosphereTablesSource::SetAtmosphere)
+  /// The model's ground and top radii (sceneInputs sets them; 0: not known, the body's
+  /// sphere and the model are read where needed). The eclipse tables are made for the
+  /// ground radius, not for the body's sphere, which an observer on it may shrink.
+  double bottomRadiusM = 0.0, topRadiusM = 0.0;
 };
 
 struct SceneInputs {

@@ -458,11 +458,14 @@ TEST(GuiEditor, AtmosphereShadowLutInTheWorkerWithProgress) {
   EXPECT_TRUE(again.w.sceneView().atmosphereShadowFromCache());
 }
 
-// Cancel: with no table before, the Moon stays airless-dark in the umbra; with one, the
-// view keeps shading with it (copper) after a cancelled recomputation for a new time,
-// which is not started again until the time changes again. Time steps while a table is
-// being made: the last one's is made next. A cancel is not an error: nothing on stderr
-// (VTK printed the source's error and the executive's failure, 12 lines).
+// Cancel: with no table before, the Moon stays airless-dark in the umbra, and the table
+// is not asked for again until the time moves (a cancelled or failed table is retried
+// then). With one, the view keeps shading with it (copper) after a cancelled
+// recomputation (here for another atmosphere of the same body). The tables of the scene
+// are the same through the eclipse (render::sunDistanceOnGrid, ranged u on a grid): a
+// time step needs none, and slider steps while a table is made wait for it. A cancel is
+// not an error: nothing on stderr (VTK printed the source's error and the executive's
+// failure, 12 lines).
 TEST(GuiEditor, CancelTheAtmosphereShadowLutKeepsThePreviousShading) {
   Window win(std::nullopt, kMoon, umbra::scene::parseUtc("2015-09-28T02:50:00Z"), /*settleNow=*/false);
   const StderrCapture err(win.dir / "stderr.txt");
@@ -474,24 +477,31 @@ TEST(GuiEditor, CancelTheAtmosphereShadowLutKeepsThePreviousShading) {
   const auto airless = viewSums(win, "airless.png");
   EXPECT_FALSE(win.w.atmosphereBusy()) << "a cancelled table is not asked for again";
 
-  win.w.showTime(umbra::scene::parseUtc("2015-09-28T02:47:00Z"));
+  win.w.showTime(umbra::scene::parseUtc("2015-09-28T02:47:00Z"));  // the time moves: asked for again
+  EXPECT_TRUE(win.w.atmosphereShadowBusy());
   settle(win.w);
   const auto before = viewSums(win, "before.png");
   EXPECT_TRUE(copper(before));
-  win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:17:00Z"));
-  ASSERT_TRUE(win.w.atmosphereShadowBusy());
+  EXPECT_TRUE(win.w.sceneView().atmosphereShadowCurrent());
+  win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:17:00Z"));  // the same table half an hour later
+  EXPECT_FALSE(win.w.atmosphereBusy());
+  EXPECT_TRUE(win.w.sceneView().atmosphereShadowCurrent());
+
+  win.w.setAtmosphere("earth");  // its tables, then its shadow LuT: cancelled
+  ASSERT_TRUE(untilShadowJob(win.w));
   win.w.cancelAtmosphereTables();
   settle(win.w);
   EXPECT_NE(win.w.statusText().indexOf("atmosphere shadow: cancelled"), -1) << win.w.statusText().toStdString();
   EXPECT_NE(win.w.sceneView().atmosphereShadowLut(), nullptr);
   EXPECT_FALSE(win.w.sceneView().atmosphereShadowCurrent());
   const auto after = viewSums(win, "after.png");
-  std::printf("  Moon's summed R: cancelled at 02:50 (airless) %.0f, 02:47 %.0f, cancelled at 03:17 (02:47's table) %.0f\n",
+  std::printf("  Moon's summed R: cancelled at 02:50 (airless) %.0f, 02:47 %.0f, cancelled for 'earth' (02:47's table) %.0f\n",
               airless[0], before[0], after[0]);
   EXPECT_LT(airless[0], 0.1 * before[0]);
   EXPECT_TRUE(copper(after));
   EXPECT_FALSE(win.w.atmosphereBusy());
-  // Slider steps while a job runs: the latest time's table follows the running one.
+  // Slider steps: the first asks for the cancelled table again, the next ones (the same
+  // table) wait for it; then it is current at the latest time.
   win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:18:00Z"));
   EXPECT_TRUE(win.w.atmosphereShadowBusy());
   win.w.showTime(umbra::scene::parseUtc("2015-09-28T03:19:00Z"));

@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <functional>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -274,6 +275,36 @@ TEST(SceneRangedLut, AnEclipseInMotionKeepsItsLimbLuminanceLut) {
       lastSunM = sunM;
     }
     EXPECT_GT(std::abs(lastSunM - firstSunM), 1.0e6);  // the exact distances differ
+  }
+}
+
+// The copper Moon seen from Earth (the camera on Earth's ground, whose sphere sceneInputs
+// shrinks to just below it: by ~5 m, with the camera's rounding at 1 AU from the origin,
+// a radius different at every minute in its last digits): the atmospheric shadow LuT is
+// made for the model's ground radius, and 02:30 to 03:20 ask for one table (the small
+// ranged one, 64x32, and the whole 256x256 one's Moon columns).
+TEST(SceneRangedLut, AnEclipseInMotionKeepsTheMoonsShadowLut) {
+  scene::Scene s = scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28-moon.json");
+  for (const int size : {32, 256}) {
+    std::optional<AtmosphereShadowRequest> first;
+    std::set<double> sphereRadii;
+    for (int minute = 30; minute <= 80; minute += 10) {
+      const int hour = 2 + minute / 60;
+      char t[32];
+      std::snprintf(t, sizeof t, "2015-09-28T%02d:%02d:00Z", hour, minute % 60);
+      scene::setTime(s, scene::parseUtc(t));
+      const SceneInputs in = sceneInputs(s);
+      ASSERT_TRUE(in.atmosphere);
+      const auto r = sceneAtmosphereShadowRequest(in, size == 32 ? 64 : size, size);
+      ASSERT_TRUE(r) << t;
+      EXPECT_EQ(r->range.has_value(), size == 32) << t;
+      EXPECT_EQ(r->occluderRadiusM, in.atmosphere->bottomRadiusM) << t;
+      sphereRadii.insert(body(in, "Earth").radiusM);
+      EXPECT_LT(body(in, "Earth").radiusM, in.atmosphere->bottomRadiusM) << t;  // shrunk below the camera
+      if (!first) first = r;
+      EXPECT_TRUE(*r == *first) << size << " at " << t;
+    }
+    EXPECT_GT(sphereRadii.size(), 1u);  // what the request no longer follows
   }
 }
 
