@@ -497,7 +497,8 @@ void MainWindow::atmosphereFinished(int generation) {
   done->stopObserving();
   if (done->shadow || done->limb) {
     // The eclipse LuTs: a cancelled job (also one that ended meanwhile) or a failed LuT is
-    // not asked for again (until the scene needs another); the view keeps the table it has.
+    // not asked for again until the scene needs another or the time moves (showTime,
+    // sliderMoved); the view keeps the table it has.
     std::string problem;
     auto outcome = [&](bool asked, bool made, const std::string& name, const std::string& error) {
       if (!asked || (made && !done->cancelled)) return true;
