@@ -1337,15 +1337,50 @@ std::vector<double> lookupScattering(const AtmosphereTables& tables, const Table
   return v;
 }
 
-std::vector<double> skyRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r, double mu,
-                                double muS, double nu, const std::vector<double>& solarIrradiance) {
-  const int nl = static_cast<int>(tables.wavelengthCount());
-  const bool ground = rayIntersectsGround(tables.bottomRadiusM, r, mu);
+std::vector<double> transmittanceAlong(const AtmosphereTables& tables, double r, double mu, double d,
+                                       bool rayIntersectsGround, bool endsOnGround) {
+  const double b = tables.bottomRadiusM;
+  const double rd = endsOnGround ? b : std::clamp(std::sqrt(d * d + 2.0 * r * mu * d + r * r), b, tables.topRadiusM);
+  const double mud = clampCosine((r * mu + d) / rd);
+  const std::vector<double> a = rayIntersectsGround ? transmittanceToTop(tables, rd, -mud) : transmittanceToTop(tables, r, mu);
+  const std::vector<double> c = rayIntersectsGround ? transmittanceToTop(tables, r, -mu) : transmittanceToTop(tables, rd, mud);
+  std::vector<double> out(a.size());
+  for (std::size_t l = 0; l < a.size(); ++l) out[l] = std::min(a[l] / std::max(c[l], 1e-300), 1.0);
+  return out;
+}
+
+namespace {
+
+/// skyRadiance's table lookups at a Sun within the tables (muS >= muSMin).
+std::vector<double> tableRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r, double mu,
+                                  double muS, double nu, bool ground) {
   std::vector<double> L = lookupScattering(tables, tables.multipleScattering, r, mu, muS, nu, ground);
   for (std::size_t q = 0; q < tables.singleScattering.size(); ++q) {
     const Component& c = atmosphere.component(tables.scatteringComponents[q]);
     const std::vector<double> S = lookupScattering(tables, tables.singleScattering[q], r, mu, muS, nu, ground);
-    for (int l = 0; l < nl; ++l) L[l] += S[l] * c.phase(l)(nu);
+    for (std::size_t l = 0; l < L.size(); ++l) L[l] += S[l] * c.phase(l)(nu);
+  }
+  return L;
+}
+
+}  // namespace
+
+std::vector<double> skyRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r, double mu,
+                                double muS, double nu, const std::vector<double>& solarIrradiance) {
+  const int nl = static_cast<int>(tables.wavelengthCount());
+  const double b = tables.bottomRadiusM, muSMin = tables.options.muSMin;
+  const bool ground = rayIntersectsGround(b, r, mu);
+  std::vector<double> L;
+  if (muS >= muSMin) {
+    L = tableRadiance(tables, atmosphere, r, mu, muS, nu, ground);
+  } else {
+    const double end = ground ? distanceToBottomBoundaryM(b, r, mu) : distanceToTopBoundaryM(tables.topRadiusM, r, mu);
+    const double d = distanceToSunCosineM(r, mu, muS, nu, muSMin);
+    if (!(d < end)) return std::vector<double>(nl, 0.0);
+    const double rd = std::clamp(std::sqrt(d * d + 2.0 * r * mu * d + r * r), b, tables.topRadiusM);
+    L = tableRadiance(tables, atmosphere, rd, clampCosine((r * mu + d) / rd), muSMin, nu, ground);
+    const std::vector<double> T = transmittanceAlong(tables, r, mu, d, ground);
+    for (int l = 0; l < nl; ++l) L[l] *= T[l];
   }
   if (!solarIrradiance.empty())
     for (int l = 0; l < nl; ++l) L[l] *= solarIrradiance.at(l);

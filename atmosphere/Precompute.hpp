@@ -185,11 +185,22 @@ ScatteringPoint scatteringTexelPoint(const ShellRadii& shell, const ScatteringTa
 std::vector<double> transmittanceToTop(const AtmosphereTables& tables, double r, double mu);
 /// The same into out[0..channels).
 void transmittanceToTop(const AtmosphereTables& tables, double r, double mu, double* out);
+/// T between (r, mu) and the point at distance d along the straight ray (Bruneton 2017,
+/// GetTransmittance): a ratio of two transmittances to the top, taken upwards for a ray
+/// that hits the ground. endsOnGround: the point is on the ground (its radius the bottom's).
+std::vector<double> transmittanceAlong(const AtmosphereTables& tables, double r, double mu, double d,
+                                       bool rayIntersectsGround, bool endsOnGround = false);
 /// Quadrilinear lookup in a scattering table.
 std::vector<double> lookupScattering(const AtmosphereTables& tables, const Table3D& table, double r,
                                      double mu, double muS, double nu, bool rayIntersectsGround);
 /// Single (each component's table times its phase at nu) plus multiple scattering, times
 /// solarIrradiance (per wavelength; empty: 1). Straight-ray ground test for the half.
+/// The tables hold the Sun down to options.muSMin, below which the air is taken to be in
+/// the planet's shadow (cos 102 deg: the shadow's edge at the top of the atmosphere is at
+/// 100.1 deg for Earth, 102.3 deg for Mars, whose air above 76 km is left dark between
+/// the two). For a lower Sun the light comes from where the ray first reaches sunlit air,
+/// at d = distanceToSunCosineM: T(x, x_d) S(x_d), and nothing when the ray ends first (the
+/// night sky is black, a limb ray that runs into the day side is not).
 std::vector<double> skyRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r,
                                 double mu, double muS, double nu,
                                 const std::vector<double>& solarIrradiance = {});

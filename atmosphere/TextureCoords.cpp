@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace umbra::atmosphere {
 
@@ -22,6 +23,28 @@ bool rayIntersectsGround(double bottomRadiusM, double r, double mu) {
 double horizonCosine(double bottomRadiusM, double r) {
   const double b = bottomRadiusM;
   return r <= b ? 0.0 : -safeSqrt((r - b) * (r + b)) / r;
+}
+
+double distanceToSunCosineM(double r, double mu, double muS, double nu, double muSMin) {
+  if (muS >= muSMin) return 0.0;
+  if (muSMin == 0.0) return nu > 0.0 ? -muS / nu * r : std::numeric_limits<double>::infinity();  // linear
+  const double m2 = muSMin * muSMin;
+  const double A = nu * nu - m2, B = muS * nu - m2 * mu, C = muS * muS - m2;
+  double roots[2] = {-1.0, -1.0};
+  if (A == 0.0) {
+    if (B != 0.0) roots[0] = -0.5 * C / B;
+  } else {
+    // A tangent (disc = 0, as for m = 0) may round to a slightly negative disc.
+    const double disc = B * B - A * C;
+    if (disc < -1e-12 * (B * B + std::abs(A * C))) return std::numeric_limits<double>::infinity();
+    const double q = -(B + std::copysign(std::sqrt(std::max(disc, 0.0)), B));  // no cancellation
+    roots[0] = q / A;
+    if (q != 0.0) roots[1] = C / q;
+  }
+  double u = std::numeric_limits<double>::infinity();
+  for (double x : roots)
+    if (x >= 0.0 && (muS + x * nu) * muSMin >= 0.0) u = std::min(u, x);
+  return u * r;
 }
 
 double textureCoordFromUnitRange(double x, int textureSize) {

@@ -46,6 +46,13 @@ double distanceToBottomBoundaryM(double bottomRadiusM, double radiusM, double mu
 bool rayIntersectsGround(double bottomRadiusM, double radiusM, double mu);
 /// Cosine of the geometric horizon seen from radius r: -sqrt(1 - (bottom / r)^2).
 double horizonCosine(double bottomRadiusM, double radiusM);
+/// Distance [m] from radius r along the straight ray of view-zenith cosine mu, with the Sun
+/// at zenith cosine muS and at cosine nu from the view, to the first point where the Sun's
+/// zenith cosine there, (r muS + d nu) / r(d), has risen to muSMin: 0 when muS >= muSMin,
+/// infinity when it never does. With u = d / r the condition squared is the quadratic
+///     (nu^2 - m^2) u^2 + 2 (muS nu - m^2 mu) u + muS^2 - m^2 = 0   (m = muSMin),
+/// whose roots count where muS + u nu has the sign of m.
+double distanceToSunCosineM(double radiusM, double mu, double muS, double nu, double muSMin);
 
 /// Bruneton's GetTextureCoordFromUnitRange: x in [0, 1] to a texture coordinate whose
 /// texel centres lie at x = 0 and x = 1.

@@ -186,14 +186,52 @@ vec3 umbraAtmPhaseOf(int q, float nu) {
   return p;
 }
 
-// skyRadiance: single scattering of every component times its phase, plus multiple.
-vec3 umbraAtmScatteredRadiance(float r, float mu, float muS, float nu, bool rayHitsGround) {
+// Single scattering of every component times its phase, plus multiple (muS >= muSMin).
+vec3 umbraAtmTableRadiance(float r, float mu, float muS, float nu, bool rayHitsGround) {
   vec3 L = umbraAtmLookupScattering(0, r, mu, muS, nu, rayHitsGround);
   for (int q = 0; q < 4; ++q) {
     if (q >= umbraAtmComponents) break;
     L += umbraAtmLookupScattering(1 + q, r, mu, muS, nu, rayHitsGround) * umbraAtmPhaseOf(q, nu);
   }
   return L;
+}
+
+// distanceToSunCosineM (TextureCoords.hpp): from r along mu to where the Sun's zenith
+// cosine rises to m; 0 when muS >= m, umbraAtmNever when it never does.
+const float umbraAtmNever = 3.0e38;
+float umbraAtmDistanceToSunCosine(float r, float mu, float muS, float nu, float m) {
+  if (muS >= m) return 0.0;
+  if (m == 0.0) return nu > 0.0 ? -muS / nu * r : umbraAtmNever;  // linear
+  float m2 = m * m;
+  float A = nu * nu - m2, B = muS * nu - m2 * mu, C = muS * muS - m2;
+  vec2 roots = vec2(-1.0);
+  if (A == 0.0) {
+    if (B != 0.0) roots.x = -0.5 * C / B;
+  } else {
+    float disc = B * B - A * C;
+    if (disc < -1e-5 * (B * B + abs(A * C))) return umbraAtmNever;
+    disc = max(disc, 0.0);
+    float q = -(B + (B < 0.0 ? -sqrt(disc) : sqrt(disc)));
+    roots.x = q / A;
+    if (q != 0.0) roots.y = C / q;
+  }
+  float u = umbraAtmNever;
+  if (roots.x >= 0.0 && (muS + roots.x * nu) * m >= 0.0) u = roots.x;
+  if (roots.y >= 0.0 && (muS + roots.y * nu) * m >= 0.0) u = min(u, roots.y);
+  return u >= umbraAtmNever ? umbraAtmNever : u * r;
+}
+
+// skyRadiance: the tables' radiance; below their lowest Sun (the air in the planet's
+// shadow) the light from where the ray first reaches sunlit air, T(x, x_d) S(x_d), or none.
+vec3 umbraAtmScatteredRadiance(float r, float mu, float muS, float nu, bool rayHitsGround) {
+  if (muS >= umbraAtmMuSMin) return umbraAtmTableRadiance(r, mu, muS, nu, rayHitsGround);
+  float end = rayHitsGround ? umbraAtmDistanceToBottom(r, mu) : umbraAtmDistanceToTop(r, mu);
+  float d = umbraAtmDistanceToSunCosine(r, mu, muS, nu, umbraAtmMuSMin);
+  if (!(d < end)) return vec3(0.0);
+  float rd = umbraAtmRadiusAlong(r, mu, d, false);
+  float mud = clamp((r * mu + d) / rd, -1.0, 1.0);
+  return umbraAtmTransmittance(r, mu, d, rayHitsGround, false) *
+         umbraAtmTableRadiance(rd, mud, umbraAtmMuSMin, nu, rayHitsGround);
 }
 
 // ---- irradiance ------------------------------------------------------------------------

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Mars' shadow at the distances of Phobos (9376 km) and Deimos (23 463 km) (eclipse paper,
-# Figure 12 right): red in most of the shadow, grey near the penumbra's boundary.
+# Figure 12 right): red over most of the umbra at Phobos and its inner 40 % at Deimos, grey
+# near the penumbra's boundary (docs/eclipse-shadows.md, "Mars' shadow after the night-side fix").
 # Usage: examples/eclipse/mars-phobos-deimos.sh [OUTPUT_DIR]
 source "$(dirname "$0")/common.sh"
 for moon in phobos:9376km deimos:23463km; do
@@ -11,7 +12,7 @@ for moon in phobos:9376km deimos:23463km; do
   # the solid penumbra at 64^2; docs/accuracy-vs-speed.md, "Scene-limited shadow LuTs").
   # --scattering-nu 32: the dust's forward-peaked multiple scattering needs 32 cells in nu,
   # or the umbra at Phobos comes out 1.9 times too bright (docs/eclipse-shadows.md, "Mars'
-  # shadow with Lorenz-Mie dust": red over most of the umbra at both moons).
+  # shadow with Lorenz-Mie dust").
   "$UMBRA" profile shadow --occluder mars --atmosphere mars --distance "$distance" --exact --scattering-nu 32 \
     --csv "$out/mars-shadow-$name.csv" --plot "$out/mars-shadow-$name.svg" "${extra[@]}"
 done

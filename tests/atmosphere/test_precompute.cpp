@@ -302,6 +302,158 @@ TEST(Precompute, SingleScatteringMatchesBruteForceIntegral) {
   EXPECT_GT(checked, 50);
 }
 
+/// Brute-force single scattering along the straight ray (r, mu) to its end (the ground or
+/// the top), the Sun's ray blocked by the ground: Simpson over `steps`, optical depths by
+/// the midpoint rule over 400 pieces. Per wavelength, phase included.
+std::vector<double> bruteForceSingleScattering(const Atmosphere& a, double r, double mu, double muS, double nu,
+                                               int steps = 400) {
+  const double b = a.bottomRadiusM, top = a.topRadiusM;
+  const auto depth = [&](double r0, double mu0, double d) {
+    std::vector<double> tau(a.wavelengthsNm.size(), 0.0);
+    const int n = 400;
+    for (int i = 0; i < n; ++i) {
+      const double s = d * (i + 0.5) / n;
+      const double h = std::clamp(std::sqrt(s * s + 2.0 * r0 * mu0 * s + r0 * r0) - b, 0.0, top - b);
+      for (const Component& c : a.components)
+        for (std::size_t l = 0; l < tau.size(); ++l) tau[l] += c.density.at(h) * d / n * c.extinctionPerM(l);
+    }
+    return tau;
+  };
+  std::vector<double> L(a.wavelengthsNm.size(), 0.0);
+  const double end = rayIntersectsGround(b, r, mu) ? distanceToBottomBoundaryM(b, r, mu) : distanceToTopBoundaryM(top, r, mu);
+  for (int i = 0; i <= steps; ++i) {
+    const double s = end * i / steps, w = (i == 0 || i == steps ? 1.0 : (i % 2 ? 4.0 : 2.0)) * end / steps / 3.0;
+    const double rs = std::sqrt(s * s + 2.0 * r * mu * s + r * r), muSs = (r * muS + s * nu) / rs;
+    if (rayIntersectsGround(b, rs, muSs)) continue;
+    const std::vector<double> view = depth(r, mu, s), sun = depth(rs, muSs, distanceToTopBoundaryM(top, rs, muSs));
+    for (const Component& c : a.components)
+      for (std::size_t l = 0; l < L.size(); ++l)
+        L[l] += w * std::exp(-view[l] - sun[l]) * c.density.at(rs - b) * c.scatteringPerM[l] * c.phase(l)(nu);
+  }
+  return L;
+}
+
+/// Single scattering only, fine enough in mu, mu_s and nu for the twilight's steep
+/// gradients (the tests below the tables' lowest Sun; ~0.3 s each).
+PrecomputeOptions belowTheLowestSunOptions() {
+  PrecomputeOptions o = smallOptions();
+  o.transmittanceWidth = 256;
+  o.transmittanceHeight = 64;
+  o.scatteringMu = 128;
+  o.scatteringMuS = 16;
+  o.scatteringNu = 16;
+  o.orders = 1;
+  return o;
+}
+
+// Below the tables' lowest Sun (mu_s,min = cos 102 deg) skyRadiance takes the light from
+// where the ray first reaches sunlit air. Against the brute-force single scattering of the
+// ray (the Sun's ray blocked by the ground), from the ground and from 30 km, with the Sun
+// 103-110 deg from the zenith, towards the Sun's azimuth (the twilight arch), 40 deg off
+// it, and away from it; errors relative to the brightest of these views. Reading the
+// lowest row at the observer instead (what a clamped lookup does) is off by far more. A
+// Sun 125 deg down leaves every ray in the dark: exactly 0 (as it leaves every view but
+// the horizon's at 110 deg from the ground).
+TEST(Precompute, NightSkyBelowTheLowestSunMatchesBruteForce) {
+  const Atmosphere earth = loadAtmosphere("earth", {680.0, 550.0, 440.0});
+  const PrecomputeOptions o = belowTheLowestSunOptions();
+  const AtmosphereTables t = precompute(earth, o);
+  const double b = t.bottomRadiusM;
+  double worst = 0.0, worstClamped = 0.0;
+  int lit = 0, dark = 0;
+  for (double altitude : {10.0, 30e3}) {
+    const double r = b + altitude;
+    for (double sunZenithDeg : {103.0, 106.0, 110.0}) {
+      const double sz = sunZenithDeg * kPi / 180.0, muS = std::cos(sz);
+      struct Value {
+        double got, clamped, ref;
+      };
+      std::vector<Value> values[3];
+      for (double viewZenithDeg : {60.0, 80.0, 86.0, 89.0}) {
+        for (double azimuthDeg : {0.0, 40.0, 180.0}) {
+          const double vz = viewZenithDeg * kPi / 180.0, mu = std::cos(vz);
+          const double nu = mu * muS + std::sin(vz) * std::sin(sz) * std::cos(azimuthDeg * kPi / 180.0);
+          const std::vector<double> got = skyRadiance(t, earth, r, mu, muS, nu);
+          const std::vector<double> clamped = skyRadiance(t, earth, r, mu, o.muSMin, nu);
+          const std::vector<double> ref = bruteForceSingleScattering(earth, r, mu, muS, nu);
+          for (int l = 0; l < 3; ++l) values[l].push_back({got[l], clamped[l], ref[l]});
+        }
+      }
+      for (int l = 0; l < 3; ++l) {
+        double scale = 0.0;
+        for (const Value& v : values[l]) scale = std::max(scale, v.ref);
+        for (const Value& v : values[l]) {
+          const double err = scale > 0.0 ? std::abs(v.got - v.ref) / scale : v.got;
+          worst = std::max(worst, err);
+          if (scale > 0.0) worstClamped = std::max(worstClamped, std::abs(v.clamped - v.ref) / scale);
+          EXPECT_LT(err, 0.15) << "altitude " << altitude << " sun " << sunZenithDeg << " l " << l << ": " << v.got
+                               << " vs " << v.ref << " (brightest " << scale << ")";
+          if (v.ref == 0.0) {
+            if (scale == 0.0) {
+              EXPECT_EQ(v.got, 0.0);  // else err holds it
+            }
+            ++dark;
+          } else {
+            ++lit;
+          }
+        }
+      }
+    }
+  }
+  std::printf("night sky vs brute force: worst |error| %.3g of the brightest view (lowest row read at the "
+              "observer: %.3g) over %d lit and %d dark values\n",
+              worst, worstClamped, lit, dark);
+  EXPECT_GT(lit, 40);
+  EXPECT_GT(dark, 40);
+  EXPECT_GT(worstClamped, 5.0 * worst);
+  for (double mu : {-0.5, 0.0, 0.02, 0.3, 1.0})
+    for (double nu : {-0.9, 0.0, 0.5, 0.9})
+      for (double v : skyRadiance(t, earth, b + 10.0, mu, std::cos(125.0 * kPi / 180.0), nu)) EXPECT_EQ(v, 0.0);
+}
+
+// The eclipse LuTs look at Mars' limb from Phobos (2.8 Mars radii) and Deimos (6.9), in the
+// umbra's centre: the view rays enter the top of the atmosphere with the Sun 112-124 deg
+// from the zenith and reach sunlit air, if at all, only past the tangent point. Per tangent
+// altitude, against the brute-force single scattering of the ray; errors relative to the
+// brightest ray. From Phobos only rays through 5-30 km reach sunlit air (high on the far
+// side), and that light crosses the thick limb: at most 5e-8 sr^-1 of the solar irradiance.
+// Reading the lowest row at the entry point instead made it up to 1e6 times brighter
+// (docs/accuracy-vs-speed.md); from Deimos, 3.6 times.
+TEST(Precompute, MarsLimbFromPhobosAndDeimosInTheUmbraMatchesBruteForce) {
+  const Atmosphere mars = loadAtmosphere("mars", {680.0, 550.0, 440.0});
+  const PrecomputeOptions o = belowTheLowestSunOptions();
+  const AtmosphereTables t = precompute(mars, o);
+  const double b = t.bottomRadiusM, top = t.topRadiusM;
+  for (double distanceM : {9376e3, 23463e3}) {
+    std::vector<std::vector<double>> got, clamped, ref;
+    for (double h = 0.0; h <= 80e3; h += 5e3) {
+      // Observer at (-distance, 0), the Sun along +x; the ray tangent at altitude h.
+      const double p = b + h, theta = std::asin(p / distanceM);
+      const double wx = std::cos(theta), wy = std::sin(theta);
+      const double s = distanceM * wx - std::sqrt((top - p) * (top + p));
+      const double x = -distanceM + s * wx, y = s * wy;
+      const double mu = (x * wx + y * wy) / top, muS = x / top, nu = wx;
+      got.push_back(skyRadiance(t, mars, top, mu, muS, nu));
+      clamped.push_back(skyRadiance(t, mars, top, mu, o.muSMin, nu));
+      ref.push_back(bruteForceSingleScattering(mars, top, mu, muS, nu));
+    }
+    for (int l = 0; l < 3; ++l) {
+      double scale = 0.0, worst = 0.0, worstClamped = 0.0;
+      for (const auto& v : ref) scale = std::max(scale, v[l]);
+      ASSERT_GT(scale, 0.0);
+      for (std::size_t k = 0; k < ref.size(); ++k) {
+        worst = std::max(worst, std::abs(got[k][l] - ref[k][l]) / scale);
+        worstClamped = std::max(worstClamped, std::abs(clamped[k][l] - ref[k][l]) / scale);
+      }
+      std::printf("Mars limb from %.0f km, channel %d: brightest ray %.3g, worst |error| %.3g of it (lowest row at "
+                  "the entry: %.3g)\n",
+                  distanceM / 1e3, l, scale, worst, worstClamped);
+      EXPECT_LT(worst, 0.1) << distanceM << " " << l;
+      EXPECT_GT(worstClamped, 1.0) << distanceM << " " << l;
+    }
+  }
+}
+
 // ---- multiple scattering ---------------------------------------------------------------------
 
 TEST(Precompute, OrdersDecreaseInAPurelyScatteringAtmosphere) {

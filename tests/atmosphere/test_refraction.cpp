@@ -2,10 +2,14 @@
 #include "Refraction.hpp"
 #include "TextureCoords.hpp"
 
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <random>
 #include <vector>
 
 using namespace umbra::atmosphere;
@@ -90,6 +94,51 @@ TEST(TextureCoords, EndsOfTheRangesAreZenithHorizonGroundAndTop) {
   EXPECT_NEAR(distanceToTopBoundaryM(kEarthTopM, kEarthBottomM, 0.0), H, 1e-6);
   EXPECT_NEAR(distanceToBottomBoundaryM(kEarthBottomM, kEarthTopM, -1.0), 100e3, 1e-9);
   EXPECT_EQ(distanceToTopBoundaryM(kEarthTopM, kEarthTopM, 0.5), 0.0);
+}
+
+// distanceToSunCosineM against the geometry it stands for: at the distance the Sun's
+// zenith cosine is m, and before it, on a fine sampling of the ray, it is below m; where
+// it returns infinity the cosine stays below m along 3 radii of ray.
+TEST(TextureCoords, DistanceToSunCosineIsTheFirstPointWithThatSun) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g;
+  const auto unit = [&] {
+    const glm::dvec3 v(g(rng), g(rng), g(rng));
+    return v / glm::length(v);
+  };
+  const double r = kEarthTopM;
+  int found = 0, never = 0, cases = 0;
+  for (double m : {-0.2079116908177593, -0.05, 0.0}) {
+    for (int k = 0; k < 4000; ++k) {
+      const glm::dvec3 up = unit(), dir = unit(), sun = unit();
+      const double mu = glm::dot(up, dir), muS = glm::dot(up, sun), nu = glm::dot(dir, sun);
+      const auto sunCosineAt = [&](double d) {
+        const glm::dvec3 x = r * up + d * dir;
+        return glm::dot(x, sun) / glm::length(x);
+      };
+      const double d = distanceToSunCosineM(r, mu, muS, nu, m);
+      if (muS >= m) {
+        EXPECT_EQ(d, 0.0);
+        continue;
+      }
+      ++cases;
+      const double reach = std::isfinite(d) ? d : 3.0 * r;
+      for (int i = 0; i < 400; ++i) {
+        const double di = reach * i / 400.0;
+        if (std::abs(glm::length(r * up + di * dir)) < 1e-3 * r) continue;  // through the centre
+        ASSERT_LT(sunCosineAt(di), m + 1e-12) << "m " << m << " case " << k << " at " << di << " of " << d;
+      }
+      if (std::isfinite(d)) {
+        EXPECT_NEAR(sunCosineAt(d), m, 1e-9) << "m " << m << " case " << k;
+        ++found;
+      } else {
+        ++never;
+      }
+    }
+  }
+  EXPECT_GT(found, 1000);
+  EXPECT_GT(never, 1000);
+  std::printf("%d rays below the Sun's cosine: %d reach it, %d never do\n", cases, found, never);
 }
 
 TEST(TextureCoords, RadiusAndMuRoundTripThroughEquation2) {

@@ -79,7 +79,7 @@ TEST(EclipseExamplesCli, PhobosInTheUmbraIsLitThroughMarsAtmosphere) {
   const tables::Table img = render(dir, "phobos-in-mars-umbra-atmosphere.json", "48x36");
   const glm::dvec3 c = pixel(img, img.width / 2, img.height / 2);
   std::printf("  Phobos' centre: R G B = %.3g %.3g %.3g W m^-2 sr^-1\n", c.r, c.g, c.b);
-  EXPECT_GT(c.r + c.g + c.b, 1e-3);
+  EXPECT_GT(c.r + c.g + c.b, 1e-4);  // ~2e-5 of full sunlight, 1500 km off the axis
   EXPECT_LT(c.g, 0.05 * 0.068 / 3.14159 * 1361.0 / (1.524 * 1.524));  // < 5 % of full sunlight
   // The atmospheric shadow LuT was made over Phobos' ranges only (u ~ 0.0083, 2 columns).
   int ranged = 0;

@@ -199,11 +199,12 @@ TEST(AtmosphericShadow, OzoneChangesTheUmbraColour) {
 
 // Must show: Mars' shadow at Phobos' and Deimos' distances is red in most of the shadow,
 // grey near the penumbra's outer boundary (Fig. 12 right). Inside the umbra the light is
-// the dust's forward scattering at the limb, 20 degrees from the Sun at Phobos and 8 at
-// Deimos: beyond the diffraction peak of micron grains the Lorenz-Mie phase is higher in
-// the red (x 1.4 at 20 degrees) and the dust absorbs the blue (albedo 0.97 vs 0.71), so
-// R > G > B over the inner part of the umbra; towards the umbra's edge the view reaches
-// the peak and turns bluish (docs/eclipse-shadows.md).
+// the dust's scattering in the air that the Sun still reaches, seen through the limb:
+// from Phobos only air high on the far side of the limb (the rays' entry points have the
+// Sun 112-124 degrees from the zenith), 1e-9 to 1e-4 of I_sun from the axis to the
+// umbra's edge; from Deimos the upper limb itself. R > G > B over the inner part of the
+// umbra (at Phobos most of it, at Deimos its inner 40 %); towards the umbra's edge the
+// view reaches the dust's diffraction peak and turns bluish (docs/eclipse-shadows.md).
 TEST(AtmosphericShadow, MarsShadowAtPhobosAndDeimosIsRedThenGrey) {
   const AtmosphericShadowModel& m = body("mars").model;
   for (const double distanceM : {kPhobosDistanceM, kDeimosDistanceM}) {
@@ -216,9 +217,11 @@ TEST(AtmosphericShadow, MarsShadowAtPhobosAndDeimosIsRedThenGrey) {
                   double(k) / n, c.r, c.g, c.b, c.r / c.b, c.g / c.b);
       ASSERT_TRUE(std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b));
       if (c.r > 1.02 * c.g && c.g > 1.02 * c.b) ++red;
-      if (k <= 4) EXPECT_GT(c.r, 1.1 * c.b) << distanceM << " " << k;  // the inner half is red
+      if (k <= 4) {
+        EXPECT_GT(c.r, 1.1 * c.b) << distanceM << " " << k;  // the inner half is red
+      }
     }
-    EXPECT_GE(red, n / 2) << distanceM;
+    EXPECT_GE(red, distanceM == kPhobosDistanceM ? 7 : 4) << distanceM;
     // At the penumbra's outer boundary the Sun is seen through the thin upper atmosphere:
     // nearly grey, and far brighter than the umbra.
     const glm::dvec3 edge = rgbAt(m, distanceM, 0.999 * cone.penumbraRadiusM);

@@ -169,7 +169,9 @@ TEST(SceneRangedLut, AirlessPhobosMatchesTheExactFactor) {
 // Through Mars' atmosphere: Phobos 1500 km off the axis in the umbra, lit by the
 // atmosphere's ring. The scene path (applySceneAtmosphereShadow, small tables: 64 x 32,
 // limb views of 32 rows) ranges the table itself; the whole table's columns (the path
-// before) for comparison. Relative differences (the umbra is ~1e-3 of I_sun).
+// before) for comparison. Relative differences: the umbra there is 1e-5 to 1e-4 of I_sun
+// and falls steeply towards the axis (x 10 in a tenth of the umbra's radius), which the
+// ranged table's 32 rows follow within a few per cent; the whole table's rows do not.
 TEST(SceneRangedLut, AtmospherePhobosMatchesTheExactFactor) {
   const SceneInputs in = loadPhobosScene("phobos-in-mars-umbra-atmosphere.json");
   ASSERT_TRUE(in.atmosphere);
@@ -224,7 +226,7 @@ TEST(SceneRangedLut, AtmospherePhobosMatchesTheExactFactor) {
   RecordProperty("whole_max_rel", std::to_string(b.maxDiff));
   EXPECT_GE(a.samples, 200);
   EXPECT_EQ(a.shadowed, a.samples);  // all in the umbra
-  constexpr double kBound = 5e-3;
+  constexpr double kBound = 0.05;
   EXPECT_LT(a.maxDiff, kBound);
   EXPECT_GT(b.maxDiff, kBound);
 }
