@@ -112,7 +112,9 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
   };
   auto o = std::make_shared<Options>();
   addAtmosphereOptions(sky, o->preset, o->config);
-  sky->add_option("--sun-zenith-deg", o->sunZenithDeg, "Sun zenith angle in degrees (0-102)")->required();
+  sky->add_option("--sun-zenith-deg", o->sunZenithDeg,
+                  "Sun zenith angle in degrees (0-180; past 90 the twilight sky: lit only where a view reaches sunlit air)")
+      ->required();
   sky->add_option("--observer-altitude", o->altitude, "Observer altitude above the ground (units m, km)")
       ->capture_default_str();
   sky->add_option("--zenith-step", o->zenithStep, "View zenith step in degrees (0 to 90)")->capture_default_str();
@@ -128,9 +130,8 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
     action = [o] {
       output::checkWritable(o->csv, {".csv"});
       if (!o->plot.empty()) output::checkWritable(o->plot, {".png"});
-      // 102 degrees: the lowest Sun the tables hold (PrecomputeOptions::muSMin).
-      if (!(o->sunZenithDeg >= 0.0 && o->sunZenithDeg <= 102.0))
-        throw CommandError("--sun-zenith-deg: expected 0 to 102 degrees, got " + std::to_string(o->sunZenithDeg));
+      if (!(o->sunZenithDeg >= 0.0 && o->sunZenithDeg <= 180.0))
+        throw CommandError("--sun-zenith-deg: expected 0 to 180 degrees, got " + std::to_string(o->sunZenithDeg));
       if (!(o->zenithStep > 0.0 && o->zenithStep <= 90.0))
         throw CommandError("--zenith-step: expected 0 < STEP <= 90 degrees");
       if (!(o->azimuthStep > 0.0 && o->azimuthStep <= 90.0))

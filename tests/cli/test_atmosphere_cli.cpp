@@ -103,6 +103,30 @@ TEST(AtmosphereSkyCli, CsvGridAndPlot) {
   EXPECT_EQ(dir.fileCount(), 2);
 }
 
+// Twilight, the Sun 16 degrees below the horizon (past the tables' lowest, 12 degrees):
+// the sky is lit only where a view reaches sunlit air, low towards the Sun's azimuth
+// (the twilight arch). The zenith and the sky opposite the Sun are black in this model,
+// which has no light scattered into the shadowed air (docs/accuracy-vs-speed.md). With
+// the Sun 40 degrees down the whole sky is black.
+TEST(AtmosphereSkyCli, TwilightSkyBelowTheTablesLowestSun) {
+  TempDir dir;
+  ASSERT_EQ(run(UMBRA_EXE, skyArgs(dir / "t.csv", 106.0)).exitCode, 0);
+  std::string header;
+  const auto rows = readRows(dir / "t.csv", header);
+  double arch = 0.0, zenith = -1.0, opposite = 0.0;
+  for (const auto& row : rows) {
+    if (row[0] == 0.0) zenith = row[2];
+    if (row[0] >= 80.0 && row[1] == 0.0) arch = std::max(arch, row[2]);
+    if (row[1] == 180.0) opposite = std::max(opposite, row[2]);
+  }
+  std::printf("  Sun 16 deg down: twilight arch %.3g cd/m^2, zenith %.3g, opposite %.3g\n", arch, zenith, opposite);
+  EXPECT_GT(arch, 1e-4);
+  EXPECT_EQ(zenith, 0.0);
+  EXPECT_EQ(opposite, 0.0);
+  ASSERT_EQ(run(UMBRA_EXE, skyArgs(dir / "n.csv", 130.0)).exitCode, 0);
+  for (const auto& row : readRows(dir / "n.csv", header)) EXPECT_EQ(row[2], 0.0) << row[0] << " " << row[1];
+}
+
 TEST(AtmosphereSkyCli, BadInputIsOneLineAndLeavesNoFile) {
   TempDir dir;
   std::vector<std::string> unknown = skyArgs(dir / "a.csv");
