@@ -155,23 +155,6 @@ TEST(AtmosphereGlsl, SkyRadianceFromSpace) {
 
 namespace {
 
-// Bruneton's transmittance between (r, mu) and the point at distance d (the CPU side of
-// umbraAtmTransmittance): a ratio of transmittances to the top, upwards for ground rays;
-// rd is the radius at that point.
-std::vector<double> transmittanceBetween(const atmosphere::AtmosphereTables& t, double r, double mu, double d,
-                                         bool ground, double rd) {
-  const double mud = std::clamp((r * mu + d) / rd, -1.0, 1.0);
-  const auto a = ground ? atmosphere::transmittanceToTop(t, rd, -mud) : atmosphere::transmittanceToTop(t, r, mu);
-  const auto b = ground ? atmosphere::transmittanceToTop(t, r, -mu) : atmosphere::transmittanceToTop(t, rd, mud);
-  std::vector<double> out(a.size());
-  for (std::size_t c = 0; c < a.size(); ++c) out[c] = std::min(a[c] / b[c], 1.0);
-  return out;
-}
-
-} // namespace
-
-namespace {
-
 // Ground pixels: T(x, y) albedo / pi (E_0 + E_ind)(y) plus the in-scattering
 // S(x) - T(x, y) S(y) (aerial perspective), against the CPU; x the camera or the entry point.
 Agreement compareGround(const ViewCamera& cam, const glm::dvec3& sunDir, int size, int step) {
@@ -191,7 +174,7 @@ Agreement compareGround(const ViewCamera& cam, const glm::dvec3& sunDir, int siz
       const glm::dvec3 y = x + d * ray.dir;
       const double muS = glm::dot(x, sunDir) / r, nu = glm::dot(ray.dir, sunDir);
       const double rd = b, mud = glm::dot(y, ray.dir) / rd, muSd = glm::dot(y, sunDir) / rd;
-      const auto T = transmittanceBetween(f.tables, r, mu, d, true, rd);
+      const auto T = atmosphere::transmittanceAlong(f.tables, r, mu, d, true, true);  // umbraAtmTransmittance
       const auto Sx = atmosphere::skyRadiance(f.tables, f.model, r, mu, muS, nu);
       const auto Sy = atmosphere::skyRadiance(f.tables, f.model, rd, mud, muSd, nu);
       const auto E0 = atmosphere::directIrradiance(f.tables, b, muSd);
