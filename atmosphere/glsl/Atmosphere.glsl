@@ -223,15 +223,25 @@ float umbraAtmDistanceToSunCosine(float r, float mu, float muS, float nu, float 
 
 // skyRadiance: the tables' radiance; below their lowest Sun (the air in the planet's
 // shadow) the light from where the ray first reaches sunlit air, T(x, x_d) S(x_d), or none.
+// One table lookup either way: Mesa's llvmpipe runs both sides of every branch, masked,
+// and the lookup is the expensive part (docs/accuracy-vs-speed.md, "Below the tables'
+// lowest Sun": the night-side path costs llvmpipe ~10 % of the atmosphere pass).
 vec3 umbraAtmScatteredRadiance(float r, float mu, float muS, float nu, bool rayHitsGround) {
-  if (muS >= umbraAtmMuSMin) return umbraAtmTableRadiance(r, mu, muS, nu, rayHitsGround);
-  float end = rayHitsGround ? umbraAtmDistanceToBottom(r, mu) : umbraAtmDistanceToTop(r, mu);
-  float d = umbraAtmDistanceToSunCosine(r, mu, muS, nu, umbraAtmMuSMin);
-  if (!(d < end)) return vec3(0.0);
-  float rd = umbraAtmRadiusAlong(r, mu, d, false);
-  float mud = clamp((r * mu + d) / rd, -1.0, 1.0);
-  return umbraAtmTransmittance(r, mu, d, rayHitsGround, false) *
-         umbraAtmTableRadiance(rd, mud, umbraAtmMuSMin, nu, rayHitsGround);
+  vec3 T = vec3(1.0);
+  if (muS < umbraAtmMuSMin) {
+    float end = rayHitsGround ? umbraAtmDistanceToBottom(r, mu) : umbraAtmDistanceToTop(r, mu);
+    float d = umbraAtmDistanceToSunCosine(r, mu, muS, nu, umbraAtmMuSMin);
+    if (d < end) {
+      T = umbraAtmTransmittance(r, mu, d, rayHitsGround, false);
+      float rd = umbraAtmRadiusAlong(r, mu, d, false);
+      mu = clamp((r * mu + d) / rd, -1.0, 1.0);
+      r = rd;
+    } else {
+      T = vec3(0.0);
+    }
+    muS = umbraAtmMuSMin;
+  }
+  return T * umbraAtmTableRadiance(r, mu, muS, nu, rayHitsGround);
 }
 
 // ---- irradiance ------------------------------------------------------------------------
