@@ -16,22 +16,28 @@ int stepCount(double rangeRad, double stepRad) {
 
 } // namespace
 
-PrecomputeOptions skyPrecomputeOptions(int orders) {
+PrecomputeOptions skyPrecomputeOptions(int orders, double sunZenithRad) {
   PrecomputeOptions o;
   o.transmittanceWidth = 128;
   o.transmittanceHeight = 32;
   o.scatteringR = 8;
   o.scatteringMu = 64;
-  o.scatteringMuS = 16;
+  o.scatteringMuS = 128;
   o.scatteringNu = 8;
   o.irradianceWidth = 32;
   o.irradianceHeight = 8;
-  o.sphereSamples = 12;
+  o.sphereSamples = sunZenithRad > kPi / 2 ? 48 : 12;
   o.irradianceSamples = 16;
   o.singleScatteringSamples = 40;
   o.multipleScatteringSamples = 40;
   o.orders = orders;
+  o.muSMin = std::cos(skyLowestSunZenithRad(sunZenithRad));
   return o;
+}
+
+double skyLowestSunZenithRad(double sunZenithRad) {
+  const double deg = kPi / 180.0;
+  return std::clamp(sunZenithRad + 20.0 * deg, 102.0 * deg, 170.0 * deg);
 }
 
 double solarIlluminanceLux() {

@@ -51,11 +51,25 @@ struct SkyGrid {
   }
 };
 
-/// The table sizes `umbra atmosphere sky` uses (docs/sky-validation.md): transmittance
-/// 128 x 32, scattering (NU 8 * MU_S 16) x MU 64 x R 8, irradiance 32 x 8, 12 x 24 density
-/// directions, 40 samples per view ray; enough for a sky seen from low altitudes (about
-/// 1 s for 15 wavelengths and 4 orders on 2 cores).
-PrecomputeOptions skyPrecomputeOptions(int orders = 4);
+/// The tables `umbra atmosphere sky` makes for a Sun at sunZenithRad
+/// (docs/sky-validation.md): transmittance 128 x 32, scattering (NU 8 * MU_S 128) x MU 64 x
+/// R 8, irradiance 32 x 8, 40 samples per view ray, the Sun down to
+/// skyLowestSunZenithRad(sunZenithRad); 12 x 24 density directions for a Sun above the
+/// horizon, 48 x 96 below it. About 2 s (day) and 8 s (twilight) for 15 wavelengths and 4
+/// orders on 2 cores. The twilight sky varies by orders of magnitude over a few degrees
+/// of Sun and of view, and coarse tables miss it (docs/accuracy-vs-speed.md, "Twilight"):
+/// linear interpolation across 16 mu_s cells made the zenith x4.7 too bright at a Sun
+/// 100 deg from the zenith, and 12 density directions, which sample the bright band along
+/// the horizon towards the Sun at two angles, made it x4.5 too dark (x6 at 106 deg).
+PrecomputeOptions skyPrecomputeOptions(int orders = 4, double sunZenithRad = 0.0);
+
+/// The lowest Sun the sky's tables need for a Sun at sunZenithRad: 102 deg (the tables'
+/// usual lowest), or 20 deg below a lower Sun (at most 170 deg). Air with the Sun below
+/// the tables' lowest is taken to be dark (skyRadiance), so a night sky needs the tables to
+/// reach below its Sun: the shadowed air overhead is lit by the sunlit air's scattering
+/// (second-order twilight, the zenith's only light from a Sun about 12 deg down on), and
+/// so are the views away from the Sun, whose air has the Sun lower still.
+double skyLowestSunZenithRad(double sunZenithRad);
 
 /// Luminance and linear sRGB of the sky in one direction (sunlight: E_sun(lambda_i) at the
 /// tables' wavelengths, which must be `wavelengths.nm`).

@@ -106,15 +106,19 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       "sky", "Sky luminance (cd/m^2, for the top-of-atmosphere Sun at 1 au) and linear sRGB seen by an observer, "
              "over view zenith x azimuth from the Sun's azimuth (0-180 degrees: the sky is symmetric)");
   struct Options {
-    std::string preset, config, altitude = "0", csv, plot;
+    std::string preset, config, altitude = "0", csv, plot, lowestSun = "auto";
     double sunZenithDeg = -1.0, zenithStep = 5.0, azimuthStep = 10.0;
     int orders = 4, wavelengths = 15, plotSize = 256;
   };
   auto o = std::make_shared<Options>();
   addAtmosphereOptions(sky, o->preset, o->config);
   sky->add_option("--sun-zenith-deg", o->sunZenithDeg,
-                  "Sun zenith angle in degrees (0-180; past 90 the twilight sky: lit only where a view reaches sunlit air)")
+                  "Sun zenith angle in degrees (0-180; past 90 the twilight sky)")
       ->required();
+  sky->add_option("--lowest-sun-zenith-deg", o->lowestSun,
+                  "The lowest Sun the tables hold, in degrees (102-170; below it the air is dark). auto: 102, or 20 "
+                  "below a Sun lower than 82 (the light scattered into the shadowed air: second-order twilight)")
+      ->capture_default_str();
   sky->add_option("--observer-altitude", o->altitude, "Observer altitude above the ground (units m, km)")
       ->capture_default_str();
   sky->add_option("--zenith-step", o->zenithStep, "View zenith step in degrees (0 to 90)")->capture_default_str();
@@ -139,6 +143,20 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       if (o->orders < 1 || o->orders > 10) throw CommandError("--orders: expected 1 to 10");
       if (o->wavelengths < 3 || o->wavelengths > 47) throw CommandError("--wavelengths: expected 3 to 47");
       if (o->plotSize < 16 || o->plotSize > 4096) throw CommandError("--plot-size: expected 16 to 4096");
+      const double sunZenithRad = o->sunZenithDeg * kDeg;
+      double lowestSunZenithRad = atmosphere::skyLowestSunZenithRad(sunZenithRad);
+      if (o->lowestSun != "auto") {
+        std::size_t used = 0;
+        double deg = -1.0;
+        try {
+          deg = std::stod(o->lowestSun, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != o->lowestSun.size() || !(deg >= 102.0 && deg <= 170.0))
+          throw CommandError("--lowest-sun-zenith-deg: expected auto or 102 to 170 degrees, got " + o->lowestSun);
+        lowestSunZenithRad = deg * kDeg;
+      }
       const double altitudeM = lengthOption("--observer-altitude", o->altitude);
       if (!(altitudeM >= 0.0)) throw CommandError("--observer-altitude: expected a length >= 0, got " + o->altitude);
 
@@ -152,12 +170,13 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       atmosphere::AtmosphereTables tables;
       {
         ProgressLine progress("sky tables (" + atm.name + ")");
-        tables = atmosphere::precompute(atm, atmosphere::skyPrecomputeOptions(o->orders), [&progress](double f, const std::string&) {
+        atmosphere::PrecomputeOptions options = atmosphere::skyPrecomputeOptions(o->orders, sunZenithRad);
+        options.muSMin = std::cos(lowestSunZenithRad);
+        tables = atmosphere::precompute(atm, options, [&progress](double f, const std::string&) {
           progress.update(f);
           return true;
         });
       }
-      const double sunZenithRad = o->sunZenithDeg * kDeg;
       const atmosphere::SkyGrid grid = atmosphere::skyLuminance(tables, atm, wavelengths, sunZenithRad, altitudeM,
                                                                 o->zenithStep * kDeg, o->azimuthStep * kDeg);
       if (!o->plot.empty()) writeFisheye(o->plot, o->plotSize, tables, atm, wavelengths, sunZenithRad, altitudeM);
@@ -177,7 +196,8 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       }
       out.commit();
       std::cout << "wrote " << o->csv << (o->plot.empty() ? "" : " and " + o->plot) << " (" << atm.name
-                << ", Sun zenith " << o->sunZenithDeg << " deg, observer at " << altitudeM
+                << ", Sun zenith " << o->sunZenithDeg << " deg, tables down to a Sun "
+                << std::lround(lowestSunZenithRad / kDeg) << " deg from the zenith, observer at " << altitudeM
                 << " m; luminance for a solar illuminance of " << std::lround(grid.solarIlluminanceLux)
                 << " lx, r,g,b linear sRGB in cd/m^2 clamped at 0)\n";
       return 0;
