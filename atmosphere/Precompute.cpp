@@ -28,6 +28,29 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+/// Nodes x and weights w of the n-point Gauss-Legendre rule on [-1, 1]: the roots of the
+/// Legendre polynomial P_n by Newton's method from Tricomi's estimate, w = 2 / ((1 - x^2) P_n'(x)^2).
+struct GaussLegendre {
+  std::vector<double> x, w;
+  explicit GaussLegendre(int n) : x(n), w(n) {
+    for (int i = 0; i < n; ++i) {
+      double t = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1.0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1.0, p1 = t;  // P_0, P_1; then the recurrence up to P_n
+        for (int k = 2; k <= n; ++k) {
+          const double p2 = ((2.0 * k - 1.0) * t * p1 - (k - 1.0) * p0) / k;
+          p0 = p1, p1 = p2;
+        }
+        dp = n * (t * p1 - p0) / (t * t - 1.0);
+        const double step = p1 / dp;
+        t -= step;
+        if (std::abs(step) < 1e-15) break;
+      }
+      x[i] = t, w[i] = 2.0 / ((1.0 - t * t) * dp * dp);
+    }
+  }
+};
+
 /// Bruneton's GetTextureCoordFromUnitRange, inline for the lookups' hot path.
 inline double texCoord(double x, int n) { return (0.5 + x * (n - 1.0)) / n; }
 
@@ -62,7 +85,7 @@ std::string PrecomputeOptions::validate() const {
   if (transmittanceSamples < 2 || transmittanceSamples % 2 != 0) e << "transmittanceSamples must be even and >= 2; ";
   if (singleScatteringSamples < 1 || multipleScatteringSamples < 1) e << "scattering samples must be >= 1; ";
   if (opticalDepthSubsamples < 2 || opticalDepthSubsamples % 2 != 0) e << "opticalDepthSubsamples must be even and >= 2; ";
-  if (sphereSamples < 1) e << "sphereSamples must be >= 1; ";
+  if (sphereSamples != 0 && sphereSamples < 2) e << "sphereSamples must be 0 (from the phase functions) or >= 2; ";
   if (irradianceSamples < 2 || irradianceSamples % 2 != 0) e << "irradianceSamples must be even and >= 2; ";
   if (!(muSMin >= -1.0 && muSMin < 1.0)) e << "muSMin must be in [-1, 1); ";
   if (!(sunAngularRadiusRad >= 0.0 && sunAngularRadiusRad < 0.5)) e << "sunAngularRadiusRad must be in [0, 0.5); ";
@@ -996,27 +1019,40 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     }
   };
 
-  // Sphere of directions for the density: midpoint rule in theta and phi (n x 2n). The
-  // incoming radiance is symmetric about the plane of the zenith and the sun (phi -> -phi:
-  // the same (mu, mu_s, nu)), so only phi in (0, pi) is looked up, each direction standing
-  // for itself and its mirror (wy -> -wy) with twice the solid angle.
-  const int nTh = o.sphereSamples, nPh = o.sphereSamples, nDir = nTh * nPh;
-  const double dA = kPi / o.sphereSamples;
-  std::vector<double> wx(nDir), wy(nDir), wz(nDir), wdo(nDir);
-  for (int lt = 0; lt < nTh; ++lt)
-    for (int mp = 0; mp < nPh; ++mp) {
-      const double th = (lt + 0.5) * dA, ph = (mp + 0.5) * dA;
-      const int j = lt * nPh + mp;
-      wx[j] = std::cos(ph) * std::sin(th), wy[j] = std::sin(ph) * std::sin(th), wz[j] = std::cos(th);
-      wdo[j] = 2.0 * dA * dA * std::sin(th);
-    }
+  // Sphere of directions for the density, per radius: Gauss-Legendre in mu on each side
+  // of the ground's horizon mu_h(r) (n/2 nodes below it, n - n/2 above; the nodes crowd
+  // towards the ends, so both sides of the horizon, where the sky is brightest and the
+  // radiance jumps to the ground's, are sampled within a degree or two), midpoint rule in
+  // phi (n over (0, pi)). The incoming radiance is symmetric about the plane of the zenith
+  // and the sun (phi -> -phi: the same (mu, mu_s, nu)), so only phi in (0, pi) is looked
+  // up, each direction standing for itself and its mirror (wy -> -wy) with twice the solid
+  // angle. A midpoint rule in theta missed the band along the horizon that lights the
+  // shadowed air in twilight (docs/accuracy-vs-speed.md, "Twilight").
+  const int nTh = o.sphereSamples, nPh = nTh, nDir = nTh * nPh;
+  const double dA = kPi / nTh;
+  const std::size_t RD = static_cast<std::size_t>(R) * nDir;
+  std::vector<double> wxAll(RD), wyAll(RD), wzAll(RD), wdoAll(RD);
+  const int nGround = nTh / 2, nSky = nTh - nGround;
+  const GaussLegendre glSky(nSky), glGround(nGround);
   // Transmittance from (r_z, theta_l) to the ground along straight rays (for the ground term).
   std::vector<double> groundT(static_cast<std::size_t>(R) * nTh * nl, 0.0), groundD(static_cast<std::size_t>(R) * nTh, -1.0);
   for (int z = 0; z < R; ++z) {
     const double r = g.rFromU((z + 0.5) / R);
+    const double muH = -std::sqrt(std::max(0.0, 1.0 - (b / r) * (b / r)));
     for (int lt = 0; lt < nTh; ++lt) {
-      const double mu = std::cos((lt + 0.5) * dA);
-      if (!rayIntersectsGround(b, r, mu)) continue;
+      const bool sky = lt < nSky;
+      const GaussLegendre& q = sky ? glSky : glGround;
+      const int i = sky ? lt : lt - nSky;
+      const double lo = sky ? muH : -1.0, hi = sky ? 1.0 : muH;
+      const double mu = 0.5 * (lo + hi) + 0.5 * (hi - lo) * q.x[i], dMu = 0.5 * (hi - lo) * q.w[i];
+      const double sinTh = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+      for (int mp = 0; mp < nPh; ++mp) {
+        const double ph = (mp + 0.5) * dA;
+        const std::size_t j = static_cast<std::size_t>(z) * nDir + lt * nPh + mp;
+        wxAll[j] = std::cos(ph) * sinTh, wyAll[j] = std::sin(ph) * sinTh, wzAll[j] = mu;
+        wdoAll[j] = 2.0 * dA * dMu;
+      }
+      if (sky || !rayIntersectsGround(b, r, mu)) continue;
       const double d = distanceToBottomBoundaryM(b, r, mu);
       groundD[z * nTh + lt] = d;
       const Path p = straightPath(r, mu, d);
@@ -1026,6 +1062,19 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       m.opticalDepth(col.data(), tau.data());
       for (int l = 0; l < nl; ++l) groundT[(static_cast<std::size_t>(z) * nTh + lt) * nl + l] = std::exp(-tau[l]);
     }
+  }
+
+  // The exact integral of each phase lobe over the sphere (trapezoid in cos theta, 2^17
+  // pieces: a Henyey-Greenstein lobe of g = 0.95 peaks over 1e-3 in cos theta). The sum
+  // over the directions above is renormalised to it per view (below): a forward peak
+  // narrower than the directions' spacing is otherwise over- or under-counted depending on
+  // where the view falls between them.
+  std::vector<double> lobeIntegral(m.lobes.size(), 0.0);
+  for (std::size_t li = 0; li < m.lobes.size(); ++li) {
+    const int n = 1 << 17;
+    double sum = 0.5 * (Model::evalLobe(m.lobes[li], -1.0) + Model::evalLobe(m.lobes[li], 1.0));
+    for (int i = 1; i < n; ++i) sum += Model::evalLobe(m.lobes[li], -1.0 + 2.0 * i / n);
+    lobeIntegral[li] = 2.0 * kPi * sum * 2.0 / n;
   }
 
   Table2D deltaE = out.directIrradiance;  // E_{k-2}
@@ -1041,6 +1090,8 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       const ScatteringPoint p0 = g.texel(is, 0, z);
       const double r = p0.r, muS = p0.muS, sinS = std::sqrt(std::max(0.0, 1.0 - muS * muS));
       const double alt = r - b;
+      const std::size_t zd = static_cast<std::size_t>(z) * nDir;
+      const double *wx = &wxAll[zd], *wy = &wyAll[zd], *wz = &wzAll[zd], *wdo = &wdoAll[zd];
       // Incoming radiance per direction, times the solid angle: Lw[l][j].
       std::vector<double> Lw(static_cast<std::size_t>(nl) * nDir), v(nl), E(nl);
       std::vector<double> M0(nl, 0.0), M2(static_cast<std::size_t>(nl) * 6, 0.0);
@@ -1094,8 +1145,10 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
             }
 #pragma omp simd
             for (int j = 0; j < nDir; ++j) pPair[j] = 0.5 * (pj[j] + pj[nDir + j]);
+            const double norm = dot(pPair.data(), wdo, nDir);
+            const double scale = norm > 0.0 ? lobeIntegral[li] / norm : 1.0;
             for (int l : m.lobeUsers[li]) {
-              lobeSum[li * nl + l] = dot(pPair.data(), &Lw[static_cast<std::size_t>(l) * nDir], nDir);
+              lobeSum[li * nl + l] = scale * dot(pPair.data(), &Lw[static_cast<std::size_t>(l) * nDir], nDir);
             }
           }
           std::fill(J.begin(), J.end(), 0.0);
@@ -1253,10 +1306,30 @@ ScatteringPoint scatteringTexelPoint(const ShellRadii& shell, const ScatteringTa
 
 // ---- precompute ------------------------------------------------------------------------------
 
-AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOptions& options,
+int densityDirectionsFor(const Atmosphere& atmosphere) {
+  double halfWidthRad = kPi / 2;  // of the narrowest forward peak
+  for (const Component& c : atmosphere.components) {
+    if (!c.scatters()) continue;
+    for (std::size_t l = 0; l < atmosphere.wavelengthsNm.size(); ++l) {
+      const PhaseFunction& p = c.phase(l);
+      const double forward = p(1.0);
+      for (double deg = 0.05; deg < halfWidthRad * 180.0 / kPi; deg += 0.05)
+        if (p(std::cos(deg * kPi / 180.0)) <= 0.5 * forward) {
+          halfWidthRad = deg * kPi / 180.0;
+          break;
+        }
+    }
+  }
+  const int n = static_cast<int>(std::ceil(kPi / (1.5 * halfWidthRad) / 8.0)) * 8;
+  return std::clamp(n, 16, 64);
+}
+
+AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOptions& optionsIn,
                             const PrecomputeProgress& progress) {
-  if (const std::string e = options.validate(); !e.empty()) throw std::invalid_argument("PrecomputeOptions: " + e);
+  if (const std::string e = optionsIn.validate(); !e.empty()) throw std::invalid_argument("PrecomputeOptions: " + e);
   if (const std::string e = atmosphere.validate(); !e.empty()) throw std::invalid_argument("Atmosphere: " + e);
+  PrecomputeOptions options = optionsIn;
+  if (options.sphereSamples == 0) options.sphereSamples = densityDirectionsFor(atmosphere);
   const int nl = static_cast<int>(atmosphere.wavelengthsNm.size());
   if (nl == 0) throw std::invalid_argument("Atmosphere: no wavelengths");
   const auto t0 = std::chrono::steady_clock::now();

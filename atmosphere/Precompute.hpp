@@ -18,8 +18,9 @@
 //   density        J_k(r, mu, mu_s, nu) = sum_c beta_s,c rho_c(r) int_4pi P_c(w.v) L_{k-1}(w) dw,
 //                  L_{k-1} the order k-1 radiance plus, for directions towards the ground,
 //                  the ground's albedo / pi E_{k-2} attenuated to the point
-//                  (ComputeScatteringDensity; midpoint rule on sphereSamples x
-//                  2 sphereSamples directions). Computed per (r, mu_s) slice: the incoming
+//                  (ComputeScatteringDensity; sphereSamples x 2 sphereSamples
+//                  directions: Gauss-Legendre in mu on either side of the ground's
+//                  horizon, midpoint in phi). Computed per (r, mu_s) slice: the incoming
 //                  radiance is looked up once per direction and shared by the slice's
 //                  (mu, nu) texels; polynomial phases (isotropic, Rayleigh, Penndorf) use the
 //                  exact second moments of the incoming radiance, the others a vectorised
@@ -53,6 +54,11 @@
 
 namespace umbra::atmosphere {
 
+/// How the density's sphere of directions is sampled (Precompute.cpp): part of the
+/// tables' cache keys, so that tables made with another rule are not read back.
+inline constexpr const char* kDensityQuadrature =
+    "mu Gauss-Legendre split at the ground's horizon, phi midpoint, lobes renormalised";
+
 struct PrecomputeOptions {
   int transmittanceWidth = 256;   ///< x_mu
   int transmittanceHeight = 64;   ///< x_r
@@ -67,7 +73,9 @@ struct PrecomputeOptions {
   int singleScatteringSamples = 50;   ///< trapezoid intervals per view ray
   int multipleScatteringSamples = 50; ///< trapezoid intervals per view ray
   int opticalDepthSubsamples = 4;     ///< Simpson intervals between two view-ray samples (even)
-  int sphereSamples = 16;         ///< density: n polar x 2n azimuthal directions (Bruneton: 16)
+  /// density: n polar x 2n azimuthal directions, n >= 2 (Bruneton: 16); 0: from the
+  /// phase functions (densityDirectionsFor).
+  int sphereSamples = 0;
   int irradianceSamples = 32;     ///< indirect irradiance: n/2 polar x 2n azimuthal (Bruneton: 32)
   double muSMin = -0.20791169081775931;  ///< cos(102 deg): the lowest sun in the tables
   double sunAngularRadiusRad = 0.004675;
@@ -81,6 +89,13 @@ struct PrecomputeOptions {
   /// Empty when usable, else what is wrong.
   std::string validate() const;
 };
+
+/// The density directions an atmosphere's phase functions need (sphereSamples 0): the
+/// polar spacing pi / n no wider than 1.5 times the half width of the narrowest forward peak
+/// (the angle at which a phase function falls to half its forward value), n a multiple of
+/// 8 in [16, 64]. Rayleigh and Earth's haze: 16; Mars' dust, whose Lorenz-Mie diffraction
+/// peak is a few degrees wide: more (docs/accuracy-vs-speed.md, "Density directions").
+int densityDirectionsFor(const Atmosphere& atmosphere);
 
 /// A 2D table, `channels` values (one per wavelength) per texel, row by row.
 struct Table2D {

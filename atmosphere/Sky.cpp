@@ -26,7 +26,7 @@ PrecomputeOptions skyPrecomputeOptions(int orders, double sunZenithRad) {
   o.scatteringNu = 8;
   o.irradianceWidth = 32;
   o.irradianceHeight = 8;
-  o.sphereSamples = sunZenithRad > kPi / 2 ? 48 : 12;
+  o.sphereSamples = sunZenithRad > kPi / 2 ? 24 : 12;
   o.irradianceSamples = 16;
   o.singleScatteringSamples = 40;
   o.multipleScatteringSamples = 40;

@@ -89,7 +89,7 @@ std::map<std::string, std::string> eclipseAtmosphereParameters(const atmosphere:
     << t.orders << " samples " << t.transmittanceSamples << " " << t.singleScatteringSamples << " "
     << t.multipleScatteringSamples << " " << t.opticalDepthSubsamples << " " << t.sphereSamples << " "
     << t.irradianceSamples << " muSMin " << atmosphere::formatNumber(t.muSMin) << " sun "
-    << atmosphere::formatNumber(t.sunAngularRadiusRad);
+    << atmosphere::formatNumber(t.sunAngularRadiusRad) << " density " << atmosphere::kDensityQuadrature;
   p["atmosphereTables"] = s.str();
   p["refraction"] = o.refraction ? std::to_string(o.refractionWidth) + "x" + std::to_string(o.refractionHeight) +
                                        " step " + atmosphere::formatNumber(o.refractionStepM)

@@ -150,6 +150,7 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
       base["samples"] = std::to_string(po.transmittanceSamples) + " " + std::to_string(po.singleScatteringSamples) + " " +
                         std::to_string(po.multipleScatteringSamples) + " " + std::to_string(po.opticalDepthSubsamples) +
                         " " + std::to_string(po.sphereSamples) + " " + std::to_string(po.irradianceSamples);
+      base["densityQuadrature"] = atmosphere::kDensityQuadrature;
       base["muSMin"] = formatNumber(po.muSMin);
       base["sunAngularRadiusRad"] = formatNumber(po.sunAngularRadiusRad);
       base["refractedPaths"] = po.refraction ? "1" : "0";

@@ -419,18 +419,20 @@ TEST(Precompute, NightSkyBelowTheLowestSunMatchesBruteForce) {
 // L1 the brute-force single scattering seen from height s along w (Simpson in s, midpoint
 // over the sphere, 36 x 72 directions: within 2 % of 72 x 144), no ground reflection
 // (albedo 0), 2 orders. The tables with the usual lowest Sun, 102 deg, have the zenith
-// black. The bound is a factor of 2: the light comes from a band a few degrees wide along
-// the horizon towards the Sun, which the tables' 16 x 32 density directions sample coarsely
-// (measured +56 / -23 / +71 % at 680 / 550 / 440 nm; -6 % with 48 x 96 directions and
-// finer tables, 34 s; docs/accuracy-vs-speed.md, "Twilight").
+// black. The light comes from a band a few degrees wide along the horizon towards the Sun,
+// and the tables need fine mu_s cells, radii and density directions to hold it (R 16,
+// mu_s 128, 24 x 48 directions here: +18 / +7 / +15 % at 680 / 550 / 440 nm; with
+// 16 x 32 directions and R 8, mu_s 64: +83 %; finer still, 33 s: within 13 %;
+// docs/accuracy-vs-speed.md, "Twilight").
 TEST(Precompute, SecondOrderTwilightAtTheZenithMatchesBruteForce) {
   Atmosphere earth = loadAtmosphere("earth", {680.0, 550.0, 440.0});
   earth.groundAlbedo.assign(3, 0.0);
   PrecomputeOptions o = belowTheLowestSunOptions();
   o.orders = 2;
-  o.scatteringMuS = 64;
+  o.scatteringR = 16;
+  o.scatteringMuS = 128;
   o.scatteringNu = 8;
-  o.sphereSamples = 16;
+  o.sphereSamples = 24;
   o.muSMin = std::cos(130.0 * kPi / 180.0);
   const AtmosphereTables t = precompute(earth, o);
   const double b = earth.bottomRadiusM, top = earth.topRadiusM;
@@ -468,12 +470,35 @@ TEST(Precompute, SecondOrderTwilightAtTheZenithMatchesBruteForce) {
     std::printf("second-order twilight at the zenith, %g nm: tables %.4g, brute force %.4g (%+.1f %%)\n",
                 earth.wavelengthsNm[l], got[l], ref[l], 100.0 * (got[l] / ref[l] - 1.0));
     EXPECT_GT(ref[l], 0.0);
-    EXPECT_GT(got[l], 0.5 * ref[l]) << earth.wavelengthsNm[l] << " nm";
-    EXPECT_LT(got[l], 2.0 * ref[l]) << earth.wavelengthsNm[l] << " nm";
+    EXPECT_NEAR(got[l], ref[l], 0.3 * ref[l]) << earth.wavelengthsNm[l] << " nm";
     EXPECT_EQ(black[l], 0.0);
   }
   EXPECT_GT(ref[2], ref[0]);  // blue: Rayleigh twice
   EXPECT_LT(ref[1], ref[0]);  // ozone's Chappuis band takes 550 nm from the long twilight path
+}
+
+// The density directions follow the narrowest forward peak: for a Henyey-Greenstein lobe
+// the half width is closed-form, 1 + g^2 - 2 g cos(theta) = (1 - g)^2 2^(2/3); the polar
+// spacing pi / n must be no wider than 1.5 times it, n a multiple of 8 in [16, 64].
+TEST(Precompute, DensityDirectionsFollowTheNarrowestForwardPeak) {
+  const auto hgAtmosphere = [](double g) {
+    return shellAtmosphere({makeComponent("haze", DensityProfile::exponential(1200.0), 2e-5, 0.0,
+                                          PhaseFunction::henyeyGreenstein(g), 1)});
+  };
+  for (double g : {0.5, 0.9, 0.95, 0.99}) {
+    const double c = (1.0 + g * g - (1.0 - g) * (1.0 - g) * std::cbrt(4.0)) / (2.0 * g);
+    const double halfWidth = std::acos(c);
+    const int expected = std::clamp(static_cast<int>(std::ceil(kPi / (1.5 * halfWidth) / 8.0)) * 8, 16, 64);
+    EXPECT_EQ(densityDirectionsFor(hgAtmosphere(g)), expected) << g << ": half width " << halfWidth * 180 / kPi;
+  }
+  EXPECT_EQ(densityDirectionsFor(hgAtmosphere(0.9)), 32);   // 4.63 deg
+  EXPECT_EQ(densityDirectionsFor(hgAtmosphere(0.95)), 56);  // 2.25 deg
+  EXPECT_EQ(densityDirectionsFor(hgAtmosphere(0.99)), 64);  // clamped
+  const Atmosphere earth = loadAtmosphere("earth", {680.0, 550.0, 440.0});
+  const Atmosphere mars = loadAtmosphere("mars", {680.0, 550.0, 440.0});
+  std::printf("density directions: earth %d, mars %d\n", densityDirectionsFor(earth), densityDirectionsFor(mars));
+  EXPECT_EQ(densityDirectionsFor(earth), 16);
+  EXPECT_GE(densityDirectionsFor(mars), 48);
 }
 
 // The eclipse LuTs look at Mars' limb from Phobos (2.8 Mars radii) and Deimos (6.9), in the
