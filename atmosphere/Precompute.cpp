@@ -1,4 +1,5 @@
 #include "Precompute.hpp"
+#include "Quadrature.hpp"
 
 #include "Refraction.hpp"
 #include "TextureCoords.hpp"
@@ -27,29 +28,6 @@ namespace umbra::atmosphere {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-/// Nodes x and weights w of the n-point Gauss-Legendre rule on [-1, 1]: the roots of the
-/// Legendre polynomial P_n by Newton's method from Tricomi's estimate, w = 2 / ((1 - x^2) P_n'(x)^2).
-struct GaussLegendre {
-  std::vector<double> x, w;
-  explicit GaussLegendre(int n) : x(n), w(n) {
-    for (int i = 0; i < n; ++i) {
-      double t = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1.0;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1.0, p1 = t;  // P_0, P_1; then the recurrence up to P_n
-        for (int k = 2; k <= n; ++k) {
-          const double p2 = ((2.0 * k - 1.0) * t * p1 - (k - 1.0) * p0) / k;
-          p0 = p1, p1 = p2;
-        }
-        dp = n * (t * p1 - p0) / (t * t - 1.0);
-        const double step = p1 / dp;
-        t -= step;
-        if (std::abs(step) < 1e-15) break;
-      }
-      x[i] = t, w[i] = 2.0 / ((1.0 - t * t) * dp * dp);
-    }
-  }
-};
 
 /// Bruneton's GetTextureCoordFromUnitRange, inline for the lookups' hot path.
 inline double texCoord(double x, int n) { return (0.5 + x * (n - 1.0)) / n; }
@@ -1033,7 +1011,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
   const std::size_t RD = static_cast<std::size_t>(R) * nDir;
   std::vector<double> wxAll(RD), wyAll(RD), wzAll(RD), wdoAll(RD);
   const int nGround = nTh / 2, nSky = nTh - nGround;
-  const GaussLegendre glSky(nSky), glGround(nGround);
+  const GaussLegendreRule glSky(nSky), glGround(nGround);
   // Transmittance from (r_z, theta_l) to the ground along straight rays (for the ground term).
   std::vector<double> groundT(static_cast<std::size_t>(R) * nTh * nl, 0.0), groundD(static_cast<std::size_t>(R) * nTh, -1.0);
   for (int z = 0; z < R; ++z) {
@@ -1041,7 +1019,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     const double muH = -std::sqrt(std::max(0.0, 1.0 - (b / r) * (b / r)));
     for (int lt = 0; lt < nTh; ++lt) {
       const bool sky = lt < nSky;
-      const GaussLegendre& q = sky ? glSky : glGround;
+      const GaussLegendreRule& q = sky ? glSky : glGround;
       const int i = sky ? lt : lt - nSky;
       const double lo = sky ? muH : -1.0, hi = sky ? 1.0 : muH;
       const double mu = 0.5 * (lo + hi) + 0.5 * (hi - lo) * q.x[i], dMu = 0.5 * (hi - lo) * q.w[i];

@@ -2,6 +2,7 @@
 
 #include "Atmosphere.hpp"
 #include "Precompute.hpp"
+#include "Quadrature.hpp"
 #include "Refraction.hpp"
 
 #include <algorithm>
@@ -23,26 +24,11 @@ double cosDifference(double a, double b) { return 2.0 * std::sin(0.5 * (a + b)) 
 
 /// Gauss-Legendre nodes and weights on [0, 1], N points.
 template <int N>
-struct GaussLegendre {
+struct GaussLegendre {  // on [0, 1]
   std::array<double, N> x{}, w{};
   GaussLegendre() {
-    const int n = N;
-    for (int i = 0; i < n; ++i) {
-      double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 0.0;
-      for (int it = 0; it < 100; ++it) {
-        double p0 = 1.0, p1 = z;
-        for (int k = 2; k <= n; ++k) {
-          const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-          p0 = p1, p1 = p2;
-        }
-        dp = n * (z * p1 - p0) / (z * z - 1.0);
-        const double dz = p1 / dp;
-        z -= dz;
-        if (std::abs(dz) < 1e-16) break;
-      }
-      x[i] = 0.5 * (1.0 - z);
-      w[i] = 1.0 / ((1.0 - z * z) * dp * dp);  // 2 / ((1 - z^2) P'^2) on [-1, 1], halved
-    }
+    const atmosphere::GaussLegendreRule rule(N);
+    for (int i = 0; i < N; ++i) x[i] = 0.5 * (1.0 - rule.x[i]), w[i] = 0.5 * rule.w[i];
   }
 };
 template <int N>
