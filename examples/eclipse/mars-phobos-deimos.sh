@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Mars' shadow at the distances of Phobos (9376 km) and Deimos (23 463 km) (eclipse paper,
-# Figure 12 right): red over most of the umbra at Phobos and its inner 40 % at Deimos, grey
+# Figure 12 right): red over most of the umbra at Phobos and its inner third at Deimos, grey
 # near the penumbra's boundary (docs/eclipse-shadows.md, "Mars' shadow after the night-side fix").
 # Usage: examples/eclipse/mars-phobos-deimos.sh [OUTPUT_DIR]
 source "$(dirname "$0")/common.sh"
