@@ -1100,6 +1100,12 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       for (int q = 0; q < ns; ++q) rho[q] = m.density(m.scatterers[q], alt);
       // cj: the cosines with the view of the directions [0, nDir) and of their mirrors.
       std::vector<double> cj(2 * nDir), pj(2 * nDir), pPair(nDir), lobeSum(m.lobes.size() * nl), J(nl);
+      // Tabulated lobes (one per wavelength for Lorenz-Mie) share the cosines: the table
+      // index and weight of each, computed once per view (as Model::evalLobe does).
+      std::vector<int> tableIndex(2 * nDir);
+      std::vector<double> tableWeight(2 * nDir);
+      bool anyTable = false;
+      for (const Lobe& lobe : m.lobes) anyTable = anyTable || !lobe.table.empty();
       for (int y = 0; y < MU; ++y) {
         for (int k = 0; k < o.scatteringNu; ++k) {
           const int x = k * MUS + is;
@@ -1114,12 +1120,24 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
               cj[nDir + j] = wx[j] * vx - wy[j] * vy + wz[j] * vz;
             }
           }
+          if (anyTable) {
+            for (int j = 0; j < 2 * nDir; ++j) {
+              const double f = (std::clamp(cj[j], -1.0, 1.0) + 1.0) * 0.5 * (kPhaseTableSize - 1);
+              const int i = std::min(static_cast<int>(f), kPhaseTableSize - 2);
+              tableIndex[j] = i, tableWeight[j] = f - i;
+            }
+          }
           for (std::size_t li = 0; li < m.lobes.size(); ++li) {
             const Lobe& lobe = m.lobes[li];
             if (lobe.table.empty()) {
               lobeValues(lobe.A, lobe.B, lobe.g, cj.data(), pj.data(), 2 * nDir);
             } else {
-              for (int j = 0; j < 2 * nDir; ++j) pj[j] = Model::evalLobe(lobe, cj[j]);
+              const double* T = lobe.table.data();
+              for (int j = 0; j < 2 * nDir; ++j) {
+                const int i = tableIndex[j];
+                const double w = tableWeight[j];
+                pj[j] = (1 - w) * T[i] + w * T[i + 1];
+              }
             }
 #pragma omp simd
             for (int j = 0; j < nDir; ++j) pPair[j] = 0.5 * (pj[j] + pj[nDir + j]);
