@@ -494,11 +494,17 @@ struct Model {
     return i;
   }
 
+  /// Where cosine c falls in a tabulated lobe: between entries i and i + 1, weight w on i + 1.
+  static void tablePosition(double c, int& i, double& w) {
+    const double f = (std::clamp(c, -1.0, 1.0) + 1.0) * 0.5 * (kPhaseTableSize - 1);
+    i = std::min(static_cast<int>(f), kPhaseTableSize - 2);
+    w = f - i;
+  }
   static double evalLobe(const Lobe& lobe, double c) {
     if (!lobe.table.empty()) {
-      const double f = (std::clamp(c, -1.0, 1.0) + 1.0) * 0.5 * (kPhaseTableSize - 1);
-      const int i = std::min(static_cast<int>(f), kPhaseTableSize - 2);
-      const double w = f - i;
+      int i;
+      double w;
+      tablePosition(c, i, w);
       return (1 - w) * lobe.table[i] + w * lobe.table[i + 1];
     }
     const double d = 1.0 + lobe.g * lobe.g - 2.0 * lobe.g * c;
@@ -1121,11 +1127,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
             }
           }
           if (anyTable) {
-            for (int j = 0; j < 2 * nDir; ++j) {
-              const double f = (std::clamp(cj[j], -1.0, 1.0) + 1.0) * 0.5 * (kPhaseTableSize - 1);
-              const int i = std::min(static_cast<int>(f), kPhaseTableSize - 2);
-              tableIndex[j] = i, tableWeight[j] = f - i;
-            }
+            for (int j = 0; j < 2 * nDir; ++j) Model::tablePosition(cj[j], tableIndex[j], tableWeight[j]);
           }
           for (std::size_t li = 0; li < m.lobes.size(); ++li) {
             const Lobe& lobe = m.lobes[li];

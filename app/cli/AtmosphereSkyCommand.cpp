@@ -106,8 +106,8 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       "sky", "Sky luminance (cd/m^2, for the top-of-atmosphere Sun at 1 au) and linear sRGB seen by an observer, "
              "over view zenith x azimuth from the Sun's azimuth (0-180 degrees: the sky is symmetric)");
   struct Options {
-    std::string preset, config, altitude = "0", csv, plot, lowestSun = "auto";
-    double sunZenithDeg = -1.0, zenithStep = 5.0, azimuthStep = 10.0;
+    std::string preset, config, altitude = "0", csv, plot;
+    double sunZenithDeg = -1.0, zenithStep = 5.0, azimuthStep = 10.0, lowestSunZenithDeg = 102.0;
     int orders = 4, wavelengths = 15, plotSize = 256;
   };
   auto o = std::make_shared<Options>();
@@ -115,10 +115,9 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
   sky->add_option("--sun-zenith-deg", o->sunZenithDeg,
                   "Sun zenith angle in degrees (0-180; past 90 the twilight sky)")
       ->required();
-  sky->add_option("--lowest-sun-zenith-deg", o->lowestSun,
-                  "The lowest Sun the tables hold, in degrees (102-170; below it the air is dark). auto: 102, or 20 "
-                  "below a Sun lower than 82 (the light scattered into the shadowed air: second-order twilight)")
-      ->capture_default_str();
+  CLI::Option* lowestSun = sky->add_option("--lowest-sun-zenith-deg", o->lowestSunZenithDeg,
+                  "The lowest Sun the tables hold, in degrees (102-170; below it the air is dark). Default: 102, or 20 "
+                  "below a Sun lower than 82 (the light scattered into the shadowed air: second-order twilight)");
   sky->add_option("--observer-altitude", o->altitude, "Observer altitude above the ground (units m, km)")
       ->capture_default_str();
   sky->add_option("--zenith-step", o->zenithStep, "View zenith step in degrees (0 to 90)")->capture_default_str();
@@ -130,8 +129,9 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
   sky->add_option("--plot", o->plot, "PNG file: a fisheye picture of the dome (zenith in the centre, Sun's azimuth up)");
   sky->add_option("--plot-size", o->plotSize, "Width and height of the picture in pixels (16-4096)")->capture_default_str();
 
-  sky->callback([&action, o] {
-    action = [o] {
+  sky->callback([&action, o, lowestSun] {
+    const bool lowestSunGiven = lowestSun->count() > 0;
+    action = [o, lowestSunGiven] {
       output::checkWritable(o->csv, {".csv"});
       if (!o->plot.empty()) output::checkWritable(o->plot, {".png"});
       if (!(o->sunZenithDeg >= 0.0 && o->sunZenithDeg <= 180.0))
@@ -143,20 +143,10 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       if (o->orders < 1 || o->orders > 10) throw CommandError("--orders: expected 1 to 10");
       if (o->wavelengths < 3 || o->wavelengths > 47) throw CommandError("--wavelengths: expected 3 to 47");
       if (o->plotSize < 16 || o->plotSize > 4096) throw CommandError("--plot-size: expected 16 to 4096");
+      if (lowestSunGiven && !(o->lowestSunZenithDeg >= 102.0 && o->lowestSunZenithDeg <= 170.0))
+        throw CommandError("--lowest-sun-zenith-deg: expected 102 to 170 degrees, got " +
+                           std::to_string(o->lowestSunZenithDeg));
       const double sunZenithRad = o->sunZenithDeg * kDeg;
-      double lowestSunZenithRad = atmosphere::skyLowestSunZenithRad(sunZenithRad);
-      if (o->lowestSun != "auto") {
-        std::size_t used = 0;
-        double deg = -1.0;
-        try {
-          deg = std::stod(o->lowestSun, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used != o->lowestSun.size() || !(deg >= 102.0 && deg <= 170.0))
-          throw CommandError("--lowest-sun-zenith-deg: expected auto or 102 to 170 degrees, got " + o->lowestSun);
-        lowestSunZenithRad = deg * kDeg;
-      }
       const double altitudeM = lengthOption("--observer-altitude", o->altitude);
       if (!(altitudeM >= 0.0)) throw CommandError("--observer-altitude: expected a length >= 0, got " + o->altitude);
 
@@ -168,10 +158,11 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
                            std::to_string(0.5 * atm.thicknessM()) + " m), got " + o->altitude);
 
       atmosphere::AtmosphereTables tables;
+      atmosphere::PrecomputeOptions options;
       {
         ProgressLine progress("sky tables (" + atm.name + ")");
-        atmosphere::PrecomputeOptions options = atmosphere::skyPrecomputeOptions(o->orders, sunZenithRad);
-        options.muSMin = std::cos(lowestSunZenithRad);
+        options = atmosphere::skyPrecomputeOptions(o->orders, sunZenithRad);
+        if (lowestSunGiven) options.muSMin = std::cos(o->lowestSunZenithDeg * kDeg);
         tables = atmosphere::precompute(atm, options, [&progress](double f, const std::string&) {
           progress.update(f);
           return true;
@@ -197,7 +188,7 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       out.commit();
       std::cout << "wrote " << o->csv << (o->plot.empty() ? "" : " and " + o->plot) << " (" << atm.name
                 << ", Sun zenith " << o->sunZenithDeg << " deg, tables down to a Sun "
-                << std::lround(lowestSunZenithRad / kDeg) << " deg from the zenith, observer at " << altitudeM
+                << std::lround(std::acos(options.muSMin) / kDeg) << " deg from the zenith, observer at " << altitudeM
                 << " m; luminance for a solar illuminance of " << std::lround(grid.solarIlluminanceLux)
                 << " lx, r,g,b linear sRGB in cd/m^2 clamped at 0)\n";
       return 0;

@@ -302,23 +302,27 @@ TEST(Precompute, SingleScatteringMatchesBruteForceIntegral) {
   EXPECT_GT(checked, 50);
 }
 
+/// Brute-force optical depth per wavelength along the straight ray (r0, mu0) over distance
+/// d: the midpoint rule over n pieces.
+std::vector<double> bruteForceOpticalDepth(const Atmosphere& a, double r0, double mu0, double d, int n = 400) {
+  const double b = a.bottomRadiusM, top = a.topRadiusM;
+  std::vector<double> tau(a.wavelengthsNm.size(), 0.0);
+  for (int i = 0; i < n; ++i) {
+    const double s = d * (i + 0.5) / n;
+    const double h = std::clamp(std::sqrt(s * s + 2.0 * r0 * mu0 * s + r0 * r0) - b, 0.0, top - b);
+    for (const Component& c : a.components)
+      for (std::size_t l = 0; l < tau.size(); ++l) tau[l] += c.density.at(h) * d / n * c.extinctionPerM(l);
+  }
+  return tau;
+}
+
 /// Brute-force single scattering along the straight ray (r, mu) to its end (the ground or
 /// the top), the Sun's ray blocked by the ground: Simpson over `steps`, optical depths by
 /// the midpoint rule over 400 pieces. Per wavelength, phase included.
 std::vector<double> bruteForceSingleScattering(const Atmosphere& a, double r, double mu, double muS, double nu,
                                                int steps = 400) {
   const double b = a.bottomRadiusM, top = a.topRadiusM;
-  const auto depth = [&](double r0, double mu0, double d) {
-    std::vector<double> tau(a.wavelengthsNm.size(), 0.0);
-    const int n = 400;
-    for (int i = 0; i < n; ++i) {
-      const double s = d * (i + 0.5) / n;
-      const double h = std::clamp(std::sqrt(s * s + 2.0 * r0 * mu0 * s + r0 * r0) - b, 0.0, top - b);
-      for (const Component& c : a.components)
-        for (std::size_t l = 0; l < tau.size(); ++l) tau[l] += c.density.at(h) * d / n * c.extinctionPerM(l);
-    }
-    return tau;
-  };
+  const auto depth = [&](double r0, double mu0, double d) { return bruteForceOpticalDepth(a, r0, mu0, d); };
   std::vector<double> L(a.wavelengthsNm.size(), 0.0);
   const double end = rayIntersectsGround(b, r, mu) ? distanceToBottomBoundaryM(b, r, mu) : distanceToTopBoundaryM(top, r, mu);
   for (int i = 0; i <= steps; ++i) {
@@ -443,10 +447,7 @@ TEST(Precompute, SecondOrderTwilightAtTheZenithMatchesBruteForce) {
   const int steps = 16, polar = 36, azimuth = 72;
   for (int i = 0; i <= steps; ++i) {
     const double s = (top - r) * i / steps, w = (i == 0 || i == steps ? 1.0 : (i % 2 ? 4.0 : 2.0)) * (top - r) / steps / 3.0;
-    std::vector<double> tau(3, 0.0);  // optical depth from the observer up to s
-    for (int k = 0; k < 100; ++k)
-      for (const Component& c : earth.components)
-        for (int l = 0; l < 3; ++l) tau[l] += c.density.at(10.0 + s * (k + 0.5) / 100) * s / 100 * c.extinctionPerM(l);
+    const std::vector<double> tau = bruteForceOpticalDepth(earth, r, 1.0, s, 100);  // observer to s
     std::vector<double> inScattered(3, 0.0);
     for (int p = 0; p < polar; ++p) {
       const double theta = kPi * (p + 0.5) / polar, dOmega = std::sin(theta) * (kPi / polar) * (2.0 * kPi / azimuth);
