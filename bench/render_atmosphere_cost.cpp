@@ -57,8 +57,9 @@ int main(int argc, char** argv) {
     v.SetBodies(in.sun, in.bodies, lut);
     if (k > 0) {
       vtkNew<vtkAtmosphereTablesSource> source;
-      if (tables == "small") render::useSmallAtmosphereTables(source);
-      render::applySceneAtmosphere(v, in, source, k == 2);
+      render::applySceneAtmosphere(v, in, source, k == 2,
+                                   tables == "small" ? render::AtmosphereTableSizes::Small
+                                                     : render::AtmosphereTableSizes::Default);
     }
     v.SetCamera(in.camera);
     v.SetExposureEV(s.exposureEv);

@@ -72,8 +72,8 @@ int main(int argc, char** argv) {
   };
   auto sky = [&](render::BodyView& v, bool refraction, double thresholdPx) {
     vtkNew<vtkAtmosphereTablesSource> t;
-    if (small) render::useSmallAtmosphereTables(t);
-    render::applySceneAtmosphere(v, earth, t, refraction);
+    render::applySceneAtmosphere(v, earth, t, refraction,
+                                 small ? render::AtmosphereTableSizes::Small : render::AtmosphereTableSizes::Default);
     vtkNew<vtkLimbLuminanceSource> limb;
     if (small) render::useSmallLimbLuminanceTables(limb);
     render::applySceneLimbLuminance(v.GetAtmosphere(), earth, limb);

@@ -130,7 +130,9 @@ void addRenderCommand(CLI::App& app, Action& action) {
   render->add_option("--step", o->step, "Animation: time between frames, e.g. 30min (units s, min, h, d)");
   render->add_option("--atmosphere-tables", o->atmosphereTables,
                      "Atmosphere table sizes: default (vtkAtmosphereTablesSource's: 256x64, 32,128,32,8, 64x16, "
-                     "4 orders) or small (64x16, 8,32,8,4, 16x4, 3 orders: quick looks and tests)")
+                     "4 orders) or small (64x16, 8,32,8,4, 16x4, 3 orders: quick looks and tests). From the ground after sunset "
+                     "(the Sun over 1 deg down) the scattering tables have 4 times the mu_s cells (default: 16,128,128,8) "
+                     "and reach 20 deg below the Sun (docs/accuracy-vs-speed.md, \"Twilight in the render pass\")")
       ->capture_default_str();
   render->add_flag("--refraction", o->refraction,
                    "Bend the rays through the atmosphere (eclipse paper, 4.2): a lifted, flattened Sun at the "
@@ -169,7 +171,8 @@ void addRenderCommand(CLI::App& app, Action& action) {
       vtkNew<vtkAtmosphereTablesSource> tables;
       tables->SetCacheDirectory(o->cache.directory.c_str());
       tables->SetUseCache(!o->cache.disabled);
-      if (o->atmosphereTables == "small") render::useSmallAtmosphereTables(tables);
+      const auto tableSizes =
+          o->atmosphereTables == "small" ? render::AtmosphereTableSizes::Small : render::AtmosphereTableSizes::Default;
       vtkNew<vtkEclipseShadowLutSource> shadow;
       shadow->SetCacheDirectory(o->cache.directory.c_str());
       shadow->SetUseCache(!o->cache.disabled);
@@ -207,7 +210,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
         view.SetBodies(in.sun, in.bodies, lut->GetOutput());
         if (in.atmosphere) {
           try {
-            render::applySceneAtmosphere(view, in, tables, o->refraction);
+            render::applySceneAtmosphere(view, in, tables, o->refraction, tableSizes);
             // The other bodies in its shadow: the atmospheric shadow LuT (their columns only);
             // its ring, when thin on screen: the limb-luminance LuT (eclipse paper, 5.4).
             render::applySceneAtmosphereShadow(view.GetShading(), in, shadow);

@@ -84,6 +84,7 @@ void checkAtmosphere(const std::string& model) {
 /// mapped to its part [from, to] of the bar.
 struct MainWindow::AtmosphereJob {
   vtkSmartPointer<vtkAtmosphereTablesSource> source;
+  render::AtmosphereTableChoice choice;  // the scene's, that `source` is configured for
   vtkSmartPointer<vtkEclipseShadowLutSource> shadow;
   std::optional<render::AtmosphereShadowRequest> request;
   vtkSmartPointer<vtkLimbLuminanceSource> limb;
@@ -402,21 +403,29 @@ void MainWindow::startAtmosphere(const std::string& model) {
     return;
   }
 
-  // The source is configured as render::applySceneAtmosphere configures it, so that its
-  // Update there (GUI thread) finds it up to date. The view keeps its tables meanwhile.
+  // The tables for the scene's sky at its time, configured as `umbra render` configures
+  // them (render::configureSceneAtmosphereTables), so that render::showSceneAtmosphereTables
+  // (GUI thread) finds them up to date. The view keeps its tables meanwhile.
+  scene::Scene withModel = *this->current;
+  for (scene::Body& b : withModel.bodies) b.atmosphereModel = b.name == this->atmosphereBody ? model : std::string();
   auto j = std::make_unique<AtmosphereJob>();
   j->source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
-  j->source->SetAtmosphere(model.c_str());
-  j->source->SetWavelengths(3);
-  const bool refraction = this->refraction();
-  j->source->SetTables(vtkAtmosphereTablesSource::Bruneton | (refraction ? vtkAtmosphereTablesSource::Refraction : 0));
-  j->source->SetRefractedPaths(refraction);
-  if (this->smallTables) render::useSmallAtmosphereTables(j->source);
+  try {
+    const render::SceneInputs in = render::sceneInputs(withModel);
+    j->choice = render::atmosphereTableChoice(in);
+    render::configureSceneAtmosphereTables(j->source, in, this->refraction(),
+                                           this->smallTables ? render::AtmosphereTableSizes::Small
+                                                             : render::AtmosphereTableSizes::Default);
+  } catch (const std::exception& e) {
+    if (const auto& missing = this->view->missingAtmosphereTables()) this->failedTables = *missing;  // no retry loop
+    this->atmosphereFailed(e.what());
+    return;
+  }
   j->observe(j->source, 0.0, 1.0);
   vtkAtmosphereTablesSource* source = j->source;
-  this->runJob(std::move(j), "computing the " + this->atmosphereChoice->currentText().toStdString() +
-                                 " atmosphere tables...",
-               [source] { source->Update(); });
+  const std::string status = "computing the " + this->atmosphereChoice->currentText().toStdString() +
+                             (j->choice.twilight ? " twilight" : "") + " atmosphere tables...";
+  this->runJob(std::move(j), status, [source] { source->Update(); });
 }
 
 void MainWindow::startEclipseLuts() {
@@ -521,19 +530,25 @@ void MainWindow::atmosphereFinished(int generation) {
   }
   const std::string error = done->source->GetLastError();
   if (!error.empty()) {
-    // The view keeps what it drew; the choice goes back to it.
-    const int index = this->atmosphereChoice->findData(qs(this->drawnModel));
-    this->atmosphereChoice->setCurrentIndex(std::max(index, 0));
-    this->refresh();
-    this->setStatus(qs("atmosphere: " + (done->cancelled ? std::string("cancelled") : error)));
+    this->failedTables = done->choice;  // not asked for again until the time moves
+    this->atmosphereFailed(done->cancelled ? std::string("cancelled") : error);
     return;
   }
   const std::string model = done->source->GetAtmosphere();
   for (scene::Body& b : this->current->bodies)
     b.atmosphereModel = b.name == this->atmosphereBody ? model : std::string();
-  this->view->setAtmosphereTables(done->source);
+  this->failedTables.reset();
+  this->view->setAtmosphereTables(done->source, done->choice);
   this->drawnModel = model;
   this->refresh();
+}
+
+void MainWindow::atmosphereFailed(const std::string& why) {
+  // The view keeps what it drew; the choice goes back to it.
+  const int index = this->atmosphereChoice->findData(qs(this->drawnModel));
+  this->atmosphereChoice->setCurrentIndex(std::max(index, 0));
+  this->refresh();
+  this->setStatus(qs("atmosphere: " + why));
 }
 
 void MainWindow::showAtmosphereEditor() {
@@ -642,7 +657,7 @@ void MainWindow::showTime(scene::UtcTime time) {
   const bool onSlider = std::abs(minutes) <= kSliderHalfRangeMin && std::abs(minutes - std::round(minutes)) < 1e-6;
   if (!onSlider) this->sliderCentre = time;
   scene::setTime(*this->current, time);
-  this->failedShadow.reset(), this->failedLimb.reset();  // another time: try again
+  this->failedShadow.reset(), this->failedLimb.reset(), this->failedTables.reset();  // another time: try again
   {
     const QSignalBlocker block(this->slider);
     this->slider->setValue(onSlider ? static_cast<int>(std::lround(minutes)) : 0);
@@ -654,7 +669,7 @@ void MainWindow::sliderMoved(int minutes) {
   if (!this->current || !this->current->hasTime) return;
   try {
     scene::setTime(*this->current, scene::addSeconds(this->sliderCentre, 60.0 * minutes));
-    this->failedShadow.reset(), this->failedLimb.reset();  // another time: try again
+    this->failedShadow.reset(), this->failedLimb.reset(), this->failedTables.reset();  // another time: try again
     this->refresh();
   } catch (const std::exception& e) {
     this->setStatus(QString("error: ") + e.what());
@@ -669,7 +684,12 @@ void MainWindow::refresh() {
   this->plot->setAtmosphereShadowLut(this->view->atmosphereShadowLut(), this->atmosphereBody);
   this->shadowFactor = this->plot->update(this->shadow);
   this->view->render();
-  this->startEclipseLuts();  // the atmospheric shadow and limb-luminance LuTs the scene needs, in the worker
+  // After sunset (or back in daylight) the sky's tables, then the atmospheric shadow and
+  // limb-luminance LuTs the scene needs, in the worker.
+  const auto& tables = this->view->missingAtmosphereTables();
+  if (tables && !this->job && !this->drawnModel.empty() && tables != this->failedTables)
+    this->startAtmosphere(this->drawnModel);
+  this->startEclipseLuts();
 
   if (s.hasTime) {
     const int v = this->slider->value();

@@ -15,6 +15,7 @@
 // ring as `umbra render` does; a "Refraction" check box makes the tables again with
 // refracted paths.
 #include "AtmosphereShadow.h"
+#include "SceneInputs.h"
 #include "scene/ReceiverShadow.hpp"
 #include "scene/Scene.hpp"
 
@@ -133,6 +134,7 @@ private:
   void startAtmosphere(const std::string& model);  // the tables in the worker
   void startEclipseLuts();  // the view's missing atmospheric shadow / limb-luminance LuTs in the worker
   struct AtmosphereJob;
+  void atmosphereFailed(const std::string& why);
   void runJob(std::unique_ptr<AtmosphereJob> job, const std::string& status, std::function<void()> work);
   void atmosphereEdited();  // the editor's accepted document -> a file -> startAtmosphere
   void loadAtmosphereDialog();
@@ -173,6 +175,7 @@ private:
   // tables are the same through an eclipse: render::sunDistanceOnGrid) or the request changes.
   std::optional<render::AtmosphereShadowRequest> failedShadow;
   std::optional<render::LimbLuminanceRequest> failedLimb;
+  std::optional<render::AtmosphereTableChoice> failedTables;  // the scene's choice of tables (twilight)
   int jobGeneration = 0;
 };
 

@@ -81,6 +81,8 @@ struct SceneView::Impl {
   vtkSmartPointer<vtkRenderer> renderer;
   vtkSmartPointer<vtkAtmosphereTablesSource> tables;
   vtkAtmosphereTablesSource* applied = nullptr;  // the tables the view's atmosphere holds
+  render::AtmosphereTableChoice tablesChoice;    // what `tables` were configured for
+  std::optional<render::AtmosphereTableChoice> missingTables;
   // Near an occluder (Phobos by Mars) the view's own LuT over the receivers' ranges
   // (render::sceneLutRange), made again when they change; elsewhere the given one.
   vtkSmartPointer<vtkEclipseShadowLutSource> ranged;
@@ -138,12 +140,15 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
   if (drawn && impl->applied == impl->tables && atmosphere.HasAtmosphere() && body != in.bodies.end()) {
     atmosphere.SetCentre(body->centreM);  // the time moved: the same tables, no upload
   } else if (drawn) {
-    render::applySceneAtmosphere(*impl->bodies, in, impl->tables, impl->tables->GetRefractedPaths());
+    render::showSceneAtmosphereTables(*impl->bodies, in, impl->tables);
     impl->applied = impl->tables;
   } else {
     atmosphere.ClearAtmosphere();
     impl->applied = nullptr;
   }
+  const render::AtmosphereTableChoice wanted = render::atmosphereTableChoice(in);
+  impl->missingTables.reset();
+  if (drawn && wanted != impl->tablesChoice) impl->missingTables = wanted;
   // The atmospheric shadow and the limb luminance: the tables the view has for this body
   // while the caller makes the ones the scene needs.
   const auto shadowSize = sizeOf(this->newAtmosphereShadowSource());
@@ -215,12 +220,18 @@ double SceneView::lastRingWidthPixels() const { return impl->bodies->GetAtmosphe
 
 void SceneView::setGlareStrength(double strength) { impl->bodies->GetRenderPass()->SetGlareStrength(strength); }
 
-void SceneView::setAtmosphereTables(vtkAtmosphereTablesSource* tables) {
+void SceneView::setAtmosphereTables(vtkAtmosphereTablesSource* tables, const render::AtmosphereTableChoice& choice) {
   impl->tables = tables;
+  impl->tablesChoice = choice;
+  impl->missingTables.reset();
   impl->applied = nullptr;  // applied again on the next setScene
 }
 
 vtkAtmosphereTablesSource* SceneView::atmosphereTables() const { return impl->tables; }
+
+const std::optional<render::AtmosphereTableChoice>& SceneView::missingAtmosphereTables() const {
+  return impl->missingTables;
+}
 
 void SceneView::setExposureEV(double ev) { impl->bodies->SetExposureEV(ev); }
 

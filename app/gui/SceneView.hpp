@@ -3,6 +3,7 @@
 // window. The glue between umbra::scene and the render library lives here and nowhere
 // else in the GUI, so that the GUI follows the render library with small changes.
 #include "AtmosphereShadow.h"
+#include "SceneInputs.h"
 #include "scene/Scene.hpp"
 
 #include <vtkSmartPointer.h>
@@ -39,9 +40,16 @@ public:
   /// atmosphere is drawn while the scene's atmosphere is the one the tables were made for
   /// (they are applied again on every setScene, as the body moves). Call setScene next.
   /// Tables made with refracted paths and the refraction table (SetRefractedPaths): the
-  /// view bends its rays (render::applySceneAtmosphere with refraction).
-  void setAtmosphereTables(vtkAtmosphereTablesSource* tables);
+  /// view bends its rays (render::showSceneAtmosphereTables). `choice`: the scene choice
+  /// they were configured for (render::configureSceneAtmosphereTables).
+  void setAtmosphereTables(vtkAtmosphereTablesSource* tables, const render::AtmosphereTableChoice& choice = {});
   vtkAtmosphereTablesSource* atmosphereTables() const;
+  /// After setScene: the choice of tables the scene's sky needs when it is not the one of
+  /// the tables drawn (render::atmosphereTableChoice: the Sun has set at the camera, or
+  /// risen, or gone another 10 deg down); none otherwise. The view draws the ones it has
+  /// meanwhile; the caller makes the others (MainWindow: in its worker) and hands them over
+  /// with setAtmosphereTables.
+  const std::optional<render::AtmosphereTableChoice>& missingAtmosphereTables() const;
 
   /// The other bodies in the shadow of the body with the atmosphere are shaded with its
   /// atmospheric shadow LuT (render::sceneAtmosphereShadowRequest: their columns only), as

@@ -14,8 +14,10 @@
 #include "scene/Scene.hpp"
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace umbra::render {
@@ -28,6 +30,20 @@ vtkImageData* refractionBlock(vtkMultiBlockDataSet* blocks) {
     if (kind != p.end() && kind->second == "atmosphere-refraction") return vtkImageData::SafeDownCast(blocks->GetBlock(i));
   }
   throw std::runtime_error("atmosphere tables: no refraction block");
+}
+
+// The body in.atmosphere surrounds; nullptr without one.
+const SphereBody* findAtmosphereBody(const SceneInputs& in) {
+  if (!in.atmosphere) return nullptr;
+  const auto body = std::find_if(in.bodies.begin(), in.bodies.end(),
+                                 [&](const SphereBody& b) { return b.name == in.atmosphere->body; });
+  return body == in.bodies.end() ? nullptr : &*body;
+}
+const SphereBody& atmosphereBody(const SceneInputs& in) {
+  if (!in.atmosphere) throw std::logic_error("the scene has no atmosphere");
+  const SphereBody* body = findAtmosphereBody(in);
+  if (!body) throw std::logic_error("no body '" + in.atmosphere->body + "' for its atmosphere");
+  return *body;
 }
 } // namespace
 
@@ -72,34 +88,81 @@ SceneInputs sceneInputs(const scene::Scene& s) {
   return in;
 }
 
-void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTablesSource* source,
-                          bool refraction) {
-  if (!in.atmosphere) {
-    view.GetAtmosphere().ClearAtmosphere();
-    return;
+AtmosphereTableChoice atmosphereTableChoice(const SceneInputs& in) {
+  const SphereBody* body = findAtmosphereBody(in);
+  if (!body || !(in.atmosphere->topRadiusM > 0.0)) return {};
+  const glm::dvec3 up = in.camera.positionM - body->centreM;
+  if (glm::length(up) >= in.atmosphere->topRadiusM) return {};
+  const double deg = glm::pi<double>() / 180.0;
+  const double sunZenithRad =
+      std::acos(std::clamp(glm::dot(glm::normalize(up), glm::normalize(in.sun.positionM - in.camera.positionM)), -1.0, 1.0));
+  if (sunZenithRad <= 91.0 * deg) return {};
+  const double lowest = std::ceil((sunZenithRad + 20.0 * deg) / (10.0 * deg) - 1e-9) * 10.0 * deg;
+  return {true, std::clamp(lowest, 120.0 * deg, 170.0 * deg)};
+}
+
+void configureAtmosphereTables(vtkAtmosphereTablesSource* source, AtmosphereTableSizes sizes,
+                               const AtmosphereTableChoice& choice) {
+  const bool small = sizes == AtmosphereTableSizes::Small;
+  if (small) {
+    source->SetTransmittanceSize(64, 16);
+    source->SetIrradianceSize(16, 4);
+    source->SetOrders(3);
+  } else {
+    source->SetTransmittanceSize(256, 64);
+    source->SetIrradianceSize(64, 16);
+    source->SetOrders(4);
   }
-  const SceneAtmosphere& a = *in.atmosphere;
-  const auto body = std::find_if(in.bodies.begin(), in.bodies.end(), [&](const SphereBody& b) { return b.name == a.body; });
-  if (body == in.bodies.end()) throw std::logic_error("no body '" + a.body + "' for its atmosphere");
-  source->SetAtmosphere(a.model.c_str());
+  const int muS = small ? 8 : 32;
+  if (choice.twilight) {
+    if (small) source->SetScatteringSize(8, 32, 4 * muS, 4);
+    else source->SetScatteringSize(16, 128, 4 * muS, 8);
+    source->SetMuSMin(std::cos(choice.lowestSunZenithRad));
+    source->SetMinimumDensityDirections(24);
+  } else {
+    if (small) source->SetScatteringSize(8, 32, muS, 4);
+    else source->SetScatteringSize(32, 128, muS, 8);
+    source->SetMuSMin(atmosphere::PrecomputeOptions().muSMin);
+    source->SetMinimumDensityDirections(0);
+  }
+}
+
+void configureSceneAtmosphereTables(vtkAtmosphereTablesSource* source, const SceneInputs& in, bool refraction,
+                                    AtmosphereTableSizes sizes) {
+  atmosphereBody(in);
+  configureAtmosphereTables(source, sizes, atmosphereTableChoice(in));
+  source->SetAtmosphere(in.atmosphere->model.c_str());
   source->SetWavelengths(3);
   source->SetTables(vtkAtmosphereTablesSource::Bruneton | (refraction ? vtkAtmosphereTablesSource::Refraction : 0));
   source->SetRefractedPaths(refraction);
+}
+
+void showSceneAtmosphereTables(BodyView& view, const SceneInputs& in, vtkAtmosphereTablesSource* source) {
+  const SphereBody& body = atmosphereBody(in);
+  const SceneAtmosphere& a = *in.atmosphere;
   source->Update();
   if (!source->GetLastError().empty())
     throw std::runtime_error("atmosphere of '" + a.body + "': " + source->GetLastError());
+  const bool refraction = source->GetRefractedPaths();
   const atmosphere::Atmosphere model = atmosphere::loadAtmosphere(a.model, atmosphere::WavelengthSet::rgb().nm);
-  view.GetAtmosphere().SetAtmosphere(model, filters::tablesFromBlocks(source->GetOutput(), model), body->centreM,
-                                     body->albedoRgb);
+  view.GetAtmosphere().SetAtmosphere(model, filters::tablesFromBlocks(source->GetOutput(), model), body.centreM,
+                                     body.albedoRgb);
   view.GetAtmosphere().SetRefraction(refraction ? refractionBlock(source->GetOutput()) : nullptr);
   view.GetAtmosphere().SetTerrainMeanElevation(eclipse::defaultTerrain(a.body).meanElevationM);
 }
 
+void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTablesSource* source, bool refraction,
+                          AtmosphereTableSizes sizes) {
+  if (!in.atmosphere) {
+    view.GetAtmosphere().ClearAtmosphere();
+    return;
+  }
+  configureSceneAtmosphereTables(source, in, refraction, sizes);
+  showSceneAtmosphereTables(view, in, source);
+}
+
 void useSmallAtmosphereTables(vtkAtmosphereTablesSource* source) {
-  source->SetTransmittanceSize(64, 16);
-  source->SetScatteringSize(8, 32, 8, 4);
-  source->SetIrradianceSize(16, 4);
-  source->SetOrders(3);
+  configureAtmosphereTables(source, AtmosphereTableSizes::Small);
 }
 
 } // namespace umbra::render

@@ -42,18 +42,55 @@ struct SceneInputs {
 /// 1 m), in the same direction from the centre; the target moves with it.
 SceneInputs sceneInputs(const scene::Scene& scene);
 
-/// Hands the tables of in.atmosphere to view.GetAtmosphere() (call after SetBodies): they
-/// come from `source` (its cache, sizes and orders as the caller set them; this sets the
-/// atmosphere, 3 wavelengths and the Bruneton tables only). Without an atmosphere, clears
-/// the view's. With `refraction`, the source also makes the refraction table and
-/// integrates along refracted paths, and the view bends its rays
-/// (AtmosphereRendering::SetRefraction). Throws std::runtime_error naming the body when the
-/// tables cannot be made.
-void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTablesSource* source,
-                          bool refraction = false);
+/// The sizes of the atmosphere tables a caller asks for: vtkAtmosphereTablesSource's
+/// defaults (256x64 transmittance, 32,128,32,8 scattering, 64x16 irradiance, 4 orders), or
+/// small ones for quick looks and tests (64x16, 8,32,8,4, 16x4, 3 orders: about a second).
+enum class AtmosphereTableSizes { Default, Small };
 
-/// Small atmosphere tables for quick looks and tests: 64x16 transmittance, 8,32,8,4
-/// scattering, 16x4 irradiance, 3 orders (about a second to compute).
+/// What the sky of a scene needs of its tables beyond their sizes. For a camera in the air
+/// with the Sun's centre more than 1 deg below its horizon (twilight and night), tables
+/// that resolve the Sun below the horizon and reach below it: four times the mu_s cells
+/// (half the radii for the default sizes, so that they are twice as large, not four
+/// times), at least 24 density directions, and the lowest Sun 20 deg below the camera's,
+/// rounded up to a multiple of 10 deg (so that an animation or the time slider meets few
+/// sets), in [120, 170] deg. Otherwise (daylight, the Sun on the horizon, a camera above
+/// the air) the day tables, the Sun down to 102 deg. Why: docs/accuracy-vs-speed.md,
+/// "Twilight in the render pass".
+struct AtmosphereTableChoice {
+  bool twilight = false;
+  double lowestSunZenithRad = 0.0;  ///< twilight only (the day tables' is the source's default)
+  bool operator==(const AtmosphereTableChoice& o) const {
+    return twilight == o.twilight && lowestSunZenithRad == o.lowestSunZenithRad;
+  }
+  bool operator!=(const AtmosphereTableChoice& o) const { return !(*this == o); }
+};
+AtmosphereTableChoice atmosphereTableChoice(const SceneInputs& in);
+
+/// Sets every size, the orders, the lowest Sun and the density directions of `source`
+/// for `sizes` and `choice` (not the atmosphere, wavelengths, tables nor refraction).
+void configureAtmosphereTables(vtkAtmosphereTablesSource* source, AtmosphereTableSizes sizes,
+                               const AtmosphereTableChoice& choice = {});
+
+/// Configures `source` for the atmosphere of `in` (std::logic_error without one): its
+/// model, 3 wavelengths, the Bruneton tables, `sizes` and the scene's choice
+/// (configureAtmosphereTables, atmosphereTableChoice); with `refraction` also the refraction
+/// table and the integration along refracted paths.
+void configureSceneAtmosphereTables(vtkAtmosphereTablesSource* source, const SceneInputs& in, bool refraction,
+                                    AtmosphereTableSizes sizes);
+
+/// Hands the tables of `source`, configured for in.atmosphere, to view.GetAtmosphere()
+/// (call after SetBodies): updates it (from its cache, else computed), and with refracted
+/// paths the view bends its rays (AtmosphereRendering::SetRefraction). Throws
+/// std::runtime_error naming the body when the tables cannot be made. A GUI that computes
+/// the tables in a worker configures them there and shows them with this.
+void showSceneAtmosphereTables(BodyView& view, const SceneInputs& in, vtkAtmosphereTablesSource* source);
+
+/// configureSceneAtmosphereTables then showSceneAtmosphereTables; without an atmosphere,
+/// clears the view's.
+void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTablesSource* source,
+                          bool refraction = false, AtmosphereTableSizes sizes = AtmosphereTableSizes::Default);
+
+/// configureAtmosphereTables(source, AtmosphereTableSizes::Small): the day's small tables.
 void useSmallAtmosphereTables(vtkAtmosphereTablesSource* source);
 
 } // namespace umbra::render

@@ -108,7 +108,8 @@ void vtkAtmosphereTablesSource::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Atmosphere: " << this->Atmosphere << "\n" << indent << "Tables: " << this->Tables << "\n"
      << indent << "Orders: " << this->Orders << "\n" << indent << "Wavelengths: " << this->Wavelengths << "\n"
-     << indent << "RefractedPaths: " << this->RefractedPaths << "\n";
+     << indent << "MuSMin: " << this->MuSMin << "\n" << indent << "MinimumDensityDirections: " << this->MinimumDensityDirections
+     << "\n" << indent << "RefractedPaths: " << this->RefractedPaths << "\n";
 }
 
 int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) {
@@ -135,6 +136,9 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
       po.irradianceWidth = this->IrradianceSize[0];
       po.irradianceHeight = this->IrradianceSize[1];
       po.orders = this->Orders;
+      po.muSMin = this->MuSMin;
+      if (this->MinimumDensityDirections > 0)
+        po.sphereSamples = std::max(this->MinimumDensityDirections, atmosphere::densityDirectionsFor(atm));
       po.refraction = this->RefractedPaths;
       po.refractionStepM = this->RefractionStepM;
       po.threads = this->Threads;

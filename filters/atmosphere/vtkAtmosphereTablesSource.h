@@ -49,6 +49,8 @@
 // "depth" (= R), "scatteringSize" (R,MU,MU_S,NU) describe it.
 #include <vtkMultiBlockDataSetAlgorithm.h>
 
+#include "Precompute.hpp"  // PrecomputeOptions (defaults)
+
 #include <string>
 
 class vtkAtmosphereTablesSource : public vtkMultiBlockDataSetAlgorithm {
@@ -87,6 +89,16 @@ public:
   vtkGetVector4Macro(ScatteringSize, int);
   vtkSetVector2Macro(IrradianceSize, int);     ///< x_mu_s x x_r (default 64 x 16)
   vtkGetVector2Macro(IrradianceSize, int);
+  /// The lowest Sun the scattering tables hold, as the cosine of its zenith angle
+  /// (PrecomputeOptions::muSMin; default cos 102 deg, in [-1, 0]): air that sees the Sun
+  /// lower is dark in them. Lower for a twilight sky (render::configureAtmosphereTables).
+  vtkSetClampMacro(MuSMin, double, -1.0, 0.0);
+  vtkGetMacro(MuSMin, double);
+  /// At least this many polar directions in the scattering density's quadrature
+  /// (PrecomputeOptions::sphereSamples, times twice as many azimuths), or more where the
+  /// phase functions need more (densityDirectionsFor); 0 (default): what they need.
+  vtkSetClampMacro(MinimumDensityDirections, int, 0, 256);
+  vtkGetMacro(MinimumDensityDirections, int);
   /// Integrate along refracted rays (PrecomputeOptions::refraction, step RefractionStepM).
   vtkSetMacro(RefractedPaths, bool);
   vtkGetMacro(RefractedPaths, bool);
@@ -134,6 +146,8 @@ private:
   int TransmittanceSize[2] = {256, 64};
   int ScatteringSize[4] = {32, 128, 32, 8};
   int IrradianceSize[2] = {64, 16};
+  double MuSMin = umbra::atmosphere::PrecomputeOptions().muSMin;
+  int MinimumDensityDirections = 0;
   bool RefractedPaths = false;
   int Threads = 0;
   int RefractionWidth = 512;

@@ -35,6 +35,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdlib>
 #include <optional>
 #include <fstream>
@@ -295,20 +296,39 @@ TEST(GuiEditor, SaveThenLoadGivesTheSameModel) {
   EXPECT_EQ(win.dir.fileCount(), 2);  // mine.json and bad.json
 }
 
-// The time slider with an atmosphere: an hour after sunset the same tables (no
-// recomputation) give a darker sky; the plot panel and the status follow the time.
-TEST(GuiEditor, TimeSliderKeepsTheTablesAndDarkensTheSky) {
+// The time slider with an atmosphere: an hour after sunset (the Sun ~15 deg down) the view
+// first draws the day's tables, darker, while the worker makes the twilight ones the scene
+// asks for (render::atmosphereTableChoice: 4x the mu_s cells, the Sun down to 130 deg);
+// the plot panel and the status follow the time. Back at sunset: the day's tables again,
+// from the cache.
+TEST(GuiEditor, TimeSliderMakesTwilightTablesAndDarkensTheSky) {
   Window win;
   const QRgb before = win.sky(win.shot("sunset.png"));
   const std::string model = win.w.drawnAtmosphere();
+  const vtkSmartPointer<vtkAtmosphereTablesSource> day = win.w.sceneView().atmosphereTables();  // held
+  ASSERT_NE(day, nullptr);
   win.w.showTime(umbra::scene::parseUtc("2024-03-20T19:05:00Z"));
-  EXPECT_FALSE(win.w.atmosphereTablesBusy());  // (the Moon's atmospheric shadow LuT may be)
+  EXPECT_TRUE(win.w.atmosphereTablesBusy());
+  EXPECT_EQ(win.w.sceneView().atmosphereTables(), day);  // drawn meanwhile
+  const QRgb meanwhile = win.sky(win.shot("dusk-day-tables.png"));
+  settle(win.w);
   EXPECT_EQ(win.w.drawnAtmosphere(), model);
+  vtkAtmosphereTablesSource* twilight = win.w.sceneView().atmosphereTables();
+  ASSERT_NE(twilight, day);
+  EXPECT_NEAR(std::acos(twilight->GetMuSMin()) * 180.0 / std::acos(-1.0), 130.0, 1e-6);
+  EXPECT_EQ(twilight->GetScatteringSize()[2], 4 * day->GetScatteringSize()[2]);
+  EXPECT_FALSE(win.w.sceneView().missingAtmosphereTables().has_value());
   const QRgb after = win.sky(win.shot("dusk.png"));
-  std::printf("  sky at 18:05 %s, at 19:05 %s\n", describe(before).c_str(), describe(after).c_str());
+  std::printf("  sky at 18:05 %s, at 19:05 %s (the day's tables: %s)\n", describe(before).c_str(),
+              describe(after).c_str(), describe(meanwhile).c_str());
   EXPECT_LT(qBlue(after) + qGreen(after), qBlue(before) + qGreen(before) - 20);
   EXPECT_NE(win.w.statusText().indexOf("2024-03-20T19:05:00Z"), -1) << win.w.statusText().toStdString();
   EXPECT_GT(win.w.plotRect().width(), 100);
+
+  win.w.showTime(umbra::scene::parseUtc("2024-03-20T18:05:00Z"));
+  settle(win.w);
+  EXPECT_DOUBLE_EQ(win.w.sceneView().atmosphereTables()->GetMuSMin(), day->GetMuSMin());
+  EXPECT_GT(win.w.sceneView().atmosphereTables()->GetLastCacheHits(), 0);
 }
 
 // The "Refraction" check box (umbra-gui --refraction) on the sunset seen through a
