@@ -231,6 +231,41 @@ TEST(AtmosphereTablesSource, SecondSourceReadsEveryTableFromTheCache) {
   EXPECT_EQ(orders->GetLastComputed(), 1);
 }
 
+// The lowest Sun (MuSMin) and the density directions are part of the scattering tables'
+// key and reach their parameters: another value is another precomputation; a minimum of
+// directions below what the phase functions ask (Earth: 16) changes nothing in the values
+// but is its own key; the lowest Sun changes the multiple scattering's values.
+TEST(AtmosphereTablesSource, LowestSunAndDensityDirectionsKeyTheScatteringTables) {
+  CacheDir cache;
+  auto make = [&](double muSMin, int directions) {
+    vtkSmartPointer<vtkAtmosphereTablesSource> s = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
+    configure(s, cache, "earth", vtkAtmosphereTablesSource::MultipleScattering);
+    s->SetMuSMin(muSMin);
+    s->SetMinimumDensityDirections(directions);
+    s->Update();
+    EXPECT_TRUE(s->GetLastError().empty()) << s->GetLastError();
+    return s;
+  };
+  const double day = vtkNew<vtkAtmosphereTablesSource>()->GetMuSMin();  // the default
+  auto dayTables = make(day, 0);
+  EXPECT_NEAR(day, std::cos(102.0 * std::acos(-1.0) / 180.0), 1e-15);
+  EXPECT_EQ(dayTables->GetLastComputed(), 1);
+  EXPECT_EQ(make(day, 0)->GetLastCacheHits(), 1);
+  auto low = make(std::cos(130.0 * std::acos(-1.0) / 180.0), 0);
+  EXPECT_EQ(low->GetLastComputed(), 1);
+  const auto p = umbra::filters::fieldParameters(block(low, "multiple-scattering"));
+  EXPECT_NEAR(std::stod(p.at("muSMin")), std::cos(130.0 * std::acos(-1.0) / 180.0), 1e-12);
+  auto* a = vtkFloatArray::SafeDownCast(block(dayTables, "multiple-scattering")->GetPointData()->GetArray(0));
+  auto* b = vtkFloatArray::SafeDownCast(block(low, "multiple-scattering")->GetPointData()->GetArray(0));
+  int differ = 0;
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) differ += a->GetValue(i) != b->GetValue(i);
+  EXPECT_GT(differ, a->GetNumberOfTuples() / 2);
+  auto more = make(day, 24);
+  EXPECT_EQ(more->GetLastComputed(), 1);
+  EXPECT_NE(umbra::filters::fieldParameters(block(more, "multiple-scattering")).at("samples"),
+            umbra::filters::fieldParameters(block(dayTables, "multiple-scattering")).at("samples"));
+}
+
 TEST(AtmosphereTablesSource, TransmittanceAloneComputesNoScattering) {
   CacheDir cache;
   vtkNew<vtkAtmosphereTablesSource> source;
