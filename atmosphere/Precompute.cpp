@@ -1319,7 +1319,7 @@ int densityDirectionsFor(const Atmosphere& atmosphere) {
     }
   }
   const int n = static_cast<int>(std::ceil(kPi / (1.5 * halfWidthRad) / 8.0)) * 8;
-  return std::clamp(n, 16, 64);
+  return std::clamp(n, kMinDensityDirections, 64);
 }
 
 AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOptions& optionsIn,

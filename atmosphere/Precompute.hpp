@@ -96,6 +96,8 @@ struct PrecomputeOptions {
 /// 8 in [16, 64]. Rayleigh and Earth's haze: 16; Mars' dust, whose Lorenz-Mie diffraction
 /// peak is a few degrees wide: more (docs/accuracy-vs-speed.md, "Density directions").
 int densityDirectionsFor(const Atmosphere& atmosphere);
+/// The fewest densityDirectionsFor gives (Bruneton's count): more means a forward peak.
+inline constexpr int kMinDensityDirections = 16;
 
 /// A 2D table, `channels` values (one per wavelength) per texel, row by row.
 struct Table2D {

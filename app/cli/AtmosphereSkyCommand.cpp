@@ -108,7 +108,7 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
   struct Options {
     std::string preset, config, altitude = "0", csv, plot;
     double sunZenithDeg = -1.0, zenithStep = 5.0, azimuthStep = 10.0, lowestSunZenithDeg = 102.0;
-    int orders = 4, wavelengths = 15, plotSize = 256;
+    int orders = 4, wavelengths = 15, plotSize = 256, densityDirections = 0;
   };
   auto o = std::make_shared<Options>();
   addAtmosphereOptions(sky, o->preset, o->config);
@@ -118,6 +118,10 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
   CLI::Option* lowestSun = sky->add_option("--lowest-sun-zenith-deg", o->lowestSunZenithDeg,
                   "The lowest Sun the tables hold, in degrees (102-170; below it the air is dark). Default: 102, or 20 "
                   "below a Sun lower than 82 (the light scattered into the shadowed air: second-order twilight)");
+  CLI::Option* directions = sky->add_option("--density-directions", o->densityDirections,
+                  "Polar directions of the multiple-scattering density (times twice as many azimuths; 4-64). Default: 12, "
+                  "24 for a Sun below the horizon, or what a forward-peaked phase function asks for (Mars' dust: 48, "
+                  "~90 s; 12: 5 s, the dome 17 % too dark; docs/accuracy-vs-speed.md, \"Density directions\")");
   sky->add_option("--observer-altitude", o->altitude, "Observer altitude above the ground (units m, km)")
       ->capture_default_str();
   sky->add_option("--zenith-step", o->zenithStep, "View zenith step in degrees (0 to 90)")->capture_default_str();
@@ -129,9 +133,9 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
   sky->add_option("--plot", o->plot, "PNG file: a fisheye picture of the dome (zenith in the centre, Sun's azimuth up)");
   sky->add_option("--plot-size", o->plotSize, "Width and height of the picture in pixels (16-4096)")->capture_default_str();
 
-  sky->callback([&action, o, lowestSun] {
-    const bool lowestSunGiven = lowestSun->count() > 0;
-    action = [o, lowestSunGiven] {
+  sky->callback([&action, o, lowestSun, directions] {
+    const bool lowestSunGiven = lowestSun->count() > 0, directionsGiven = directions->count() > 0;
+    action = [o, lowestSunGiven, directionsGiven] {
       output::checkWritable(o->csv, {".csv"});
       if (!o->plot.empty()) output::checkWritable(o->plot, {".png"});
       if (!(o->sunZenithDeg >= 0.0 && o->sunZenithDeg <= 180.0))
@@ -146,6 +150,8 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       if (lowestSunGiven && !(o->lowestSunZenithDeg >= 102.0 && o->lowestSunZenithDeg <= 170.0))
         throw CommandError("--lowest-sun-zenith-deg: expected 102 to 170 degrees, got " +
                            std::to_string(o->lowestSunZenithDeg));
+      if (directionsGiven && !(o->densityDirections >= 4 && o->densityDirections <= 64))
+        throw CommandError("--density-directions: expected 4 to 64, got " + std::to_string(o->densityDirections));
       const double sunZenithRad = o->sunZenithDeg * kDeg;
       const double altitudeM = lengthOption("--observer-altitude", o->altitude);
       if (!(altitudeM >= 0.0)) throw CommandError("--observer-altitude: expected a length >= 0, got " + o->altitude);
@@ -163,6 +169,16 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
         ProgressLine progress("sky tables (" + atm.name + ")");
         options = atmosphere::skyPrecomputeOptions(o->orders, sunZenithRad);
         if (lowestSunGiven) options.muSMin = std::cos(o->lowestSunZenithDeg * kDeg);
+        // A forward-peaked phase function (Mars' dust) asks for more directions than the
+        // sky's counts (docs/accuracy-vs-speed.md, "Density directions").
+        const int asked = atmosphere::densityDirectionsFor(atm);
+        const bool peaked = asked > atmosphere::kMinDensityDirections;
+        if (directionsGiven) options.sphereSamples = o->densityDirections;
+        else if (peaked) options.sphereSamples = std::max(options.sphereSamples, asked);
+        if (peaked && options.sphereSamples < asked && options.orders >= 2)
+          std::cerr << "note: " << atm.name << "'s forward-peaked phase functions ask for " << asked << " density directions, "
+                    << options.sphereSamples << " used (faster, the light scattered more than once less exact): "
+                    << "--density-directions " << asked << " for that\n";
         tables = atmosphere::precompute(atm, options, [&progress](double f, const std::string&) {
           progress.update(f);
           return true;
@@ -188,7 +204,8 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       out.commit();
       std::cout << "wrote " << o->csv << (o->plot.empty() ? "" : " and " + o->plot) << " (" << atm.name
                 << ", Sun zenith " << o->sunZenithDeg << " deg, tables down to a Sun "
-                << std::lround(std::acos(options.muSMin) / kDeg) << " deg from the zenith, observer at " << altitudeM
+                << std::lround(std::acos(options.muSMin) / kDeg) << " deg from the zenith, " << options.sphereSamples
+                << " x " << 2 * options.sphereSamples << " density directions, observer at " << altitudeM
                 << " m; luminance for a solar illuminance of " << std::lround(grid.solarIlluminanceLux)
                 << " lx, r,g,b linear sRGB in cd/m^2 clamped at 0)\n";
       return 0;

@@ -148,6 +148,46 @@ TEST(AtmosphereSkyCli, TwilightSkyBelowTheTablesLowestSun) {
   EXPECT_LT(n.zenith, 1e-6 * t.arch);
 }
 
+// --density-directions: the default (12 by day) and 16 x 32 give the same day sky within a
+// few per cent (docs/accuracy-vs-speed.md, "Density directions": <= 2 % between 12 and
+// 48), the count in the summary line. Mars' dust asks for 48: its default (one order here,
+// to be quick: the count is chosen all the same), and a note naming the flag when fewer
+// are asked for.
+TEST(AtmosphereSkyCli, DensityDirections) {
+  TempDir dir;
+  const RunResult a = run(UMBRA_EXE, skyArgs(dir / "a.csv"));
+  std::vector<std::string> more = skyArgs(dir / "b.csv");
+  more.insert(more.end(), {"--density-directions", "16"});
+  const RunResult b = run(UMBRA_EXE, more);
+  ASSERT_EQ(a.exitCode, 0) << a.err;
+  ASSERT_EQ(b.exitCode, 0) << b.err;
+  EXPECT_NE(a.out.find("12 x 24 density directions"), std::string::npos) << a.out;
+  EXPECT_NE(b.out.find("16 x 32 density directions"), std::string::npos) << b.out;
+  EXPECT_EQ(a.err.find("note:"), std::string::npos) << a.err;
+  std::string header;
+  const auto ra = readRows(dir / "a.csv", header), rb = readRows(dir / "b.csv", header);
+  ASSERT_EQ(ra.size(), rb.size());
+  int differ = 0;
+  for (std::size_t i = 0; i < ra.size(); ++i) {
+    EXPECT_NEAR(rb[i][2], ra[i][2], 0.03 * ra[i][2]) << "row " << i;
+    differ += rb[i][2] != ra[i][2];
+  }
+  EXPECT_GT(differ, 0);
+  std::vector<std::string> mars = skyArgs(dir / "m.csv");
+  mars[3] = "mars";
+  std::vector<std::string> marsDefault = mars;
+  marsDefault[7] = "1";  // --orders
+  const RunResult d = run(UMBRA_EXE, marsDefault);
+  ASSERT_EQ(d.exitCode, 0) << d.err;
+  EXPECT_NE(d.out.find("48 x 96 density directions"), std::string::npos) << d.out;
+  EXPECT_EQ(d.err.find("note:"), std::string::npos) << d.err;
+  mars.insert(mars.end(), {"--density-directions", "12"});
+  const RunResult m = run(UMBRA_EXE, mars);
+  ASSERT_EQ(m.exitCode, 0) << m.err;
+  EXPECT_NE(m.err.find("phase functions ask for 48 density directions, 12 used"), std::string::npos) << m.err;
+  EXPECT_NE(m.err.find("--density-directions 48"), std::string::npos) << m.err;
+}
+
 TEST(AtmosphereSkyCli, BadInputIsOneLineAndLeavesNoFile) {
   TempDir dir;
   std::vector<std::string> unknown = skyArgs(dir / "a.csv");
@@ -162,6 +202,11 @@ TEST(AtmosphereSkyCli, BadInputIsOneLineAndLeavesNoFile) {
     std::vector<std::string> badLowest = skyArgs(dir / "e.csv", 106.0);
     badLowest.insert(badLowest.end(), {"--lowest-sun-zenith-deg", lowest});
     expectOneLineError(run(UMBRA_EXE, badLowest));
+  }
+  for (const char* directions : {"2", "65", "x"}) {
+    std::vector<std::string> badDirections = skyArgs(dir / "f.csv");
+    badDirections.insert(badDirections.end(), {"--density-directions", directions});
+    expectOneLineError(run(UMBRA_EXE, badDirections));
   }
   EXPECT_EQ(dir.fileCount(), 0);
 }

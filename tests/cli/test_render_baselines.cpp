@@ -74,6 +74,13 @@ TEST(RenderBaselines, EarthSunsetAndEarthFrom150000km) {
   expectSceneMatches(cache, "earth-from-150000km", "earth-from-150000km");
 }
 
+// Twilight 45 minutes after that sunset: the scene's twilight tables (finer mu_s cells, the
+// Sun down to 120 deg), the arch over the western horizon.
+TEST(RenderBaselines, EarthTwilight) {
+  TempDir cache;
+  expectSceneMatches(cache, "earth-twilight", "earth-twilight");
+}
+
 TEST(RenderBaselines, EarthSunsetWithRefraction) {
   TempDir cache;
   expectSceneMatches(cache, "earth-sunset-refraction", "earth-sunset", {"--refraction"});
