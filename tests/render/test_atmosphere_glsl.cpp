@@ -29,8 +29,11 @@ struct RawFrame {
 };
 
 // The frame in the tables' own channels (identity colour matrix) times the irradiance.
-RawFrame renderRaw(const ViewCamera& camera, const glm::dvec3& sunDir, int size) {
+RawFrame renderRaw(const ViewCamera& camera, const glm::dvec3& sunDir, int size,
+                   const atmosphere::AtmosphereTables& tables) {
   AtmosphereScene scene(size, camera, sunDir);
+  if (&tables != &atmosphereFixture().tables)
+    scene.view.GetAtmosphere().SetAtmosphere(atmosphereFixture().model, tables, glm::dvec3(0.0), scene.earth.albedoRgb);
   scene.view.GetAtmosphere().SetColourMatrix(glm::dmat3(1.0));
   scene.view.Render();
   RawFrame f;
@@ -54,11 +57,12 @@ std::optional<glm::dvec3> startPoint(const Ray& ray, double top) {
 // the camera, or at the entry point for a camera outside the atmosphere. A CPU value below
 // `floor` times the brightest sampled one (the night sky's dark part) is compared
 // absolutely, within 1 % of that floor.
-Agreement compareSky(const ViewCamera& camera, const glm::dvec3& sunDir, int size, int step, double floor = 0.0) {
-  const AtmosphereFixture& f = atmosphereFixture();
-  const RawFrame frame = renderRaw(camera, sunDir, size);
+Agreement compareSky(const ViewCamera& camera, const glm::dvec3& sunDir, int size, int step, double floor = 0.0,
+                     const atmosphere::AtmosphereTables& tables = atmosphereFixture().tables) {
+  const atmosphere::Atmosphere& model = atmosphereFixture().model;
+  const RawFrame frame = renderRaw(camera, sunDir, size, tables);
   const int w = frame.w, h = frame.h;
-  const double b = f.tables.bottomRadiusM, t = f.tables.topRadiusM;
+  const double b = tables.bottomRadiusM, t = tables.topRadiusM;
   struct Sample {
     int i, j;
     glm::dvec3 cpu;
@@ -79,7 +83,7 @@ Agreement compareSky(const ViewCamera& camera, const glm::dvec3& sunDir, int siz
       const double nu = glm::dot(ray.dir, sunDir);
       if (nu > std::cos(0.02)) continue;  // the Sun's disc
       const double muS = glm::dot(x, sunDir) / r;
-      const std::vector<double> L = atmosphere::skyRadiance(f.tables, f.model, r, mu, muS, nu);
+      const std::vector<double> L = atmosphere::skyRadiance(tables, model, r, mu, muS, nu);
       const glm::dvec3 cpu = glm::dvec3(L[0], L[1], L[2]) * kSolarIrradiance;
       brightest = std::max({brightest, cpu.r, cpu.g, cpu.b});
       samples.push_back({i, j, cpu, "(r " + std::to_string(r) + ", mu " + std::to_string(mu) + ", mu_s " +
@@ -137,6 +141,25 @@ TEST(AtmosphereGlsl, SkyRadianceWithTheSunBelowTheTablesLowest) {
   EXPECT_GE(a.samples, 250);  // 288 of 736 lit above the floor (the arch)
 }
 
+// The twilight tables a scene asks for after sunset (render::configureAtmosphereTables:
+// 4x the mu_s cells, the Sun down to 120 deg here): the Sun 8 and 14 deg below the
+// horizon, the whole sky in view, the zenith lit by the air in the Earth's shadow.
+TEST(AtmosphereGlsl, SkyRadianceOnTwilightTables) {
+  vtkNew<vtkAtmosphereTablesSource> source;
+  source->SetAtmosphere("earth");
+  configureAtmosphereTables(source, AtmosphereTableSizes::Small, {true, 120.0 * kPi / 180.0});
+  source->UseCacheOff();
+  source->Update();
+  ASSERT_TRUE(source->GetLastError().empty()) << source->GetLastError();
+  const atmosphere::AtmosphereTables tables = umbra::filters::tablesFromBlocks(source->GetOutput(), atmosphereFixture().model);
+  ASSERT_NEAR(tables.options.muSMin, std::cos(120.0 * kPi / 180.0), 1e-12);
+  for (double depressionDeg : {8.0, 14.0}) {
+    const Agreement a = compareSky(groundCamera(10.0, 40.0, 90.0), directionFromAngles(-depressionDeg, 0.0), 96, 3,
+                                   1e-4, tables);
+    EXPECT_GE(a.samples, 300) << depressionDeg;
+  }
+}
+
 // From 20 000 and 150 000 km, the limb of the atmosphere: the entry point on the top
 // boundary (the same 200 km of limb in the frame).
 TEST(AtmosphereGlsl, SkyRadianceFromSpace) {
@@ -159,7 +182,7 @@ namespace {
 // S(x) - T(x, y) S(y) (aerial perspective), against the CPU; x the camera or the entry point.
 Agreement compareGround(const ViewCamera& cam, const glm::dvec3& sunDir, int size, int step) {
   const AtmosphereFixture& f = atmosphereFixture();
-  const RawFrame frame = renderRaw(cam, sunDir, size);
+  const RawFrame frame = renderRaw(cam, sunDir, size, f.tables);
   const double b = f.tables.bottomRadiusM;
   Agreement a;
   for (int j = step / 2; j < frame.h; j += step) {
