@@ -96,9 +96,9 @@ AtmosphereTableChoice atmosphereTableChoice(const SceneInputs& in) {
   const double deg = glm::pi<double>() / 180.0;
   const double sunZenithRad =
       std::acos(std::clamp(glm::dot(glm::normalize(up), glm::normalize(in.sun.positionM - in.camera.positionM)), -1.0, 1.0));
-  if (sunZenithRad <= 91.0 * deg) return {};
+  if (sunZenithRad <= 91.0 * deg || sunZenithRad > 112.0 * deg) return {};
   const double lowest = std::ceil((sunZenithRad + 20.0 * deg) / (10.0 * deg) - 1e-9) * 10.0 * deg;
-  return {true, std::clamp(lowest, 120.0 * deg, 170.0 * deg)};
+  return {true, std::max(lowest, 120.0 * deg)};
 }
 
 void configureAtmosphereTables(vtkAtmosphereTablesSource* source, AtmosphereTableSizes sizes,

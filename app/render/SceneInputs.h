@@ -48,14 +48,16 @@ SceneInputs sceneInputs(const scene::Scene& scene);
 enum class AtmosphereTableSizes { Default, Small };
 
 /// What the sky of a scene needs of its tables beyond their sizes. For a camera in the air
-/// with the Sun's centre more than 1 deg below its horizon (twilight and night), tables
-/// that resolve the Sun below the horizon and reach below it: four times the mu_s cells
-/// (half the radii for the default sizes, so that they are twice as large, not four
-/// times), at least 24 density directions, and the lowest Sun 20 deg below the camera's,
-/// rounded up to a multiple of 10 deg (so that an animation or the time slider meets few
-/// sets), in [120, 170] deg. Otherwise (daylight, the Sun on the horizon, a camera above
-/// the air) the day tables, the Sun down to 102 deg. Why: docs/accuracy-vs-speed.md,
-/// "Twilight in the render pass".
+/// with the Sun's centre 1 to 22 deg below its horizon (twilight), tables that resolve the
+/// Sun below the horizon and reach below it: four times the mu_s cells (half the radii for
+/// the default sizes, so that they are twice as large, not four times), at least 24
+/// density directions, and the lowest Sun 20 deg below the camera's, rounded up to a
+/// multiple of 10 deg (so that an animation or the time slider meets few sets), 120 to 140
+/// deg. Otherwise the day tables, the Sun down to 102 deg: in daylight, with the Sun on the
+/// horizon, for a camera above the air, and at night (past 22 deg the twilight sky is
+/// under 1e-5 cd/m^2, below the night sky's own glow, which is not modelled; the day
+/// tables draw it black or nearly). Why: docs/accuracy-vs-speed.md, "Twilight in the
+/// render pass".
 struct AtmosphereTableChoice {
   bool twilight = false;
   double lowestSunZenithRad = 0.0;  ///< twilight only (the day tables' is the source's default)

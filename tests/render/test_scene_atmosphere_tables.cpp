@@ -55,13 +55,14 @@ std::vector<double> zenith(const atmosphere::AtmosphereTables& t, double sunZeni
 
 } // namespace
 
-// Daylight, the Sun on the horizon and a camera above the air: the day's tables. After
-// sunset (the Sun's centre over 1 deg down): twilight tables, their lowest Sun 20 deg below
-// the camera's rounded up to 10 deg, in [120, 170] deg.
+// Daylight, the Sun on the horizon, night (the Sun over 22 deg down) and a camera above
+// the air: the day's tables. In twilight (the Sun's centre 1 to 22 deg down): twilight
+// tables, their lowest Sun 20 deg below the camera's rounded up to 10 deg, at least 120.
 TEST(SceneAtmosphereTables, ChoiceFollowsTheSunAtTheCamera) {
-  for (double e : {60.0, 0.0, -0.9}) EXPECT_FALSE(atmosphereTableChoice(groundScene(2.0, e)).twilight) << e;
+  for (double e : {60.0, 0.0, -0.9, -22.1, -45.0, -90.0})
+    EXPECT_FALSE(atmosphereTableChoice(groundScene(2.0, e)).twilight) << e;
   const std::vector<std::pair<double, double>> cases = {
-      {-1.5, 120.0}, {-9.9, 120.0}, {-10.5, 130.0}, {-16.0, 130.0}, {-45.0, 160.0}, {-80.0, 170.0}};
+      {-1.5, 120.0}, {-9.9, 120.0}, {-10.5, 130.0}, {-16.0, 130.0}, {-21.9, 140.0}};
   for (const auto& [elevationDeg, lowestDeg] : cases) {
     const AtmosphereTableChoice c = atmosphereTableChoice(groundScene(2.0, elevationDeg));
     EXPECT_TRUE(c.twilight) << elevationDeg;
