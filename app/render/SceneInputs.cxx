@@ -90,13 +90,17 @@ SceneInputs sceneInputs(const scene::Scene& s) {
 
 AtmosphereTableChoice atmosphereTableChoice(const SceneInputs& in) {
   const SphereBody* body = findAtmosphereBody(in);
-  if (!body || !(in.atmosphere->topRadiusM > 0.0)) return {};
+  const double b = in.atmosphere->bottomRadiusM, t = in.atmosphere->topRadiusM;
+  if (!body || !(b > 0.0 && t > b)) return {};
   const glm::dvec3 up = in.camera.positionM - body->centreM;
-  if (glm::length(up) >= in.atmosphere->topRadiusM) return {};
-  const double deg = glm::pi<double>() / 180.0;
+  if (glm::length(up) >= t) return {};
+  const double deg = glm::pi<double>() / 180.0, kHalfPi = glm::half_pi<double>();
   const double sunZenithRad =
       std::acos(std::clamp(glm::dot(glm::normalize(up), glm::normalize(in.sun.positionM - in.camera.positionM)), -1.0, 1.0));
-  if (sunZenithRad <= 91.0 * deg || sunZenithRad > 112.0 * deg) return {};
+  // Night: 10 deg past the depression at which the top of the atmosphere on the horizon
+  // falls into the shadow (Earth 30 deg, Mars 35 deg).
+  const double nightRad = 2.0 * std::acos(b / t) + 10.0 * deg;
+  if (sunZenithRad <= 91.0 * deg || sunZenithRad > kHalfPi + nightRad) return {};
   const double lowest = std::ceil((sunZenithRad + 20.0 * deg) / (10.0 * deg) - 1e-9) * 10.0 * deg;
   return {true, std::max(lowest, 120.0 * deg)};
 }

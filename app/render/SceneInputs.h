@@ -48,16 +48,17 @@ SceneInputs sceneInputs(const scene::Scene& scene);
 enum class AtmosphereTableSizes { Default, Small };
 
 /// What the sky of a scene needs of its tables beyond their sizes. For a camera in the air
-/// with the Sun's centre 1 to 22 deg below its horizon (twilight), tables that resolve the
-/// Sun below the horizon and reach below it: four times the mu_s cells (half the radii for
-/// the default sizes, so that they are twice as large, not four times), at least 24
-/// density directions, and the lowest Sun 20 deg below the camera's, rounded up to a
-/// multiple of 10 deg (so that an animation or the time slider meets few sets), 120 to 140
-/// deg. Otherwise the day tables, the Sun down to 102 deg: in daylight, with the Sun on the
-/// horizon, for a camera above the air, and at night (past 22 deg the twilight sky is
-/// under 1e-5 cd/m^2, below the night sky's own glow, which is not modelled; the day
-/// tables draw it black or nearly). Why: docs/accuracy-vs-speed.md, "Twilight in the
-/// render pass".
+/// with the Sun's centre more than 1 deg below its horizon and less than 10 deg past the
+/// depression 2 acos(bottom / top) at which the top of the atmosphere on the horizon falls
+/// into the shadow (twilight: Earth to 30 deg, Mars to 35 deg), tables that resolve the Sun
+/// below the horizon and reach below it: four times the mu_s cells (half the radii for the
+/// default sizes, so that they are twice as large, not four times), at least 24 density
+/// directions, and the lowest Sun 20 deg below the camera's, rounded up to a multiple of
+/// 10 deg (so that an animation or the time slider meets few sets), at least 120 deg.
+/// Otherwise the day tables, the Sun down to 102 deg: in daylight, with the Sun on the
+/// horizon, for a camera above the air, and at night (then the twilight sky is 1e-4 cd/m^2
+/// or fainter, below the night sky's own glow, which is not modelled; the day tables draw
+/// it black). Why: docs/accuracy-vs-speed.md, "Twilight in the render pass".
 struct AtmosphereTableChoice {
   bool twilight = false;
   double lowestSunZenithRad = 0.0;  ///< twilight only (the day tables' is the source's default)
