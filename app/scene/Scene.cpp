@@ -80,6 +80,12 @@ void resolve(Scene& scene) {
   }
   if (!camera.targetBody.empty())
     camera.targetM = findBody(scene, camera.targetBody, "camera.target").positionM;
+  if (camera.targetDirection && camera.observer) {
+    const Body& body = findBody(scene, camera.observer->body, "camera.observer.body");
+    // 1000 km ahead: the direction exact to ~1e-10 rad at heliocentric magnitudes.
+    camera.targetM = camera.positionM + 1e6 * horizontalDirection(body, *camera.observer, *camera.targetDirection,
+                                                                  scene.time);
+  }
 
   const glm::dvec3 viewDir = camera.targetM - camera.positionM;
   if (!(glm::length(viewDir) > 0.0))
@@ -109,6 +115,19 @@ glm::dvec3 observerPositionM(const Body& body, const Observer& observer, UtcTime
   ellipsoid.Forward(observer.latDeg, observer.lonDeg, observer.altM, local.x, local.y,
                     local.z);
   return body.positionM + bodyFixedToInertial(body.preset, time) * local;
+}
+
+glm::dvec3 horizontalDirection(const Body& body, const Observer& observer, const HorizontalDirection& direction,
+                               UtcTime time) {
+  const double deg = 3.14159265358979323846 / 180.0;
+  const double lat = observer.latDeg * deg, lon = observer.lonDeg * deg;
+  const double az = direction.azimuthDeg * deg, el = direction.elevationDeg * deg;
+  // East, north and up of the geodetic horizon, body-fixed.
+  const glm::dvec3 east(-std::sin(lon), std::cos(lon), 0.0);
+  const glm::dvec3 north(-std::sin(lat) * std::cos(lon), -std::sin(lat) * std::sin(lon), std::cos(lat));
+  const glm::dvec3 up(std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat));
+  const glm::dvec3 local = std::cos(el) * (std::sin(az) * east + std::cos(az) * north) + std::sin(el) * up;
+  return bodyFixedToInertial(body.preset, time) * local;
 }
 
 void setTime(Scene& scene, UtcTime time) {

@@ -60,9 +60,22 @@ struct Observer {
   double altM = 0.0;
 };
 
+/// A direction in an observer's horizon: azimuth from north through east, elevation above
+/// the horizontal plane of the ellipsoid (geodetic), degrees.
+struct HorizontalDirection {
+  double azimuthDeg = 0.0;
+  double elevationDeg = 0.0;
+};
+
+/// The unit vector (ICRS axes) of `direction` for `observer` on `body` at `time`.
+glm::dvec3 horizontalDirection(const Body& body, const Observer& observer, const HorizontalDirection& direction,
+                               UtcTime time);
+
 struct Camera {
   std::optional<Observer> observer; ///< when set, positionM follows the body's rotation
   glm::dvec3 positionM{0.0};        ///< heliocentric, ICRS axes
+  /// The file's target as an azimuth and elevation (with an observer): targetM follows it.
+  std::optional<HorizontalDirection> targetDirection;
   std::string targetBody;           ///< "" when the target is a fixed point
   glm::dvec3 targetM{0.0};          ///< heliocentric, ICRS axes
   glm::dvec3 up{0.0, 0.0, 1.0};     ///< unit, orthogonal to the view direction

@@ -337,11 +337,27 @@ void parseCamera(const Reader& in, const json& root, Scene& scene) {
   else camera.observer = parseObserver(in, value["observer"], scene);
 
   if (!value.contains("target"))
-    in.fail("camera.target", "required (a body name or [x, y, z] in metres)");
+    in.fail("camera.target", "required (a body name, [x, y, z] in metres, or {azimuthDeg, elevationDeg})");
   const json& target = value["target"];
-  if (target.is_array()) camera.targetM = in.vector(target, "camera.target");
-  else if (target.is_string()) camera.targetBody = sceneBody(in, scene, target, "camera.target").name;
-  else in.fail("camera.target", "expected a body name or [x, y, z] in metres, " + got(target));
+  if (target.is_array()) {
+    camera.targetM = in.vector(target, "camera.target");
+  } else if (target.is_string()) {
+    camera.targetBody = sceneBody(in, scene, target, "camera.target").name;
+  } else if (target.is_object()) {
+    in.object(target, "camera.target", {"azimuthDeg", "elevationDeg"});
+    if (!camera.observer)
+      in.fail("camera.target", "an azimuth and elevation need a camera observer (they are in its horizon)");
+    for (const char* key : {"azimuthDeg", "elevationDeg"})
+      if (!target.contains(key)) in.fail(std::string("camera.target.") + key, "required");
+    HorizontalDirection d;
+    d.azimuthDeg = in.number(target["azimuthDeg"], "camera.target.azimuthDeg", -360.0, 360.0,
+                             "an azimuth in [-360, 360] degrees from north through east");
+    d.elevationDeg = in.number(target["elevationDeg"], "camera.target.elevationDeg", -90.0, 90.0,
+                               "an elevation in [-90, 90] degrees");
+    camera.targetDirection = d;
+  } else {
+    in.fail("camera.target", "expected a body name, [x, y, z] in metres or {azimuthDeg, elevationDeg}, " + got(target));
+  }
 
   if (value.contains("up") && value["up"] == "zenith") {
     if (!value.contains("observer")) in.fail("camera.up", "\"zenith\" needs a camera observer");

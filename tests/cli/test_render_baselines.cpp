@@ -74,10 +74,12 @@ TEST(RenderBaselines, EarthSunsetAndEarthFrom150000km) {
   expectSceneMatches(cache, "earth-from-150000km", "earth-from-150000km");
 }
 
-// Twilight 45 minutes after that sunset: the scene's twilight tables (finer mu_s cells, the
-// Sun down to 120 deg), the arch over the western horizon.
+// Twilight after that sunset, on the scene's twilight tables (finer mu_s cells, the Sun
+// down to 120 deg), the cameras aimed by azimuth and elevation: the Earth's shadow and the
+// Belt of Venus in the east 8 minutes after it, the arch in the west 45 minutes after.
 TEST(RenderBaselines, EarthTwilight) {
   TempDir cache;
+  expectSceneMatches(cache, "earth-shadow-east", "earth-shadow-east");
   expectSceneMatches(cache, "earth-twilight", "earth-twilight");
 }
 

@@ -223,6 +223,41 @@ TEST(RenderCli, MarsSunsetExampleHasABlueGlowInAReddishSky) {
   EXPECT_GT(glow.g, 2.0 * away.g);  // the glow is bright
 }
 
+// The Earth's shadow example, looking east with the Sun 2 deg down: just over the horizon the
+// sky is in the planet's shadow (darker, lit only by the twilight's second-order light),
+// above it the Belt of Venus, lit by the reddened Sun (brighter and redder), and higher up
+// the bluer sky. Rows of the central column, elevation from the camera (perspective).
+TEST(RenderCli, EarthShadowExampleHasADarkBandUnderThePinkBelt) {
+  TempDir dir;
+  const tables::Table img = renderExr(dir, UMBRA_SOURCE_DIR "/examples/scenes/earth-shadow-east.json", "64x90");
+  const int w = img.width, h = img.height;
+  const double halfHeight = std::tan(15.0 * M_PI / 180.0);  // fovDeg 30, centred 12 deg up
+  auto elevationDeg = [&](int y) {
+    const double t = (1.0 - 2.0 * (y + 0.5) / h) * halfHeight;  // image-plane height, the camera pitched 12 deg
+    return std::atan2(std::sin(12.0 * M_PI / 180.0) + t * std::cos(12.0 * M_PI / 180.0),
+                      std::cos(12.0 * M_PI / 180.0) - t * std::sin(12.0 * M_PI / 180.0)) * 180.0 / M_PI;
+  };
+  // The shadow band (0-1.5 deg up), the belt (3-12 deg: its brightest red and its reddest
+  // R/B), the sky at the top (27 deg).
+  double bandR = 0.0, beltR = 0.0, beltRedness = 0.0, bandRedness = 0.0;
+  int bandRows = 0;
+  for (int y = 0; y < h; ++y) {
+    const glm::dvec3 c = pixel(img, w / 2, y);
+    const double e = elevationDeg(y);
+    if (e >= 0.0 && e <= 1.5) bandR += c.r, bandRedness = std::max(bandRedness, c.r / c.b), ++bandRows;
+    if (e >= 3.0 && e <= 12.0) beltR = std::max(beltR, c.r), beltRedness = std::max(beltRedness, c.r / c.b);
+  }
+  ASSERT_GT(bandRows, 0);
+  bandR /= bandRows;
+  const glm::dvec3 top = pixel(img, w / 2, 0);
+  std::printf("  shadow band R %.3g (R/B <= %.2f), belt R <= %.3g (R/B <= %.2f), top R/B %.2f\n", bandR, bandRedness,
+              beltR, beltRedness, top.r / top.b);
+  // Measured (small tables): band R 0.84, R/B 0.86; belt 3.42, R/B 2.41; top R/B 0.87.
+  EXPECT_LT(bandR, 0.5 * beltR);
+  EXPECT_GT(beltRedness, 1.5 * bandRedness);
+  EXPECT_GT(beltRedness, 1.5 * top.r / top.b);
+}
+
 // EXR output keeps the HDR frame: FLOAT channels hold the reddened Sun's radiance (some
 // 270 W m^-2 sr^-1 per channel at 96x54), the same whatever the exposure; --glare moves
 // light into halos (at 1.8 px per degree mostly the 0.75 deg one) and keeps the frame's

@@ -1,7 +1,11 @@
 #include "scene/Ephemeris.hpp"
 #include "scene/Scene.hpp"
 
+#include <GeographicLib/Geocentric.hpp>
 #include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
 
 #include <cstdio>
 #include <filesystem>
@@ -239,6 +243,20 @@ TEST(SceneValidation, CameraMessages) {
                                 "target": "Moon", "zoom": 2}})"),
             "examples/x.json: camera.zoom: unknown key (expected one of: position, observer, "
             "target, up, fovDeg)");
+  // An azimuth and elevation: in an observer's horizon.
+  EXPECT_EQ(errorFor(head + R"({"position": [1, 0, 0], "target": {"azimuthDeg": 90, "elevationDeg": 10}}})"),
+            "examples/x.json: camera.target: an azimuth and elevation need a camera observer (they are in its "
+            "horizon)");
+  const std::string observer = R"({"observer": {"body": "Earth", "latDeg": 0, "lonDeg": 0}, "target": )";
+  EXPECT_EQ(errorFor(head + observer + R"({"azimuthDeg": 90}}})"),
+            "examples/x.json: camera.target.elevationDeg: required");
+  EXPECT_EQ(errorFor(head + observer + R"({"azimuthDeg": 90, "elevationDeg": 95}}})"),
+            "examples/x.json: camera.target.elevationDeg: expected an elevation in [-90, 90] degrees, got 95");
+  EXPECT_EQ(errorFor(head + observer + R"({"azimuthDeg": 90, "altitudeDeg": 5}}})"),
+            "examples/x.json: camera.target.altitudeDeg: unknown key (expected one of: azimuthDeg, elevationDeg)");
+  EXPECT_EQ(errorFor(head + observer + R"(7}})"),
+            "examples/x.json: camera.target: expected a body name, [x, y, z] in metres or {azimuthDeg, "
+            "elevationDeg}, got 7");
 }
 
 // ---- valid scenes -----------------------------------------------------------------------
@@ -287,6 +305,54 @@ TEST(Scene, UpIsOrthogonalizedAgainstTheViewDirection) {
           "camera": {"position": [1e11, 0, 0], "target": "Sun", "up": [1, 0, 1]}})",
       kFile);
   EXPECT_NEAR(glm::length(scene.camera.up - glm::dvec3(0, 0, 1)), 0.0, 1e-12);
+}
+
+// A target given as an azimuth (from north through east) and an elevation: the view
+// direction against the observer's horizon computed independently, from GeographicLib's
+// ellipsoid by finite differences (north: +latitude, east: +longitude, up: +altitude),
+// body-fixed and turned to ICRS; the target follows the horizon as the body turns.
+TEST(Scene, TargetAzimuthAndElevationAreInTheObserversHorizon) {
+  const double latDeg = 40.0, lonDeg = -30.0;
+  auto scene = [&](double az, double el) {
+    return parseScene(R"({"time": "2024-03-20T18:00:00Z", "bodies": [{"preset": "Sun"}, {"preset": "Earth"}],
+        "camera": {"observer": {"body": "Earth", "latDeg": 40, "lonDeg": -30, "altM": 2},
+                   "target": {"azimuthDeg": )" + std::to_string(az) + R"(, "elevationDeg": )" + std::to_string(el) +
+                          "}}}",
+                      kFile);
+  };
+  auto axes = [&](UtcTime t) {
+    const Body earth = *parseScene(R"({"time": "2024-03-20T18:00:00Z", "bodies": [{"preset": "Sun"}, {"preset": "Earth"}],
+        "camera": {"position": [1, 0, 0], "target": "Sun"}})", kFile).find("Earth");
+    const GeographicLib::Geocentric ellipsoid(earth.equatorialRadiusM,
+                                              (earth.equatorialRadiusM - earth.polarRadiusM) / earth.equatorialRadiusM);
+    auto at = [&](double lat, double lon, double alt) {
+      glm::dvec3 p;
+      ellipsoid.Forward(lat, lon, alt, p.x, p.y, p.z);
+      return p;
+    };
+    const glm::dvec3 o = at(latDeg, lonDeg, 2.0);
+    const glm::dmat3 r = bodyFixedToInertial("Earth", t);
+    return std::array<glm::dvec3, 3>{r * glm::normalize(at(latDeg + 1e-5, lonDeg, 2.0) - o),
+                                     r * glm::normalize(at(latDeg, lonDeg + 1e-5, 2.0) - o),
+                                     r * glm::normalize(at(latDeg, lonDeg, 1002.0) - o)};
+  };
+  const auto [north, east, up] = axes(parseUtc("2024-03-20T18:00:00Z"));
+  const double d = std::acos(-1.0) / 180.0;
+  const std::vector<std::array<double, 2>> cases = {{0, 0}, {90, 0}, {180, 30}, {270, -10}, {-45, 60}, {10, 90}};
+  for (const auto& [az, el] : cases) {
+    const Scene s = scene(az, el);
+    const glm::dvec3 view = glm::normalize(s.camera.targetM - s.camera.positionM);
+    const glm::dvec3 expected =
+        std::cos(el * d) * (std::cos(az * d) * north + std::sin(az * d) * east) + std::sin(el * d) * up;
+    EXPECT_LT(glm::length(view - expected), 1e-6) << "azimuth " << az << ", elevation " << el;
+  }
+  // Three hours later the Earth has turned 45 degrees: the same horizon direction.
+  Scene s = scene(90, 20);
+  setTime(s, parseUtc("2024-03-20T21:00:00Z"));
+  const auto later = axes(parseUtc("2024-03-20T21:00:00Z"));
+  const glm::dvec3 view = glm::normalize(s.camera.targetM - s.camera.positionM);
+  EXPECT_LT(glm::length(view - (std::cos(20 * d) * later[1] + std::sin(20 * d) * later[2])), 1e-6);
+  EXPECT_GT(glm::length(later[2] - up), 0.5);  // it did turn
 }
 
 TEST(Scene, FullSceneLoadsAndSetTimeMovesTheMoon) {
