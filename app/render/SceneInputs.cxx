@@ -108,13 +108,14 @@ AtmosphereTableChoice atmosphereTableChoice(const SceneInputs& in) {
 void configureAtmosphereTables(vtkAtmosphereTablesSource* source, AtmosphereTableSizes sizes,
                                const AtmosphereTableChoice& choice) {
   const bool small = sizes == AtmosphereTableSizes::Small;
+  const int irradianceMuS = (small ? 16 : 64) * (choice.twilight ? 4 : 1);
   if (small) {
     source->SetTransmittanceSize(64, 16);
-    source->SetIrradianceSize(16, 4);
+    source->SetIrradianceSize(irradianceMuS, 4);
     source->SetOrders(3);
   } else {
     source->SetTransmittanceSize(256, 64);
-    source->SetIrradianceSize(64, 16);
+    source->SetIrradianceSize(irradianceMuS, 16);
     source->SetOrders(4);
   }
   const int muS = small ? 8 : 32;

@@ -51,8 +51,9 @@ enum class AtmosphereTableSizes { Default, Small };
 /// with the Sun's centre more than 1 deg below its horizon and less than 10 deg past the
 /// depression 2 acos(bottom / top) at which the top of the atmosphere on the horizon falls
 /// into the shadow (twilight: Earth to 30 deg, Mars to 35 deg), tables that resolve the Sun
-/// below the horizon and reach below it: four times the mu_s cells (half the radii for the
-/// default sizes, so that they are twice as large, not four times), at least 24 density
+/// below the horizon and reach below it: four times the mu_s cells in the scattering and
+/// the irradiance tables (half the radii for the default sizes, so that the scattering
+/// tables are twice as large, not four times), at least 24 density
 /// directions, and the lowest Sun 20 deg below the camera's, rounded up to a multiple of
 /// 10 deg (so that an animation or the time slider meets few sets), at least 120 deg.
 /// Otherwise the day tables, the Sun down to 102 deg: in daylight, with the Sun on the
