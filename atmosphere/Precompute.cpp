@@ -810,7 +810,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     for (int x = 0; x < IW; ++x) {
       double r, muS;
       irradianceTexel(x, y, r, muS);
-      const double cosine = muS < -alpha ? 0.0 : (muS > alpha ? muS : (muS + alpha) * (muS + alpha) / (4.0 * alpha));
+      const double cosine = sunDiscCosine(muS, alpha);
       double* E = out.directIrradiance.at(x, y);
       lookupTransmittance(Ttab, shell, r, muS, E);
       for (int l = 0; l < nl; ++l) E[l] *= cosine;
@@ -1464,9 +1464,17 @@ std::vector<double> indirectIrradiance(const AtmosphereTables& tables, double r,
   return v;
 }
 
+double sunDiscCosine(double muS, double alphaRad) {
+  if (muS < -alphaRad) return 0.0;
+  if (muS > alphaRad) return muS;
+  return (muS + alphaRad) * (muS + alphaRad) / (4.0 * alphaRad);
+}
+
 std::vector<double> directIrradiance(const AtmosphereTables& tables, double r, double muS) {
   std::vector<double> v(tables.wavelengthCount());
-  lookupIrradiance(tables.directIrradiance, tables.shell(), r, muS, v.data());
+  lookupTransmittance(tables.transmittance, tables.shell(), r, clampCosine(muS), v.data());
+  const double cosine = sunDiscCosine(muS, tables.options.sunAngularRadiusRad);
+  for (double& e : v) e *= cosine;
   return v;
 }
 

@@ -221,8 +221,18 @@ std::vector<double> lookupScattering(const AtmosphereTables& tables, const Table
 std::vector<double> skyRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r,
                                 double mu, double muS, double nu,
                                 const std::vector<double>& solarIrradiance = {});
-/// Bilinear lookups in the irradiance tables (indirect, and direct).
+/// The cosine factor of the direct irradiance on a horizontal surface from a Sun of angular
+/// radius alphaRad whose centre is at zenith cosine muS: muS above alphaRad, 0 below
+/// -alphaRad, (muS + alphaRad)^2 / (4 alphaRad) between, the disc partly set (Bruneton 2017).
+double sunDiscCosine(double muS, double alphaRad);
+/// Bilinear lookup in the indirect irradiance table.
 std::vector<double> indirectIrradiance(const AtmosphereTables& tables, double r, double muS);
+/// The direct irradiance E_0 on a horizontal surface: the transmittance to the top along
+/// muS times sunDiscCosine (options.sunAngularRadiusRad), as its table's texels hold, but
+/// computed where asked and not interpolated across the table's mu_s cells: those are
+/// 1.8 deg wide at 64 cells, and across the Sun's setting the interpolation was x19 too
+/// bright with the Sun on the horizon (docs/accuracy-vs-speed.md, "Twilight in the render
+/// pass"). The table stays for the precomputation (the ground's reflection of order 2).
 std::vector<double> directIrradiance(const AtmosphereTables& tables, double r, double muS);
 
 }  // namespace umbra::atmosphere

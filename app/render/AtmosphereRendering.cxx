@@ -180,7 +180,7 @@ struct AtmosphereRendering::Impl {
   double limbDarkening = 0.6;
   bool texturesStale = true;
 
-  vtkSmartPointer<vtkTextureObject> transmittance, scattering, irradiance, direct, refraction;
+  vtkSmartPointer<vtkTextureObject> transmittance, scattering, irradiance, refraction;
   std::vector<float> refractionValues;  // deviation, contact altitude per texel; empty: off
   int refractionSize[2] = {0, 0};
   std::unique_ptr<vtkOpenGLQuadHelper> quad;
@@ -202,7 +202,6 @@ struct AtmosphereRendering::Impl {
     const atmosphere::AtmosphereTables& t = tables;
     transmittance = floatTexture(window, t.transmittance.width, t.transmittance.height, 1, asFloat(t.transmittance.values));
     irradiance = floatTexture(window, t.irradiance.width, t.irradiance.height, 1, asFloat(t.irradiance.values));
-    direct = floatTexture(window, t.directIrradiance.width, t.directIrradiance.height, 1, asFloat(t.directIrradiance.values));
     // Slab 0: multiple scattering, then one slab per component (z-major: consecutive).
     std::vector<float> stacked = asFloat(t.multipleScattering.values);
     for (const atmosphere::Table3D& s : t.singleScattering) stacked.insert(stacked.end(), s.values.begin(), s.values.end());
@@ -442,6 +441,7 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     p->SetUniformf("umbraAtmBottom", static_cast<float>(t.bottomRadiusM));
     p->SetUniformf("umbraAtmTop", static_cast<float>(t.topRadiusM));
     p->SetUniformf("umbraAtmMuSMin", static_cast<float>(t.options.muSMin));
+    p->SetUniformf("umbraAtmSunAngularRadius", static_cast<float>(t.options.sunAngularRadiusRad));
     const int size[4] = {t.options.scatteringR, t.options.scatteringMu, t.options.scatteringMuS, t.options.scatteringNu};
     p->SetUniform1iv("umbraAtmScatteringSize", 4, size);
     p->SetUniformi("umbraAtmComponents", static_cast<int>(t.singleScattering.size()));
@@ -456,7 +456,6 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     p->SetUniformi("umbraAtmTransmittanceTable", m.transmittance->GetTextureUnit());
     p->SetUniformi("umbraAtmScatteringTable", m.scattering->GetTextureUnit());
     p->SetUniformi("umbraAtmIrradianceTable", m.irradiance->GetTextureUnit());
-    p->SetUniformi("umbraAtmDirectIrradianceTable", m.direct->GetTextureUnit());
     if (m.lastUsedLimb) {
       // The camera's (u, v) of Eq. 4 for this occluder (its ground), in double.
       // ... as the texture coordinate through the LuT's ranges (in double: a ranged LuT may
@@ -478,7 +477,6 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   m.transmittance->Activate();
   m.scattering->Activate();
   m.irradiance->Activate();
-  m.direct->Activate();
   m.refraction->Activate();
   if (m.lastUsedLimb) m.limb->Activate();
   // Every ray outside the atmosphere's rectangle on screen misses it and sees the
@@ -509,7 +507,6 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   }
   if (m.lastUsedLimb) m.limb->Deactivate();
   m.refraction->Deactivate();
-  m.direct->Deactivate();
   m.irradiance->Deactivate();
   m.scattering->Deactivate();
   m.transmittance->Deactivate();
@@ -526,7 +523,7 @@ void AtmosphereRendering::ReleaseGraphicsResources(vtkOpenGLRenderWindow* window
       q->reset();
     }
   }
-  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.direct, &m.refraction, &m.limb}) {
+  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.refraction, &m.limb}) {
     if (*t && window) (*t)->ReleaseGraphicsResources(window);
     *t = nullptr;
   }

@@ -13,7 +13,6 @@
 //                              the multiple scattering, slab 1 + q the single scattering
 //                              of component q (without its phase function)
 //   umbraAtmIrradianceTable         2D, indirect irradiance, x_mu_s = (mu_s + 1) / 2, x_r linear
-//   umbraAtmDirectIrradianceTable   2D, the same for E_0
 // The phase function of component q is the sum of two lobes k = 0, 1, per channel:
 //   A (1 + B c^2) / (1 + g^2 - 2 g c)^(3/2),  A, B, g = umbraAtmPhase[6q + 3k + 0, 1, 2]
 // (isotropic, Rayleigh, Penndorf, Henyey-Greenstein, Cornette-Shanks: one lobe; double
@@ -23,7 +22,7 @@
 uniform sampler2D umbraAtmTransmittanceTable;
 uniform sampler3D umbraAtmScatteringTable;
 uniform sampler2D umbraAtmIrradianceTable;
-uniform sampler2D umbraAtmDirectIrradianceTable;
+uniform float umbraAtmSunAngularRadius;  // the tables' (options.sunAngularRadiusRad), for E_0
 uniform float umbraAtmBottom;          // m
 uniform float umbraAtmTop;             // m
 uniform float umbraAtmMuSMin;          // the lowest sun in the tables
@@ -257,9 +256,11 @@ vec3 umbraAtmIndirectIrradiance(float r, float muS) {
   vec2 n = vec2(textureSize(umbraAtmIrradianceTable, 0));
   return texture(umbraAtmIrradianceTable, umbraAtmIrradianceUv(n, r, muS)).rgb;
 }
+// E_0 from the transmittance, not the table's interpolated cells (directIrradiance).
 vec3 umbraAtmDirectIrradiance(float r, float muS) {
-  vec2 n = vec2(textureSize(umbraAtmDirectIrradianceTable, 0));
-  return texture(umbraAtmDirectIrradianceTable, umbraAtmIrradianceUv(n, r, muS)).rgb;
+  float a = umbraAtmSunAngularRadius;
+  float cosine = muS < -a ? 0.0 : (muS > a ? muS : (muS + a) * (muS + a) / (4.0 * a));
+  return umbraAtmTransmittanceToTop(r, muS) * cosine;
 }
 
 // ---- the radiance along a view segment (Bruneton 2017, GetSkyRadianceToPoint) ---------
