@@ -232,6 +232,15 @@ TEST(AtmosphereGlsl, GroundAndAerialPerspective) {
 }
 
 // The whole planet from 150 000 km: the day side through the atmosphere from its top.
+// The Sun's disc setting over the ground (its centre 0.2 degrees below the camera's
+// horizon; the ground 15-110 km away is tilted 0.1-1 degree towards it, so that the disc
+// is partly up over its nearer half): E_0 from the transmittance times the disc's visible
+// share, through its partial branch.
+TEST(AtmosphereGlsl, GroundAsTheSunSets) {
+  const Agreement a = compareGround(groundCamera(2000.0, -4.0, 8.0), directionFromAngles(-0.2, 0.0), 96, 4);
+  EXPECT_GE(a.samples, 300);
+}
+
 TEST(AtmosphereGlsl, GroundFrom150000km) {
   ViewCamera cam;
   cam.positionM = {0.0, -1.5e8, 2.0e7};
