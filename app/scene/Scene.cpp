@@ -5,6 +5,7 @@
 
 #include <GeographicLib/Geocentric.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -128,6 +129,15 @@ glm::dvec3 horizontalDirection(const Body& body, const Observer& observer, const
   const glm::dvec3 up(std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat));
   const glm::dvec3 local = std::cos(el) * (std::sin(az) * east + std::cos(az) * north) + std::sin(el) * up;
   return bodyFixedToInertial(body.preset, time) * local;
+}
+
+std::optional<double> sunElevationDeg(const Scene& scene) {
+  if (!scene.camera.observer) return std::nullopt;
+  const Body* body = scene.find(scene.camera.observer->body);
+  if (!body) return std::nullopt;
+  const glm::dvec3 up = horizontalDirection(*body, *scene.camera.observer, {0.0, 90.0}, scene.time);
+  const glm::dvec3 toSun = glm::normalize(scene.sun().positionM - scene.camera.positionM);
+  return std::asin(std::clamp(glm::dot(up, toSun), -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
 }
 
 void setTime(Scene& scene, UtcTime time) {

@@ -75,8 +75,8 @@ TEST(RenderBaselines, EarthSunsetAndEarthFrom150000km) {
 }
 
 // Twilight after that sunset, on the scene's twilight tables (finer mu_s cells, the Sun
-// down to 120 deg), the cameras aimed by azimuth and elevation: the Earth's shadow and the
-// Belt of Venus in the east 8 minutes after it, the arch in the west 45 minutes after.
+// down to 120 and 130 deg), the cameras aimed by azimuth and elevation: the Earth's shadow
+// and the Belt of Venus in the east 8 minutes after it, the arch in the west 43 minutes after.
 TEST(RenderBaselines, EarthTwilight) {
   TempDir cache;
   expectSceneMatches(cache, "earth-shadow-east", "earth-shadow-east");

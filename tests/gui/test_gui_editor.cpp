@@ -323,6 +323,7 @@ TEST(GuiEditor, TimeSliderMakesTwilightTablesAndDarkensTheSky) {
               describe(after).c_str(), describe(meanwhile).c_str());
   EXPECT_LT(qBlue(after) + qGreen(after), qBlue(before) + qGreen(before) - 20);
   EXPECT_NE(win.w.statusText().indexOf("2024-03-20T19:05:00Z"), -1) << win.w.statusText().toStdString();
+  EXPECT_NE(win.w.statusText().indexOf("Sun 14.4 deg below the horizon"), -1) << win.w.statusText().toStdString();
   EXPECT_GT(win.w.plotRect().width(), 100);
 
   win.w.showTime(umbra::scene::parseUtc("2024-03-20T18:05:00Z"));

@@ -355,6 +355,20 @@ TEST(Scene, TargetAzimuthAndElevationAreInTheObserversHorizon) {
   EXPECT_GT(glm::length(later[2] - up), 0.5);  // it did turn
 }
 
+// The Sun's elevation from the north pole is its declination: 0 at the March equinox of
+// 2024 (03:06 UTC), the obliquity of the ecliptic (23.44 deg) at the June solstice
+// (2024-06-20 20:51 UTC); without an observer, none.
+TEST(Scene, SunElevationFromThePoleIsTheSunsDeclination) {
+  auto at = [](const std::string& time) {
+    return parseScene(R"({"time": ")" + time + R"(", "bodies": [{"preset": "Sun"}, {"preset": "Earth"}],
+        "camera": {"observer": {"body": "Earth", "latDeg": 90, "lonDeg": 0}, "target": "Sun"}})",
+                      kFile);
+  };
+  EXPECT_NEAR(*sunElevationDeg(at("2024-03-20T03:06:00Z")), 0.0, 0.02);
+  EXPECT_NEAR(*sunElevationDeg(at("2024-06-20T20:51:00Z")), 23.44, 0.02);
+  EXPECT_FALSE(sunElevationDeg(parseScene(fixedScene(kSunAndRock), kFile)).has_value());
+}
+
 TEST(Scene, FullSceneLoadsAndSetTimeMovesTheMoon) {
   const std::string path =
       (std::filesystem::temp_directory_path() / "umbra-scene-test-full.json").string();
