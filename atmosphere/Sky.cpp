@@ -16,7 +16,7 @@ int stepCount(double rangeRad, double stepRad) {
 
 } // namespace
 
-PrecomputeOptions skyPrecomputeOptions(int orders, double sunZenithRad) {
+PrecomputeOptions skyPrecomputeOptions(const Atmosphere& atmosphere, int orders, double sunZenithRad) {
   PrecomputeOptions o;
   o.transmittanceWidth = 128;
   o.transmittanceHeight = 32;
@@ -27,6 +27,8 @@ PrecomputeOptions skyPrecomputeOptions(int orders, double sunZenithRad) {
   o.irradianceWidth = 32;
   o.irradianceHeight = 8;
   o.sphereSamples = sunZenithRad > kPi / 2 ? 24 : 12;
+  const int asked = densityDirectionsFor(atmosphere);
+  if (asked > kMinDensityDirections) o.sphereSamples = std::max(o.sphereSamples, asked);  // a forward peak
   o.irradianceSamples = 16;
   o.singleScatteringSamples = 40;
   o.multipleScatteringSamples = 40;

@@ -55,13 +55,15 @@ struct SkyGrid {
 /// (docs/sky-validation.md): transmittance 128 x 32, scattering (NU 8 * MU_S 128) x MU 64 x
 /// R 8, irradiance 32 x 8, 40 samples per view ray, the Sun down to
 /// skyLowestSunZenithRad(sunZenithRad); 12 x 24 density directions for a Sun above the
-/// horizon, 24 x 48 below it. About 2 s (day) and 4 s (twilight) for 15 wavelengths and 4
-/// orders on 2 cores. The twilight sky varies by orders of magnitude over a few degrees
+/// horizon, 24 x 48 below it, or more where a forward-peaked phase function of
+/// `atmosphere` asks for them (densityDirectionsFor above kMinDensityDirections: Mars' dust,
+/// 48 x 96; its dome's mean is 17 % too dark with 12 x 24). About 2 s (day) and 4 s
+/// (twilight) for Earth at 15 wavelengths and 4 orders on 2 cores; Mars 88 s. The twilight sky varies by orders of magnitude over a few degrees
 /// of Sun and of view, and coarse tables miss it (docs/accuracy-vs-speed.md, "Twilight"):
 /// linear interpolation across 16 mu_s cells made the zenith x4.7 too bright at a Sun
 /// 100 deg from the zenith; 12 density directions make it +27 % (+75 % at 106 deg), 24
 /// within 3 % of 48.
-PrecomputeOptions skyPrecomputeOptions(int orders = 4, double sunZenithRad = 0.0);
+PrecomputeOptions skyPrecomputeOptions(const Atmosphere& atmosphere, int orders = 4, double sunZenithRad = 0.0);
 
 /// The lowest Sun the sky's tables need for a Sun at sunZenithRad: 102 deg (the tables'
 /// usual lowest), or 20 deg below a lower Sun (at most 170 deg). Air with the Sun below

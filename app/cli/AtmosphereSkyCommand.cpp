@@ -167,15 +167,13 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       atmosphere::PrecomputeOptions options;
       {
         ProgressLine progress("sky tables (" + atm.name + ")");
-        options = atmosphere::skyPrecomputeOptions(o->orders, sunZenithRad);
+        options = atmosphere::skyPrecomputeOptions(atm, o->orders, sunZenithRad);
         if (lowestSunGiven) options.muSMin = std::cos(o->lowestSunZenithDeg * kDeg);
-        // A forward-peaked phase function (Mars' dust) asks for more directions than the
-        // sky's counts (docs/accuracy-vs-speed.md, "Density directions").
-        const int asked = atmosphere::densityDirectionsFor(atm);
-        const bool peaked = asked > atmosphere::kMinDensityDirections;
         if (directionsGiven) options.sphereSamples = o->densityDirections;
-        else if (peaked) options.sphereSamples = std::max(options.sphereSamples, asked);
-        if (peaked && options.sphereSamples < asked && options.orders >= 2)
+        // Fewer than a forward-peaked phase function asks for (docs/accuracy-vs-speed.md,
+        // "Density directions"): say so.
+        const int asked = atmosphere::densityDirectionsFor(atm);
+        if (asked > atmosphere::kMinDensityDirections && options.sphereSamples < asked && options.orders >= 2)
           std::cerr << "note: " << atm.name << "'s forward-peaked phase functions ask for " << asked << " density directions, "
                     << options.sphereSamples << " used (faster, the light scattered more than once less exact): "
                     << "--density-directions " << asked << " for that\n";

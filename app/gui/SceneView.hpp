@@ -46,9 +46,9 @@ public:
   vtkAtmosphereTablesSource* atmosphereTables() const;
   /// After setScene: the choice of tables the scene's sky needs when it is not the one of
   /// the tables drawn (render::atmosphereTableChoice: the Sun has set at the camera, or
-  /// risen, or gone another 10 deg down, or night has fallen); none otherwise. The view draws the ones it has
-  /// meanwhile; the caller makes the others (MainWindow: in its worker) and hands them over
-  /// with setAtmosphereTables.
+  /// risen, or gone another 10 deg down, or night has fallen); none otherwise. The view
+  /// draws the ones it has meanwhile; the caller makes the others (MainWindow: in its
+  /// worker) and hands them over with setAtmosphereTables.
   const std::optional<render::AtmosphereTableChoice>& missingAtmosphereTables() const;
 
   /// The other bodies in the shadow of the body with the atmosphere are shaded with its

@@ -1,6 +1,7 @@
 #include "SceneInputs.h"
 
 #include "Atmosphere.hpp"
+#include "Sky.hpp"  // skyLowestSunZenithRad
 #include "Spectrum.hpp"
 #include "AtmosphereTablesBlocks.h"
 #include "FieldParameters.h"
@@ -90,8 +91,9 @@ SceneInputs sceneInputs(const scene::Scene& s) {
 
 AtmosphereTableChoice atmosphereTableChoice(const SceneInputs& in) {
   const SphereBody* body = findAtmosphereBody(in);
+  if (!body) return {};
   const double b = in.atmosphere->bottomRadiusM, t = in.atmosphere->topRadiusM;
-  if (!body || !(b > 0.0 && t > b)) return {};
+  if (!(b > 0.0 && t > b)) return {};
   const glm::dvec3 up = in.camera.positionM - body->centreM;
   if (glm::length(up) >= t) return {};
   const double deg = glm::pi<double>() / 180.0, kHalfPi = glm::half_pi<double>();
@@ -101,35 +103,21 @@ AtmosphereTableChoice atmosphereTableChoice(const SceneInputs& in) {
   // falls into the shadow (Earth 30 deg, Mars 35 deg).
   const double nightRad = 2.0 * std::acos(b / t) + 10.0 * deg;
   if (sunZenithRad <= 91.0 * deg || sunZenithRad > kHalfPi + nightRad) return {};
-  const double lowest = std::ceil((sunZenithRad + 20.0 * deg) / (10.0 * deg) - 1e-9) * 10.0 * deg;
+  // The sky command's lowest Sun, on a 10 deg grid.
+  const double lowest = std::ceil(atmosphere::skyLowestSunZenithRad(sunZenithRad) / (10.0 * deg) - 1e-9) * 10.0 * deg;
   return {true, std::max(lowest, 120.0 * deg)};
 }
 
 void configureAtmosphereTables(vtkAtmosphereTablesSource* source, AtmosphereTableSizes sizes,
                                const AtmosphereTableChoice& choice) {
-  const bool small = sizes == AtmosphereTableSizes::Small;
-  const int irradianceMuS = (small ? 16 : 64) * (choice.twilight ? 4 : 1);
-  if (small) {
-    source->SetTransmittanceSize(64, 16);
-    source->SetIrradianceSize(irradianceMuS, 4);
-    source->SetOrders(3);
-  } else {
-    source->SetTransmittanceSize(256, 64);
-    source->SetIrradianceSize(irradianceMuS, 16);
-    source->SetOrders(4);
-  }
-  const int muS = small ? 8 : 32;
-  if (choice.twilight) {
-    if (small) source->SetScatteringSize(8, 32, 4 * muS, 4);
-    else source->SetScatteringSize(16, 128, 4 * muS, 8);
-    source->SetMuSMin(std::cos(choice.lowestSunZenithRad));
-    source->SetMinimumDensityDirections(24);
-  } else {
-    if (small) source->SetScatteringSize(8, 32, muS, 4);
-    else source->SetScatteringSize(32, 128, muS, 8);
-    source->SetMuSMin(atmosphere::PrecomputeOptions().muSMin);
-    source->SetMinimumDensityDirections(0);
-  }
+  const bool small = sizes == AtmosphereTableSizes::Small, twilight = choice.twilight;
+  const int finer = twilight ? 4 : 1;  // mu_s cells
+  source->SetTransmittanceSize(small ? 64 : 256, small ? 16 : 64);
+  source->SetScatteringSize(small ? 8 : (twilight ? 16 : 32), small ? 32 : 128, (small ? 8 : 32) * finer, small ? 4 : 8);
+  source->SetIrradianceSize((small ? 16 : 64) * finer, small ? 4 : 16);
+  source->SetOrders(small ? 3 : 4);
+  source->SetMuSMin(twilight ? std::cos(choice.lowestSunZenithRad) : atmosphere::PrecomputeOptions().muSMin);
+  source->SetMinimumDensityDirections(twilight ? 24 : 0);
 }
 
 void configureSceneAtmosphereTables(vtkAtmosphereTablesSource* source, const SceneInputs& in, bool refraction,

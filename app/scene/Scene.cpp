@@ -13,6 +13,10 @@
 
 namespace umbra::scene {
 
+namespace {
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+} // namespace
+
 namespace detail {
 
 void fail(const std::string& file, const std::string& field, const std::string& message) {
@@ -120,9 +124,8 @@ glm::dvec3 observerPositionM(const Body& body, const Observer& observer, UtcTime
 
 glm::dvec3 horizontalDirection(const Body& body, const Observer& observer, const HorizontalDirection& direction,
                                UtcTime time) {
-  const double deg = 3.14159265358979323846 / 180.0;
-  const double lat = observer.latDeg * deg, lon = observer.lonDeg * deg;
-  const double az = direction.azimuthDeg * deg, el = direction.elevationDeg * deg;
+  const double lat = observer.latDeg * kDeg, lon = observer.lonDeg * kDeg;
+  const double az = direction.azimuthDeg * kDeg, el = direction.elevationDeg * kDeg;
   // East, north and up of the geodetic horizon, body-fixed.
   const glm::dvec3 east(-std::sin(lon), std::cos(lon), 0.0);
   const glm::dvec3 north(-std::sin(lat) * std::cos(lon), -std::sin(lat) * std::sin(lon), std::cos(lat));
@@ -137,7 +140,7 @@ std::optional<double> sunElevationDeg(const Scene& scene) {
   if (!body) return std::nullopt;
   const glm::dvec3 up = horizontalDirection(*body, *scene.camera.observer, {0.0, 90.0}, scene.time);
   const glm::dvec3 toSun = glm::normalize(scene.sun().positionM - scene.camera.positionM);
-  return std::asin(std::clamp(glm::dot(up, toSun), -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
+  return std::asin(std::clamp(glm::dot(up, toSun), -1.0, 1.0)) / kDeg;
 }
 
 void setTime(Scene& scene, UtcTime time) {

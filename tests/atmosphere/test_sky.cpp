@@ -206,7 +206,7 @@ TEST(EarthSkyCommandTables, RelativeLuminanceAgainstCieClearSky) {
   // bounds hold (the numbers differ from the small tables' by a few per cent).
   const WavelengthSet set = WavelengthSet::uniform(15);
   const Atmosphere atm = loadAtmosphere("earth", set.nm);
-  const AtmosphereTables tables = precompute(atm, skyPrecomputeOptions(4));
+  const AtmosphereTables tables = precompute(atm, skyPrecomputeOptions(atm, 4));
   const double bounds[] = {1.35, 0.85, 0.60};
   int k = 0;
   for (double zs : {30.0, 45.0, 60.0}) {
