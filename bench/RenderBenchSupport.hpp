@@ -2,14 +2,45 @@
 #pragma once
 
 #include "BodyView.h"
+#include "EglRenderWindow.hpp"
+#include <CLI/CLI.hpp>
 #include <vtkRenderWindow.h>
 #include <vtk_glew.h>
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <ctime>
+#include <filesystem>
+#include <string>
 #include <vector>
 
 namespace umbra::bench {
+
+/// An example scene: in the source tree the bench was built from, else (a copy of the
+/// tree on another machine) under examples/scenes/ of the working directory.
+inline std::string exampleScene(const std::string& file) {
+  const std::string built = std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/" + file;
+  return std::filesystem::exists(built) ? built : "examples/scenes/" + file;
+}
+
+/// --egl: the bench's windows on EGL pbuffers instead of X (a GPU machine with no X server).
+inline void addEglOption(CLI::App& app, bool& egl) {
+  app.add_flag("--egl", egl,
+               "Render on EGL pbuffers, no X server needed (the first EGL device that is not Mesa's software "
+               "one; UMBRA_EGL_DEVICE=N picks another)");
+}
+/// Switches to EGL windows when asked; false (the reason on stderr) when EGL cannot.
+inline bool startWindows(bool egl) {
+  if (!egl) return true;
+  std::string error;
+  if (useEglRenderWindows(error)) return true;
+  std::fprintf(stderr, "--egl: %s\n", error.c_str());
+  return false;
+}
+/// Prints which GL implementation rendered (GPU or llvmpipe), after a first frame.
+inline void printRenderer(render::BodyView& view) {
+  std::printf("GL: %s\n", glRendererString(view.GetRenderWindow()).c_str());
+}
 
 /// Per view, the median time per frame [ms]: on the GL timer (GL_TIME_ELAPSED around the
 /// frame), on the wall clock (render + glFinish), and the process's CPU time over the same

@@ -3,7 +3,7 @@
 // with refraction, and with the atmosphere and glare (strength 1), interleaved frame by frame, timed with GL timer queries
 // (GL_TIME_ELAPSED around the frame) and with the wall clock (after glFinish); prints the
 // medians. Tables from vtkAtmosphereTablesSource through the cache (the first run at
-// default sizes precomputes them). Needs an X display (xvfb-run -a); on llvmpipe the
+// default sizes precomputes them). Needs an X display (xvfb-run -a) or --egl; on llvmpipe the
 // fragment work runs on the CPU.
 //
 //   xvfb-run -a build/bench/umbra-bench-render-atmosphere [--frames 20] [--width 1920 --height 1080]
@@ -33,13 +33,16 @@ int main(int argc, char** argv) {
   CLI::App app{"Frame time without the atmosphere, with it and with refraction"};
   int frames = 20, width = 1920, height = 1080;
   std::string tables = "default";
-  std::string scenePath = UMBRA_SOURCE_DIR "/examples/scenes/earth-sunset.json";
+  std::string scenePath = bench::exampleScene("earth-sunset.json");
+  bool egl = false;
   app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
   app.add_option("--width", width)->capture_default_str();
   app.add_option("--height", height)->capture_default_str();
   app.add_option("--tables", tables, "Atmosphere table sizes: default or small")->capture_default_str();
   app.add_option("--scene", scenePath, "A scene with an atmosphere")->capture_default_str();
+  bench::addEglOption(app, egl);
   CLI11_PARSE(app, argc, argv);
+  if (!bench::startWindows(egl)) return 1;
 
   const scene::Scene s = scene::loadScene(scenePath);
   const render::SceneInputs in = render::sceneInputs(s);
@@ -66,6 +69,7 @@ int main(int argc, char** argv) {
     if (k == 3) v.GetRenderPass()->SetGlareStrength(1.0);
     v.Render();  // warm up: shaders, textures
   }
+  bench::printRenderer(*views.front());
   std::vector<render::BodyView*> timed;
   for (auto& v : views) timed.push_back(v.get());
   const bench::FrameTimes times = bench::medianFrameTimes(timed, frames);

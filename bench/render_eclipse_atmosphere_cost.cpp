@@ -7,11 +7,11 @@
 //   Earth from the lunar north pole: atmosphere ray marched without refraction, with
 //     refraction, and with the ring from the limb-luminance LuT (5.4).
 // Tables from the cache (small sizes by default: the frame cost depends on the lookups,
-// not the table sizes). Needs an X display (xvfb-run -a); on llvmpipe the fragment work
-// runs on the CPU.
+// not the table sizes). Needs an X display (xvfb-run -a), or --egl (EGL, no X: a GPU
+// machine, scripts/device-frame-times.sh); on llvmpipe the fragment work runs on the CPU.
 //
 //   xvfb-run -a build/bench/umbra-bench-render-eclipse-atmosphere [--frames 10]
-//       [--width 1920 --height 1080] [--tables small|default] [--part moon|earth|all]
+//       [--width 1920 --height 1080] [--tables small|default] [--part moon|earth|all] [--egl]
 #include "AtmosphereShadow.h"
 #include "BodyView.h"
 #include "RenderBenchSupport.hpp"
@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Frame time of the eclipse through an atmosphere: shadow on/off, refraction, limb-luminance LuT"};
   int frames = 10, width = 1920, height = 1080;
   std::string tables = "small", part = "all";
+  bool egl = false;
   app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
   app.add_option("--width", width)->capture_default_str();
   app.add_option("--height", height)->capture_default_str();
@@ -49,12 +50,14 @@ int main(int argc, char** argv) {
   app.add_option("--part", part, "The Moon's configurations (shadow), Earth's (ring) or all")
       ->check(CLI::IsMember({"moon", "earth", "all"}))
       ->capture_default_str();
+  bench::addEglOption(app, egl);
   CLI11_PARSE(app, argc, argv);
+  if (!bench::startWindows(egl)) return 1;
   const bool small = tables == "small";
 
-  const scene::Scene moonScene = scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28-moon.json");
+  const scene::Scene moonScene = scene::loadScene(bench::exampleScene("lunar-eclipse-2015-09-28-moon.json"));
   const scene::Scene earthScene =
-      scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/earth-from-lunar-north-pole-2015-09-28.json");
+      scene::loadScene(bench::exampleScene("earth-from-lunar-north-pole-2015-09-28.json"));
   const render::SceneInputs moon = render::sceneInputs(moonScene);
   const render::SceneInputs earth = render::sceneInputs(earthScene);
   const auto airless = filters::toImageData(eclipse::buildAirlessShadowLut({256, 256}));
@@ -105,6 +108,7 @@ int main(int argc, char** argv) {
     v.SetExposureEV(c.exposureEv);
     v.Render();  // warm up: shaders, textures
   }
+  bench::printRenderer(*views.front());
   if (last == configs.size()) {
     const render::AtmosphereRendering& limbView = views.back()->GetAtmosphere();
     std::printf("ring width on screen: %.2f px (limb-luminance LuT used: %s)\n", limbView.GetLastRingWidthPixels(),

@@ -2,7 +2,7 @@
 // the Moon's shader", paper Table 1: +8 %). Renders the 2015-09-28 scene's Moon filling a
 // Full-HD frame, once with Earth present as an occluder (one LuT lookup per fragment)
 // and once without any occluder, interleaved, and prints the median frame times.
-// Needs an X display (xvfb-run -a); on llvmpipe the fragment work runs on the CPU.
+// Needs an X display (xvfb-run -a) or --egl (EGL, no X); on llvmpipe the fragment work runs on the CPU.
 //
 //   xvfb-run -a build/bench/umbra-bench-render-eclipse [--frames 40] [--size 1920x1080]
 #include "BodyView.h"
@@ -25,12 +25,15 @@ using namespace umbra;
 int main(int argc, char** argv) {
   CLI::App app{"Frame time with and without the eclipse shadow lookup"};
   int frames = 40, width = 1920, height = 1080;
-  std::string scenePath = UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28.json";
+  std::string scenePath = bench::exampleScene("lunar-eclipse-2015-09-28.json");
+  bool egl = false;
   app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
   app.add_option("--width", width)->capture_default_str();
   app.add_option("--height", height)->capture_default_str();
   app.add_option("--scene", scenePath)->capture_default_str();
+  bench::addEglOption(app, egl);
   CLI11_PARSE(app, argc, argv);
+  if (!bench::startWindows(egl)) return 1;
 
   const scene::Scene s = scene::loadScene(scenePath);
   const render::SceneInputs in = render::sceneInputs(s);
@@ -47,6 +50,7 @@ int main(int argc, char** argv) {
     v->SetExposureEV(s.exposureEv);
     v->Render();  // warm up: shader compilation
   }
+  bench::printRenderer(withShadow);
   const std::vector<double> median = bench::medianFrameWallMs({&withShadow, &without}, frames);
   std::printf("| frame | with the eclipse shadow [ms] | without [ms] | cost |\n|---|---:|---:|---:|\n");
   std::printf("| %dx%d, %d frames, median | %.2f | %.2f | %+.1f %% |\n", width, height, frames, median[0], median[1],

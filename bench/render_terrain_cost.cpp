@@ -3,7 +3,7 @@
 // synthetic crater field at the lunar south pole, Sun 0.9 deg up, camera 2.5 km up
 // looking across it towards the Sun), rendered as `umbra render` does, once with the
 // terrain and once without it (the Moon's sphere only), interleaved; median frame times.
-// Needs an X display (xvfb-run -a); on llvmpipe the fragment work runs on the CPU.
+// Needs an X display (xvfb-run -a) or --egl (EGL, no X); on llvmpipe the fragment work runs on the CPU.
 //
 //   xvfb-run -a build/bench/umbra-bench-render-terrain [--frames 5] [--width 1920 --height 1080]
 #include "BodyView.h"
@@ -27,12 +27,15 @@ using namespace umbra;
 int main(int argc, char** argv) {
   CLI::App app{"Frame time of the terrain patch with soft shadows"};
   int frames = 5, width = 1920, height = 1080;
-  std::string scenePath = UMBRA_SOURCE_DIR "/examples/scenes/lunar-south-pole-landing-site.json";
+  std::string scenePath = bench::exampleScene("lunar-south-pole-landing-site.json");
+  bool egl = false;
   app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
   app.add_option("--width", width)->capture_default_str();
   app.add_option("--height", height)->capture_default_str();
   app.add_option("--scene", scenePath)->capture_default_str();
+  bench::addEglOption(app, egl);
   CLI11_PARSE(app, argc, argv);
+  if (!bench::startWindows(egl)) return 1;
 
   const scene::Scene s = scene::loadScene(scenePath);
   const render::SceneInputs in = render::sceneInputs(s);
@@ -46,6 +49,7 @@ int main(int argc, char** argv) {
     if (v == &withTerrain) terrains = render::addSceneTerrains(*v, s, in, {});
     v->Render();  // warm up: shader compilation, textures
   }
+  bench::printRenderer(withTerrain);
   const std::vector<double> median = bench::medianFrameWallMs({&withTerrain, &without}, frames);
   std::printf("| frame | with the terrain [ms] | sphere only [ms] |\n|---|---:|---:|\n");
   std::printf("| %dx%d, %d frames, median | %.0f | %.0f |\n", width, height, frames, median[0], median[1]);

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Packs what the render benches need to run on a GPU machine that has no VTK, no X server
+# and no package mirror (the `device` tool's machine; docs/accuracy-vs-speed.md, "Frame-time
+# ratios on a GPU"): .devkit/kit.tar.xz with the two frame-time benches, the shared
+# libraries they load (all but glibc, libstdc++ and the GL loaders), their small-size tables
+# from the cache, and .gl/ with Debian's GL loader packages (libglvnd: libEGL, libOpenGL).
+# scripts/device-frame-times.sh runs them there.
+#
+#   scripts/device-kit.sh [BUILD_DIR]      (default: build; builds the benches first)
+#
+# Both .devkit/ and .gl/ are ignored by git; name them in the device tool's `carry`.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+benches=(umbra-bench-render-eclipse-atmosphere umbra-bench-render-atmosphere)
+
+[ -f "$build/build.ninja" ] || { echo "device-kit: no Ninja build in $build (configure it first)" >&2; exit 1; }
+ninja -C "$build" "${benches[@]}"
+
+stage=$(mktemp -d)
+trap 'rm -rf "$stage"' EXIT
+mkdir -p "$stage/kit/bin" "$stage/kit/lib" "$stage/kit/cache"
+for b in "${benches[@]}"; do cp "$build/bench/$b" "$stage/kit/bin/"; done
+
+# Shared libraries, resolved here (Debian 12); the machine's own glibc, libstdc++ and GL
+# loaders (with the NVIDIA driver behind them) are used there.
+skip='^(linux-vdso|ld-linux|libc\.|libm\.|libdl\.|libpthread\.|librt\.|libstdc\+\+|libgcc_s|libGL|libEGL|libOpenGL|libGLX|libGLdispatch)'
+for b in "${benches[@]}"; do ldd "$build/bench/$b"; done | awk '/=> \// {print $1, $3}' | sort -u |
+  while read -r name path; do
+    [[ $name =~ $skip ]] || cp -L "$path" "$stage/kit/lib/$name"
+  done
+
+# The tables of the frame-time runs (small sizes), made here so that the GPU's minutes go
+# to the frames. Earth's default-size tables too, for the sunset bench.
+echo "device-kit: filling the table cache (small tables; minutes on first use)"
+UMBRA_CACHE_DIR="$stage/kit/cache" xvfb-run -a "$build/bench/umbra-bench-render-eclipse-atmosphere" \
+  --frames 1 --width 64 --height 36 >/dev/null
+UMBRA_CACHE_DIR="$stage/kit/cache" xvfb-run -a "$build/bench/umbra-bench-render-atmosphere" \
+  --frames 1 --width 64 --height 36 --tables small >/dev/null
+
+mkdir -p .devkit
+tar -C "$stage" -cJf .devkit/kit.tar.xz.part kit
+mv .devkit/kit.tar.xz.part .devkit/kit.tar.xz
+
+# The GL loaders, as the device tool's README asks (Debian's packages, unpacked there).
+mkdir -p .gl
+(cd .gl && apt-get download libegl1 libglvnd0 libopengl0 libgl1 libglx0 >/dev/null)
+echo "device-kit: .devkit/kit.tar.xz ($(du -h .devkit/kit.tar.xz | cut -f1)), .gl/ ($(du -sh .gl | cut -f1))"
