@@ -2,7 +2,7 @@
 #pragma once
 
 #include "BodyView.h"
-#include "EglRenderWindow.hpp"
+#include "EglRenderWindow.h"
 #include <CLI/CLI.hpp>
 #include <vtkRenderWindow.h>
 #include <vtk_glew.h>
@@ -33,13 +33,13 @@ inline void addEglOption(CLI::App& app, bool& egl) {
 inline bool startWindows(bool egl) {
   if (!egl) return true;
   std::string error;
-  if (useEglRenderWindows(error)) return true;
+  if (render::useEglRenderWindows(error)) return true;
   std::fprintf(stderr, "--egl: %s\n", error.c_str());
   return false;
 }
 /// Prints which GL implementation rendered (GPU or llvmpipe), after a first frame.
 inline void printRenderer(render::BodyView& view) {
-  std::printf("GL: %s\n", glRendererString(view.GetRenderWindow()).c_str());
+  std::printf("GL: %s\n", render::glRendererString(view.GetRenderWindow()).c_str());
 }
 
 /// Per view, the median time per frame [ms]: on the GL timer (GL_TIME_ELAPSED around the

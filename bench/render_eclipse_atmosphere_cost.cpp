@@ -8,7 +8,7 @@
 //     refraction, and with the ring from the limb-luminance LuT (5.4).
 // Tables from the cache (small sizes by default: the frame cost depends on the lookups,
 // not the table sizes). Needs an X display (xvfb-run -a), or --egl (EGL, no X: a GPU
-// machine, scripts/device-frame-times.sh); on llvmpipe the fragment work runs on the CPU.
+// machine, scripts/device-checks.sh); on llvmpipe the fragment work runs on the CPU.
 //
 //   xvfb-run -a build/bench/umbra-bench-render-eclipse-atmosphere [--frames 10]
 //       [--width 1920 --height 1080] [--tables small|default] [--part moon|earth|all] [--egl]

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Packs what the render benches need to run on a GPU machine that has no VTK, no X server
-# and no package mirror (the `device` tool's machine; docs/accuracy-vs-speed.md, "Frame-time
-# ratios on a GPU"): .devkit/kit.tar.xz with the two frame-time benches, the shared
-# libraries they load (all but glibc, libstdc++ and the GL loaders), their small-size tables
-# from the cache, and .gl/ with Debian's GL loader packages (libglvnd: libEGL, libOpenGL).
-# scripts/device-frame-times.sh runs them there.
+# Packs what the GPU checks need on a machine that has no VTK, no X server and no package
+# mirror (the `device` tool's machine; docs/accuracy-vs-speed.md, "Frame-time ratios on a
+# GPU"): .devkit/kit.tar.xz with the two frame-time benches, the rendering tests (CPU
+# against GLSL), the shared libraries they load (all but glibc >= 2.36,
+# libstdc++ and the GL loaders), the benches' small tables from the cache; and .gl/ with
+# Debian's GL loader packages (libglvnd: libEGL, libOpenGL). scripts/device-checks.sh runs
+# them there.
 #
 #   scripts/device-kit.sh [BUILD_DIR]      (default: build; builds the benches first)
 #
@@ -13,19 +14,23 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 benches=(umbra-bench-render-eclipse-atmosphere umbra-bench-render-atmosphere)
+programs=("${benches[@]}" test_render)
+paths=("$build/bench/${benches[0]}" "$build/bench/${benches[1]}" "$build/tests/render/test_render")
 
 [ -f "$build/build.ninja" ] || { echo "device-kit: no Ninja build in $build (configure it first)" >&2; exit 1; }
-ninja -C "$build" "${benches[@]}"
+ninja -C "$build" "${programs[@]}"
 
 stage=$(mktemp -d)
 trap 'rm -rf "$stage"' EXIT
 mkdir -p "$stage/kit/bin" "$stage/kit/lib" "$stage/kit/cache"
-for b in "${benches[@]}"; do cp "$build/bench/$b" "$stage/kit/bin/"; done
+for p in "${paths[@]}"; do cp "$p" "$stage/kit/bin/"; done
+# The tests read the example scenes from the source tree they were built in.
+pwd >"$stage/kit/source-dir"
 
 # Shared libraries, resolved here (Debian 12); the machine's own glibc, libstdc++ and GL
 # loaders (with the NVIDIA driver behind them) are used there.
 skip='^(linux-vdso|ld-linux|libc\.|libm\.|libdl\.|libpthread\.|librt\.|libstdc\+\+|libgcc_s|libGL|libEGL|libOpenGL|libGLX|libGLdispatch)'
-for b in "${benches[@]}"; do ldd "$build/bench/$b"; done | awk '/=> \// {print $1, $3}' | sort -u |
+for p in "${paths[@]}"; do ldd "$p"; done | awk '/=> \// {print $1, $3}' | sort -u |
   while read -r name path; do
     [[ $name =~ $skip ]] || cp -L "$path" "$stage/kit/lib/$name"
   done

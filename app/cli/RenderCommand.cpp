@@ -7,6 +7,7 @@
 // come from vtkAtmosphereTablesSource through the cache (the first render of an atmosphere
 // at default sizes precomputes them: about a minute on 2 cores).
 #include "BodyView.h"
+#include "EglRenderWindow.h"
 #include "Commands.hpp"
 #include "OutputFile.hpp"
 #include "SceneInputs.h"
@@ -102,7 +103,7 @@ std::vector<Frame> animationFrames(const std::string& from, const std::string& t
 void addRenderCommand(CLI::App& app, Action& action) {
   CLI::App* render = app.add_subcommand(
       "render", "Render a scene offscreen: PNG (tone-mapped) or EXR (linear radiance, W m^-2 sr^-1). Needs an X "
-                "display: run under xvfb-run -a on a headless machine");
+                "display (run under xvfb-run -a on a headless machine) or --egl");
   struct Options {
     std::string scene, time, size, output, from, to, step;
     std::optional<double> exposure;
@@ -110,6 +111,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
     std::string atmosphereTables = "default";
     bool refraction = false;
     double limbRingThresholdPx = 5.0;
+    bool egl = false;
     CacheOptions cache;
   };
   auto o = std::make_shared<Options>();
@@ -143,6 +145,9 @@ void addRenderCommand(CLI::App& app, Action& action) {
                      "(pixels; eclipse paper, 5.4); 0: always ray march")
       ->check(CLI::Range(0.0, 1.0e6))
       ->capture_default_str();
+  render->add_flag("--egl", o->egl,
+                   "Render through EGL, with no X display: on a GPU machine without an X server (the first EGL "
+                   "device that is not Mesa's software one; UMBRA_EGL_DEVICE=N picks another), else Mesa's llvmpipe");
   o->cache.addTo(render);
 
   render->callback([&action, o] {
@@ -164,7 +169,12 @@ void addRenderCommand(CLI::App& app, Action& action) {
       if (o->exposure) s.exposureEv = *o->exposure;
       if (o->atmosphereTables != "default" && o->atmosphereTables != "small")
         throw CommandError("--atmosphere-tables: expected default or small, got '" + o->atmosphereTables + "'");
-      if (!std::getenv("DISPLAY")) throw CommandError("rendering needs an X display: run under xvfb-run -a");
+      if (o->egl) {
+        std::string error;
+        if (!render::useEglRenderWindows(error)) throw CommandError("--egl: " + error);
+      } else if (!std::getenv("DISPLAY")) {
+        throw CommandError("rendering needs an X display: run under xvfb-run -a, or use --egl");
+      }
 
       vtkSmartPointer<vtkEclipseShadowLutSource> lut;  // the airless LuT, per frame when its ranges change
       std::optional<eclipse::LutRange> lutRange;

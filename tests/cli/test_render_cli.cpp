@@ -345,3 +345,30 @@ TEST(RenderCli, SceneTerrainFromADemRendersAsTheFieldItHolds) {
     if (std::abs(dem.data[i] - other.data[i]) > 0.05f * std::max(std::abs(dem.data[i]), 1e-6f)) ++differing;
   EXPECT_GT(differing, dem.data.size() / 20) << differing << " of " << dem.data.size() << " values differ";
 }
+
+TEST(RenderCli, EglWithoutADisplayGivesTheImageOfX) {
+  // The sunset with its sky (the atmosphere composite) and the Sun's disc, small tables.
+  TempDir dir;
+  const std::string scene = UMBRA_SOURCE_DIR "/examples/scenes/earth-sunset.json";
+  const tables::Table x = renderExr(dir, scene, "64x36", {}, &dir);
+  std::filesystem::rename(dir / "frame.exr", dir / "x.exr");
+  const RunResult r = run("/usr/bin/env", {"-u", "DISPLAY", UMBRA_EXE, "render", scene, "--size", "64x36",
+                                           "--atmosphere-tables", "small", "--egl", "--output", dir / "egl.exr"},
+                          {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const tables::Table egl = tables::readExr(dir / "egl.exr", {"R", "G", "B"});
+  ASSERT_EQ(egl.data.size(), x.data.size());
+  const float brightest = *std::max_element(x.data.begin(), x.data.end());
+  ASSERT_GT(brightest, 0.0f);
+  double worst = 0.0;
+  for (std::size_t k = 0; k < x.data.size(); ++k)
+    worst = std::max(worst, std::abs(double(egl.data[k]) - double(x.data[k])) / brightest);
+  EXPECT_LT(worst, 1e-6);
+
+  // Without --egl and without a display: the error says what to do.
+  const RunResult noDisplay =
+      run("/usr/bin/env", {"-u", "DISPLAY", UMBRA_EXE, "render", scene, "--output", dir / "none.png"}, {});
+  EXPECT_NE(noDisplay.exitCode, 0);
+  EXPECT_NE(noDisplay.err.find("--egl"), std::string::npos) << noDisplay.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "none.png"));
+}

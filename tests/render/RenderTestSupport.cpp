@@ -1,14 +1,43 @@
 #include "RenderTestSupport.hpp"
 
-#include <X11/Xlib.h>
+#include "EglRenderWindow.h"
+
+#include <gtest/gtest.h>
+#include <X11/Xlib.h>  // after gtest: its macros (None, ...) clash with gtest's names
 
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 #include <thread>
 
 namespace umbra::render::test {
 
+namespace {
+// UMBRA_TEST_EGL=1: every window of the test process on EGL, with no X display (the
+// CPU-against-GLSL tests on a GPU machine without an X server: scripts/device-checks.sh).
+// Switched in the test environment's SetUp, after VTK's factories have registered.
+class EglEnvironment : public ::testing::Environment {
+ public:
+  void SetUp() override {
+    std::string error;
+    if (!useEglRenderWindows(error)) {
+      std::fprintf(stderr, "UMBRA_TEST_EGL: %s\n", error.c_str());
+      std::exit(2);
+    }
+    std::printf("UMBRA_TEST_EGL: windows on EGL\n");
+  }
+};
+const bool kEglRequested = [] {
+  const char* e = std::getenv("UMBRA_TEST_EGL");
+  if (e && std::strcmp(e, "1") == 0) ::testing::AddGlobalTestEnvironment(new EglEnvironment);
+  return e != nullptr;
+}();
+}  // namespace
+
 void useSharedDisplay(vtkRenderWindow* window) {
+  if (usingEglRenderWindows()) return;
   static Display* display = [] {
     for (int attempt = 0; attempt < 20; ++attempt) {
       if (Display* d = XOpenDisplay(nullptr)) return d;

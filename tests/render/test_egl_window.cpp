@@ -1,8 +1,8 @@
-// The benches' EGL windows (bench/EglRenderWindow): the render pass drawn on an EGL
+// EGL windows (app/render/EglRenderWindow): the render pass drawn on an EGL
 // pbuffer, with no X involved, gives the image the X window gives. Both run on the same
-// GL implementation here (Mesa's llvmpipe); on a GPU machine --egl is the only way in.
+// GL implementation here (Mesa's llvmpipe); on a GPU machine without X, EGL is the way in.
 #include "BodyView.h"
-#include "EglRenderWindow.hpp"
+#include "EglRenderWindow.h"
 #include "RenderTestSupport.hpp"
 #include "SceneInputs.h"
 #include "scene/Scene.hpp"
@@ -50,7 +50,7 @@ Frame renderMoon(bool useXDisplay) {
   view.Render();
   view.ReadHdr(f.rgb, f.width, f.height);
   f.windowClass = view.GetRenderWindow()->GetClassName();
-  f.renderer = bench::glRendererString(view.GetRenderWindow());
+  f.renderer = render::glRendererString(view.GetRenderWindow());
   return f;
 }
 
@@ -60,7 +60,7 @@ TEST(EglWindow, RendersTheImageOfTheXWindow) {
   // EGL first: the process's first context is the one that initialises GLEW, which is
   // what the GLX stand-ins are for.
   std::string error;
-  ASSERT_TRUE(bench::useEglRenderWindows(error)) << error;
+  ASSERT_TRUE(render::useEglRenderWindows(error)) << error;
   const Frame egl = renderMoon(false);
   // Back to VTK's own X window.
   vtkObjectFactory::SetAllEnableFlags(1, "vtkRenderWindow");

@@ -1,4 +1,4 @@
-#include "EglRenderWindow.hpp"
+#include "EglRenderWindow.h"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -20,7 +20,8 @@
 // asks GLX for the current display (through glXGetProcAddressARB("glXGetCurrentDisplay"))
 // and fails when there is none, as under EGL. While EGL windows are in use, the three GLX
 // entry points it calls are answered here for a stand-in display; every other call goes
-// on to libGLX. The executable exports them (-Wl,--export-dynamic-symbol, bench/CMakeLists).
+// on to libGLX. Executables export them (-Wl,--export-dynamic-symbol: umbra_render's link
+// options, app/render/CMakeLists.txt).
 namespace {
 struct StandInDisplay;
 bool gEglWindows = false;
@@ -171,7 +172,7 @@ public:
   }
   vtkTypeMacro(EglWindowFactory, vtkObjectFactory);
   const char* GetVTKSourceVersion() override { return VTK_SOURCE_VERSION; }
-  const char* GetDescription() override { return "umbra benches: render windows on EGL pbuffers"; }
+  const char* GetDescription() override { return "umbra: render windows on EGL pbuffers"; }
 
 protected:
   EglWindowFactory() {
@@ -182,7 +183,7 @@ protected:
 
 }  // namespace
 
-namespace umbra::bench {
+namespace umbra::render {
 
 bool useEglRenderWindows(std::string& error) {
   if (gEglWindows) return true;
@@ -214,6 +215,8 @@ bool useEglRenderWindows(std::string& error) {
   return true;
 }
 
+bool usingEglRenderWindows() { return gEglWindows; }
+
 std::string glRendererString(vtkRenderWindow* window) {
   window->MakeCurrent();
   auto text = [](GLenum name) {
@@ -223,4 +226,4 @@ std::string glRendererString(vtkRenderWindow* window) {
   return text(GL_VENDOR) + ", " + text(GL_RENDERER) + ", " + text(GL_VERSION);
 }
 
-}  // namespace umbra::bench
+}  // namespace umbra::render

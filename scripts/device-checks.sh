@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# The GPU checks of issue #6, on EGL (no X server, no VTK installed), from
+# scripts/device-kit.sh's .devkit/kit.tar.xz. For the `device` tool's machine, from the
+# repository root:
+#
+#   run  command: bash scripts/device-checks.sh   carry: [".devkit", ".gl"]   timeout_s: 480
+#
+# 1. $OUT/glsl-tests.txt: the rendering tests (CPU reference against GLSL, the extremes)
+#    with every window on the GPU (UMBRA_TEST_EGL=1).
+# 2. $OUT/frame-times.md: the frame-time ratios of paper Tables 1-2 with GL timer queries,
+#    ROUNDS (3) runs of FRAMES (50) interleaved frames, at 1920x1080 and 3840x2160, and the
+#    sunset bench.
+# Without $OUT the files go to out/device/. Here (Mesa, no GPU) it runs on llvmpipe:
+# `FRAMES=2 ROUNDS=1 scripts/device-checks.sh`.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+out=${OUT:-out/device}
+frames=${FRAMES:-50}
+rounds=${ROUNDS:-3}
+mkdir -p "$out"
+[ -f .devkit/kit.tar.xz ] || { echo "device-checks: no .devkit/kit.tar.xz (run scripts/device-kit.sh, carry .devkit)" >&2; exit 1; }
+
+# GL loaders (libglvnd) where the machine has none; the NVIDIA driver's EGL vendor file.
+if ! ldconfig -p | grep -q 'libEGL.so.1 '; then
+  for f in .gl/*.deb; do dpkg -x "$f" /; done
+  ldconfig
+fi
+nvidia=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+[ -f "$nvidia" ] && export __EGL_VENDOR_LIBRARY_FILENAMES=$nvidia
+
+kit=$(mktemp -d)
+tar -C "$kit" -xJf .devkit/kit.tar.xz
+export LD_LIBRARY_PATH=$kit/kit/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+export UMBRA_CACHE_DIR=$kit/kit/cache
+bin=$kit/kit/bin
+# The tests open the example scenes where the kit was built; point that path here.
+source_dir=$(cat "$kit/kit/source-dir")
+if [ ! -e "$source_dir/examples/scenes" ]; then
+  mkdir -p "$(dirname "$source_dir")"
+  ln -sfn "$PWD" "$source_dir"
+fi
+
+echo "== the rendering tests on EGL (CPU against GLSL) =="
+UMBRA_TEST_EGL=1 UMBRA_CACHE_DIR=$kit/test-cache "$bin/test_render" 2>&1 | tee "$out/glsl-tests.txt.part"
+tests_status=${PIPESTATUS[0]}
+mv "$out/glsl-tests.txt.part" "$out/glsl-tests.txt"
+
+echo "== frame times =="
+{
+  failed=0
+  echo "# umbra frame times, $(date -u +%Y-%m-%dT%H:%M:%SZ), $frames frames x $rounds rounds"
+  command -v nvidia-smi >/dev/null && nvidia-smi --query-gpu=name,driver_version,clocks.sm --format=csv,noheader
+  for r in $(seq "$rounds"); do
+    for size in 1920x1080 3840x2160; do
+      echo
+      echo "## round $r, $size: shadow and ring (eclipse paper Tables 1-2)"
+      "$bin/umbra-bench-render-eclipse-atmosphere" --egl --frames "$frames" --width "${size%x*}" --height "${size#*x}" || failed=1
+    done
+    echo
+    echo "## round $r, 1920x1080: the sunset from 2 m (atmosphere, refraction, glare)"
+    "$bin/umbra-bench-render-atmosphere" --egl --frames "$frames" --tables small || failed=1
+  done
+  exit "$failed"
+} 2>&1 | tee "$out/frame-times.md.part"
+bench_status=${PIPESTATUS[0]}
+mv "$out/frame-times.md.part" "$out/frame-times.md"
+rm -rf "$kit"
+echo "device-checks: tests exit $tests_status, benches exit $bench_status"
+[ "$tests_status" -eq 0 ] && [ "$bench_status" -eq 0 ]
