@@ -10,7 +10,8 @@
 # 2. $OUT/frame-times.md: the frame-time ratios of paper Tables 1-2 with GL timer queries,
 #    ROUNDS (3) runs of FRAMES (50) interleaved frames, at 1920x1080 and 3840x2160, and the
 #    sunset bench.
-# Without $OUT the files go to out/device/. Here (Mesa, no GPU) it runs on llvmpipe:
+# $OUT/environment.txt: what EGL finds (vendor file, loaders). Without $OUT the files go
+# to out/device/. Here (Mesa, no GPU) it runs on llvmpipe:
 # `FRAMES=2 ROUNDS=1 scripts/device-checks.sh`.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -25,8 +26,16 @@ if ! ldconfig -p | grep -q 'libEGL.so.1 '; then
   for f in .gl/*.deb; do dpkg -x "$f" /; done
   ldconfig
 fi
-nvidia=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-[ -f "$nvidia" ] && export __EGL_VENDOR_LIBRARY_FILENAMES=$nvidia
+nvidia=$(ls /usr/local/nvidia/share/glvnd/egl_vendor.d/*nvidia*.json /usr/share/glvnd/egl_vendor.d/*nvidia*.json \
+  /etc/glvnd/egl_vendor.d/*nvidia*.json 2>/dev/null | head -1)
+[ -n "$nvidia" ] && export __EGL_VENDOR_LIBRARY_FILENAMES=$nvidia
+# What EGL will find, for a run that fails to reach the GPU.
+{
+  echo "EGL vendor file: ${nvidia:-none found}"
+  [ -n "$nvidia" ] && cat "$nvidia"
+  ldconfig -p | grep -E 'libEGL|libGLdispatch|libOpenGL|nvidia' | head -20
+  command -v nvidia-smi >/dev/null && nvidia-smi -L
+} >"$out/environment.txt" 2>&1
 
 kit=$(mktemp -d)
 tar -C "$kit" -xJf .devkit/kit.tar.xz
