@@ -2,6 +2,7 @@
 #pragma once
 
 #include "BodyView.h"
+#include "vtkUmbraRenderPass.h"
 #include "EglRenderWindow.h"
 #include <CLI/CLI.hpp>
 #include <vtkRenderWindow.h>
@@ -45,9 +46,11 @@ inline void printRenderer(render::BodyView& view) {
 /// Per view, the median time per frame [ms]: on the GL timer (GL_TIME_ELAPSED around the
 /// frame), on the wall clock (render + glFinish), and the process's CPU time over the same
 /// span (all threads: with Mesa's llvmpipe the fragment work itself, and the steadier
-/// figure on a machine shared with other jobs).
+/// figure on a machine shared with other jobs); and the GPU time of the render pass's
+/// receivers and atmosphere stages (GL_TIMESTAMP between the stages: what the paper's
+/// Tables 1 and 2 time).
 struct FrameTimes {
-  std::vector<double> glMs, wallMs, cpuMs;
+  std::vector<double> glMs, wallMs, cpuMs, receiversMs, atmosphereMs;
 };
 
 inline double processCpuMs() {
@@ -66,11 +69,12 @@ inline double median(std::vector<double> v) {
 // to be warmed up already (shaders compiled, textures uploaded).
 inline FrameTimes medianFrameTimes(const std::vector<render::BodyView*>& views, int frames) {
   const std::size_t n = views.size();
-  std::vector<std::vector<double>> gl(n), wall(n), cpu(n);
+  std::vector<std::vector<double>> gl(n), wall(n), cpu(n), receivers(n), atmosphere(n);
   std::vector<GLuint> queries(n, 0);
   for (std::size_t k = 0; k < n; ++k) {
     views[k]->GetRenderWindow()->MakeCurrent();
     glGenQueries(1, &queries[k]);
+    views[k]->GetRenderPass()->SetStageTiming(true);
   }
   for (int f = 0; f < frames; ++f) {
     for (std::size_t k = 0; k < n; ++k) {
@@ -88,12 +92,20 @@ inline FrameTimes medianFrameTimes(const std::vector<render::BodyView*>& views, 
       GLuint64 ns = 0;
       glGetQueryObjectui64v(queries[k], GL_QUERY_RESULT, &ns);
       gl[k].push_back(ns * 1e-6);
+      vtkUmbraRenderPass::StageTimes stages;
+      if (views[k]->GetRenderPass()->GetLastStageTimes(stages)) {
+        receivers[k].push_back(stages.receiversMs);
+        atmosphere[k].push_back(stages.atmosphereMs);
+      }
     }
   }
   FrameTimes t;
   for (std::size_t k = 0; k < n; ++k) {
     views[k]->GetRenderWindow()->MakeCurrent();
     glDeleteQueries(1, &queries[k]);
+    views[k]->GetRenderPass()->SetStageTiming(false);
+    t.receiversMs.push_back(receivers[k].empty() ? 0.0 : median(receivers[k]));
+    t.atmosphereMs.push_back(atmosphere[k].empty() ? 0.0 : median(atmosphere[k]));
     t.glMs.push_back(median(gl[k]));
     t.wallMs.push_back(median(wall[k]));
     t.cpuMs.push_back(median(cpu[k]));

@@ -7,7 +7,8 @@
 #
 # 1. $OUT/glsl-tests.txt: the rendering tests (CPU reference against GLSL, the extremes)
 #    with every window on the GPU (UMBRA_TEST_EGL=1).
-# 2. $OUT/frame-times.md: the frame-time ratios of paper Tables 1-2 with GL timer queries,
+# 2. $OUT/frame-times.md: the frame-time ratios of paper Tables 1-2 with GL timer queries
+#    (whole frames, and the receivers' and atmosphere's stages as the paper times them),
 #    ROUNDS (3) runs of FRAMES (50) interleaved frames, at 1920x1080 and 3840x2160, and the
 #    sunset bench.
 # $OUT/environment.txt: what EGL finds (vendor file, loaders). Without $OUT the files go

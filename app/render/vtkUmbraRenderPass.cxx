@@ -104,6 +104,13 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
     return;
   }
 
+  this->StageTimesPending = false;
+  if (this->StageTiming && this->StageQueries.empty()) {
+    this->StageQueries.assign(5, 0);
+    glGenQueries(5, this->StageQueries.data());
+  }
+  this->MarkStage(0);
+
   // 1. The delegate into the float framebuffer.
   ostate->PushFramebufferBindings();
   this->FrameBufferObject->Bind();
@@ -125,6 +132,7 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   this->DelegatePass->Render(&s2);
   this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
   ostate->PopFramebufferBindings();
+  this->MarkStage(1);
 
   // 1b. The atmosphere over it, into the composed buffer.
   vtkTextureObject* hdr = this->ColorTexture;
@@ -157,6 +165,7 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
     hdr = this->ComposedTexture;
     this->HdrComposed = true;
   }
+  this->MarkStage(2);
 
   // 1c. Glare.
   this->HdrGlared = false;
@@ -171,6 +180,7 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
     hdr = this->Glare->Output();
     this->HdrGlared = true;
   }
+  this->MarkStage(3);
 
   // 2. Tone-map onto the current framebuffer.
   if (!this->QuadHelper) {
@@ -203,6 +213,8 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   ostate->vtkglScissor(x, y, w, h);
   this->QuadHelper->Render();
   hdr->Deactivate();
+  this->MarkStage(4);
+  this->StageTimesPending = this->StageTiming;
 
   this->LastWindow = renWin;
   this->HdrWidth = w;
@@ -236,8 +248,31 @@ bool vtkUmbraRenderPass::ReadHdrPixels(std::vector<float>& rgba, int& width, int
   return true;
 }
 
+void vtkUmbraRenderPass::MarkStage(int stage) {
+  if (this->StageTiming && !this->StageQueries.empty()) glQueryCounter(this->StageQueries[stage], GL_TIMESTAMP);
+}
+
+bool vtkUmbraRenderPass::GetLastStageTimes(StageTimes& times) {
+  vtkOpenGLRenderWindow* renWin = this->LastWindow;
+  if (!this->StageTimesPending || !renWin || this->StageQueries.size() != 5) return false;
+  renWin->MakeCurrent();
+  GLuint64 ns[5] = {};
+  for (int k = 0; k < 5; ++k) glGetQueryObjectui64v(this->StageQueries[k], GL_QUERY_RESULT, &ns[k]);
+  auto ms = [&](int k) { return ns[k + 1] >= ns[k] ? (ns[k + 1] - ns[k]) * 1e-6 : 0.0; };
+  times = {ms(0), ms(1), ms(2), ms(3)};
+  return true;
+}
+
 void vtkUmbraRenderPass::ReleaseGraphicsResources(vtkWindow* w) {
   this->Superclass::ReleaseGraphicsResources(w);
+  if (!this->StageQueries.empty()) {
+    if (auto* renWin = vtkOpenGLRenderWindow::SafeDownCast(w)) {
+      renWin->MakeCurrent();
+      glDeleteQueries(static_cast<GLsizei>(this->StageQueries.size()), this->StageQueries.data());
+    }
+    this->StageQueries.clear();
+    this->StageTimesPending = false;
+  }
   if (this->QuadHelper) {
     this->QuadHelper->ReleaseGraphicsResources(w);
     this->QuadHelper.reset();

@@ -72,6 +72,20 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
   /// The atmosphere drawn over the frame (not owned; nullptr: none).
   void SetAtmosphere(umbra::render::AtmosphereRendering* atmosphere) { this->Atmosphere = atmosphere; }
 
+  /// GPU time per stage of a frame (GL_TIMESTAMP queries between the stages), for the
+  /// benches: the paper's Table 1 times the receivers alone, Table 2 the atmosphere.
+  struct StageTimes {
+    double receiversMs = 0.0;   ///< the delegate: bodies, their eclipse shading, terrain
+    double atmosphereMs = 0.0;  ///< the atmosphere composite or limb ring (0: none)
+    double glareMs = 0.0;       ///< 0 without glare
+    double toneMapMs = 0.0;     ///< the tone map onto the window's framebuffer
+  };
+  /// Off by default: with it on, each Render records timestamps between its stages.
+  void SetStageTiming(bool on) { this->StageTiming = on; }
+  /// The last frame's stage times: waits for the GPU to reach the end of that frame. False
+  /// when stage timing was off for it, or nothing was rendered since.
+  bool GetLastStageTimes(StageTimes& times);
+
  protected:
   vtkUmbraRenderPass();
   ~vtkUmbraRenderPass() override;
@@ -91,6 +105,10 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
   std::unique_ptr<umbra::render::GlareRendering> Glare;
   bool HdrGlared = false;
 
+  bool StageTiming = false;
+  std::vector<unsigned int> StageQueries;  // GL query names: before and after each stage
+  bool StageTimesPending = false;
+
   vtkWeakPointer<vtkOpenGLRenderWindow> LastWindow;
   int HdrWidth = 0;
   int HdrHeight = 0;
@@ -98,6 +116,7 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
 
  private:
   bool PrepareBuffers(vtkOpenGLRenderWindow* renWin, int width, int height);
+  void MarkStage(int stage);
   vtkUmbraRenderPass(const vtkUmbraRenderPass&) = delete;
   void operator=(const vtkUmbraRenderPass&) = delete;
 };

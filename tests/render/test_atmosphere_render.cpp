@@ -8,7 +8,12 @@
 #include "Refraction.hpp"
 #include "SightLines.hpp"
 
+#include "vtkUmbraRenderPass.h"
+
 #include <gtest/gtest.h>
+#include <vtk_glew.h>
+
+#include <cmath>
 
 #include <algorithm>
 #include <cstdio>
@@ -118,6 +123,43 @@ TEST(AtmosphereRender, ZenithBluerThanHorizonNearNoon) {
               horizon.g, horizon.b);
   EXPECT_GT(zenith.b, zenith.r);
   EXPECT_GT(blueOverRed(zenith), 1.2 * blueOverRed(horizon));
+}
+
+// The render pass's stage timestamps (the benches' Table 1-2 columns): none unless asked
+// for; then every stage's GPU time is finite and not negative, the atmosphere and glare
+// stages take time when they draw, and the receivers' and atmosphere's together are no
+// longer than the whole frame on the GL timer.
+TEST(AtmosphereRender, StageTimesOfTheRenderPass) {
+  AtmosphereScene scene(64, groundCamera(10.0, 45.0, 90.0), directionFromAngles(60.0, 180.0));
+  vtkUmbraRenderPass* pass = scene.view.GetRenderPass();
+  vtkUmbraRenderPass::StageTimes t;
+  scene.view.Render();
+  EXPECT_FALSE(pass->GetLastStageTimes(t));
+  pass->SetStageTiming(true);
+  pass->SetGlareStrength(1.0);
+  scene.view.GetRenderWindow()->MakeCurrent();
+  GLuint frameQuery = 0;
+  glGenQueries(1, &frameQuery);
+  glBeginQuery(GL_TIME_ELAPSED, frameQuery);
+  scene.view.Render();
+  scene.view.GetRenderWindow()->MakeCurrent();
+  glEndQuery(GL_TIME_ELAPSED);
+  GLuint64 frameNs = 0;
+  glGetQueryObjectui64v(frameQuery, GL_QUERY_RESULT, &frameNs);
+  glDeleteQueries(1, &frameQuery);
+  ASSERT_TRUE(pass->GetLastStageTimes(t));
+  std::printf("  receivers %.3f ms, atmosphere %.3f ms, glare %.3f ms, tone map %.3f ms; frame %.3f ms\n", t.receiversMs,
+              t.atmosphereMs, t.glareMs, t.toneMapMs, frameNs * 1e-6);
+  for (double ms : {t.receiversMs, t.atmosphereMs, t.glareMs, t.toneMapMs}) {
+    EXPECT_TRUE(std::isfinite(ms));
+    EXPECT_GE(ms, 0.0);
+  }
+  EXPECT_GT(t.atmosphereMs, 0.0);
+  EXPECT_GT(t.glareMs, 0.0);
+  EXPECT_LE(t.receiversMs + t.atmosphereMs, frameNs * 1e-6);
+  pass->SetStageTiming(false);
+  scene.view.Render();
+  EXPECT_FALSE(pass->GetLastStageTimes(t));
 }
 
 // The Sun's disc 2 degrees up is redder than 60 degrees up (its light crosses ~25 air masses).
