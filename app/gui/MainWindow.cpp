@@ -266,7 +266,13 @@ MainWindow::MainWindow() {
   controls->addWidget(this->refractionBox);
   controls->addWidget(this->atmosphereProgress);
   controls->addWidget(this->atmosphereCancel);
-  controls->addStretch(1);
+  this->gpuLabel = new QLabel;
+  this->gpuLabel->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);  // never widens the window
+  this->gpuLabel->setAlignment(Qt::AlignLeft | Qt::AlignVCenter);  // when narrow, the total stays in sight
+  this->gpuLabel->setToolTip("GPU time of the 3D view's last frame (GL timestamp queries), per stage of the render "
+                             "pass: the bodies with their eclipse shading, the atmosphere, the glare, the tone map");
+  controls->addSpacing(16);
+  controls->addWidget(this->gpuLabel, 1);  // the rest of the row
 
   auto* central = new QWidget;
   auto* layout = new QVBoxLayout(central);
@@ -277,6 +283,20 @@ MainWindow::MainWindow() {
 
   this->statusLabel = new QLabel("Open a scene (File > Open scene...)");
   this->statusBar()->addWidget(this->statusLabel, 1);
+  this->view->setOnFrame([this] {
+    const auto t = this->view->lastStageTimes();
+    if (!t) return;
+    // 3 digits; a stage that drew nothing (two timestamps in a row) shows 0.
+    auto ms = [](double v) { return v < 1e-3 ? QString("0") : QString::number(v, 'g', 3); };
+    const double total = t->receiversMs + t->atmosphereMs + t->glareMs + t->toneMapMs;
+    this->gpuLabel->setText(QString("GPU %1 ms: bodies %2, atmosphere %3, glare %4")
+                                .arg(ms(total), ms(t->receiversMs), ms(t->atmosphereMs), ms(t->glareMs)));
+    this->gpuLabel->setToolTip(QString("GPU time of the 3D view's last frame (GL timestamp queries): %1 ms in all; the "
+                                       "bodies with their eclipse shading %2 ms, the atmosphere %3 ms, the glare %4 ms, "
+                                       "the tone map %5 ms")
+                                   .arg(ms(total), ms(t->receiversMs), ms(t->atmosphereMs), ms(t->glareMs),
+                                        ms(t->toneMapMs)));
+  });
   this->resize(1200, 720);
 }
 
@@ -717,6 +737,8 @@ void MainWindow::refresh() {
 void MainWindow::setStatus(const QString& text) { this->statusLabel->setText(text); }
 
 QString MainWindow::statusText() const { return this->statusLabel->text(); }
+
+QString MainWindow::gpuTimeText() const { return this->gpuLabel->text(); }
 
 void MainWindow::renderViews() {
   this->view->render();

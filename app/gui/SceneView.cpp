@@ -11,6 +11,8 @@
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkCommand.h>
+#include <vtkCallbackCommand.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkRenderWindowInteractor.h>
@@ -92,6 +94,8 @@ struct SceneView::Impl {
   HeldTable<vtkEclipseShadowLutSource, render::AtmosphereShadowRequest> shadow;
   HeldTable<vtkLimbLuminanceSource, render::LimbLuminanceRequest> limb;
   double ringThresholdPx = 5.0;
+  std::function<void()> onFrame;
+  vtkNew<vtkCallbackCommand> frameEnded;
 };
 
 SceneView::SceneView(QVTKOpenGLNativeWidget* widget) : impl(std::make_unique<Impl>()) {
@@ -104,9 +108,17 @@ SceneView::SceneView(QVTKOpenGLNativeWidget* widget) : impl(std::make_unique<Imp
   impl->renderer = impl->bodies->GetRenderer();
   impl->bodies->GetRenderWindow()->RemoveRenderer(impl->renderer);
   window->AddRenderer(impl->renderer);
+  impl->bodies->GetRenderPass()->SetStageTiming(true);
+  impl->frameEnded->SetClientData(impl.get());
+  impl->frameEnded->SetCallback([](vtkObject*, unsigned long, void* data, void*) {
+    if (const auto& f = static_cast<Impl*>(data)->onFrame) f();
+  });
+  window->AddObserver(vtkCommand::EndEvent, impl->frameEnded);
 }
 
 SceneView::~SceneView() {
+  impl->onFrame = nullptr;
+  if (vtkRenderWindow* window = impl->widget->renderWindow()) window->RemoveObserver(impl->frameEnded);
   // Release the renderer's OpenGL resources while the widget's context still exists.
   if (vtkRenderWindow* window = impl->widget->renderWindow()) window->RemoveRenderer(impl->renderer);
 }
@@ -236,5 +248,13 @@ const std::optional<render::AtmosphereTableChoice>& SceneView::missingAtmosphere
 void SceneView::setExposureEV(double ev) { impl->bodies->SetExposureEV(ev); }
 
 void SceneView::render() { impl->widget->renderWindow()->Render(); }
+
+std::optional<vtkUmbraRenderPass::StageTimes> SceneView::lastStageTimes() const {
+  vtkUmbraRenderPass::StageTimes t;
+  if (!impl->bodies->GetRenderPass()->GetLastStageTimes(t)) return std::nullopt;
+  return t;
+}
+
+void SceneView::setOnFrame(std::function<void()> onFrame) { impl->onFrame = std::move(onFrame); }
 
 } // namespace umbra::gui

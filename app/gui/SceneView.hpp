@@ -5,10 +5,12 @@
 #include "AtmosphereShadow.h"
 #include "SceneInputs.h"
 #include "scene/Scene.hpp"
+#include "vtkUmbraRenderPass.h"
 
 #include <vtkSmartPointer.h>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -34,6 +36,11 @@ public:
   /// the receivers' ranges with as many rows.
   void setScene(const scene::Scene& scene, vtkImageData* shadowLut);
   void setExposureEV(double ev);
+  /// The GPU time of the last frame drawn, per stage of the render pass (GL timestamps:
+  /// vtkUmbraRenderPass::SetStageTiming, on for this view); none before the first frame.
+  /// `onFrame` is called after every frame (the widget's render window's EndEvent).
+  std::optional<vtkUmbraRenderPass::StageTimes> lastStageTimes() const;
+  void setOnFrame(std::function<void()> onFrame);
   /// Glare strength (vtkUmbraRenderPass::SetGlareStrength), 0..10.
   void setGlareStrength(double strength);
   /// Tables (already updated) for the atmosphere the scene asks for; nullptr: none. The

@@ -20,6 +20,7 @@
 #include <QApplication>
 #include <QComboBox>
 #include <QProgressBar>
+#include <QRegularExpression>
 #include <QElapsedTimer>
 #include <QImage>
 #include <QSurfaceFormat>
@@ -330,6 +331,34 @@ TEST(GuiEditor, TimeSliderMakesTwilightTablesAndDarkensTheSky) {
   settle(win.w);
   EXPECT_DOUBLE_EQ(win.w.sceneView().atmosphereTables()->GetMuSMin(), day->GetMuSMin());
   EXPECT_GT(win.w.sceneView().atmosphereTables()->GetLastCacheHits(), 0);
+}
+
+// The GPU time of the 3D view's last frame, per render-pass stage (GL
+// timestamps): the sunset's atmosphere takes time, the total is the stages' sum (with the
+// tone map's), and glare shows up when it is turned on (0 below 1 us: not drawn).
+TEST(GuiEditor, GpuTimePerStageIsShown) {
+  Window win;
+  win.shot("frame.png");
+  const QRegularExpression format(
+      "^GPU ([0-9.e+-]+) ms: bodies ([0-9.e+-]+), atmosphere ([0-9.e+-]+), glare ([0-9.e+-]+)$");
+  auto stages = [&] {
+    const QRegularExpressionMatch m = format.match(win.w.gpuTimeText());
+    EXPECT_TRUE(m.hasMatch()) << win.w.gpuTimeText().toStdString();
+    std::vector<double> v;
+    for (int k = 1; k <= 4; ++k) v.push_back(m.captured(k).toDouble());
+    return v;
+  };
+  const std::vector<double> before = stages();
+  ASSERT_EQ(before.size(), 4u);
+  EXPECT_GT(before[2], 0.0) << "atmosphere";
+  EXPECT_EQ(before[3], 0.0) << "no glare";
+  // The total holds the tone map too (a few % of the frame on llvmpipe): 3 digits each.
+  EXPECT_GE(before[0], 0.99 * (before[1] + before[2] + before[3]));
+  EXPECT_LT(before[0], 1.2 * (before[1] + before[2] + before[3]));
+  win.w.setGlare(1.0);
+  win.shot("glare.png");
+  EXPECT_GT(stages()[3], 0.0) << win.w.gpuTimeText().toStdString();
+  std::printf("  %s\n", win.w.gpuTimeText().toStdString().c_str());
 }
 
 // The "Refraction" check box (umbra-gui --refraction) on the sunset seen through a
