@@ -102,8 +102,8 @@ std::vector<Frame> animationFrames(const std::string& from, const std::string& t
 
 void addRenderCommand(CLI::App& app, Action& action) {
   CLI::App* render = app.add_subcommand(
-      "render", "Render a scene offscreen: PNG (tone-mapped) or EXR (linear radiance, W m^-2 sr^-1). Needs an X "
-                "display (run under xvfb-run -a on a headless machine) or --egl");
+      "render", "Render a scene offscreen: PNG (tone-mapped) or EXR (linear radiance, W m^-2 sr^-1). On the X "
+                "display when DISPLAY is set, else (or with --egl) through EGL");
   struct Options {
     std::string scene, time, size, output, from, to, step;
     std::optional<double> exposure;
@@ -146,8 +146,9 @@ void addRenderCommand(CLI::App& app, Action& action) {
       ->check(CLI::Range(0.0, 1.0e6))
       ->capture_default_str();
   render->add_flag("--egl", o->egl,
-                   "Render through EGL, with no X display: on a GPU machine without an X server (the first EGL "
-                   "device that is not Mesa's software one; UMBRA_EGL_DEVICE=N picks another), else Mesa's llvmpipe");
+                   "Render through EGL even when DISPLAY is set (without it, EGL is used anyway): a GPU machine's "
+                   "EGL device (the first that is not Mesa's software one; UMBRA_EGL_DEVICE=N picks another), else "
+                   "Mesa's llvmpipe");
   o->cache.addTo(render);
 
   render->callback([&action, o] {
@@ -172,8 +173,8 @@ void addRenderCommand(CLI::App& app, Action& action) {
       if (o->egl) {
         std::string error;
         if (!render::useEglRenderWindows(error)) throw CommandError("--egl: " + error);
-      } else if (!std::getenv("DISPLAY")) {
-        throw CommandError("rendering needs an X display: run under xvfb-run -a, or use --egl");
+      } else if (render::useEglWithoutDisplay()) {
+        std::cerr << "umbra: no X display: rendering through EGL\n";
       }
 
       vtkSmartPointer<vtkEclipseShadowLutSource> lut;  // the airless LuT, per frame when its ranges change

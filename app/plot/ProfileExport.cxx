@@ -1,5 +1,6 @@
 #include "ProfileExport.hpp"
 
+#include "EglRenderWindow.h"
 #include "OutputFile.hpp"
 
 #include <vtkAxis.h>
@@ -123,8 +124,11 @@ void writeSvg(vtkTable* t, const std::string& path, const std::string& title, co
 }
 
 void writePng(vtkTable* t, const std::string& path, const std::string& title, const ProfilePlotStyle& style) {
-  if (!std::getenv("DISPLAY"))
-    throw std::runtime_error(path + ": PNG plots need an X display (run under xvfb-run -a) - or write .svg");
+  try {
+    umbra::render::useEglWithoutDisplay();  // no X display: EGL
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": " + e.what() + " - or write .svg");
+  }
   vtkNew<vtkContextView> view;
   view->GetRenderWindow()->SetOffScreenRendering(1);
   view->GetRenderWindow()->SetSize(800, 500);

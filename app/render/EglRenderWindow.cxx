@@ -3,6 +3,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkGenericRenderWindowInteractor.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkVersionMacros.h>
@@ -13,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 // ---- GLEW under EGL -------------------------------------------------------------------
@@ -178,6 +180,11 @@ protected:
   EglWindowFactory() {
     this->RegisterOverride("vtkRenderWindow", "EglRenderWindow", "EGL pbuffer window", 1,
                            [] { return static_cast<vtkObject*>(EglRenderWindow::New()); });
+    // Views that make their own interactor (vtkContextView) would get the X one, which
+    // opens the display when the window first renders.
+    this->RegisterOverride("vtkRenderWindowInteractor", "vtkGenericRenderWindowInteractor",
+                           "an interactor without a window system", 1,
+                           [] { return static_cast<vtkObject*>(vtkGenericRenderWindowInteractor::New()); });
   }
 };
 
@@ -209,13 +216,23 @@ bool useEglRenderWindows(std::string& error) {
   gEglWindows = true;
   vtkNew<EglWindowFactory> factory;
   vtkObjectFactory::RegisterFactory(factory);
-  // The OpenGL2 module's own override (the X window) is registered first; only ours stays on.
+  // The OpenGL2 and UI modules' own overrides (X) are registered first; only ours stay on.
   vtkObjectFactory::SetAllEnableFlags(0, "vtkRenderWindow");
   vtkObjectFactory::SetAllEnableFlags(1, "vtkRenderWindow", "EglRenderWindow");
+  vtkObjectFactory::SetAllEnableFlags(0, "vtkRenderWindowInteractor");
+  vtkObjectFactory::SetAllEnableFlags(1, "vtkRenderWindowInteractor", "vtkGenericRenderWindowInteractor");
   return true;
 }
 
 bool usingEglRenderWindows() { return gEglWindows; }
+
+bool useEglWithoutDisplay() {
+  const char* display = std::getenv("DISPLAY");
+  if (display && *display) return false;
+  std::string error;
+  if (useEglRenderWindows(error)) return true;
+  throw std::runtime_error("no X display (DISPLAY is unset) and no EGL (" + error + "): run under xvfb-run -a");
+}
 
 std::string glRendererString(vtkRenderWindow* window) {
   window->MakeCurrent();

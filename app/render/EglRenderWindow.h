@@ -20,6 +20,11 @@ namespace umbra::render {
 bool useEglRenderWindows(std::string& error);
 /// True once useEglRenderWindows() has succeeded.
 bool usingEglRenderWindows();
+/// Offscreen rendering with no X display: when DISPLAY is unset (or empty), switches to EGL
+/// windows and returns true; returns false when DISPLAY is set (X windows, as before).
+/// Throws std::runtime_error naming both ways out when there is no display and EGL cannot
+/// be used.
+bool useEglWithoutDisplay();
 
 /// "vendor, renderer, version" of the window's current GL context (the window rendered
 /// once), e.g. to show whether a run went to a GPU or to llvmpipe.

@@ -347,28 +347,59 @@ TEST(RenderCli, SceneTerrainFromADemRendersAsTheFieldItHolds) {
 }
 
 TEST(RenderCli, EglWithoutADisplayGivesTheImageOfX) {
-  // The sunset with its sky (the atmosphere composite) and the Sun's disc, small tables.
+  // The sunset with its sky (the atmosphere composite) and the Sun's disc, small tables:
+  // on X, with --egl, and with no DISPLAY at all (EGL then, with a note).
   TempDir dir;
   const std::string scene = UMBRA_SOURCE_DIR "/examples/scenes/earth-sunset.json";
   const tables::Table x = renderExr(dir, scene, "64x36", {}, &dir);
-  std::filesystem::rename(dir / "frame.exr", dir / "x.exr");
-  const RunResult r = run("/usr/bin/env", {"-u", "DISPLAY", UMBRA_EXE, "render", scene, "--size", "64x36",
-                                           "--atmosphere-tables", "small", "--egl", "--output", dir / "egl.exr"},
-                          {"UMBRA_CACHE_DIR=" + dir / "cache"});
-  ASSERT_EQ(r.exitCode, 0) << r.err;
-  const tables::Table egl = tables::readExr(dir / "egl.exr", {"R", "G", "B"});
-  ASSERT_EQ(egl.data.size(), x.data.size());
   const float brightest = *std::max_element(x.data.begin(), x.data.end());
   ASSERT_GT(brightest, 0.0f);
-  double worst = 0.0;
-  for (std::size_t k = 0; k < x.data.size(); ++k)
-    worst = std::max(worst, std::abs(double(egl.data[k]) - double(x.data[k])) / brightest);
-  EXPECT_LT(worst, 1e-6);
+  auto renderWithoutDisplay = [&](const std::string& name, const std::vector<std::string>& extra,
+                                  const std::vector<std::string>& env) {
+    std::vector<std::string> args = {"-u", "DISPLAY", UMBRA_EXE, "render", scene, "--size", "64x36",
+                                     "--atmosphere-tables", "small", "--output", dir / name};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::vector<std::string> environment = {"UMBRA_CACHE_DIR=" + dir / "cache"};
+    environment.insert(environment.end(), env.begin(), env.end());
+    return run("/usr/bin/env", args, environment);
+  };
+  for (const bool asked : {true, false}) {
+    const std::string name = asked ? "egl.exr" : "no-display.exr";
+    const RunResult r = renderWithoutDisplay(name, asked ? std::vector<std::string>{"--egl"} : std::vector<std::string>{}, {});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("no X display: rendering through EGL") != std::string::npos, !asked) << r.err;
+    const tables::Table egl = tables::readExr(dir / name, {"R", "G", "B"});
+    ASSERT_EQ(egl.data.size(), x.data.size());
+    double worst = 0.0;
+    for (std::size_t k = 0; k < x.data.size(); ++k)
+      worst = std::max(worst, std::abs(double(egl.data[k]) - double(x.data[k])) / brightest);
+    EXPECT_LT(worst, 1e-6) << name;
+  }
 
-  // Without --egl and without a display: the error says what to do.
-  const RunResult noDisplay =
-      run("/usr/bin/env", {"-u", "DISPLAY", UMBRA_EXE, "render", scene, "--output", dir / "none.png"}, {});
-  EXPECT_NE(noDisplay.exitCode, 0);
-  EXPECT_NE(noDisplay.err.find("--egl"), std::string::npos) << noDisplay.err;
+  // No display and no EGL (glvnd pointed at a vendor file that is not there): one line
+  // naming both, no file.
+  const RunResult neither = renderWithoutDisplay("none.png", {}, {"__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json"});
+  EXPECT_NE(neither.exitCode, 0);
+  EXPECT_NE(neither.err.find("no X display"), std::string::npos) << neither.err;
+  EXPECT_NE(neither.err.find("xvfb-run"), std::string::npos) << neither.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "none.png"));
+}
+
+// A PNG plot with no X display goes through EGL; with neither, the error names the file
+// and the SVG way out, and no PNG is left.
+TEST(RenderCli, ProfilePlotAsPngWithoutADisplay) {
+  TempDir dir;
+  const std::vector<std::string> args = {"-u", "DISPLAY", UMBRA_EXE, "profile", "shadow", "--occluder", "Earth",
+                                         "--no-atmosphere", "--distance", "384400km", "--samples", "200", "--csv",
+                                         dir / "p.csv", "--plot", dir / "p.png"};
+  const RunResult r = run("/usr/bin/env", args, {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_GT(std::filesystem::file_size(dir.path / "p.png"), 2000u);
+  std::filesystem::remove(dir / "p.png");
+  const RunResult neither = run("/usr/bin/env", args,
+                                {"UMBRA_CACHE_DIR=" + dir / "cache", "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json"});
+  EXPECT_NE(neither.exitCode, 0);
+  EXPECT_NE(neither.err.find("p.png"), std::string::npos) << neither.err;
+  EXPECT_NE(neither.err.find(".svg"), std::string::npos) << neither.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "p.png"));
 }
