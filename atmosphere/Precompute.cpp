@@ -279,6 +279,17 @@ inline void lookupIrradiance(const Table2D& T, const ShellRadii& shell, double r
   bilinearUnit(T, 0.5 * (muS + 1.0), (r - shell.bottomRadiusM) / (shell.topRadiusM - shell.bottomRadiusM), out);
 }
 
+/// E_0 at (r, muS) from the transmittance table: T to the top times the cosine of the Sun's
+/// visible disc (sunDiscCosine), per unit solar irradiance. Computed where needed rather
+/// than read from the direct-irradiance table, whose mu_s cells cannot follow the disc's
+/// setting (x19 at mu_s = 0 with 64 cells).
+inline void directIrradianceAt(const Table2D& T, const ShellRadii& shell, double alphaRad, double r, double muS,
+                               double* out) {
+  lookupTransmittance(T, shell, r, clampCosine(muS), out);
+  const double cosine = sunDiscCosine(muS, alphaRad);
+  for (int l = 0; l < T.channels; ++l) out[l] *= cosine;
+}
+
 /// The sun's transmittance with Bruneton's smoothstep over the solar disc at the horizon.
 inline double sunVisibility(double b, double alpha, double r, double muS) {
   const double sinH = b / r;
@@ -810,10 +821,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     for (int x = 0; x < IW; ++x) {
       double r, muS;
       irradianceTexel(x, y, r, muS);
-      const double cosine = sunDiscCosine(muS, alpha);
-      double* E = out.directIrradiance.at(x, y);
-      lookupTransmittance(Ttab, shell, r, muS, E);
-      for (int l = 0; l < nl; ++l) E[l] *= cosine;
+      directIrradianceAt(Ttab, shell, alpha, r, muS, out.directIrradiance.at(x, y));
     }
   });
 
@@ -1061,7 +1069,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     lobeIntegral[li] = 2.0 * kPi * sum * 2.0 / n;
   }
 
-  Table2D deltaE = out.directIrradiance;  // E_{k-2}
+  Table2D deltaE = out.directIrradiance;  // E_{k-2} (order 2 computes E_0 itself: directIrradianceAt)
   Table2D nextE;
   nextE.resize(IW, IH, nl);
   const int nIrTh = o.irradianceSamples / 2, nIrPh = 2 * o.irradianceSamples;
@@ -1088,7 +1096,11 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
         if (ground) {
           const double d = groundD[z * nTh + lt];
           const double muSg = clampCosine((r * muS + d * nu) / b);
-          lookupIrradiance(deltaE, shell, b, muSg, E.data());
+          if (order == 2) {
+            directIrradianceAt(Ttab, shell, alpha, b, muSg, E.data());  // E_0, exact at the setting Sun
+          } else {
+            lookupIrradiance(deltaE, shell, b, muSg, E.data());
+          }
           const double* Tg = &groundT[(static_cast<std::size_t>(z) * nTh + lt) * nl];
           for (int l = 0; l < nl; ++l) v[l] += Tg[l] * atm.groundAlbedo[l] / kPi * E[l];
         }
@@ -1472,9 +1484,7 @@ double sunDiscCosine(double muS, double alphaRad) {
 
 std::vector<double> directIrradiance(const AtmosphereTables& tables, double r, double muS) {
   std::vector<double> v(tables.wavelengthCount());
-  lookupTransmittance(tables.transmittance, tables.shell(), r, clampCosine(muS), v.data());
-  const double cosine = sunDiscCosine(muS, tables.options.sunAngularRadiusRad);
-  for (double& e : v) e *= cosine;
+  directIrradianceAt(tables.transmittance, tables.shell(), tables.options.sunAngularRadiusRad, r, muS, v.data());
   return v;
 }
 

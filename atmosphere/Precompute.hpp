@@ -59,6 +59,10 @@ namespace umbra::atmosphere {
 inline constexpr const char* kDensityQuadrature =
     "mu Gauss-Legendre split at the ground's horizon, phi midpoint, lobes renormalised";
 
+/// How the second order's ground reflection gets the Sun's direct irradiance: part of the
+/// keys of the tables it changes (multiple scattering, indirect irradiance).
+inline constexpr const char* kGroundSunlight = "E_0 from the transmittance times the visible disc, per point";
+
 struct PrecomputeOptions {
   int transmittanceWidth = 256;   ///< x_mu
   int transmittanceHeight = 64;   ///< x_r

@@ -187,10 +187,12 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
           all.back().second.parameters["component"] = c.name;
         }
       all.push_back(entry("multiple-scattering", MultipleScattering, layout3, po.scatteringR));
+      all.back().second.parameters["groundSunlight"] = atmosphere::kGroundSunlight;
       const std::string layoutIrradiance =
           "x = x_mu_s, y = x_r (Bruneton 2017 irradiance parametrisation, texel centres on the ends)";
       all.push_back(entry("direct-irradiance", Irradiance, layoutIrradiance, 1));
       all.push_back(entry("irradiance", Irradiance, layoutIrradiance, 1));
+      all.back().second.parameters["groundSunlight"] = atmosphere::kGroundSunlight;
       auto sizeOf = [&](const BrunetonTable& t) {
         if (t.name == "transmittance") return std::make_pair(po.transmittanceWidth, po.transmittanceHeight);
         if (t.depth > 1) return std::make_pair(scatterWidth, po.scatteringMu * po.scatteringR);
