@@ -30,10 +30,19 @@ inline void addEglOption(CLI::App& app, bool& egl) {
                "Render on EGL pbuffers, no X server needed (the first EGL device that is not Mesa's software "
                "one; UMBRA_EGL_DEVICE=N picks another)");
 }
-/// Switches to EGL windows when asked; false (the reason on stderr) when EGL cannot.
+/// Switches to EGL windows when asked, or when there is no X display (as umbra render
+/// does); false (the reason on stderr) when that cannot be done.
 inline bool startWindows(bool egl) {
-  if (!egl) return true;
   std::string error;
+  if (!egl) {
+    try {
+      if (render::useEglWithoutDisplay()) std::fprintf(stderr, "no X display: rendering through EGL\n");
+      return true;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      return false;
+    }
+  }
   if (render::useEglRenderWindows(error)) return true;
   std::fprintf(stderr, "--egl: %s\n", error.c_str());
   return false;
