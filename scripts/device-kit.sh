@@ -29,11 +29,22 @@ pwd >"$stage/kit/source-dir"
 
 # Shared libraries, resolved here (Debian 12); the machine's own glibc, libstdc++ and GL
 # loaders (with the NVIDIA driver behind them) are used there.
-skip='^(linux-vdso|ld-linux|libc\.|libm\.|libdl\.|libpthread\.|librt\.|libstdc\+\+|libgcc_s|libGL|libEGL|libOpenGL|libGLX|libGLdispatch)'
+skip='^(linux-vdso|ld-linux|libc\.|libm\.|libdl\.|libpthread\.|librt\.|libstdc\+\+|libgcc_s|libGL\.|libGLX\.|libGLdispatch\.|libEGL\.|libOpenGL\.)'
 for p in "${paths[@]}"; do ldd "$p"; done | awk '/=> \// {print $1, $3}' | sort -u |
   while read -r name path; do
     [[ $name =~ $skip ]] || cp -L "$path" "$stage/kit/lib/$name"
   done
+
+# Every library a program loads comes from the kit, except those the machine brings.
+for p in "$stage"/kit/bin/*; do
+  LD_LIBRARY_PATH="$stage/kit/lib" ldd "$p" | awk '/=> \// {print $1, $3}' |
+    while read -r name path; do
+      if [[ ! $name =~ $skip && $path != "$stage/kit/lib/"* ]]; then
+        echo "device-kit: $(basename "$p") loads $path from outside the kit" >&2
+        exit 1
+      fi
+    done || exit 1
+done
 
 # The tables of the frame-time runs (small sizes), made here so that the GPU's minutes go
 # to the frames. Earth's default-size tables too, for the sunset bench.

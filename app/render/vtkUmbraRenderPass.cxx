@@ -105,7 +105,8 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   }
 
   this->StageTimesPending = false;
-  if (this->StageTiming && this->StageQueries.empty()) {
+  // Timestamps need GL 3.3 or ARB_timer_query (VTK asks for 3.2): without, no stage times.
+  if (this->StageTiming && this->StageQueries.empty() && glQueryCounter && glGetQueryObjectui64v) {
     this->StageQueries.assign(5, 0);
     glGenQueries(5, this->StageQueries.data());
   }
