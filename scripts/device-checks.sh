@@ -43,7 +43,10 @@ tar -C "$kit" -xJf .devkit/kit.tar.xz
 export LD_LIBRARY_PATH=$kit/kit/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 export UMBRA_CACHE_DIR=$kit/kit/cache
 bin=$kit/kit/bin
-# The tests open the example scenes where the kit was built; point that path here.
+# The atmosphere presets and the tests' example scenes are read from the source tree the
+# kit was built in: point that path here (and the presets' own variable, in case /work
+# cannot be written).
+export UMBRA_ATMOSPHERE_PRESET_DIR=$PWD/atmosphere/presets
 source_dir=$(cat "$kit/kit/source-dir")
 if [ ! -e "$source_dir/examples/scenes" ]; then
   mkdir -p "$(dirname "$source_dir")"
