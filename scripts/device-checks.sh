@@ -23,10 +23,13 @@ mkdir -p "$out"
 [ -f .devkit/kit.tar.xz ] || { echo "device-checks: no .devkit/kit.tar.xz (run scripts/device-kit.sh, carry .devkit)" >&2; exit 1; }
 
 # GL loaders (libglvnd) where the machine has none; the NVIDIA driver's EGL vendor file.
-if ! ldconfig -p | grep -q 'libEGL.so.1 '; then
-  for f in .gl/*.deb; do dpkg -x "$f" /; done
-  ldconfig
-fi
+for lib in libEGL.so.1 libOpenGL.so.0 libGLX.so.0 libGL.so.1 libGLdispatch.so.0; do
+  if ! ldconfig -p | grep -q "$lib "; then
+    for f in .gl/*.deb; do dpkg -x "$f" /; done
+    ldconfig
+    break
+  fi
+done
 nvidia=$(ls /usr/local/nvidia/share/glvnd/egl_vendor.d/*nvidia*.json /usr/share/glvnd/egl_vendor.d/*nvidia*.json \
   /etc/glvnd/egl_vendor.d/*nvidia*.json 2>/dev/null | head -1)
 [ -n "$nvidia" ] && export __EGL_VENDOR_LIBRARY_FILENAMES=$nvidia
