@@ -248,6 +248,8 @@ void addRenderCommand(CLI::App& app, Action& action) {
         view.SetExposureEV(s.exposureEv);
         view.GetRenderPass()->SetGlareStrength(o->glare);
         view.Render();
+        if (k == 0 && render::usingEglRenderWindows())
+          std::cerr << "umbra: EGL: " << render::glRendererString(view.GetRenderWindow()) << "\n";  // GPU or llvmpipe
 
         if (output::extensionOf(f.path) == ".exr") {
           tables::Table t;
