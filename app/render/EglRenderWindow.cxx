@@ -138,21 +138,21 @@ protected:
   }
 
 private:
-  // A context of its own on a pbuffer of the window's size (VTK renders into its own
-  // framebuffer object and copies it here at the end of a frame, as into an X window).
+  // A context of its own on a 16x16 pbuffer. VTK renders into framebuffer objects of its
+  // own, of the window's size, and reads images back from them; the pbuffer only makes the
+  // context current, so the image size is not bound by EGL's largest pbuffer (checked: a
+  // 12000x64 render, and PNGs equal to the X window's byte for byte).
   bool EnsureContext() {
     if (this->Context != EGL_NO_CONTEXT) return true;
     if (this->Failed) return false;
-    const int* size = this->GetSize();
-    const EGLint pbuffer[] = {EGL_WIDTH, std::max(size[0], 1), EGL_HEIGHT, std::max(size[1], 1), EGL_NONE};
+    const EGLint pbuffer[] = {EGL_WIDTH, 16, EGL_HEIGHT, 16, EGL_NONE};
     this->Surface = eglCreatePbufferSurface(gEgl.display, gEgl.config, pbuffer);
     const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2,
                                  EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     eglBindAPI(EGL_OPENGL_API);
     this->Context = eglCreateContext(gEgl.display, gEgl.config, EGL_NO_CONTEXT, attributes);
     if (this->Surface == EGL_NO_SURFACE || this->Context == EGL_NO_CONTEXT) {
-      vtkErrorMacro("EGL: no OpenGL 3.2 core context on a " << size[0] << "x" << size[1] << " pbuffer (error "
-                                                             << hex(eglGetError()) << ")");
+      vtkErrorMacro("EGL: no OpenGL 3.2 core context on a pbuffer (error " << hex(eglGetError()) << ")");
       this->Failed = true;
       return false;
     }

@@ -4,9 +4,10 @@
 // context through vtkGenericOpenGLRenderWindow.
 //
 // After useEglRenderWindows(), every vtkRenderWindow::New() (BodyView's included) makes an
-// EGL window: its own context on a pbuffer of the window's size, on the first EGL device
-// that is not Mesa's software one (EGL_EXT_platform_device: the GPU with NVIDIA's driver),
-// else the first device (llvmpipe), else the default display.
+// EGL window: its own context on a small pbuffer (VTK draws into framebuffer objects of
+// its own, of the window's size), on the first EGL device that is not Mesa's software one
+// (EGL_EXT_platform_device: the GPU with NVIDIA's driver), else the first device
+// (llvmpipe), else the default display.
 #pragma once
 
 #include <string>
