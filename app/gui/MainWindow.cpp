@@ -734,7 +734,10 @@ void MainWindow::refresh() {
   this->setStatus(text);
 }
 
-void MainWindow::setStatus(const QString& text) { this->statusLabel->setText(text); }
+void MainWindow::setStatus(const QString& text) {
+  this->statusLabel->setText(text);
+  this->statusLabel->setToolTip(text);  // the whole line when the window is too narrow for it
+}
 
 QString MainWindow::statusText() const { return this->statusLabel->text(); }
 
