@@ -1069,7 +1069,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     lobeIntegral[li] = 2.0 * kPi * sum * 2.0 / n;
   }
 
-  Table2D deltaE = out.directIrradiance;  // E_{k-2} (order 2 computes E_0 itself: directIrradianceAt)
+  Table2D deltaE;  // E_{k-2}, from order 3 on (order 2's ground takes E_0 from directIrradianceAt)
   Table2D nextE;
   nextE.resize(IW, IH, nl);
   const int nIrTh = o.irradianceSamples / 2, nIrPh = 2 * o.irradianceSamples;

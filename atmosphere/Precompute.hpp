@@ -236,7 +236,8 @@ std::vector<double> indirectIrradiance(const AtmosphereTables& tables, double r,
 /// computed where asked and not interpolated across the table's mu_s cells: those are
 /// 1.8 deg wide at 64 cells, and across the Sun's setting the interpolation was x19 too
 /// bright with the Sun on the horizon (docs/accuracy-vs-speed.md, "Twilight in the render
-/// pass"). The table stays for the precomputation (the ground's reflection of order 2).
+/// pass"). The precomputation's second order takes its ground's E_0 the same way; the
+/// table is still written, for the table files.
 std::vector<double> directIrradiance(const AtmosphereTables& tables, double r, double muS);
 
 }  // namespace umbra::atmosphere

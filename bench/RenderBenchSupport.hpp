@@ -33,7 +33,6 @@ inline void addEglOption(CLI::App& app, bool& egl) {
 /// Switches to EGL windows when asked, or when there is no X display (as umbra render
 /// does); false (the reason on stderr) when that cannot be done.
 inline bool startWindows(bool egl) {
-  std::string error;
   if (!egl) {
     try {
       if (render::useEglWithoutDisplay()) std::fprintf(stderr, "no X display: rendering through EGL\n");
@@ -43,6 +42,7 @@ inline bool startWindows(bool egl) {
       return false;
     }
   }
+  std::string error;
   if (render::useEglRenderWindows(error)) return true;
   std::fprintf(stderr, "--egl: %s\n", error.c_str());
   return false;

@@ -269,11 +269,9 @@ void addRenderCommand(CLI::App& app, Action& action) {
           progress->update(static_cast<double>(k + 1) / frames.size());
         } else {
           const std::optional<double> sunDeg = scene::sunElevationDeg(s);
-          char sun[64] = "";
-          if (sunDeg) std::snprintf(sun, sizeof sun, ", Sun %.1f deg %s the horizon", std::abs(*sunDeg),
-                                    *sunDeg < 0.0 ? "below" : "above");
           std::cout << "wrote " << f.path << " (" << s.width << "x" << s.height << ", " << s.name
-                    << (s.hasTime ? ", " + scene::formatUtc(s.time) : std::string()) << sun << ")\n";
+                    << (s.hasTime ? ", " + scene::formatUtc(s.time) : std::string())
+                    << (sunDeg ? ", " + scene::describeSunElevation(*sunDeg) : std::string()) << ")\n";
         }
       }
       if (progress) {

@@ -724,7 +724,7 @@ void MainWindow::refresh() {
 
   QString text = qs(s.name) + " | " + (s.hasTime ? qs(scene::formatUtc(s.time)) : QString("no time"));
   if (const std::optional<double> sun = scene::sunElevationDeg(s))
-    text += QString(" | Sun %1 deg %2 the horizon").arg(std::abs(*sun), 0, 'f', 1).arg(*sun < 0.0 ? "below" : "above");
+    text += " | " + qs(scene::describeSunElevation(*sun));
   if (this->shadow.valid) {
     text += " | " + qs(this->shadow.receiver) + " " + km(this->shadow.offsetM) + " from " + qs(this->shadow.occluder) +
             "'s shadow axis | shadow factor " + QString::number(this->shadowFactor, 'f', 4);

@@ -143,6 +143,13 @@ std::optional<double> sunElevationDeg(const Scene& scene) {
   return std::asin(std::clamp(glm::dot(up, toSun), -1.0, 1.0)) / kDeg;
 }
 
+std::string describeSunElevation(double elevationDeg) {
+  char text[64];
+  std::snprintf(text, sizeof text, "Sun %.1f deg %s the horizon", std::abs(elevationDeg),
+                elevationDeg < 0.0 ? "below" : "above");
+  return text;
+}
+
 void setTime(Scene& scene, UtcTime time) {
   scene.time = time;
   scene.hasTime = true;

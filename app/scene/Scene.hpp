@@ -119,5 +119,8 @@ glm::dvec3 observerPositionM(const Body& body, const Observer& observer, UtcTime
 /// The Sun's centre above the geodetic horizon of the camera's observer, degrees (geometric:
 /// no refraction; negative below it); nothing without an observer.
 std::optional<double> sunElevationDeg(const Scene& scene);
+/// "Sun 10.7 deg below the horizon" (one decimal; "above" from 0 up), as the CLI and the
+/// GUI show sunElevationDeg.
+std::string describeSunElevation(double elevationDeg);
 
 } // namespace umbra::scene

@@ -29,10 +29,11 @@ class EglEnvironment : public ::testing::Environment {
     std::printf("UMBRA_TEST_EGL: windows on EGL\n");
   }
 };
-const bool kEglRequested = [] {
+[[maybe_unused]] const bool kEglEnvironmentAdded = [] {
   const char* e = std::getenv("UMBRA_TEST_EGL");
-  if (e && std::strcmp(e, "1") == 0) ::testing::AddGlobalTestEnvironment(new EglEnvironment);
-  return e != nullptr;
+  const bool egl = e && std::strcmp(e, "1") == 0;
+  if (egl) ::testing::AddGlobalTestEnvironment(new EglEnvironment);
+  return egl;
 }();
 }  // namespace
 

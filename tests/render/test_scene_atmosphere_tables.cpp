@@ -108,7 +108,9 @@ TEST(SceneAtmosphereTables, TwilightTablesCarryTheZenithAfterSunset) {
     for (int c = 0; c < 3; ++c) {
       std::printf("  Sun %.0f deg down, channel %d: day %.3g, twilight %.3g, sky command %.3g\n", depressionDeg, c,
                   day[c], twilight[c], reference[c]);
-      if (depressionDeg > 12.0) EXPECT_EQ(day[c], 0.0) << "channel " << c;
+      if (depressionDeg > 12.0) {
+        EXPECT_EQ(day[c], 0.0) << "channel " << c;
+      }
     }
     expectTwilightCloser(day, twilight, reference, 3.0, 3.0, std::to_string(depressionDeg) + " deg down");
   }
