@@ -47,6 +47,20 @@ inline bool startWindows(bool egl) {
   std::fprintf(stderr, "--egl: %s\n", error.c_str());
   return false;
 }
+/// The options every scene bench takes: --frames, --width, --height, --scene and --egl.
+struct SceneBenchOptions {
+  int frames = 40, width = 1920, height = 1080;
+  std::string scenePath;
+  bool egl = false;
+};
+inline void addSceneBenchOptions(CLI::App& app, SceneBenchOptions& o) {
+  app.add_option("--frames", o.frames, "Frames per configuration")->capture_default_str();
+  app.add_option("--width", o.width)->capture_default_str();
+  app.add_option("--height", o.height)->capture_default_str();
+  app.add_option("--scene", o.scenePath)->capture_default_str();
+  addEglOption(app, o.egl);
+}
+
 /// Prints which GL implementation rendered (GPU or llvmpipe), after a first frame.
 inline void printRenderer(render::BodyView& view) {
   std::printf("GL: %s\n", render::glRendererString(view.GetRenderWindow()).c_str());

@@ -24,16 +24,14 @@ using namespace umbra;
 
 int main(int argc, char** argv) {
   CLI::App app{"Frame time with and without the eclipse shadow lookup"};
-  int frames = 40, width = 1920, height = 1080;
-  std::string scenePath = bench::exampleScene("lunar-eclipse-2015-09-28.json");
-  bool egl = false;
-  app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
-  app.add_option("--width", width)->capture_default_str();
-  app.add_option("--height", height)->capture_default_str();
-  app.add_option("--scene", scenePath)->capture_default_str();
-  bench::addEglOption(app, egl);
+  bench::SceneBenchOptions o;
+  o.frames = 40;
+  o.scenePath = bench::exampleScene("lunar-eclipse-2015-09-28.json");
+  bench::addSceneBenchOptions(app, o);
   CLI11_PARSE(app, argc, argv);
-  if (!bench::startWindows(egl)) return 1;
+  if (!bench::startWindows(o.egl)) return 1;
+  const int frames = o.frames, width = o.width, height = o.height;
+  const std::string& scenePath = o.scenePath;
 
   const scene::Scene s = scene::loadScene(scenePath);
   const render::SceneInputs in = render::sceneInputs(s);

@@ -26,16 +26,14 @@ using namespace umbra;
 
 int main(int argc, char** argv) {
   CLI::App app{"Frame time of the terrain patch with soft shadows"};
-  int frames = 5, width = 1920, height = 1080;
-  std::string scenePath = bench::exampleScene("lunar-south-pole-landing-site.json");
-  bool egl = false;
-  app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
-  app.add_option("--width", width)->capture_default_str();
-  app.add_option("--height", height)->capture_default_str();
-  app.add_option("--scene", scenePath)->capture_default_str();
-  bench::addEglOption(app, egl);
+  bench::SceneBenchOptions o;
+  o.frames = 5;
+  o.scenePath = bench::exampleScene("lunar-south-pole-landing-site.json");
+  bench::addSceneBenchOptions(app, o);
   CLI11_PARSE(app, argc, argv);
-  if (!bench::startWindows(egl)) return 1;
+  if (!bench::startWindows(o.egl)) return 1;
+  const int frames = o.frames, width = o.width, height = o.height;
+  const std::string& scenePath = o.scenePath;
 
   const scene::Scene s = scene::loadScene(scenePath);
   const render::SceneInputs in = render::sceneInputs(s);

@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # The main job: installs the dependencies, builds umbra, then
-#   1. renders the 2015-09-28 lunar eclipse scene offscreen to a PNG,
-#   2. writes Earth's eclipse-shadow lookup table as EXR,
-#   3. writes the cross-section of Earth's shadow at the Moon's distance in that scene
+#   1. renders the Moon at the totality of the 2015-09-28 lunar eclipse, lit through Earth's
+#      atmosphere after the Calbuco eruption (the copper Moon, with its maria: the
+#      Clementine albedo map of marble-qt-data on the Hapke–Lommel–Seeliger Moon),
+#   2. renders the same eclipse at its partial phase (the umbra dark red, the rest sunlit),
+#   3. writes Earth's eclipse-shadow lookup table as EXR,
+#   4. writes the cross-section of Earth's shadow at the Moon's distance in that scene
 #      (356 849 km, the eclipse's perigee) as CSV and PNG,
-#   4. writes the same cross-section through Earth's atmosphere after the 2015 Calbuco
-#      eruption (refracted and scattered light in the umbra, R/G/B, log scale) as CSV and PNG;
-#      the atmosphere tables are computed once (about 20 s) and cached.
+#   5. writes the same cross-section through Earth's atmosphere after the 2015 Calbuco
+#      eruption (refracted and scattered light in the umbra, R/G/B, log scale) as CSV and PNG.
+#   The atmosphere tables and the atmospheric shadow LuT are computed once (about a minute
+#   on 2 cores) and cached.
 # Output goes to out/ (or the folder given as the first argument).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,21 +20,28 @@ out=${1:-out}
 mkdir -p "$out"
 umbra=${UMBRA_BUILD_DIR:-build}/app/cli/umbra
 scene=examples/scenes/lunar-eclipse-2015-09-28.json
+moon=examples/scenes/lunar-eclipse-2015-09-28-moon.json
+xvfb=(xvfb-run -a -s "-screen 0 1280x1024x24")
 
-echo "== rendering $scene"
-xvfb-run -a -s "-screen 0 1280x1024x24" "$umbra" render "$scene" --output "$out/lunar-eclipse-2015-09-28.png"
+echo "== the Moon at totality, 2015-09-28T02:47Z, through Earth's atmosphere"
+"${xvfb[@]}" "$umbra" render "$moon" --time 2015-09-28T02:47:00Z --size 960x720 \
+  --output "$out/lunar-eclipse-2015-09-28-totality.png"
+echo "== the partial phase, 01:45Z"
+"${xvfb[@]}" "$umbra" render "$moon" --time 2015-09-28T01:45:00Z --exposure -4 --size 960x720 \
+  --output "$out/lunar-eclipse-2015-09-28-partial.png"
 echo "== Earth's shadow lookup table"
 "$umbra" precompute shadow --occluder Earth --output "$out/earth-shadow-lut.exr"
 echo "== Earth's shadow at the Moon's distance"
-xvfb-run -a -s "-screen 0 1280x1024x24" "$umbra" profile shadow --scene "$scene" --no-atmosphere \
+"${xvfb[@]}" "$umbra" profile shadow --scene "$scene" --no-atmosphere \
   --csv "$out/earth-shadow-at-moon.csv" --plot "$out/earth-shadow-at-moon.png"
 echo "== Earth's shadow at the Moon's distance, through the atmosphere (earth-2015-calbuco)"
-xvfb-run -a -s "-screen 0 1280x1024x24" "$umbra" profile shadow --occluder Earth --atmosphere earth-2015-calbuco \
+"${xvfb[@]}" "$umbra" profile shadow --occluder Earth --atmosphere earth-2015-calbuco \
   --distance 356849km --csv "$out/earth-shadow-at-moon-atmosphere.csv" --plot "$out/earth-shadow-at-moon-atmosphere.png"
 
 echo
 echo "Files written:"
-for f in lunar-eclipse-2015-09-28.png earth-shadow-lut.exr earth-shadow-at-moon.csv earth-shadow-at-moon.png \
-  earth-shadow-at-moon-atmosphere.csv earth-shadow-at-moon-atmosphere.png; do
+for f in lunar-eclipse-2015-09-28-totality.png lunar-eclipse-2015-09-28-partial.png earth-shadow-lut.exr \
+  earth-shadow-at-moon.csv earth-shadow-at-moon.png earth-shadow-at-moon-atmosphere.csv \
+  earth-shadow-at-moon-atmosphere.png; do
   echo "  $(cd "$out" && pwd)/$f"
 done

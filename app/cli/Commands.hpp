@@ -3,12 +3,15 @@
 // CLI11 app and returns the action to run once the command line has been parsed.
 #include <CLI/CLI.hpp>
 
+#include "scene/Time.hpp"
+
 class vtkObject;
 
 #include <functional>
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace umbra::cli {
 
@@ -27,7 +30,12 @@ struct CacheOptions {
   void addTo(CLI::App* command);
 };
 
+/// The instants from --from to --to (inclusive) every --step (a duration such as 30min:
+/// units s, min, h, d), at most 100 000 of them. Throws CommandError naming the option.
+std::vector<scene::UtcTime> timeSteps(const std::string& from, const std::string& to, const std::string& step);
+
 void addRenderCommand(CLI::App& app, Action& action);
+void addMoonCommand(CLI::App& app, Action& action);
 void addPrecomputeCommand(CLI::App& app, Action& action);
 void addProfileCommand(CLI::App& app, Action& action);
 void addInspectCommand(CLI::App& app, Action& action);

@@ -147,6 +147,15 @@ void addProfileCommand(CLI::App& app, Action& action) {
       if (!o->plot.empty()) {
         plot::ProfilePlotStyle style;
         style.logScale = o->logPlot || withAtmosphere;
+        if (o->exact) {
+          style.subtitle = "computed point by point (--exact)";
+        } else if (auto* image = vtkImageData::SafeDownCast(filter->GetInputDataObject(0, 0))) {
+          int dims[3];
+          image->GetDimensions(dims);
+          style.subtitle = "sampled from the " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) +
+                           (withAtmosphere ? " atmospheric" : "") + " shadow LuT" +
+                           (o->lut.empty() ? "" : " " + o->lut) + " as the renderer reads it (bilinear)";
+        }
         if (style.logScale) {
           style.markersKm.emplace_back(std::max(r.umbraRadiusM, r.antumbraRadiusM) / 1e3,
                                        r.antumbraRadiusM > 0.0 ? "antumbra" : "umbra");

@@ -59,41 +59,15 @@ struct Frame {
 
 std::vector<Frame> animationFrames(const std::string& from, const std::string& to, const std::string& step,
                                    const std::string& pattern) {
-  if (from.empty() || to.empty() || step.empty())
-    throw CommandError("--from, --to and --step go together (an animation), got only some of them");
-  scene::UtcTime t0, t1;
-  double stepS = 0.0;
-  try {
-    t0 = scene::parseUtc(from);
-  } catch (const std::invalid_argument& e) {
-    throw CommandError(std::string("--from: ") + e.what());
-  }
-  try {
-    t1 = scene::parseUtc(to);
-  } catch (const std::invalid_argument& e) {
-    throw CommandError(std::string("--to: ") + e.what());
-  }
-  try {
-    stepS = scene::parseDurationS(step);
-  } catch (const std::invalid_argument& e) {
-    throw CommandError(std::string("--step: ") + e.what());
-  }
-  if (!(stepS > 0.0)) throw CommandError("--step: must be positive, got '" + step + "'");
-  const double spanS = scene::secondsBetween(t0, t1);
-  if (spanS < 0.0) throw CommandError("--to: " + to + " is before --from " + from);
-  const double count = std::floor(spanS / stepS + 1e-9) + 1.0;
-  constexpr double kMaxFrames = 100000.0;
-  if (count > kMaxFrames)
-    throw CommandError("--step: " + std::to_string(static_cast<long long>(count)) + " frames, more than " +
-                       std::to_string(static_cast<int>(kMaxFrames)));
+  const std::vector<scene::UtcTime> times = timeSteps(from, to, step);
   if (!std::regex_match(pattern, std::regex(R"([^%]*%0?\d{0,2}d[^%]*)")))
     throw CommandError("--output: an animation needs one frame number in the name (e.g. frames/frame-%04d.png), got '" +
                        pattern + "'");
   std::vector<Frame> frames;
-  for (int k = 0; k < static_cast<int>(count); ++k) {
+  for (std::size_t k = 0; k < times.size(); ++k) {
     char path[4096];
-    std::snprintf(path, sizeof path, pattern.c_str(), k);
-    frames.push_back({scene::addSeconds(t0, k * stepS), path});
+    std::snprintf(path, sizeof path, pattern.c_str(), static_cast<int>(k));
+    frames.push_back({times[k], path});
   }
   return frames;
 }
@@ -159,6 +133,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
           animation ? animationFrames(o->from, o->to, o->step, o->output) : std::vector<Frame>{{{}, o->output}};
       for (const Frame& f : frames) output::checkWritable(f.path, {".png", ".exr"});
       scene::Scene s = scene::loadScene(o->scene);
+      for (const std::string& note : s.notes) std::cerr << "umbra: " << note << "\n";
       if (!o->time.empty()) {
         try {
           scene::setTime(s, scene::parseUtc(o->time));

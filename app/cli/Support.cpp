@@ -1,17 +1,54 @@
 #include "Commands.hpp"
 
+#include "scene/Units.hpp"
+
 #include <unistd.h>
 
 #include <vtkCommand.h>
 #include <vtkObject.h>
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 #include <mutex>
 
 #include <cstdio>
 #include <iostream>
 
 namespace umbra::cli {
+
+std::vector<scene::UtcTime> timeSteps(const std::string& from, const std::string& to, const std::string& step) {
+  if (from.empty() || to.empty() || step.empty())
+    throw CommandError("--from, --to and --step go together (a series in time), got only some of them");
+  scene::UtcTime t0, t1;
+  double stepS = 0.0;
+  try {
+    t0 = scene::parseUtc(from);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("--from: ") + e.what());
+  }
+  try {
+    t1 = scene::parseUtc(to);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("--to: ") + e.what());
+  }
+  try {
+    stepS = scene::parseDurationS(step);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("--step: ") + e.what());
+  }
+  if (!(stepS > 0.0)) throw CommandError("--step: must be positive, got '" + step + "'");
+  const double spanS = scene::secondsBetween(t0, t1);
+  if (spanS < 0.0) throw CommandError("--to: " + to + " is before --from " + from);
+  const double count = std::floor(spanS / stepS + 1e-9) + 1.0;
+  constexpr double kMaxSteps = 100000.0;
+  if (count > kMaxSteps)
+    throw CommandError("--step: " + std::to_string(static_cast<long long>(count)) + " steps, more than " +
+                       std::to_string(static_cast<int>(kMaxSteps)));
+  std::vector<scene::UtcTime> times;
+  for (int k = 0; k < static_cast<int>(count); ++k) times.push_back(scene::addSeconds(t0, k * stepS));
+  return times;
+}
 
 void CacheOptions::addTo(CLI::App* command) {
   command->add_option("--cache-dir", this->directory,

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   });
   umbra::cli::Action action;
   umbra::cli::addRenderCommand(app, action);
+  umbra::cli::addMoonCommand(app, action);
   umbra::cli::addPrecomputeCommand(app, action);
   umbra::cli::addProfileCommand(app, action);
   umbra::cli::addInspectCommand(app, action);

@@ -8,11 +8,14 @@
 #include "AtmosphereShadow.h"
 #include "vtkEclipseShadowLutSource.h"
 #include "vtkLimbLuminanceSource.h"
+#include "scene/Moon.hpp"
 #include "scene/Time.hpp"
 #include "vtkAtmosphereTablesSource.h"
 
 #include "Atmosphere.hpp"
 #include "Spectrum.hpp"
+
+#include <iostream>
 
 #include <QAction>
 #include <QApplication>
@@ -603,6 +606,10 @@ void MainWindow::saveAtmosphereDialog() {
 
 void MainWindow::loadScene(const std::string& path, std::optional<scene::UtcTime> time) {
   scene::Scene s = scene::loadScene(path);
+  for (const std::string& note : s.notes) {  // a preset's map not installed, and the like
+    std::cerr << "umbra-gui: " << note << "\n";
+    this->statusBar()->showMessage(qs(note), 8000);
+  }
   const scene::UtcTime fileTime = s.time;  // centres the slider
   if (time) {
     if (!s.hasTime) throw scene::SceneError(path + ": time: the scene has no time to change (no ephemeris bodies)");
@@ -725,6 +732,7 @@ void MainWindow::refresh() {
   QString text = qs(s.name) + " | " + (s.hasTime ? qs(scene::formatUtc(s.time)) : QString("no time"));
   if (const std::optional<double> sun = scene::sunElevationDeg(s))
     text += " | " + qs(scene::describeSunElevation(*sun));
+  if (const std::optional<std::string> moon = scene::describeMoonOf(s)) text += " | " + qs(*moon);
   if (this->shadow.valid) {
     text += " | " + qs(this->shadow.receiver) + " " + km(this->shadow.offsetM) + " from " + qs(this->shadow.occluder) +
             "'s shadow axis | shadow factor " + QString::number(this->shadowFactor, 'f', 4);

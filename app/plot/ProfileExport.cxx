@@ -81,6 +81,9 @@ void writeSvg(vtkTable* t, const std::string& path, const std::string& title, co
     << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
     << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
     << "<text x=\"" << W / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" << xmlEscaped(title) << "</text>\n";
+  if (!style.subtitle.empty())
+    s << "<text x=\"" << W / 2 << "\" y=\"36\" text-anchor=\"middle\" fill=\"#555\">" << xmlEscaped(style.subtitle)
+      << "</text>\n";
   for (int k = 0; k <= 5; ++k) {  // axes and vertical grid
     const double xv = xMax * k / 5;
     s << "<line x1=\"" << px(xv) << "\" y1=\"" << py(yLo) << "\" x2=\"" << px(xv) << "\" y2=\"" << py(1.05)
@@ -109,8 +112,8 @@ void writeSvg(vtkTable* t, const std::string& path, const std::string& title, co
     std::snprintf(colour, sizeof colour, "#%02x%02x%02x", line.r, line.g, line.b);
     s << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\" points=\"";
     for (vtkIdType i = 0; i < n; ++i) s << px(x->GetValue(i)) << "," << py(y->GetValue(i)) << " ";
-    s << "\"/>\n<text x=\"" << left + 10 << "\" y=\"" << top + 16 * (++legend) << "\" fill=\"" << colour << "\">"
-      << line.label << "</text>\n";
+    s << "\"/>\n<text x=\"" << W - right - 10 << "\" y=\"" << H - bottom - 10 - 16 * (3 - legend++)
+      << "\" text-anchor=\"end\" fill=\"" << colour << "\">" << line.label << "</text>\n";
   }
   s << "</svg>\n";
 
@@ -134,10 +137,12 @@ void writePng(vtkTable* t, const std::string& path, const std::string& title, co
   view->GetRenderWindow()->SetSize(800, 500);
   view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
   vtkNew<vtkChartXY> chart;
-  chart->SetTitle(title);
+  chart->SetTitle(style.subtitle.empty() ? title : title + "\n" + style.subtitle);
   chart->GetTitleProperties()->SetFontSize(16);
   view->GetScene()->AddItem(chart);
   addProfileLines(chart, t);
+  chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
+  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::BOTTOM);
   const double yLo = style.logScale ? logAxisMinimum(t) : 0.0;
   if (style.logScale) {
     chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);

@@ -22,10 +22,14 @@ void writeProfileCsv(vtkTable* profile, const std::string& path);
 struct ProfilePlotStyle {
   bool logScale = false;
   std::vector<std::pair<double, std::string>> markersKm;  ///< offset, label
+  /// A line under the title: how the values were made (e.g. "sampled from the 256x256
+  /// shadow LuT as the renderer reads it" or "computed point by point").
+  std::string subtitle;
 };
 
-/// Plot r, g, b and luminance over the offset; the type follows the extension
-/// (.png or .svg). Throws std::runtime_error naming the path on failure.
+/// Plot r, g, b and luminance over the offset, the legend in the bottom right corner (the
+/// curves rise to 1 away from the axis: that corner stays empty); the type follows the
+/// extension (.png or .svg). Throws std::runtime_error naming the path on failure.
 void writeProfilePlot(vtkTable* profile, const std::string& path, const std::string& title,
                       const ProfilePlotStyle& style = {});
 

@@ -1,7 +1,10 @@
 #include "EclipseShading.h"
 
+#include "AlbedoMap.hpp"
 #include "EclipseShadowGlsl.hpp"
+#include "PhotometryGlsl.hpp"
 #include "FieldParameters.h"
+#include "ShadowLut.hpp"  // luminance
 #include "ShadowLutData.h"
 #include "RenderGlsl.hpp"
 
@@ -11,6 +14,8 @@
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkImageReader2.h>
+#include <vtkImageReader2Factory.h>
 #include <vtkOpenGLPolyDataMapper.h>
 #include <vtkOpenGLVertexBufferObject.h>
 #include <vtkPointData.h>
@@ -19,12 +24,17 @@
 #include <vtkShaderProperty.h>
 #include <vtkSmartPointer.h>
 #include <vtkTexture.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -34,6 +44,7 @@ namespace {
 constexpr const char* kLutSamplerName = "umbraShadowLut";
 constexpr const char* kLutSamplerDecl = "uniform sampler2D umbraShadowLut;";
 constexpr const char* kAtmosphereLutSamplerName = "umbraAtmosphereShadowLut";
+constexpr const char* kAlbedoMapSamplerName = "umbraAlbedoMap";
 
 vtkSmartPointer<vtkTexture> lutTexture();
 vtkSmartPointer<vtkImageData> rgbaTexels(vtkImageData* lut);
@@ -46,6 +57,90 @@ const char* checkedGlsl(const char* name, const char* src) {
     throw std::logic_error(std::string(name) + " contains a //VTK:: tag; VTK would substitute it");
   }
   return src;
+}
+
+// An albedo map as the receivers sample it: its grey values (the luminance of a colour
+// image), its small dark marks and holes filled in (sky::darkSpots, sky::fillGaps), as 8-bit
+// texels, and the mean that sky::nearSideDiscMean gives of them (in the texture's 0..1).
+// The texels are read once per process (an animation's frames, the GUI's updates and every
+// view share them); each receiver makes its own texture of them (albedoMapTextureOf), as a
+// vtkTexture belongs to one render window.
+struct AlbedoMapTexels {
+  vtkSmartPointer<vtkImageData> texels;
+  double discMean = 1.0;
+  int height = 2;  ///< texels
+};
+
+// Reads the map at `path` once per process. Throws std::invalid_argument naming the file.
+std::shared_ptr<const AlbedoMapTexels> albedoMapTexels(const std::string& path) {
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const AlbedoMapTexels>> loaded;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (auto it = loaded.find(path); it != loaded.end()) return it->second;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw std::invalid_argument("albedo map '" + path + "': no such file");
+  vtkSmartPointer<vtkImageReader2> reader;
+  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(path.c_str()));
+  if (!reader) throw std::invalid_argument("albedo map '" + path + "': not an image VTK reads (JPEG, PNG, TIFF)");
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (reader->GetErrorCode() != 0 || !scalars || dims[0] < 2 || dims[1] < 2 || dims[2] != 1)
+    throw std::invalid_argument("albedo map '" + path + "': cannot read a 2D image from it");
+  const int comps = scalars->GetNumberOfComponents();
+  const double range = scalars->GetDataType() == VTK_UNSIGNED_CHAR ? 255.0
+                       : scalars->GetDataType() == VTK_UNSIGNED_SHORT ? 65535.0 : 0.0;
+  if (range == 0.0) throw std::invalid_argument("albedo map '" + path + "': needs 8- or 16-bit values");
+  sky::AlbedoMap map;
+  map.width = dims[0];
+  map.height = dims[1];
+  map.values.resize(static_cast<std::size_t>(dims[0]) * dims[1]);
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(map.values.size()); ++i) {
+    const double y = comps >= 3 ? eclipse::luminance({scalars->GetComponent(i, 0), scalars->GetComponent(i, 1),
+                                                      scalars->GetComponent(i, 2)})
+                                : scalars->GetComponent(i, 0);
+    map.values[i] = static_cast<float>(std::round(y / range * 255.0) / 255.0);
+  }
+  sky::fillGaps(map, sky::darkSpots(map));
+  vtkNew<vtkUnsignedCharArray> grey;
+  grey->SetNumberOfComponents(1);
+  grey->SetNumberOfTuples(static_cast<vtkIdType>(map.values.size()));
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(map.values.size()); ++i) {
+    const auto byte = static_cast<unsigned char>(std::clamp(std::lround(map.values[i] * 255.0), 0L, 255L));
+    map.values[i] = byte / 255.0f;  // what the texture holds
+    grey->SetValue(i, byte);
+  }
+  sky::validate(map, ("albedo map '" + path + "'").c_str());
+  auto out = std::make_shared<AlbedoMapTexels>();
+  out->discMean = sky::nearSideDiscMean(map);
+  out->height = map.height;
+  if (!(out->discMean > 0.0))
+    throw std::invalid_argument("albedo map '" + path + "': black over the disc seen from longitude 0, latitude 0");
+  auto texels = vtkSmartPointer<vtkImageData>::New();
+  texels->SetDimensions(dims[0], dims[1], 1);
+  texels->GetPointData()->SetScalars(grey);
+  out->texels = texels;
+  loaded[path] = out;
+  return out;
+}
+
+// A texture of the map's texels: values as they are, repeated (the seam at 180 deg),
+// trilinear with mipmaps, no anisotropic filtering (Mesa's llvmpipe blurs magnified texels
+// with VTK's default of 4).
+vtkSmartPointer<vtkTexture> albedoMapTextureOf(const AlbedoMapTexels& map) {
+  auto texture = vtkSmartPointer<vtkTexture>::New();
+  texture->SetColorModeToDirectScalars();
+  texture->InterpolateOn();
+  texture->MipmapOn();
+  texture->SetMaximumAnisotropicFiltering(1.0f);
+  texture->SetWrap(vtkTexture::Repeat);
+  texture->UseSRGBColorSpaceOff();
+  texture->SetInputData(map.texels);
+  return texture;
 }
 
 // eclipse/glsl/EclipseShadow.glsl declares the LuT sampler; VTK declares the samplers of
@@ -81,12 +176,27 @@ void validateBody(const SphereBody& b) {
   if (!finite(b.albedoRgb) || b.albedoRgb.r < 0 || b.albedoRgb.g < 0 || b.albedoRgb.b < 0) {
     throw std::invalid_argument(who + " needs a finite albedo >= 0");
   }
+  if (b.photometry.law == sky::Photometry::Law::Hapke) {
+    try {
+      sky::validate(b.photometry.hapke);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(who + ": " + e.what());
+    }
+  }
+  if (!std::isfinite(glm::determinant(b.bodyFixedToInertial)) ||
+        std::abs(glm::determinant(b.bodyFixedToInertial) - 1.0) > 1e-6)
+      throw std::invalid_argument(who + " needs a rotation as its body-fixed frame");
+  if (!finite(b.earthshineWm2) || b.earthshineWm2.r < 0 || b.earthshineWm2.g < 0 || b.earthshineWm2.b < 0 ||
+      !finite(b.earthCentreM))
+    throw std::invalid_argument(who + " needs a finite earthshine >= 0 from a finite Earth position");
 }
 
 struct Receiver {
   vtkSmartPointer<vtkActor> actor;
   vtkSmartPointer<vtkOpenGLPolyDataMapper> mapper;
   SphereBody body;
+  std::shared_ptr<const AlbedoMapTexels> albedoMap;  // body.albedoMapPath's; null without one
+  vtkSmartPointer<vtkTexture> albedoTexture;          // of albedoMap's texels, for this actor's window
   unsigned long observerTag = 0;
   std::string fragmentDecl;  // the fragment code its shader was given (fragmentDeclFor)
 };
@@ -175,11 +285,17 @@ struct EclipseShading::Impl {
   // shadows it computes exactly as constants (ReceiverFragment.glsl): the shadow loop
   // unrolls to exactly its occluders, one LuT lookup each, nothing for a receiver
   // without any.
+  // Its photometry too: UMBRA_PHOTOMETRY, UMBRA_ALBEDO_MAP and UMBRA_EARTHSHINE.
   std::string fragmentDeclFor(const SphereBody& receiver) const {
     const std::size_t n = std::min(occludersOf(receiver).size(), static_cast<std::size_t>(kMaxOccluders));
+    const bool hapke = receiver.photometry.law == sky::Photometry::Law::Hapke;
+    const bool earthshine = hapke && glm::length(receiver.earthshineWm2) > 0.0;
     return "#define UMBRA_OCCLUDER_COUNT " + std::to_string(n) + "\n#define UMBRA_ATMOSPHERE_OCCLUDER " +
            std::to_string(atmosphereIndexOf(receiver)) + "\n#define UMBRA_EXACT_SHADOW " +
-           std::to_string(exactShadowsOf(receiver)) + "\n" + eclipseGlslWithoutSampler() + "\n" +
+           std::to_string(exactShadowsOf(receiver)) + "\n#define UMBRA_PHOTOMETRY " + (hapke ? "1" : "0") +
+           "\n#define UMBRA_ALBEDO_MAP " + (receiver.albedoMapPath.empty() ? "0" : "1") +
+           "\n#define UMBRA_EARTHSHINE " + (earthshine ? "1" : "0") + "\n" + eclipseGlslWithoutSampler() + "\n" +
+           checkedGlsl("sky/glsl/Photometry.glsl", sky::kPhotometryGlsl) + "\n" +
            checkedGlsl("ReceiverFragment.glsl", glsl::kReceiverFragment) + "\n" + kFsDec.tag;
   }
 
@@ -196,9 +312,25 @@ struct EclipseShading::Impl {
     const SphereBody& b = r.body;
     const glm::dvec3 sunRel = sun.positionM - b.centreM;
     const float sunPos[3] = {float(sunRel.x), float(sunRel.y), float(sunRel.z)};
-    const float albedo[3] = {float(b.albedoRgb.r), float(b.albedoRgb.g), float(b.albedoRgb.b)};
+    // With a map, the albedo over its mean on the disc: the map's texels times this.
+    const glm::dvec3 a = b.albedoRgb / (r.albedoMap ? r.albedoMap->discMean : 1.0);
+    const float albedo[3] = {float(a.r), float(a.g), float(a.b)};
     program.SetUniformf("umbraBodyRadius", float(b.radiusM));
     program.SetUniform3f("umbraAlbedo", albedo);
+    const sky::HapkeParameters& h = b.photometry.hapke;
+    const float hapke[3] = {float(h.oppositionWidth), float(h.lambertShare), float(h.forwardScatter)};
+    program.SetUniform3f("umbraHapke", hapke);
+    float toBody[9];  // column-major, as glUniformMatrix3fv reads it
+    const glm::dmat3 inertialToBody = glm::transpose(b.bodyFixedToInertial);
+    for (int col = 0; col < 3; ++col)
+      for (int row = 0; row < 3; ++row) toBody[3 * col + row] = float(inertialToBody[col][row]);
+    program.SetUniformMatrix3x3("umbraInertialToBodyFixed", toBody);
+    if (r.albedoMap) program.SetUniformf("umbraAlbedoMapHalfTexel", float(0.5 / r.albedoMap->height));
+    const glm::dvec3 earthRel = b.earthCentreM - b.centreM;
+    const float earthPos[3] = {float(earthRel.x), float(earthRel.y), float(earthRel.z)};
+    const float earthshine[3] = {float(b.earthshineWm2.r), float(b.earthshineWm2.g), float(b.earthshineWm2.b)};
+    program.SetUniform3f("umbraEarthPos", earthPos);
+    program.SetUniform3f("umbraEarthshine", earthshine);
     program.SetUniform3f("umbraSunPos", sunPos);
     program.SetUniformf("umbraSunRadius", float(sun.radiusM));
     program.SetUniformf("umbraSunIrradiance", float(sun.irradianceAt1AuWm2));
@@ -256,6 +388,7 @@ struct EclipseShading::Impl {
     for (const Replacement& rep : {kFsDec, kFsImpl}) sp->ClearFragmentShaderReplacement(rep.tag, true);
     r.actor->GetProperty()->RemoveTexture(kLutSamplerName);
     r.actor->GetProperty()->RemoveTexture(kAtmosphereLutSamplerName);
+    r.actor->GetProperty()->RemoveTexture(kAlbedoMapSamplerName);
   }
 };
 
@@ -452,6 +585,8 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   }
   impl_->checkOccluderCount(body, impl_->occludersOf(body).size());
   const std::string vsDec = checkedGlsl("ReceiverVertex.glsl", glsl::kReceiverVertex);
+  std::shared_ptr<const AlbedoMapTexels> albedoMap;
+  if (!body.albedoMapPath.empty()) albedoMap = albedoMapTexels(body.albedoMapPath);  // throws before changing anything
 
   Receiver* receiver = nullptr;
   for (auto& r : impl_->receivers) {
@@ -472,6 +607,8 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   }
   receiver->mapper = mapper;
   receiver->body = body;
+  if (albedoMap != receiver->albedoMap) receiver->albedoTexture = albedoMap ? albedoMapTextureOf(*albedoMap) : nullptr;
+  receiver->albedoMap = albedoMap;
 
   // The actor only translates: model coordinates stay body-centred with world axes.
   actor->SetOrientation(0.0, 0.0, 0.0);
@@ -487,6 +624,8 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   prop->BackfaceCullingOn();  // a convex mesh: no self-overlap, depth only orders bodies
   prop->SetTexture(kLutSamplerName, impl_->lutTexture);
   prop->SetTexture(kAtmosphereLutSamplerName, impl_->atmosphereTexture);
+  if (albedoMap) prop->SetTexture(kAlbedoMapSamplerName, receiver->albedoTexture);
+  else prop->RemoveTexture(kAlbedoMapSamplerName);
 
   if (fresh) {
     vtkShaderProperty* sp = actor->GetShaderProperty();

@@ -1,9 +1,14 @@
 #pragma once
-// Eclipse shading of sphere receivers drawn as vtkActors: Lambertian reflection of the
-// eclipsed Sun, as linear radiance (W m^-2 sr^-1) for vtkUmbraRenderPass's HDR buffer.
+// Eclipse shading of sphere receivers drawn as vtkActors: the reflection of the eclipsed
+// Sun, as linear radiance (W m^-2 sr^-1) for vtkUmbraRenderPass's HDR buffer.
 //
-//   radiance = albedo / pi * E_sun * max(0, n . l) * prod_occluders umbraEclipseFactor(...)
+//   Lambert:  radiance = albedo / pi * E_sun * max(0, n . l) * prod_occluders umbraEclipseFactor(...)
+//   Hapke:    radiance = A(x) * (E_sun * F(n, l, v) * prod_occluders ... + E_earth * F(n, l_earth, v))
 //   E_sun    = irradianceAt1Au * (1 au / distance to the Sun)^2
+//
+// A(x) is the albedo, times an albedo map at the point's body-fixed longitude and latitude
+// when the body has one (libration then follows from its rotation); F the
+// Hapke–Lommel–Seeliger reflectance (sky/Photometry.hpp); E_earth the earthshine.
 //
 // per fragment (app/render/glsl/ReceiverFragment.glsl, with the shadow lookup of
 // eclipse/glsl/EclipseShadow.glsl); the shadow itself comes from the LuT (never
@@ -24,6 +29,9 @@
 // body's radius centred on (0, 0, 0) with the world's axes (vtkSphereSource), inscribed
 // (vertices on the sphere). EclipseShading owns that actor's position/orientation/scale,
 // its back-face culling, its "umbraShadowLut" texture and its shader replacements.
+#include "Photometry.hpp"
+
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
 #include <memory>
@@ -46,7 +54,19 @@ struct SphereBody {
   std::string name;  ///< identifies the body; a receiver is never its own occluder
   glm::dvec3 centreM{0.0};
   double radiusM = 0.0;
-  glm::dvec3 albedoRgb{0.12};  ///< linear RGB (Lambertian / normal albedo)
+  /// Linear RGB. Lambert: the Lambertian albedo (radiance = albedo / pi E cos i); Hapke:
+  /// the factor A of the reflectance F (radiance = A E F). With an albedo map, its mean
+  /// over the disc seen from above the map's centre (sky::nearSideDiscMean).
+  glm::dvec3 albedoRgb{0.12};
+  sky::Photometry photometry{};  ///< Lambert's law or Hapke's (GLSL twin: sky/glsl/Photometry.glsl)
+  /// An equirectangular albedo map (any image VTK reads: JPEG, PNG, TIFF; sky/AlbedoMap.hpp
+  /// says how it lies) in the body-fixed frame below; "" for a uniform albedo.
+  std::string albedoMapPath{};
+  glm::dmat3 bodyFixedToInertial{1.0};
+  /// Earthshine (sky/Earthshine.hpp): the irradiance the Earth at earthCentreM sends to
+  /// this body, W m^-2 per channel; zero for none.
+  glm::dvec3 earthshineWm2{0.0};
+  glm::dvec3 earthCentreM{0.0};
 };
 
 class EclipseShading {

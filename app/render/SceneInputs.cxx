@@ -12,7 +12,13 @@
 
 #include "AtmosphericShadow.hpp"  // defaultTerrain()
 #include "ShadowLut.hpp"  // luminance()
+#include "scene/Ephemeris.hpp"
 #include "scene/Scene.hpp"
+#include "scene/Units.hpp"  // kAuM
+
+#include "Earthshine.hpp"
+#include "MoonGeometry.hpp"  // angleBetween
+#include "Photometry.hpp"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
@@ -46,6 +52,21 @@ const SphereBody& atmosphereBody(const SceneInputs& in) {
   if (!body) throw std::logic_error("no body '" + in.atmosphere->body + "' for its atmosphere");
   return *body;
 }
+// The albedo of a scene body as its SphereBody takes it: Lambert's 3/2 of the geometric
+// albedo (exact for a Lambertian sphere), Hapke's A = p / I(0) (sky::albedoForGeometricAlbedo).
+double bodyAlbedo(const scene::Body& b) {
+  return b.photometry.law == sky::Photometry::Law::Hapke ? sky::albedoForGeometricAlbedo(b.albedo, b.photometry.hapke)
+                                                          : 1.5 * b.albedo;
+}
+
+// The earthshine on `body` (sky::earthshineIrradiance), with its colour: W m^-2 per channel.
+glm::dvec3 earthshineOn(const scene::Body& body, const scene::Body& earth, const glm::dvec3& sunM) {
+  const glm::dvec3 toSun = sunM - earth.positionM, toBody = body.positionM - earth.positionM;
+  const double auOverR = scene::kAuM / glm::length(toSun);
+  const double e = sky::earthshineIrradiance(sky::kSolarConstantWm2 * auOverR * auOverR, earth.albedo, earth.radiusM,
+                                             glm::length(toBody), sky::angleBetween(toSun, toBody));
+  return e * sky::earthshineColour();
+}
 } // namespace
 
 SceneInputs sceneInputs(const scene::Scene& s) {
@@ -53,11 +74,23 @@ SceneInputs sceneInputs(const scene::Scene& s) {
   const scene::Body& sun = s.sun();
   in.sun.positionM = sun.positionM;
   in.sun.radiusM = sun.radiusM;
+  const scene::Body* earth = nullptr;
+  for (const scene::Body& b : s.bodies)
+    if (b.preset == "Earth") earth = &b;
   for (const scene::Body& b : s.bodies) {
     if (b.isSun()) continue;
     const double tintLuminance = eclipse::luminance(b.color);
     const glm::dvec3 tint = tintLuminance > 0.0 ? b.color / tintLuminance : glm::dvec3(1.0);
-    in.bodies.push_back({b.name, b.positionM, b.radiusM, 1.5 * b.albedo * tint});
+    SphereBody body{b.name, b.positionM, b.radiusM, bodyAlbedo(b) * tint};
+    body.photometry = b.photometry;
+    body.albedoMapPath = b.albedoMapPath;
+    if (!b.preset.empty() && scene::hasRotationModel(b.preset) && s.hasTime)
+      body.bodyFixedToInertial = scene::bodyFixedToInertial(b.preset, s.time);
+    if (earth && earth != &b && b.photometry.law == sky::Photometry::Law::Hapke) {
+      body.earthCentreM = earth->positionM;
+      body.earthshineWm2 = earthshineOn(b, *earth, sun.positionM);
+    }
+    in.bodies.push_back(body);
     if (b.atmosphereModel.empty()) continue;
     if (in.atmosphere) {
       throw std::invalid_argument("only one atmosphere per view is drawn so far ('" + in.atmosphere->body +

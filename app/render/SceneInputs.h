@@ -31,8 +31,11 @@ struct SceneInputs {
   std::optional<SceneAtmosphere> atmosphere;
 };
 
-/// The scene at its current time. A body's Lambertian albedo is 3/2 of its geometric
-/// albedo (exact for a Lambertian sphere), tinted by its display colour at equal luminance.
+/// The scene at its current time. A body's albedo is 3/2 of its geometric albedo, for
+/// Lambert's law (exact for a Lambertian sphere) and for Hapke's (A = p / I(0), I(0) = 2/3),
+/// tinted by its colour at equal luminance; it keeps its photometry, its albedo map and its
+/// body-fixed frame (with a rotation model), and a Hapke body is lit by the Earth too
+/// (earthshine) when the scene has one.
 /// A body whose sphere would enclose the camera (an observer near a pole, below the mean
 /// radius) is shrunk to just below the camera.
 ///

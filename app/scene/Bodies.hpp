@@ -1,7 +1,10 @@
 #pragma once
 // Body presets: radii (IAU WGCCRE 2015, Archinal et al. 2018), mean orbital distances,
-// atmosphere flag, geometric albedo and a display colour.
+// atmosphere flag, geometric albedo, a colour, the photometric law and an albedo map.
+#include "Photometry.hpp"
+
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,8 +20,23 @@ struct BodyPreset {
   double meanDistanceFromParentM; ///< mean orbital distance (semi-major axis)
   bool hasAtmosphere;
   double geometricAlbedo;
-  std::array<double, 3> color;    ///< linear RGB display tint in [0, 1] (not physics)
+  std::array<double, 3> color;    ///< linear RGB tint in [0, 1] (the Moon's: its reddish hue)
+  sky::Photometry photometry;     ///< Lambert's law, or Hapke's for the dusty airless bodies
+  std::string albedoMap;          ///< a named map (namedAlbedoMapFile) used when installed; "" for none
 };
+
+/// A named albedo map and the Debian package that installs it.
+struct NamedAlbedoMap {
+  std::string name;     ///< "clementine"
+  std::string package;  ///< "marble-qt-data"
+  std::string file;     ///< where the package puts it
+};
+/// The maps a scene can name: "clementine", the Clementine UVVIS mosaic of the Moon
+/// (2700x1350, in marble-qt-data: $UMBRA_MARBLE_DATA_DIR, default /usr/share/marble/data,
+/// then maps/moon/clementine/clementine.jpg). Nothing for another name.
+std::optional<NamedAlbedoMap> findNamedAlbedoMap(std::string_view name);
+/// "clementine" for messages.
+std::string namedAlbedoMapList();
 
 /// The preset with this name (case-insensitive), or nullptr.
 const BodyPreset* findPreset(std::string_view name);

@@ -3,6 +3,8 @@
 // (format: docs/scene-format.md), with positions resolved at the scene time.
 #include "scene/Time.hpp"
 
+#include "Photometry.hpp"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -45,7 +47,11 @@ struct Body {
   /// preset name or a file), never by a preset's default.
   std::string atmosphereModel;
   double albedo = 0.0;           ///< geometric albedo
-  glm::dvec3 color{1.0};         ///< linear RGB display tint in [0, 1]
+  glm::dvec3 color{1.0};         ///< linear RGB tint in [0, 1]
+  sky::Photometry photometry;    ///< Lambert's or Hapke's law (the preset's; "photometry")
+  /// An equirectangular albedo map (sky/AlbedoMap.hpp): an absolute path, "" for a uniform
+  /// albedo. The Moon's preset takes the Clementine mosaic when it is installed.
+  std::string albedoMapPath;
   std::optional<Terrain> terrain;
 
   bool isSun() const { return preset == "Sun"; }
@@ -95,6 +101,9 @@ struct Scene {
   int width = 960;
   int height = 720;
   int shadowLutSize = 256;
+  /// What the user should know but that is no error (a preset's albedo map not installed:
+  /// a uniform albedo instead), one line each, for stderr or a status line.
+  std::vector<std::string> notes;
 
   /// The body with preset Sun (a valid scene has exactly one).
   const Body& sun() const;

@@ -193,10 +193,31 @@ Terrain parseTerrain(const Reader& in, const json& value, const std::string& fie
   return t;
 }
 
-Body parseBody(const Reader& in, const json& value, const std::string& field, const std::string& sceneFile) {
+/// A body's "albedoMap": a named map ("clementine": namedAlbedoMapFile), "none", or an
+/// image file (relative to the scene). A named map that is not installed is an error naming
+/// its package.
+std::string parseAlbedoMap(const Reader& in, const json& value, const std::string& field, const std::string& sceneFile) {
+  const std::string text = in.string(value, field);
+  if (text == "none") return "";
+  if (const auto named = findNamedAlbedoMap(text)) {
+    if (!std::filesystem::is_regular_file(named->file))
+      in.fail(field, "the '" + named->name + "' map is not installed (" + named->file + "): install the Debian package " +
+                         named->package + ", or give \"none\" for a uniform albedo");
+    return named->file;
+  }
+  std::filesystem::path p(text);
+  if (p.is_relative()) p = std::filesystem::path(sceneFile).parent_path() / p;
+  const std::string path = p.lexically_normal().string();
+  if (!std::filesystem::is_regular_file(path))
+    in.fail(field, "no such file: " + path + " (or a named map: " + namedAlbedoMapList() + ", or \"none\")");
+  return path;
+}
+
+Body parseBody(const Reader& in, const json& value, const std::string& field, const std::string& sceneFile,
+               std::vector<std::string>& notes) {
   in.object(value, field,
             {"preset", "name", "radius", "equatorialRadius", "polarRadius", "position",
-             "atmosphere", "albedo", "color", "terrain"});
+             "atmosphere", "albedo", "color", "photometry", "albedoMap", "terrain"});
   Body body;
   const BodyPreset* preset = nullptr;
   if (value.contains("preset")) {
@@ -213,6 +234,7 @@ Body parseBody(const Reader& in, const json& value, const std::string& field, co
     body.hasAtmosphere = preset->hasAtmosphere;
     body.albedo = preset->geometricAlbedo;
     body.color = glm::dvec3(preset->color[0], preset->color[1], preset->color[2]);
+    body.photometry = preset->photometry;
   } else {
     for (const char* key : {"name", "radius", "position"})
       if (!value.contains(key))
@@ -255,6 +277,21 @@ Body parseBody(const Reader& in, const json& value, const std::string& field, co
   if (value.contains("albedo"))
     body.albedo = in.number(value["albedo"], field + ".albedo", 0.0, 1.0, "a number in [0, 1]");
   if (value.contains("color")) body.color = in.color(value["color"], field + ".color");
+  if (value.contains("photometry")) {
+    const std::string law = in.string(value["photometry"], field + ".photometry");
+    if (law == "lambert") body.photometry = {};
+    else if (law == "hapke") body.photometry = {sky::Photometry::Law::Hapke, sky::moonParameters()};
+    else in.fail(field + ".photometry", "expected \"lambert\" or \"hapke\", got \"" + law + "\"");
+  }
+  if (value.contains("albedoMap")) {
+    body.albedoMapPath = parseAlbedoMap(in, value["albedoMap"], field + ".albedoMap", sceneFile);
+  } else if (preset != nullptr && !preset->albedoMap.empty()) {
+    const auto named = findNamedAlbedoMap(preset->albedoMap);
+    if (named && std::filesystem::is_regular_file(named->file)) body.albedoMapPath = named->file;
+    else if (named)
+      notes.push_back(body.name + ": uniform albedo (the " + named->name + " map is not installed: Debian package " +
+                      named->package + ")");
+  }
   if (value.contains("terrain")) {
     if (preset == nullptr || !hasRotationModel(preset->name))
       in.fail(field + ".terrain", "needs a body with a rotation model (a preset: Earth, Moon, Mars)");
@@ -270,7 +307,7 @@ void parseBodies(const Reader& in, const json& root, Scene& scene) {
     in.fail("bodies", "expected a non-empty list of bodies, " + got(list));
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string field = index("bodies", i);
-    Body body = parseBody(in, list[i], field, scene.path);
+    Body body = parseBody(in, list[i], field, scene.path, scene.notes);
     for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
       if (scene.bodies[j].name == body.name)
         in.fail(field + ".name", "duplicate name '" + body.name + "' (also " +

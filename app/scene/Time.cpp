@@ -93,4 +93,10 @@ void toTt(UtcTime time, double& tt1, double& tt2) {
   eraTaitt(tai1, tai2, &tt1, &tt2);
 }
 
+UtcTime fromTt(double tt1, double tt2) {
+  double tai1 = 0.0, tai2 = 0.0;
+  eraTttai(tt1, tt2, &tai1, &tai2);
+  return fromTai(tai1, tai2);
+}
+
 } // namespace umbra::scene

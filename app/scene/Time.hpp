@@ -23,6 +23,8 @@ UtcTime addSeconds(UtcTime time, double seconds);
 
 /// Terrestrial Time as a two-part Julian date (eraUtctai, eraTaitt).
 void toTt(UtcTime time, double& tt1, double& tt2);
+/// The UTC instant of a Terrestrial Time (TT, Meeus's TD) two-part Julian date.
+UtcTime fromTt(double tt1, double tt2);
 
 /// Seconds from a to b (b - a), leap seconds counted.
 double secondsBetween(UtcTime a, UtcTime b);

@@ -102,6 +102,15 @@ TEST(RenderBaselines, LunarEclipse2015EarthFromTheMoon) {
   expectSeriesMatches(cache, "earth-from-lunar-north-pole-2015-09-28", {"--refraction"});
 }
 
+// The Moon as it is seen (Hapke's law, the Clementine map, libration, earthshine): the full
+// Moon, a crescent in earthshine, and the first frame of the phases over a month.
+TEST(RenderBaselines, MoonPhotometry) {
+  TempDir cache;
+  expectSceneMatches(cache, "full-moon-2026-10-26", "full-moon-2026-10-26");
+  expectSceneMatches(cache, "crescent-moon-earthshine-2026-10-13", "crescent-moon-earthshine-2026-10-13");
+  expectSceneMatches(cache, "moon-phases-2026", "moon-phases-2026", {"--time", "2026-10-18T22:44:00Z"});
+}
+
 // Mars: the blue sunset; Phobos in the penumbra, and in the umbra through the atmosphere.
 TEST(RenderBaselines, MarsSunset) {
   TempDir cache;

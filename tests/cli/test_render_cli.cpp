@@ -404,3 +404,29 @@ TEST(RenderCli, ProfilePlotAsPngWithoutADisplay) {
   EXPECT_NE(neither.err.find(".svg"), std::string::npos) << neither.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "p.png"));
 }
+
+// The crescent of 2026-10-13 from Madrid as it sets (0.25 deg up at 18:40 UTC), through the
+// Earth's air in twilight (the Sun 12 deg down): the Moon's disc seen through the horizon's
+// air mass, finite everywhere and lit; and the same Moon without the Clementine map
+// installed: a uniform albedo and one note on stderr, not an error.
+TEST(RenderCli, MoonAtTheHorizonAndWithoutItsMap) {
+  TempDir dir;
+  const std::string scene = dir / "moonset.json";
+  std::ofstream(scene) << R"({"time": "2026-10-13T18:40:00Z",
+    "bodies": [{"preset": "Sun"}, {"preset": "Earth", "atmosphere": "earth"}, {"preset": "Moon"}],
+    "camera": {"observer": {"body": "Earth", "latDeg": 40.42, "lonDeg": -3.70, "altM": 2},
+               "target": "Moon", "up": "zenith", "fovDeg": 1.0}, "exposure": 2})";
+  const tables::Table img = renderExr(dir, scene, "48x48");
+  double brightest = 0.0, skyAbove = 0.0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) brightest = std::max(brightest, pixel(img, x, y).r);
+  for (int x = 0; x < img.width; ++x) skyAbove += pixel(img, x, 0).r / img.width;
+  EXPECT_GT(brightest, 10.0 * skyAbove) << "the crescent through the air, over the twilight sky above it";
+  const RunResult r = run(UMBRA_EXE, {"render", scene, "--size", "32x32", "--atmosphere-tables", "small", "--output",
+                                      dir / "nomap.png"},
+                          {"UMBRA_CACHE_DIR=" + dir / "cache", "UMBRA_MARBLE_DATA_DIR=" + dir / "nowhere"});
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("umbra: Moon: uniform albedo (the clementine map is not installed: Debian package "
+                       "marble-qt-data)"), std::string::npos) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "nomap.png"));
+}

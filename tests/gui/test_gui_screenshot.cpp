@@ -136,6 +136,10 @@ TEST(GuiScreenshot, EclipseSceneDuringThePartialPhase) {
   EXPECT_NE(s.status.find("Total lunar eclipse of 2015-09-28"), std::string::npos) << s.status;
   EXPECT_NE(s.status.find("2015-09-28T01:45:00Z"), std::string::npos) << s.status;
   EXPECT_NE(s.status.find("from Earth's shadow axis"), std::string::npos) << s.status;
+  // The Moon's numbers from the observer (umbra moon --time 2015-09-28T01:45:00Z
+  // --observer 1.33,-29.02,0): at the zenith, 34.1', phase 0.7 deg, V -12.9 outside the shadow.
+  EXPECT_NE(s.status.find("Moon: alt 90.0 deg"), std::string::npos) << s.status;
+  EXPECT_NE(s.status.find("34.1', phase 0.7 deg (100 % lit), V -12.9"), std::string::npos) << s.status;
   // The Moon's centre lies inside the umbra at 01:45.
   ASSERT_GE(s.shadowFactor, 0.0) << s.status;
   EXPECT_LT(s.shadowFactor, 0.05) << s.status;

@@ -46,12 +46,12 @@ atmosphere::AtmosphereTables sceneTables(const SceneInputs& in, AtmosphereTableS
 }
 
 // The sky from 2 m, viewZenithRad from the zenith towards the Sun's azimuth.
-std::vector<double> sky(const atmosphere::AtmosphereTables& t, double sunZenithRad, double viewZenithRad) {
+std::vector<double> skyRadiance(const atmosphere::AtmosphereTables& t, double sunZenithRad, double viewZenithRad) {
   const double mu = std::cos(viewZenithRad), muS = std::cos(sunZenithRad);
   const double nu = mu * muS + std::sin(viewZenithRad) * std::sin(sunZenithRad);
   return atmosphere::skyRadiance(t, atmosphereFixture().model, t.bottomRadiusM + 2.0, mu, muS, nu);
 }
-std::vector<double> zenith(const atmosphere::AtmosphereTables& t, double sunZenithRad) { return sky(t, sunZenithRad, 0.0); }
+std::vector<double> zenith(const atmosphere::AtmosphereTables& t, double sunZenithRad) { return skyRadiance(t, sunZenithRad, 0.0); }
 
 // The twilight tables' value within a factor `within` of the reference, and the day
 // tables' at least `worse` times as far off (in log): per channel.
@@ -141,7 +141,7 @@ TEST(SceneAtmosphereTables, DISABLED_DefaultSizesAgainstTheSkyCommand) {
       EXPECT_LT(std::abs(et[c] / e[c] - 1.0), 0.15) << depressionDeg << " deg, channel " << c;
     }
     for (double viewDeg : {0.0, 87.0}) {  // the zenith, the twilight arch
-      const auto d = sky(day, z, viewDeg * kDeg), t = sky(twilight, z, viewDeg * kDeg), r = sky(reference, z, viewDeg * kDeg);
+      const auto d = skyRadiance(day, z, viewDeg * kDeg), t = skyRadiance(twilight, z, viewDeg * kDeg), r = skyRadiance(reference, z, viewDeg * kDeg);
       for (int c = 0; c < 3; ++c) {
         std::printf("  Sun %2.0f deg down, view %2.0f deg, channel %d: sky command %.3g; twilight tables %+.0f %%, "
                     "day tables %+.0f %%\n", depressionDeg, viewDeg, c, r[c], 100.0 * (t[c] / r[c] - 1.0),

@@ -43,9 +43,13 @@ namespace {
 constexpr int kSize = 64;  // the LuTs' rows (and the whole LuTs' columns)
 constexpr int kImage = 96;
 
+// The scene's bodies with Lambert's law: the tests read the shadow as the GPU's radiance
+// over Lambert's unshadowed one (the photometry itself: test_moon_render.cpp).
 SceneInputs loadPhobosScene(const std::string& file) {
   const scene::Scene s = scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/" + file);
-  return sceneInputs(s);
+  SceneInputs in = sceneInputs(s);
+  for (SphereBody& b : in.bodies) b.photometry = {};
+  return in;
 }
 
 const SphereBody& body(const SceneInputs& in, const std::string& name) {

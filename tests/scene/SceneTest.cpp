@@ -8,9 +8,12 @@
 #include <cmath>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include <unistd.h>
 
 using namespace umbra::scene;
 
@@ -134,7 +137,7 @@ TEST(SceneValidation, MoreMessagesNameTheField) {
             "with unit m, km or au");
   EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "Moon", "albdo": 0.1})")),
             "examples/x.json: bodies[1].albdo: unknown key (expected one of: preset, name, "
-            "radius, equatorialRadius, polarRadius, position, atmosphere, albedo, color, terrain)");
+            "radius, equatorialRadius, polarRadius, position, atmosphere, albedo, color, photometry, albedoMap, terrain)");
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "image": {"width": 8})")),
             "examples/x.json: image.width: expected an integer in [16, 16384], got 8");
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "shadow": {"lutSize": 256.5})")),
@@ -425,4 +428,73 @@ TEST(Scene, FullSceneLoadsAndSetTimeMovesTheMoon) {
   EXPECT_EQ(scene.camera.targetM, moonAfter.positionM);
   EXPECT_NE(scene.camera.positionM, cameraBefore);
   EXPECT_EQ(scene.find("Rock")->positionM, glm::dvec3(1e11, 0, 0));
+}
+
+// ---- the Moon's photometry and albedo map -----------------------------------------------
+
+namespace {
+
+/// Sets UMBRA_MARBLE_DATA_DIR for the scope (the place of the Clementine map).
+struct MarbleDataDir {
+  explicit MarbleDataDir(const std::string& dir) { ::setenv("UMBRA_MARBLE_DATA_DIR", dir.c_str(), 1); }
+  ~MarbleDataDir() { ::unsetenv("UMBRA_MARBLE_DATA_DIR"); }
+};
+
+std::filesystem::path freshDir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("umbra-scene-test-" + std::to_string(::getpid())) / name;
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+const std::string kMoonAt = R"({"preset": "Moon", "position": [1e11, 0, 0])";
+
+}  // namespace
+
+// The dusty airless bodies reflect by Hapke's law, the planets by Lambert's; a scene can
+// ask for either.
+TEST(ScenePhotometry, PresetsAndOverride) {
+  const Scene s = parseScene(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + "}"), kFile);
+  EXPECT_EQ(s.find("Moon")->photometry.law, umbra::sky::Photometry::Law::Hapke);
+  const Scene l = parseScene(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "photometry": "lambert"})"), kFile);
+  EXPECT_EQ(l.find("Moon")->photometry.law, umbra::sky::Photometry::Law::Lambert);
+  const Scene h = parseScene(fixedScene(kSunAndRock.substr(0, kSunAndRock.size() - 1) + R"(, "photometry": "hapke"})"),
+                             kFile);
+  EXPECT_EQ(h.find("Rock")->photometry.law, umbra::sky::Photometry::Law::Hapke);
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "photometry": "phong"})")),
+            "examples/x.json: bodies[1].photometry: expected \"lambert\" or \"hapke\", got \"phong\"");
+}
+
+// The Moon takes the Clementine map when marble-qt-data is installed; without it a
+// uniform albedo and a note naming the package, unless the scene asks for the map by name
+// (then an error naming the package); "none" and a file of one's own; a missing file.
+TEST(ScenePhotometry, AlbedoMapOrItsFallback) {
+  const auto without = freshDir("no-marble"), with = freshDir("marble");
+  std::filesystem::create_directories(with / "maps/moon/clementine");
+  std::ofstream(with / "maps/moon/clementine/clementine.jpg") << "x";
+  const std::string moonScene = fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + "}");
+  {
+    const MarbleDataDir d(with.string());
+    const Scene s = parseScene(moonScene, kFile);
+    EXPECT_EQ(s.find("Moon")->albedoMapPath, (with / "maps/moon/clementine/clementine.jpg").string());
+    EXPECT_TRUE(s.notes.empty());
+    const Scene none = parseScene(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "albedoMap": "none"})"), kFile);
+    EXPECT_EQ(none.find("Moon")->albedoMapPath, "");
+  }
+  {
+    const MarbleDataDir d(without.string());
+    const Scene s = parseScene(moonScene, kFile);
+    EXPECT_EQ(s.find("Moon")->albedoMapPath, "");
+    ASSERT_EQ(s.notes.size(), 1u);
+    EXPECT_NE(s.notes[0].find("Moon: uniform albedo"), std::string::npos) << s.notes[0];
+    EXPECT_NE(s.notes[0].find("marble-qt-data"), std::string::npos) << s.notes[0];
+    const std::string e =
+        errorFor(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "albedoMap": "clementine"})"));
+    EXPECT_EQ(e.rfind("examples/x.json: bodies[1].albedoMap: the 'clementine' map is not installed", 0), 0u) << e;
+    EXPECT_NE(e.find("install the Debian package marble-qt-data"), std::string::npos) << e;
+  }
+  const std::string missing = errorFor(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "albedoMap": "maps/m.png"})"));
+  EXPECT_EQ(missing, "examples/x.json: bodies[1].albedoMap: no such file: examples/maps/m.png (or a named map: "
+                     "clementine, or \"none\")");
+  EXPECT_NE(errorFor(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "albedoMap": 3})")).find("bodies[1].albedoMap"),
+            std::string::npos);
 }

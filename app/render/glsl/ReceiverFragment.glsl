@@ -1,6 +1,13 @@
-// Fragment stage of an eclipse receiver (EclipseShading): Lambertian reflection of the
-// eclipsed Sun by a sphere, written as linear radiance (W m^-2 sr^-1) into the HDR
-// buffer. Needs eclipse/glsl/EclipseShadow.glsl (umbraEclipseFactor) before it.
+// Fragment stage of an eclipse receiver (EclipseShading): the reflection of the eclipsed
+// Sun by a sphere, written as linear radiance (W m^-2 sr^-1) into the HDR buffer. Needs
+// eclipse/glsl/EclipseShadow.glsl (umbraEclipseFactor) and sky/glsl/Photometry.glsl
+// (umbraHapkeReflectanceOf) before it.
+//
+// EclipseShading #defines the receiver's photometry before this file:
+//   UMBRA_PHOTOMETRY   0: Lambert's law; 1: the Hapke–Lommel–Seeliger reflectance (umbraHapke)
+//   UMBRA_ALBEDO_MAP   1: the albedo times umbraAlbedoMap (declared by VTK) at the point's
+//                      body-fixed longitude and latitude (sky/AlbedoMap.hpp)
+//   UMBRA_EARTHSHINE   1: the Earth's light too (Hapke only), umbraEarthshine from umbraEarthPos
 //
 // All positions are relative to the receiver's centre (computed in double on the CPU,
 // handed over as floats), so the angles keep float precision at any distance.
@@ -9,12 +16,17 @@ in vec3 umbraPosMC;
 flat in vec3 umbraEyeMC;
 flat in vec3 umbraViewDirMC;
 flat in int umbraParallel;
+flat in vec3 umbraEyeLon;
 
 uniform float umbraBodyRadius;     // m
 uniform vec3 umbraAlbedo;          // linear RGB
 uniform vec3 umbraSunPos;          // m, relative to the body's centre
 uniform float umbraSunRadius;      // m
 uniform float umbraSunIrradiance;  // W m^-2 at 1 au
+uniform vec3 umbraHapke;           // g, w, c (sky/Photometry.hpp)
+uniform mat3 umbraInertialToBodyFixed;
+uniform vec3 umbraEarthPos;        // m, relative to the body's centre
+uniform vec3 umbraEarthshine;      // W m^-2 on the body, R, G, B
 // The receiver's occluders: UMBRA_OCCLUDER_COUNT (0..4) of them, #defined before this file
 // by EclipseShading with UMBRA_ATMOSPHERE_OCCLUDER, the one whose shadow comes from the
 // atmospheric shadow LuT (umbraAtmosphereShadowLut, declared by VTK; RGB through its
@@ -50,6 +62,24 @@ vec3 umbraSphereHit(vec3 facet, vec3 dir, float r) {
   return facet + (-b - sqrt(disc)) * dir;
 }
 
+#if UMBRA_ALBEDO_MAP
+uniform float umbraAlbedoMapHalfTexel;  // half a texel of the map's height, in texture coordinates
+// The map at the body-fixed direction nb: texture coordinates (east longitude + 180 deg,
+// latitude + 90 deg) over (360, 180) deg, the rows of the poles held off the other pole
+// (the texture repeats, for the seam at 180 deg). The longitude is counted from the eye's
+// (umbraEyeLon) within +-180 deg: its one jump lies on the meridian behind the body, never
+// seen, so that the derivatives of the coordinates (the mip level) are smooth wherever the
+// body is drawn.
+float umbraAlbedoAt(vec3 nb) {
+  vec3 c = umbraEyeLon;
+  float fromEye = atan(c.x * nb.y - c.y * nb.x, c.x * nb.x + c.y * nb.y);
+  float u = (fromEye + c.z) / (2.0 * umbraSkyPi) + 0.5;
+  float v = clamp(asin(clamp(nb.z, -1.0, 1.0)) / umbraSkyPi + 0.5, umbraAlbedoMapHalfTexel,
+                  1.0 - umbraAlbedoMapHalfTexel);
+  return texture(umbraAlbedoMap, vec2(u, v)).r;
+}
+#endif
+
 void umbraReceiverShade() {
   vec3 dir = umbraParallel == 1 ? umbraViewDirMC : normalize(umbraPosMC - umbraEyeMC);
   vec3 p = umbraSphereHit(umbraPosMC, dir, umbraBodyRadius);
@@ -59,6 +89,11 @@ void umbraReceiverShade() {
   float cosi = max(dot(n, toSun / dSun), 0.0);
   float dAu = dSun / umbraAuM;
   float eSun = umbraSunIrradiance / (dAu * dAu);
+#if UMBRA_ALBEDO_MAP
+  vec3 albedo = umbraAlbedo * umbraAlbedoAt(umbraInertialToBodyFixed * n);
+#else
+  vec3 albedo = umbraAlbedo;
+#endif
 
   // umbraEclipseFactor of each occluder: Eq. 3-4 (umbraReceiverShadowUv: expanded about
   // the centre unless exact is needed), then one lookup in its LuT
@@ -78,7 +113,15 @@ void umbraReceiverShade() {
     shadow *= uv.y >= 1.0 ? vec3(1.0) : lut;
   }
 #endif
-  vec3 radiance = umbraAlbedo * (umbraInvPi * eSun * cosi) * shadow;
+#if UMBRA_PHOTOMETRY == 1
+  vec3 toEye = umbraParallel == 1 ? -umbraViewDirMC : normalize(umbraEyeMC - p);
+  vec3 radiance = albedo * (eSun * umbraHapkeReflectanceOf(n, toSun / dSun, toEye, umbraHapke)) * shadow;
+#if UMBRA_EARTHSHINE
+  radiance += albedo * umbraEarthshine * umbraHapkeReflectanceOf(n, normalize(umbraEarthPos - p), toEye, umbraHapke);
+#endif
+#else
+  vec3 radiance = albedo * (umbraInvPi * eSun * cosi) * shadow;
+#endif
   fragOutput0 = vec4(radiance, 1.0);
 
   if (umbraParallel == 1) {

@@ -9,11 +9,13 @@
 // the body's centre: small numbers, full float precision at any distance.
 uniform mat4 MCDCMatrix;
 uniform mat4 MCVCMatrix;
+uniform mat3 umbraInertialToBodyFixed;  // the receiver's body-fixed frame (its albedo map's)
 
 out vec3 umbraPosMC;              // rasterised facet point, body-centred (m)
 flat out vec3 umbraEyeMC;         // camera position, body-centred (perspective)
 flat out vec3 umbraViewDirMC;     // direction of projection (parallel)
 flat out int umbraParallel;       // 1 for a parallel projection
+flat out vec3 umbraEyeLon;        // cos, sin and angle of the eye's body-fixed longitude (the map lookup)
 
 void umbraReceiverVertex(vec4 posMC) {
   umbraPosMC = posMC.xyz;
@@ -24,4 +26,7 @@ void umbraReceiverVertex(vec4 posMC) {
   // parallel projection.
   mat4 vcdc = MCDCMatrix * vcmc;
   umbraParallel = abs(vcdc[2][3]) < 0.5 ? 1 : 0;
+  vec3 eyeB = umbraInertialToBodyFixed * (umbraParallel == 1 ? -umbraViewDirMC : umbraEyeMC);
+  float h = length(eyeB.xy);
+  umbraEyeLon = h > 0.0 ? vec3(eyeB.xy / h, atan(eyeB.y, eyeB.x)) : vec3(1.0, 0.0, 0.0);
 }

@@ -1,0 +1,76 @@
+// Frame time of the Moon's photometry in the receivers' shader (DESIGN.md: "Hapke Moon
+// <= +20 % of Lambert's stage"). Renders the 2015-09-28 scene's Moon filling a Full-HD
+// frame (Earth present as an occluder, so all shade the eclipse) three ways, interleaved:
+// Lambert's law with a uniform albedo (the Moon before its photometry), the
+// Hapke–Lommel–Seeliger reflectance with a uniform albedo (and earthshine when the scene
+// has some), and Hapke with the albedo map as the scene draws it; prints the median frame
+// and receivers-stage times (GL_TIMESTAMP around the stage) and their cost over Lambert's.
+// Needs an X display (xvfb-run -a) or --egl (EGL, no X); on llvmpipe the fragment work runs on the CPU.
+//
+//   xvfb-run -a build/bench/umbra-bench-render-moon [--frames 40] [--width 1920 --height 1080]
+#include "BodyView.h"
+#include "RenderBenchSupport.hpp"
+#include "SceneInputs.h"
+#include "ShadowLut.hpp"
+#include "ShadowLutData.h"
+#include "scene/Scene.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <vtkImageData.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+using namespace umbra;
+
+int main(int argc, char** argv) {
+  CLI::App app{"Frame time of the Moon's Hapke photometry and albedo map against Lambert's law"};
+  bench::SceneBenchOptions o;
+  o.frames = 40;
+  o.scenePath = bench::exampleScene("lunar-eclipse-2015-09-28.json");
+  bench::addSceneBenchOptions(app, o);
+  CLI11_PARSE(app, argc, argv);
+  if (!bench::startWindows(o.egl)) return 1;
+  const int frames = o.frames, width = o.width, height = o.height;
+  const std::string& scenePath = o.scenePath;
+
+  const scene::Scene s = scene::loadScene(scenePath);
+  const render::SceneInputs in = render::sceneInputs(s);
+  const auto lut = filters::toImageData(eclipse::buildAirlessShadowLut({256, 256}));
+  std::vector<render::SphereBody> lambert = in.bodies, uniform = in.bodies;
+  std::string map;
+  for (std::size_t k = 0; k < in.bodies.size(); ++k) {
+    if (in.bodies[k].photometry.law != sky::Photometry::Law::Hapke) continue;
+    if (!in.bodies[k].albedoMapPath.empty()) map = in.bodies[k].albedoMapPath;
+    lambert[k].photometry = {};
+    lambert[k].albedoMapPath.clear();
+    lambert[k].earthshineWm2 = glm::dvec3(0.0);
+    uniform[k].albedoMapPath.clear();
+  }
+  if (map.empty()) std::fprintf(stderr, "note: the scene's bodies have no albedo map (marble-qt-data not installed?)\n");
+
+  render::BodyView withMap(width, height, true), hapke(width, height, true), plain(width, height, true);
+  withMap.SetBodies(in.sun, in.bodies, lut);
+  hapke.SetBodies(in.sun, uniform, lut);
+  plain.SetBodies(in.sun, lambert, lut);
+  for (render::BodyView* v : {&withMap, &hapke, &plain}) {
+    v->SetCamera(in.camera);
+    v->SetExposureEV(s.exposureEv);
+    v->Render();  // warm up: shader compilation, texture upload
+  }
+  bench::printRenderer(withMap);
+  const bench::FrameTimes t = bench::medianFrameTimes({&withMap, &hapke, &plain}, frames);
+  auto cost = [](double a, double b) { return 100.0 * (a / b - 1.0); };
+  std::printf("| %dx%d, %d frames, median | Lambert [ms] | Hapke [ms] | cost | Hapke + albedo map [ms] | cost |\n"
+              "|---|---:|---:|---:|---:|---:|\n", width, height, frames);
+  std::printf("| frame (wall) | %.2f | %.2f | %+.1f %% | %.2f | %+.1f %% |\n", t.wallMs[2], t.wallMs[1],
+              cost(t.wallMs[1], t.wallMs[2]), t.wallMs[0], cost(t.wallMs[0], t.wallMs[2]));
+  if (t.receiversMs[2] > 0.0)
+    std::printf("| receivers stage (GL) | %.2f | %.2f | %+.1f %% | %.2f | %+.1f %% |\n", t.receiversMs[2],
+                t.receiversMs[1], cost(t.receiversMs[1], t.receiversMs[2]), t.receiversMs[0],
+                cost(t.receiversMs[0], t.receiversMs[2]));
+  if (!map.empty()) std::printf("albedo map: %s\n", map.c_str());
+  return 0;
+}
