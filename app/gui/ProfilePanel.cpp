@@ -203,11 +203,14 @@ double ProfilePanel::update(const scene::ReceiverShadow& g) {
       points->SetMarkerStyle(vtkPlotPoints::CIRCLE);
       points->SetMarkerSize(12.0f);
     }
-    // Top left is where the profile is 0 (inside the umbra), so the legend hides least there.
-    this->chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::LEFT);
-    this->chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
     this->linesAdded = true;
   }
+  // The profile rises from its lowest (left) to 1 (right), on a log scale too: the legend
+  // goes to the empty corner farther from the rise, top left when the penumbra's middle is
+  // in the right half of the plot, else bottom right.
+  const bool riseOnTheRight = 0.5 * (std::max(g.umbraRadiusM, g.antumbraRadiusM) + g.penumbraRadiusM) > 0.5 * maxOffset;
+  this->chart->GetLegend()->SetHorizontalAlignment(riseOnTheRight ? vtkChartLegend::LEFT : vtkChartLegend::RIGHT);
+  this->chart->GetLegend()->SetVerticalAlignment(riseOnTheRight ? vtkChartLegend::TOP : vtkChartLegend::BOTTOM);
   this->bandPlot->SetLabel(g.receiver + " (extent)");
   this->centrePlot->SetLabel(g.receiver + " (centre)");
   this->pointPlot->SetLabel("shadow factor at the centre");
