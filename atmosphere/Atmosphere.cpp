@@ -95,9 +95,10 @@ const Component& Atmosphere::component(const std::string& componentName) const {
 }
 
 std::string Atmosphere::validate() const {
-  if (!std::isfinite(bottomRadiusM) || !(bottomRadiusM > 0.0)) return "bottomRadiusM: expected a positive radius";
-  if (!std::isfinite(topRadiusM) || !(topRadiusM > bottomRadiusM))
-    return "topRadiusM: expected a radius greater than bottomRadiusM";
+  if (!(bottomRadiusM >= kMinRadiusM && bottomRadiusM <= kMaxRadiusM))
+    return "bottomRadiusM: expected a radius from 1 m to 1e12 m";
+  if (!(topRadiusM >= bottomRadiusM + 1.0 && topRadiusM <= kMaxRadiusM))
+    return "topRadiusM: expected a radius at least 1 m above bottomRadiusM, at most 1e12 m";
   if (groundAlbedo.size() != wavelengthsNm.size()) return "groundAlbedo: expected one value per wavelength";
   for (double a : groundAlbedo)
     if (!std::isfinite(a) || a < 0.0 || a > 1.0) return "groundAlbedo: expected values in [0, 1]";
@@ -250,11 +251,9 @@ private:
 };
 
 json parseJson(const std::string& text, const std::string& file) {
-  try {
-    return json::parse(text, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
-    throw AtmosphereError(jsonErrorMessage(text, e, file));
-  }
+  ParsedJson<json> parsed = parseJsonFile<json>(text, file);
+  if (!parsed.error.empty()) throw AtmosphereError(parsed.error);
+  return std::move(parsed.value);
 }
 
 std::string readFile(const std::string& path) {
@@ -328,10 +327,10 @@ std::vector<PhaseFunction> parsePhase(const Reader& in, const json& value, const
   if (!value.is_object()) in.fail(field, "expected an object, " + got(value));
   const std::string type = in.string(in.require(value, "type", field), field + ".type");
   const std::size_t n = in.wavelengths().size();
-  const auto inOpen = [](double g) { return g > -1.0 && g < 1.0; };
+  const auto inOpen = [](double g) { return std::abs(g) <= 1.0 - 1e-6; };  // PhaseFunction's own limit
   const auto unit = [](double a) { return a >= 0.0 && a <= 1.0; };
   auto g = [&](const char* key) {
-    return in.spectrum(in.require(value, key, field), Reader::join(field, key), "a number in (-1, 1)", inOpen);
+    return in.spectrum(in.require(value, key, field), Reader::join(field, key), "a number in [-0.999999, 0.999999]", inOpen);
   };
   std::vector<PhaseFunction> phases;
   if (type == "isotropic" || type == "rayleigh" || type == "penndorf") {
@@ -464,13 +463,17 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
   const std::size_t n = lambdas.size();
   const auto nonNegative = [](double x) { return x >= 0.0; };
   const auto positive = [](double x) { return x > 0.0; };
-  const std::string coefficient = "a coefficient >= 0 in 1/m";
+  // Coefficients at most 1 per metre and number densities at most 1e35 per cubic metre
+  // (air at sea level: 1e-5 /m, 2.5e25 /m^3): beyond them the tables overflow.
+  const std::string coefficient = "a coefficient from 0 to 1 in 1/m";
+  const auto coefficientRange = [](double x) { return x >= 0.0 && x <= 1.0; };
   auto key = [&](const char* k) { return Reader::join(field, k); };
   auto density = [&](const char* k) {
-    return in.number(in.require(value, k, field), key(k), "a positive number density in 1/m^3", positive);
+    return in.number(in.require(value, k, field), key(k), "a number density above 0, at most 1e35 in 1/m^3",
+                     [](double x) { return x > 0.0 && x <= 1e35; });
   };
   auto optionalSpectrum = [&](const char* k) {
-    return value.contains(k) ? in.spectrum(value[k], key(k), coefficient, nonNegative) : std::vector<double>(n, 0.0);
+    return value.contains(k) ? in.spectrum(value[k], key(k), coefficient, coefficientRange) : std::vector<double>(n, 0.0);
   };
   auto vanDeHulst = [&](const json& v, const std::string& f) {
     const double turbidity = in.number(in.require(v, "turbidity", f), Reader::join(f, "turbidity"),
@@ -503,7 +506,7 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
     for (double s : sigma) o.absorption.push_back(N * s);
   } else if (model == "coefficients") {
     in.object(value, field, {"model", "scatteringPerM", "absorptionPerM"});
-    o.scattering = in.spectrum(in.require(value, "scatteringPerM", field), key("scatteringPerM"), coefficient, nonNegative);
+    o.scattering = in.spectrum(in.require(value, "scatteringPerM", field), key("scatteringPerM"), coefficient, coefficientRange);
     o.absorption = optionalSpectrum("absorptionPerM");
   } else if (model == "van-de-hulst") {
     in.object(value, field, {"model", "turbidity", "jungeExponent", "K", "absorptionPerM"});
@@ -606,11 +609,15 @@ Atmosphere build(const Reader& in, const json& doc, const std::string& defaultNa
   a.wavelengthsNm = in.wavelengths();
   a.name = doc.contains("name") ? in.string(doc["name"], "name") : defaultName;
   if (doc.contains("description")) in.string(doc["description"], "description");
-  a.bottomRadiusM = in.positive(in.require(doc, "bottomRadiusM", ""), "bottomRadiusM", "radius in metres");
+  a.bottomRadiusM = in.number(in.require(doc, "bottomRadiusM", ""), "bottomRadiusM", "a radius from 1 m to 1e12 m",
+                              [](double x) { return x >= kMinRadiusM && x <= kMaxRadiusM; });
   const json& top = in.require(doc, "topRadiusM", "");
-  a.topRadiusM = in.positive(top, "topRadiusM", "radius in metres");
-  if (!(a.topRadiusM > a.bottomRadiusM))
-    in.fail("topRadiusM", "expected a radius greater than bottomRadiusM (" + number(a.bottomRadiusM) + "), " + got(top));
+  a.topRadiusM = in.number(top, "topRadiusM", "a radius from 1 m to 1e12 m", [](double x) {
+    return x >= kMinRadiusM && x <= kMaxRadiusM;
+  });
+  if (!(a.topRadiusM >= a.bottomRadiusM + 1.0))
+    in.fail("topRadiusM", "expected a radius at least 1 m above bottomRadiusM (" + number(a.bottomRadiusM) + "), " +
+                              got(top));
   a.groundAlbedo = doc.contains("groundAlbedo")
                        ? in.spectrum(doc["groundAlbedo"], "groundAlbedo", "an albedo in [0, 1]",
                                      [](double x) { return x >= 0.0 && x <= 1.0; })

@@ -16,6 +16,12 @@
 namespace umbra::atmosphere {
 
 /// A file that cannot be used, in one line: "<file>: <field path>: expected ..., got ...".
+/// The radii an atmosphere may have (bottomRadiusM, topRadiusM): from 1 m to 1e12 m (seven
+/// times the Sun's), the top at least 1 m above the bottom. Outside them the tables' texture
+/// coordinates overflow or lose every digit.
+inline constexpr double kMinRadiusM = 1.0;
+inline constexpr double kMaxRadiusM = 1.0e12;
+
 class AtmosphereError : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;

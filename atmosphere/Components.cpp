@@ -207,12 +207,14 @@ std::string Component::validate(std::size_t wavelengthCount) const {
   if (phases.size() != wavelengthCount)
     return "phase: expected " + std::to_string(wavelengthCount) + " phase functions, got " +
            std::to_string(phases.size());
+  // At most 1 per metre: air at sea level scatters 1e-5, a Martian dust storm 1e-3; past 1
+  // the optical depths of a whole path overflow the tables' exponentials.
   for (std::size_t i = 0; i < wavelengthCount; ++i) {
-    if (!std::isfinite(scatteringPerM[i]) || scatteringPerM[i] < 0.0)
-      return "scatteringPerM[" + std::to_string(i) + "]: expected a finite coefficient >= 0 in 1/m, got " +
+    if (!(scatteringPerM[i] >= 0.0 && scatteringPerM[i] <= 1.0))
+      return "scatteringPerM[" + std::to_string(i) + "]: expected a coefficient from 0 to 1 in 1/m, got " +
              number(scatteringPerM[i]);
-    if (!std::isfinite(absorptionPerM[i]) || absorptionPerM[i] < 0.0)
-      return "absorptionPerM[" + std::to_string(i) + "]: expected a finite coefficient >= 0 in 1/m, got " +
+    if (!(absorptionPerM[i] >= 0.0 && absorptionPerM[i] <= 1.0))
+      return "absorptionPerM[" + std::to_string(i) + "]: expected a coefficient from 0 to 1 in 1/m, got " +
              number(absorptionPerM[i]);
   }
   const std::string profile = density.validate();

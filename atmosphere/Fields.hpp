@@ -22,7 +22,7 @@ struct Field {
   const char* type;
   const char* key;
   const char* unit;   ///< "" when dimensionless or not a number
-  const char* range;  ///< what the parser accepts, as text ("> 0", "(-1, 1), spectrum")
+  const char* range;  ///< what the parser accepts, as text ("> 0", "[-0.999999, 0.999999], spectrum")
   /// A valid value as JSON text: what a new object of this type starts with when the key
   /// is required; nullptr: no value stands alone (it needs others changed with it).
   const char* exampleJson;

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <initializer_list>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace umbra::atmosphere {
 
@@ -29,6 +31,84 @@ inline std::string jsonErrorMessage(const std::string& text, const nlohmann::jso
   const std::size_t colon = at == std::string::npos ? at : reason.find(": ", at);
   if (colon != std::string::npos) reason = reason.substr(colon + 2);
   return file + ": invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + reason;
+}
+
+/// The deepest nesting a scene or atmosphere file may have (theirs is at most 6): deeper
+/// documents are refused while they are read, before they could exhaust the stack.
+inline constexpr int kMaxJsonDepth = 64;
+
+/// Parses a scene or atmosphere file (comments allowed) and returns it, or the one-line
+/// message of what is wrong: malformed JSON (jsonErrorMessage), nesting deeper than
+/// kMaxJsonDepth, or a key given twice in one object ("<file>: bodies[1].albedo: duplicate
+/// key"; JSON would keep the last silently).
+template <class Json>
+struct ParsedJson {
+  Json value;
+  std::string error;  ///< empty when value holds the document
+};
+/// Json: nlohmann::json or nlohmann::ordered_json (keys in the file's order).
+template <class Json = nlohmann::json>
+ParsedJson<Json> parseJsonFile(const std::string& text, const std::string& file) {
+  using json = Json;
+  struct Frame {
+    bool array = false;
+    std::size_t count = 0;  // elements seen (arrays)
+    std::string name;       // its place in the document, "" for the root
+    std::vector<std::string> keys;
+  };
+  std::vector<Frame> frames;
+  std::string problem;
+  auto placeOfNext = [&]() -> std::string {  // the path of the value about to start
+    if (frames.empty()) return "";
+    Frame& f = frames.back();
+    if (f.array) return f.name + "[" + std::to_string(f.count++) + "]";
+    return f.keys.empty() ? f.name : (f.name.empty() ? "" : f.name + ".") + f.keys.back();
+  };
+  const typename json::parser_callback_t check = [&](int depth, typename json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start: {
+        if (depth >= kMaxJsonDepth) {
+          std::string at = frames.empty() ? std::string("the top") : placeOfNext();
+          if (at.size() > 48) at = at.substr(0, 45) + "...";
+          problem = file + ": nested more than " + std::to_string(kMaxJsonDepth) + " levels deep (at " + at + ")";
+          throw std::length_error(problem);
+        }
+        Frame f;
+        f.array = event == json::parse_event_t::array_start;
+        f.name = placeOfNext();
+        frames.push_back(std::move(f));
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        if (!frames.empty()) frames.pop_back();
+        break;
+      case json::parse_event_t::key: {
+        Frame& f = frames.back();
+        const std::string key = parsed.template get<std::string>();
+        if (std::find(f.keys.begin(), f.keys.end(), key) != f.keys.end()) {
+          problem = file + ": " + (f.name.empty() ? "" : f.name + ".") + key + ": duplicate key";
+          throw std::invalid_argument(problem);
+        }
+        f.keys.push_back(key);
+        break;
+      }
+      case json::parse_event_t::value:
+        if (!frames.empty() && frames.back().array) ++frames.back().count;
+        break;
+    }
+    return true;
+  };
+  ParsedJson<Json> out;
+  try {
+    out.value = json::parse(text, check, true, /*ignore_comments=*/true);
+  } catch (const nlohmann::json::parse_error& e) {
+    out.error = jsonErrorMessage(text, e, file);
+  } catch (const std::exception& e) {
+    out.error = problem.empty() ? file + ": " + e.what() : problem;
+  }
+  return out;
 }
 
 /// The first key of a JSON object that is not among `keys`, with the message for it:

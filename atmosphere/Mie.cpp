@@ -1,4 +1,5 @@
 #include "Mie.hpp"
+#include "ParallelErrors.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -326,8 +327,9 @@ MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNor
       const long blocks = (count + kBlock - 1) / kBlock;
       std::vector<double> partial(static_cast<std::size_t>(blocks) * Q, 0.0);
       const long lastIndex = intervals;  // end points carry half weight
+      ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
-      for (long blk = 0; blk < blocks; ++blk) {
+      for (long blk = 0; blk < blocks; ++blk) errors.run([&] {
         std::vector<cplx> s1, s2;
         double* acc = partial.data() + blk * Q;
         for (long c = blk * kBlock; c < std::min(count, (blk + 1) * kBlock); ++c) {
@@ -335,7 +337,8 @@ MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNor
           const double endWeight = (i == 0 || i == lastIndex) ? 0.5 : 1.0;
           integrand(uLo + i * h, endWeight, acc, s1, s2);
         }
-      }
+      });
+      errors.rethrow();
       std::vector<double> sum(Q, 0.0);
       for (long blk = 0; blk < blocks; ++blk)
         for (int q = 0; q < Q; ++q) sum[q] += partial[blk * Q + q];

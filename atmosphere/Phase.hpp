@@ -38,9 +38,9 @@ public:
   static PhaseFunction isotropic();
   static PhaseFunction rayleigh();
   static PhaseFunction penndorf();
-  /// g in (-1, 1); throws std::invalid_argument otherwise.
+  /// |g| <= 1 - 1e-6; throws std::invalid_argument otherwise.
   static PhaseFunction henyeyGreenstein(double g);
-  /// g1, g2 in (-1, 1), alpha (the weight of the g1 lobe) in [0, 1].
+  /// |g1|, |g2| <= 1 - 1e-6, alpha (the weight of the g1 lobe) in [0, 1].
   static PhaseFunction doubleHenyeyGreenstein(double g1, double g2, double alpha);
   static PhaseFunction cornetteShanks(double g);
   /// cosTheta strictly increasing from -1 to 1 (ends within 1e-9, then snapped), values

@@ -1,4 +1,5 @@
 #include "Precompute.hpp"
+#include "ParallelErrors.hpp"
 #include "Quadrature.hpp"
 
 #include "Refraction.hpp"
@@ -702,11 +703,13 @@ public:
     for (int k = 0; k < chunks; ++k) {
       const int lo = static_cast<int>(static_cast<long long>(n) * k / chunks);
       const int hi = static_cast<int>(static_cast<long long>(n) * (k + 1) / chunks);
+      ParallelErrors errors;
 #ifdef _OPENMP
       const int nt = threads_ > 0 ? threads_ : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
 #endif
-      for (int i = lo; i < hi; ++i) f(i);
+      for (int i = lo; i < hi; ++i) errors.run([&] { f(i); });
+      errors.rethrow();
       report(stage, done_ + weight * (k + 1) / chunks);
     }
     done_ += weight;

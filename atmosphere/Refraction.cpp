@@ -1,4 +1,5 @@
 #include "Refraction.hpp"
+#include "ParallelErrors.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -417,14 +418,17 @@ RefractionTable buildRefractionTable(const RefractiveMedium& medium, int width, 
   table.contactAltitudeM.assign(static_cast<std::size_t>(width) * height, 0.0f);
 
   std::atomic<int> rowsDone{0};
+  ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
   for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      const RadiusMu ray = table.texelRay(x, y);
-      const RayPath path = traceRay(medium, ray.radiusM, ray.mu, stepM);
-      table.deviationRad[table.index(x, y)] = static_cast<float>(path.deviationRad);
-      table.contactAltitudeM[table.index(x, y)] = static_cast<float>(path.contactAltitudeM);
-    }
+    errors.run([&] {
+      for (int x = 0; x < width; ++x) {
+        const RadiusMu ray = table.texelRay(x, y);
+        const RayPath path = traceRay(medium, ray.radiusM, ray.mu, stepM);
+        table.deviationRad[table.index(x, y)] = static_cast<float>(path.deviationRad);
+        table.contactAltitudeM[table.index(x, y)] = static_cast<float>(path.contactAltitudeM);
+      }
+    });
     const int done = ++rowsDone;
 #ifdef _OPENMP
     const bool callingThread = omp_get_thread_num() == 0;
@@ -433,6 +437,7 @@ RefractionTable buildRefractionTable(const RefractiveMedium& medium, int width, 
 #endif
     if (progress && callingThread) progress(static_cast<double>(done) / height);
   }
+  errors.rethrow();
   if (progress) progress(1.0);
   return table;
 }

@@ -1,4 +1,5 @@
 #include "ShadowLut.hpp"
+#include "ParallelErrors.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -17,6 +18,9 @@ glm::dvec3 ShadowLut::texel(int i, int j) const {
 }
 
 glm::dvec3 ShadowLut::sample(const LutCoords& c) const {
+  // A NaN would pass std::clamp and become an index.
+  if (!(std::isfinite(c.u) && std::isfinite(c.v)))
+    throw std::invalid_argument("shadow LuT lookup at a non-finite (u, v): the shadow's geometry is degenerate");
   // GL_LINEAR with GL_CLAMP_TO_EDGE: texel centres at (i + 0.5) / size.
   const double x = std::clamp(range().textureU(c.u) * width - 0.5, 0.0, width - 1.0);
   const double y = std::clamp(textureV(c.v) * height - 0.5, 0.0, height - 1.0);
@@ -118,21 +122,25 @@ ShadowLut buildAirlessShadowLut(const ShadowLutParams& p, const Progress& progre
   std::atomic<int> rowsDone{0};
   std::atomic<bool> cancelled{false};
 
+  ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
   for (int j = 0; j < p.height; ++j) {
     if (cancelled.load()) continue;
-    for (int i = 0; i < p.width; ++i) {
-      const LutCoords c{lut.texelU(i), lut.texelV(j)};
-      const float value = static_cast<float>(airlessShadow(c, p.limbDarkening, p.relativeTolerance));
-      float* t = &lut.rgb[3 * (static_cast<std::size_t>(j) * p.width + i)];
-      t[0] = t[1] = t[2] = value;
-    }
+    errors.run([&] {
+      for (int i = 0; i < p.width; ++i) {
+        const LutCoords c{lut.texelU(i), lut.texelV(j)};
+        const float value = static_cast<float>(airlessShadow(c, p.limbDarkening, p.relativeTolerance));
+        float* t = &lut.rgb[3 * (static_cast<std::size_t>(j) * p.width + i)];
+        t[0] = t[1] = t[2] = value;
+      }
+    });
     const int done = ++rowsDone;
     // Report from whichever thread finishes a row; callers see a monotone sequence
     // only approximately, which is all a progress bar needs.
 #pragma omp critical(umbra_progress)
     if (progress && !progress(static_cast<double>(done) / p.height)) cancelled = true;
   }
+  errors.rethrow();
   if (cancelled) return {};
   return lut;
 }
@@ -153,12 +161,14 @@ std::vector<ProfileSample> shadowProfile(const SunOccluderSystem& s, double dist
   const glm::dvec3 sun(-s.sunOccluderDistanceM, 0.0, 0.0);
   const Occluder occ{{0.0, 0.0, 0.0}, s.occluderRadiusM};
   std::vector<ProfileSample> out(samples);
+  ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 16)
-  for (int k = 0; k < samples; ++k) {
+  for (int k = 0; k < samples; ++k) errors.run([&] {
     const double offset = maxOffsetM * k / (samples - 1);
     const glm::dvec3 rgb = eclipseFactor({distanceBehindM, offset, 0.0}, sun, s.sunRadiusM, occ, lut, limbDarkening);
     out[k] = {offset, rgb, luminance(rgb)};
-  }
+  });
+  errors.rethrow();
   return out;
 }
 

@@ -1,4 +1,5 @@
 #include "SoftShadow.hpp"
+#include "ParallelErrors.hpp"
 
 #include "SolarDisc.hpp"
 
@@ -378,16 +379,22 @@ std::vector<double> visibleFractionMap(const HeightField& f, const MaximumMipmap
   std::vector<double> out(static_cast<std::size_t>(f.width) * f.height);
   std::atomic<int> rowsDone{0};
   long long total = 0;
+  ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : total)
   for (int j = 0; j < f.height; ++j) {
-    for (int i = 0; i < f.width; ++i) {
-      long long n = 0;
-      out[static_cast<std::size_t>(j) * f.width + i] = visibleFraction(f, mip, i, j, sun, o, &n);
-      total += n;
-    }
+    long long rowSamples = 0;
+    errors.run([&] {
+      for (int i = 0; i < f.width; ++i) {
+        long long n = 0;
+        out[static_cast<std::size_t>(j) * f.width + i] = visibleFraction(f, mip, i, j, sun, o, &n);
+        rowSamples += n;
+      }
+    });
+    total += rowSamples;
     const int done = ++rowsDone;
     if (progress && omp_get_thread_num() == 0) progress(double(done) / f.height);
   }
+  errors.rethrow();
   if (stats) stats->samples = total;
   return out;
 }

@@ -38,7 +38,7 @@ void addPrecomputeCommand(CLI::App& app, Action& action) {
   auto o = std::make_shared<Options>();
   shadow->add_option("--occluder", o->occluder, "Occluding body: Earth, Moon, Mars, Phobos, Deimos")->required();
   shadow->add_option("--size", o->size, "Texels along u and v")->capture_default_str()->check(CLI::Range(8, 4096));
-  shadow->add_option("--limb-darkening", o->limbDarkening, "Linear limb-darkening coefficient of the Sun (Eq. 1)")
+  shadow->add_option("--limb-darkening", o->limbDarkening, "Linear limb-darkening coefficient of the Sun (Eq. 1)")->check(CLI::Range(0.0, 1.0))
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   shadow->add_option("--output,-o", o->output, "EXR file to write")->required();
   addDistanceRangeOption(shadow, o->distanceRange);

@@ -52,7 +52,7 @@ void addProfileCommand(CLI::App& app, Action& action) {
   shadow->add_option("--max-offset", o->maxOffset, "Largest offset from the axis (default: 1.25 x the penumbra's radius)");
   shadow->add_option("--samples", o->samples, "Samples across the profile")->capture_default_str()->check(CLI::Range(2, 1000000));
   CLI::Option* size = shadow->add_option("--size", o->size, "Texels along u and v of the shadow LuT (with --scene: the scene's)")->capture_default_str()->check(CLI::Range(8, 4096));
-  shadow->add_option("--limb-darkening", o->limbDarkening, "Linear limb-darkening coefficient of the Sun (Eq. 1)")
+  shadow->add_option("--limb-darkening", o->limbDarkening, "Linear limb-darkening coefficient of the Sun (Eq. 1)")->check(CLI::Range(0.0, 1.0))
       ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   shadow->add_flag("--no-atmosphere", o->noAtmosphere, "Treat the occluder as airless (the default without --atmosphere)");
   shadow->add_flag("--log", o->logPlot, "Log-scale plot with the umbra's and penumbra's edges (default with --atmosphere)");
@@ -87,11 +87,14 @@ void addProfileCommand(CLI::App& app, Action& action) {
         occ = chooseOccluder(o->occluder, o->occluderRadius, o->sunDistance);
         distanceM = lengthOption("--distance", o->distance);
         if (!(distanceM > 0.0)) throw CommandError("--distance: expected a positive length, got " + o->distance);
+        // Behind the occluder's centre, beyond its surface.
+        distanceM = lengthOption("--distance", o->distance, occ.radiusM, kMaxDistanceM);
       }
       double maxOffsetM = 0.0;
       if (!o->maxOffset.empty()) {
         maxOffsetM = lengthOption("--max-offset", o->maxOffset);
         if (!(maxOffsetM > 0.0)) throw CommandError("--max-offset: expected a positive length, got " + o->maxOffset);
+        maxOffsetM = lengthOption("--max-offset", o->maxOffset, 1.0, kMaxDistanceM);
       }
       const bool withAtmosphere = !o->atmosphere.atmosphere.empty();
       if (withAtmosphere && o->noAtmosphere) throw CommandError("--atmosphere and --no-atmosphere exclude each other");

@@ -29,6 +29,16 @@ double lengthOption(const std::string& option, const std::string& text) {
   }
 }
 
+double lengthOption(const std::string& option, const std::string& text, double minM, double maxM) {
+  const double m = lengthOption(option, text);
+  if (!(m >= minM && m <= maxM)) {
+    char range[96];
+    std::snprintf(range, sizeof range, "a length from %.6g m to %.6g m", minM, maxM);
+    throw CommandError(option + ": expected " + range + ", got " + text);
+  }
+  return m;
+}
+
 SceneShadow sceneShadow(const std::string& scenePath, const std::string& time) {
   scene::Scene s = scene::loadScene(scenePath);
   if (!time.empty()) {
@@ -52,10 +62,17 @@ OccluderChoice chooseOccluder(const std::string& name, const std::string& radius
   if (!preset) throw CommandError("--occluder: unknown body '" + name + "' (known: " + scene::presetNameList() + ")");
   if (preset->name == "Sun") throw CommandError("--occluder: the Sun cannot occlude itself");
   OccluderChoice c{preset->name, preset->meanRadiusM, scene::meanDistanceFromSunM(*preset), preset->hasAtmosphere};
-  if (!radius.empty()) c.radiusM = lengthOption("--occluder-radius", radius);
-  if (!sunDistance.empty()) c.sunDistanceM = lengthOption("--sun-distance", sunDistance);
-  if (!(c.radiusM > 0.0)) throw CommandError("--occluder-radius: expected a positive length, got " + radius);
-  if (!(c.sunDistanceM > 0.0)) throw CommandError("--sun-distance: expected a positive length, got " + sunDistance);
+  if (!radius.empty()) {
+    if (!(lengthOption("--occluder-radius", radius) > 0.0))
+      throw CommandError("--occluder-radius: expected a positive length, got " + radius);
+    c.radiusM = lengthOption("--occluder-radius", radius, 1.0, kMaxRadiusM);
+  }
+  if (!sunDistance.empty()) {
+    if (!(lengthOption("--sun-distance", sunDistance) > 0.0))
+      throw CommandError("--sun-distance: expected a positive length, got " + sunDistance);
+    // Beyond the Sun's surface and the occluder's.
+    c.sunDistanceM = lengthOption("--sun-distance", sunDistance, eclipse::kSunRadiusM + c.radiusM, kMaxDistanceM);
+  }
   return c;
 }
 

@@ -38,6 +38,12 @@ SceneShadow sceneShadow(const std::string& scenePath, const std::string& time);
 
 /// Parse a length option ("384400km"); throws CommandError naming the option.
 double lengthOption(const std::string& option, const std::string& text);
+/// lengthOption within [minM, maxM]; otherwise CommandError "<option>: expected a length
+/// from <min> to <max>, got <text>" (the physical limits: radii 1 m..1e12 m, distances up
+/// to 1e15 m, a hundred times Neptune's).
+double lengthOption(const std::string& option, const std::string& text, double minM, double maxM);
+inline constexpr double kMaxRadiusM = 1.0e12;
+inline constexpr double kMaxDistanceM = 1.0e15;
 
 /// --distance-range MIN:MAX ("9000km:9800km"): the LuT's ranges for receivers at those
 /// distances from the occluder's centre (eclipse::lutRangeForDistances; `darkUmbra` for an

@@ -13,6 +13,7 @@
 #include <mutex>
 
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 
 namespace umbra::cli {
@@ -48,6 +49,29 @@ std::vector<scene::UtcTime> timeSteps(const std::string& from, const std::string
   std::vector<scene::UtcTime> times;
   for (int k = 0; k < static_cast<int>(count); ++k) times.push_back(scene::addSeconds(t0, k * stepS));
   return times;
+}
+
+void requireFiniteNumbers(CLI::App& app) {
+  const CLI::Validator finite(
+      [](std::string& text) -> std::string {
+        if (text.find_first_not_of(" \t") == std::string::npos) return "expected a number, got an empty value";
+        try {
+          std::size_t used = 0;
+          const double v = std::stod(text, &used);
+          if (!std::isfinite(v)) return "expected a finite number, got '" + text + "'";
+        } catch (const std::exception&) {
+          return "expected a number, got '" + text + "'";
+        }
+        return "";
+      },
+      "");
+  for (CLI::Option* option : app.get_options()) {
+    const std::string type = option->get_type_name();  // "FLOAT", or "FLOAT:..." with its validators
+    for (const char* number : {"FLOAT", "INT", "UINT"})
+      if (type.rfind(number, 0) == 0 && (type.size() == std::strlen(number) || type[std::strlen(number)] == ':'))
+        option->check(finite);
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) requireFiniteNumbers(*sub);
 }
 
 void CacheOptions::addTo(CLI::App* command) {

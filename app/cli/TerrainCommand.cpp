@@ -119,8 +119,7 @@ int runShadow(const Options& o) {
   }();
   const scene::BodyPreset* body = scene::findPreset(o.body);
   if (!body) throw CommandError("--body: unknown body '" + o.body + "' (known: " + scene::presetNameList() + ")");
-  const double radiusOverride = o.bodyRadius.empty() ? 0.0 : lengthOption("--body-radius", o.bodyRadius);
-  if (!o.bodyRadius.empty() && !(radiusOverride > 0.0)) throw CommandError("--body-radius: expected a positive length");
+  const double radiusOverride = o.bodyRadius.empty() ? 0.0 : lengthOption("--body-radius", o.bodyRadius, 1.0, kMaxRadiusM);
   const double spacingM = lengthOption("--spacing", o.spacing);
   if (!(spacingM > 0.0)) throw CommandError("--spacing: expected a positive length, got " + o.spacing);
 

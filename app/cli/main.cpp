@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   umbra::cli::addInspectCommand(app, action);
   umbra::cli::addAtmosphereCommand(app, action);
   umbra::cli::addTerrainCommand(app, action);
+  umbra::cli::requireFiniteNumbers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -202,6 +202,11 @@ void writeProfileCsv(vtkTable* t, const std::string& path) {
   vtkDoubleArray* cols[5];
   const char* names[5] = {"offset_km", "r", "g", "b", "luminance"};
   for (int c = 0; c < 5; ++c) cols[c] = column(t, names[c]);
+  for (vtkIdType i = 0; i < cols[0]->GetNumberOfTuples(); ++i)
+    for (int c = 0; c < 5; ++c)
+      if (!std::isfinite(cols[c]->GetValue(i)))
+        throw std::runtime_error(path + ": not written: the shadow profile's " + names[c] + " is not finite at row " +
+                                 std::to_string(i));
   output::OutputFile out(path);
   {
     std::ofstream f(out.tempPath());

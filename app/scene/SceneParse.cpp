@@ -126,11 +126,9 @@ private:
 };
 
 json parseJson(const std::string& text, const std::string& file) {
-  try {
-    return json::parse(text, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
-    throw SceneError(atmosphere::jsonErrorMessage(text, e, file));
-  }
+  atmosphere::ParsedJson<json> parsed = atmosphere::parseJsonFile<json>(text, file);
+  if (!parsed.error.empty()) throw SceneError(parsed.error);
+  return std::move(parsed.value);
 }
 
 /// The atmosphere a body's "atmosphere" key asks for: true (the atmosphere preset named

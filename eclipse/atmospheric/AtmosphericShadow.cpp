@@ -1,4 +1,5 @@
 #include "AtmosphericShadow.hpp"
+#include "ParallelErrors.hpp"
 
 #include "Atmosphere.hpp"
 #include "Precompute.hpp"
@@ -196,16 +197,20 @@ template <class Body>
 bool forEachTexel(int total, const Progress& progress, const Body& body) {
   std::atomic<bool> cancelled{false};
   std::atomic<int> done{0};
+  ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
   for (int k = 0; k < total; ++k) {
     if (cancelled.load()) continue;
-    body(k);
-    const int n = ++done;
-    if (progress) {
+    errors.run([&] {
+      body(k);
+      const int n = ++done;
+      if (progress) {
 #pragma omp critical(umbra_progress)
-      if (!progress(static_cast<double>(n) / total)) cancelled = true;
-    }
+        if (!progress(static_cast<double>(n) / total)) cancelled = true;
+      }
+    });
   }
+  errors.rethrow();
   return !cancelled;
 }
 
@@ -370,8 +375,9 @@ std::vector<ProfileSample> atmosphericShadowProfile(const AtmosphericShadowModel
   if (samples < 2) throw std::invalid_argument("profile needs at least 2 samples");
   if (const std::string e = m.validate(); !e.empty()) throw std::invalid_argument("atmospheric shadow: " + e);
   std::vector<ProfileSample> out(samples);
+  ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int k = 0; k < samples; ++k) {
+  for (int k = 0; k < samples; ++k) errors.run([&] {
     ProfileSample& s = out[k];
     s.offsetM = maxOffsetM * k / (samples - 1);
     const LimbPosition p = limbPositionBehind(m, distanceBehindM, s.offsetM);
@@ -384,7 +390,8 @@ std::vector<ProfileSample> atmosphericShadowProfile(const AtmosphericShadowModel
       s.rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
     }
     s.luminance = luminance(s.rgb);
-  }
+  });
+  errors.rethrow();
   return out;
 }
 

@@ -109,6 +109,6 @@ TEST(ModelPhase, InvalidParametersAreRefused) {
   try {
     PhaseFunction::henyeyGreenstein(1.2);
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "g: expected a number in (-1, 1), got 1.2");
+    EXPECT_STREQ(e.what(), "g: expected a number in [-0.999999, 0.999999], got 1.2");
   }
 }

@@ -81,9 +81,9 @@ TEST(ModelValidation, UnknownKey) {
 
 TEST(ModelValidation, NegativeOrMissingCoefficient) {
   EXPECT_EQ(errorOf(document("\"scatteringPerM\": 3.996e-6", "\"scatteringPerM\": -3.996e-6")),
-            "bad.json: components.aerosols.optics.scatteringPerM: expected a coefficient >= 0 in 1/m, got -3.996e-06");
+            "bad.json: components.aerosols.optics.scatteringPerM: expected a coefficient from 0 to 1 in 1/m, got -3.996e-06");
   EXPECT_EQ(errorOf(document("\"scatteringPerM\": 3.996e-6", "\"scatteringPerM\": null")),
-            "bad.json: components.aerosols.optics.scatteringPerM: expected a coefficient >= 0 in 1/m or "
+            "bad.json: components.aerosols.optics.scatteringPerM: expected a coefficient from 0 to 1 in 1/m or "
             "{\"wavelengthsNm\": [...], \"values\": [...]}, got null");
   EXPECT_EQ(errorOf(document("\"values\": [1.48e-25, 5.019e-25]", "\"values\": [1.48e-25, -5.019e-25]")),
             "bad.json: components.ozone.optics.crossSectionM2.values[1]: expected a cross-section >= 0 in m^2, "
@@ -94,9 +94,14 @@ TEST(ModelValidation, NegativeOrMissingCoefficient) {
 
 TEST(ModelValidation, TopRadiusNotAboveTheBottom) {
   EXPECT_EQ(errorOf(document("\"topRadiusM\": 6471000", "\"topRadiusM\": 6371000")),
-            "bad.json: topRadiusM: expected a radius greater than bottomRadiusM (6371000), got 6371000");
+            "bad.json: topRadiusM: expected a radius at least 1 m above bottomRadiusM (6371000), got 6371000");
   EXPECT_EQ(errorOf(document("\"bottomRadiusM\": 6371000", "\"bottomRadiusM\": -1")),
-            "bad.json: bottomRadiusM: expected a positive radius in metres, got -1");
+            "bad.json: bottomRadiusM: expected a radius from 1 m to 1e12 m, got -1");
+  // Absurd but finite radii (they reached an index through NaN in the tables' lookups).
+  EXPECT_EQ(errorOf(document("\"topRadiusM\": 6471000", "\"topRadiusM\": 1e308")),
+            "bad.json: topRadiusM: expected a radius from 1 m to 1e12 m, got 1e+308");
+  EXPECT_EQ(errorOf(document("\"bottomRadiusM\": 6371000", "\"bottomRadiusM\": 1e-300")),
+            "bad.json: bottomRadiusM: expected a radius from 1 m to 1e12 m, got 1e-300");
 }
 
 TEST(ModelValidation, TentWithoutWidth) {
@@ -117,9 +122,9 @@ TEST(ModelValidation, TabulatedProfileWithUnsortedAltitudes) {
 
 TEST(ModelValidation, PhaseAsymmetryOutsideMinusOneToOne) {
   EXPECT_EQ(errorOf(document("\"g\": 0.8", "\"g\": 1.0")),
-            "bad.json: components.aerosols.phase.g: expected a number in (-1, 1), got 1.0");
+            "bad.json: components.aerosols.phase.g: expected a number in [-0.999999, 0.999999], got 1.0");
   EXPECT_EQ(errorOf(document("\"g\": 0.8", "\"g\": {\"wavelengthsNm\": [440, 680], \"values\": [0.8, -1.2]}")),
-            "bad.json: components.aerosols.phase.g.values[1]: expected a number in (-1, 1), got -1.2");
+            "bad.json: components.aerosols.phase.g.values[1]: expected a number in [-0.999999, 0.999999], got -1.2");
   EXPECT_EQ(errorOf(document(",\n      \"phase\": {\"type\": \"henyey-greenstein\", \"g\": 0.8}", "")),
             "bad.json: components.aerosols: missing required key 'phase' (the component scatters)");
 }
@@ -142,6 +147,15 @@ TEST(ModelValidation, MalformedJsonGivesLineAndColumn) {
   EXPECT_EQ(errorOf("{\n  \"name\": \"x\",\n  \"bottomRadiusM\" 6371000\n}"),
             "bad.json: invalid JSON at line 3, column 25: syntax error while parsing object separator - "
             "unexpected number literal; expected ':'");
+}
+
+// Hostile files: nesting that would exhaust the stack is refused while reading; a key
+// given twice is named (JSON would keep the last silently).
+TEST(ModelValidation, DeepNestingAndDuplicateKeys) {
+  const std::string deep = errorOf(R"({"components": )" + std::string(50000, '[') + std::string(50000, ']') + "}");
+  EXPECT_EQ(deep.rfind("bad.json: nested more than 64 levels deep (at components[0]", 0), 0u) << deep;
+  EXPECT_EQ(errorOf(R"({"name": "x", "bottomRadiusM": 6371000, "bottomRadiusM": 6371000})"),
+            "bad.json: bottomRadiusM: duplicate key");
 }
 
 TEST(ModelValidation, FilesWavelengthsAndFormulaRanges) {

@@ -190,3 +190,58 @@ TEST(BadInput, MalformedAtmosphereFile) {
   std::ofstream(dir.path / "bad.json") << "{\"name\": \"x\",\n \"bottomRadius\": }";
   expectFailure(dir, {"atmosphere", "refraction", "--config", dir / "bad.json", "--csv", dir / "r.csv"}, "bad.json: ");
 }
+
+// ---- hostile input: non-finite and absurd numbers, deep and duplicated JSON ------------
+
+// Number options refuse NaN, infinities and empty values, naming the option (CLI11 let NaN
+// through its ranges: --limb-darkening nan ended in std::terminate from a parallel loop).
+TEST(BadInput, NonFiniteAndEmptyNumbers) {
+  TempDir dir;
+  expectFailure(dir, profileArgs(dir, {"--occluder", "Earth", "--limb-darkening", "nan"}),
+                "--limb-darkening: expected a finite number, got 'nan'");
+  expectFailure(dir, {"atmosphere", "sky", "--preset", "earth", "--sun-zenith-deg", "", "--csv", dir / "s.csv"},
+                "--sun-zenith-deg: expected a number, got an empty value");
+  expectFailure(dir, profileArgs(dir, {"--occluder", "Earth", "--samples", ""}), "--samples: ");  // its range says no
+  expectFailure(dir, {"render", UMBRA_SOURCE_DIR "/examples/scenes/full-moon-2026-10-26.json", "--glare", "nan",
+                      "--output", dir / "x.png"},
+                "--glare: expected a finite number, got 'nan'");
+  expectFailure(dir, {"atmosphere", "sky", "--preset", "earth", "--sun-zenith-deg", "-inf", "--csv", dir / "s.csv"},
+                "--sun-zenith-deg: expected a finite number, got '-inf'");
+}
+
+// Absurd but finite lengths: a range naming the option, not a crash or a NaN profile.
+TEST(BadInput, LengthsOutsideTheirPhysicalRange) {
+  TempDir dir;
+  expectFailure(dir, {"profile", "shadow", "--no-atmosphere", "--occluder", "Earth", "--distance", "1e-300m", "--csv",
+                      dir / "p.csv"},
+                "--distance: expected a length from 6.37101e+06 m to 1e+15 m, got 1e-300m");
+  expectFailure(dir, profileArgs(dir, {"--occluder", "Earth", "--sun-distance", "1e308km"}),
+                "--sun-distance: expected a length from 7.02713e+08 m to 1e+15 m, got 1e308km");
+  expectFailure(dir, profileArgs(dir, {"--occluder", "Earth", "--occluder-radius", "1e308km"}),
+                "--occluder-radius: expected a length from 1 m to 1e+12 m, got 1e308km");
+  expectFailure(dir, profileArgs(dir, {"--occluder", "Earth", "--max-offset", "1e308km"}),
+                "--max-offset: expected a length from 1 m to 1e+15 m, got 1e308km");
+  expectFailure(dir, {"terrain", "shadow", "--synthetic", "1", "--size", "16", "--sun-elevation-deg", "5",
+                      "--sun-azimuth-deg", "10", "--body-radius", "1e308m", "--output", dir / "t.exr"},
+                "--body-radius: expected a length from 1 m to 1e+12 m, got 1e308m");
+}
+
+// Scene and atmosphere files nested 100 000 deep (a stack overflow before), a key given
+// twice, an atmosphere 1e308 m high (a hang in the refraction before): one line each.
+TEST(BadInput, HostileFiles) {
+  TempDir dir;
+  {
+    std::ofstream(dir / "deep.json") << "{\"bodies\": " << std::string(100000, '[') << std::string(100000, ']') << "}";
+  }
+  expectFailure(dir, {"render", dir / "deep.json", "--output", dir / "x.png"}, "nested more than 64 levels deep");
+  {
+    std::ofstream(dir / "twice.json") << R"({"time": "2015-09-28T02:00:00Z", "bodies": [{"preset": "Sun"},
+      {"preset": "Moon", "albedo": 0.1, "albedo": 0.2}], "camera": {"position": [0, 0, 0], "target": "Moon"}})";
+  }
+  expectFailure(dir, {"render", dir / "twice.json", "--output", dir / "x.png"}, "bodies[1].albedo: duplicate key");
+  {
+    std::ofstream(dir / "tall.json") << R"({"extends": "earth", "name": "tall", "topRadiusM": 1e308})";
+  }
+  expectFailure(dir, {"atmosphere", "refraction", "--config", dir / "tall.json", "--csv", dir / "r.csv"},
+                "topRadiusM: expected a radius from 1 m to 1e12 m, got 1e+308");
+}

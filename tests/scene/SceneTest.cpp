@@ -498,3 +498,25 @@ TEST(ScenePhotometry, AlbedoMapOrItsFallback) {
   EXPECT_NE(errorFor(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "albedoMap": 3})")).find("bodies[1].albedoMap"),
             std::string::npos);
 }
+
+// ---- hostile files: nesting and duplicate keys ----------------------------------------
+
+// A document nested 100 000 deep is refused while it is read (it used to overflow the
+// stack when the error printed it), with one line naming where.
+TEST(SceneErrors, DeeplyNestedJsonIsOneLine) {
+  const std::string deep = R"({"bodies": )" + std::string(100000, '[') + std::string(100000, ']') + "}";
+  const std::string message = errorFor(deep);
+  EXPECT_EQ(message.rfind("examples/x.json: nested more than 64 levels deep (at bodies[0][0]", 0), 0u) << message;
+  EXPECT_LT(message.size(), 160u);
+  EXPECT_EQ(message.find('\n'), std::string::npos);
+}
+
+// A key given twice is an error naming it (JSON would keep the last one silently).
+TEST(SceneErrors, DuplicateKeyIsNamed) {
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "Moon", "position": [1e11, 0, 0], "albedo": 0.1,
+                                  "albedo": 0.2})")),
+            "examples/x.json: bodies[1].albedo: duplicate key");
+  EXPECT_EQ(errorFor(R"({"name": "a", "name": "b"})"), "examples/x.json: name: duplicate key");
+  EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "image": {"width": 64, "height": 64, "width": 32})")),
+            "examples/x.json: image.width: duplicate key");
+}
