@@ -108,6 +108,34 @@ std::string Atmosphere::validate() const {
     const std::string problem = c.validate(wavelengthsNm.size());
     if (!problem.empty()) return "components." + c.name + "." + problem;
   }
+  return ductingProblem();
+}
+
+// Rays trapped by refraction (ducting): where n decreases outwards faster than 1/r, a ray
+// sent along the ground bends round the body and never leaves; the tables would trace it
+// round and round. The refractivity F rho(h) (F with 10 % for the dispersion across the
+// visible) must fall more slowly than that at every altitude: Earth's falls at 0.23 of it.
+std::string Atmosphere::ductingProblem() const {
+  if (!(seaLevelRefractivity > 0.0) || refractivityFollows.empty()) return {};
+  const Component* c = find(refractivityFollows);
+  if (c == nullptr) return {};
+  const double F = 1.1 * seaLevelRefractivity, thickness = topRadiusM - bottomRadiusM;
+  constexpr int kSamples = 4000;
+  for (int k = 0; k <= kSamples; ++k) {
+    const double f = static_cast<double>(k) / kSamples;
+    const double h = thickness * f * f;  // denser near the ground
+    const double d = std::max(0.01, 1e-4 * h);
+    const double slope = F * std::abs(c->density.at(h + d) - c->density.at(std::max(0.0, h - d))) /
+                         (h + d - std::max(0.0, h - d));
+    if (slope * (bottomRadiusM + h) >= 1.0) {
+      std::ostringstream at;
+      at.precision(4);
+      at << h;
+      return "refraction: the refractivity falls faster than 1/r at " + at.str() +
+             " m above the ground (along components." + c->name +
+             ".density): rays there would circle the body (ducting), which the tables cannot hold";
+    }
+  }
   return {};
 }
 
@@ -257,11 +285,9 @@ json parseJson(const std::string& text, const std::string& file) {
 }
 
 std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw AtmosphereError(path + ": cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  FileText f = readJsonFileText(path);
+  if (!f.error.empty()) throw AtmosphereError(f.error);
+  return std::move(f.text);
 }
 
 std::string unknownPresetMessage(const std::string& name) {

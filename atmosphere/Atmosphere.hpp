@@ -38,6 +38,9 @@ struct Atmosphere {
 
   /// n - 1 at the bottom (altitude 0) for refractivityReferenceWavelengthNm.
   double seaLevelRefractivity = 0.0;
+  /// Why the refractivity profile traps rays round the body (ducting: n falls faster than
+  /// 1/r somewhere), or empty. validate() includes it.
+  std::string ductingProblem() const;
   double refractivityReferenceWavelengthNm = 550.0;
   Dispersion dispersion = Dispersion::None;
   /// The component whose relative density n - 1 follows (empty: constant with altitude).

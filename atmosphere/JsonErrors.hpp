@@ -4,6 +4,10 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <initializer_list>
 #include <optional>
 #include <stdexcept>
@@ -31,6 +35,41 @@ inline std::string jsonErrorMessage(const std::string& text, const nlohmann::jso
   const std::size_t colon = at == std::string::npos ? at : reason.find(": ", at);
   if (colon != std::string::npos) reason = reason.substr(colon + 2);
   return file + ": invalid JSON at line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + reason;
+}
+
+/// The largest scene or atmosphere file read (theirs are a few KB; /dev/zero is endless).
+inline constexpr std::size_t kMaxJsonFileBytes = 16u << 20;
+
+/// The text of a scene or atmosphere file, or the one-line reason it cannot be had:
+/// "<path>: cannot open file: <why>", "<path>: is a directory, not a file", "<path>: larger
+/// than 16 MiB: not a scene or atmosphere file".
+struct FileText {
+  std::string text;
+  std::string error;  ///< empty when text holds the file
+};
+inline FileText readJsonFileText(const std::string& path) {
+  FileText out;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    out.error = path + ": is a directory, not a file";
+    return out;
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    out.error = path + ": cannot open file: " + std::strerror(errno);
+    return out;
+  }
+  char buffer[65536];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    out.text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (out.text.size() > kMaxJsonFileBytes) {
+      out.text.clear();
+      out.error = path + ": larger than 16 MiB: not a scene or atmosphere file";
+      return out;
+    }
+  }
+  if (in.bad()) out.error = path + ": cannot read file";
+  return out;
 }
 
 /// The deepest nesting a scene or atmosphere file may have (theirs is at most 6): deeper
@@ -105,6 +144,11 @@ ParsedJson<Json> parseJsonFile(const std::string& text, const std::string& file)
     out.value = json::parse(text, check, true, /*ignore_comments=*/true);
   } catch (const nlohmann::json::parse_error& e) {
     out.error = jsonErrorMessage(text, e, file);
+  } catch (const nlohmann::json::exception& e) {  // a number too large ("1e999"), ...
+    std::string what = e.what();
+    if (what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos)
+      what = what.substr(what.find("] ") + 2);
+    out.error = file + ": " + what;
   } catch (const std::exception& e) {
     out.error = problem.empty() ? file + ": " + e.what() : problem;
   }

@@ -39,8 +39,14 @@ inline double smoothstep(double e0, double e1, double x) {
   return e1 > e0 ? t * t * (3.0 - 2.0 * t) : step;
 }
 
+[[noreturn]] void throwNonFiniteLookup() {
+  throw std::domain_error("a table lookup at a non-finite coordinate: the atmosphere's numbers (radii, scale "
+                          "heights, densities) put its light out of the tables' reach");
+}
+
 /// Linear texel coordinate in [0, n - 1] from a texture coordinate (centres at (i + 0.5) / n).
 inline void texelLerp(double u, int n, int lo, int hi, int& i, double& w) {
+  if (std::isnan(u)) throwNonFiniteLookup();  // a NaN passes std::clamp and becomes an index
   double f = std::clamp(u * n - 0.5, static_cast<double>(lo), static_cast<double>(hi));
   if (hi <= lo) {
     i = lo, w = 0.0;
@@ -852,6 +858,8 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
         if (k > 0) m.columns(path, sk - s.ds, sk, o.opticalDepthSubsamples, seg2, col.data());
         double x, yy, tx, ty;
         path.eval(sk, seg, x, yy, tx, ty);
+        if (!(std::isfinite(x) && std::isfinite(yy) && std::isfinite(tx) && std::isfinite(ty) && std::isfinite(s.ds)))
+          throwNonFiniteLookup();
         const double r = std::max(std::sqrt(x * x + yy * yy), 1e-3);
         s.r[k] = r, s.xr[k] = x / r, s.yr[k] = yy / r, s.tx[k] = tx, s.ty[k] = ty;
         s.mu[k] = clampCosine((x * tx + yy * ty) / r);

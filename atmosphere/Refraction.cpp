@@ -369,6 +369,9 @@ RefractionSample RefractionTable::sample(double radiusM, double mu) const {
   const double muLookup = std::max(mu, muHorizon);
   const TransmittanceCoords c = transmittanceCoordsFromRMu(shell(), r, muLookup);
   const double fx = c.xMu * (width - 1), fy = c.xR * (height - 1);
+  if (!(std::isfinite(fx) && std::isfinite(fy)))
+    throw std::domain_error("refraction table lookup at a non-finite coordinate (r " + std::to_string(r) + " m, mu " +
+                            std::to_string(mu) + ")");
   const int x0 = std::clamp(static_cast<int>(std::floor(fx)), 0, width - 2);
   const int y0 = std::clamp(static_cast<int>(std::floor(fy)), 0, height - 2);
   const double wx = std::clamp(fx - x0, 0.0, 1.0), wy = std::clamp(fy - y0, 0.0, 1.0);

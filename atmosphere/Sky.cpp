@@ -87,6 +87,8 @@ SkyGrid skyLuminance(const AtmosphereTables& tables, const Atmosphere& atmospher
   if (wavelengths.nm != tables.wavelengthsNm)
     throw std::invalid_argument("sky: the tables were computed at other wavelengths");
 
+  if ((0.5 * kPi / zenithStepRad + 1.0) * (kPi / azimuthStepRad + 1.0) > kMaxSkyDirections)  // before int counts
+    throw std::invalid_argument("sky: more than " + std::to_string(kMaxSkyDirections) + " directions");
   SkyGrid g;
   g.sunZenithRad = sunZenithRad;
   g.observerAltitudeM = observerAltitudeM;

@@ -79,6 +79,9 @@ SkySample skyLuminanceAt(const AtmosphereTables& tables, const Atmosphere& atmos
                          const WavelengthSet& wavelengths, double sunZenithRad, double observerAltitudeM,
                          double viewZenithRad, double azimuthRad);
 
+/// The most directions a sky grid may have (the steps' product): 1 000 000.
+inline constexpr int kMaxSkyDirections = 1000000;
+
 /// The grid: Z = 0, step, ... <= 90 degrees; A = 0, step, ... <= 180 degrees. Throws
 /// std::invalid_argument for steps outside (0, 90] degrees, a Sun zenith outside
 /// [0, 180] degrees, a negative altitude or one above the atmosphere, or tables whose

@@ -14,6 +14,13 @@
 #include "AtmosphereCommon.hpp"
 #include "Commands.hpp"
 
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+
+
 #include "FieldParameters.h"
 #include "vtkAtmosphereTablesSource.h"
 #include "umbra/tables/Exr.h"
@@ -165,25 +172,54 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
         std::cerr << "cache hit: " << source->GetLastCacheHits() << " table(s) read from "
                   << (o->cache.directory.empty() ? tables::TableCache::defaultDirectory() : o->cache.directory) << "\n";
 
+      // Every table goes into a sibling temporary directory first; then that directory
+      // becomes DIR (a new one: one rename), or its files move into DIR (an existing one):
+      // a kill while the tables are written leaves no half-filled DIR.
       vtkMultiBlockDataSet* blocks = source->GetOutput();
       const bool created = !fs::exists(dir, ec);
-      if (created && !fs::create_directory(dir, ec))
-        throw CommandError(o->output + ": cannot create directory: " + ec.message());
-      std::vector<std::string> written;
+      const fs::path target = dir.filename().empty() ? dir.parent_path() : dir;  // "out/" is "out"
+      const fs::path staging = target.parent_path() / ("." + target.filename().string() + ".tmp-" +
+                                                       std::to_string(::getpid()));
+      // A killed run's staging directory (its process gone) goes now.
+      const std::string stagingPrefix = "." + target.filename().string() + ".tmp-";
+      const fs::path parentDir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+      for (fs::directory_iterator it(parentDir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.rfind(stagingPrefix, 0) != 0) continue;
+        const long pid = std::atol(name.c_str() + stagingPrefix.size());
+        std::error_code removeEc;
+        if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) fs::remove_all(it->path(), removeEc);
+      }
+      ec.clear();
+      fs::remove_all(staging, ec);
+      if (!fs::create_directory(staging, ec))
+        throw CommandError(o->output + ": cannot create a directory beside it: " + ec.message());
+      std::vector<std::string> names;
       try {
         for (unsigned i = 0; i < blocks->GetNumberOfBlocks(); ++i) {
           auto* image = vtkImageData::SafeDownCast(blocks->GetBlock(i));
           if (!image) continue;
           const tables::Table table = tableOf(image);
-          const std::string path = (dir / (table.parameters.at("kind") + ".exr")).string();
-          tables::writeExr(path, table);
-          written.push_back(path);
+          const std::string name = table.parameters.at("kind") + ".exr";
+          tables::writeExr((staging / name).string(), table);
+          names.push_back(name);
+        }
+        if (created) {
+          fs::rename(staging, target, ec);
+          if (ec) throw CommandError(o->output + ": cannot create directory: " + ec.message());
+        } else {
+          for (const std::string& name : names) {
+            fs::rename(staging / name, dir / name, ec);
+            if (ec) throw CommandError((dir / name).string() + ": cannot write: " + ec.message());
+          }
+          fs::remove(staging, ec);
         }
       } catch (...) {
-        for (const std::string& p : written) fs::remove(p, ec);
-        if (created) fs::remove(dir, ec);
+        fs::remove_all(staging, ec);
         throw;
       }
+      std::vector<std::string> written;
+      for (const std::string& name : names) written.push_back((dir / name).string());
       std::cout << "wrote " << written.size() << " tables (" << atm.name << ", " << o->orders << " orders, "
                 << o->wavelengths << " wavelengths" << (o->refraction ? ", refracted paths" : "") << ") to "
                 << o->output << ":\n";

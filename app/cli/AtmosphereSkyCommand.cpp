@@ -144,6 +144,10 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
         throw CommandError("--zenith-step: expected 0 < STEP <= 90 degrees");
       if (!(o->azimuthStep > 0.0 && o->azimuthStep <= 90.0))
         throw CommandError("--azimuth-step: expected 0 < STEP <= 90 degrees");
+      const double directions = (std::floor(90.0 / o->zenithStep + 1e-9) + 1.0) * (std::floor(180.0 / o->azimuthStep + 1e-9) + 1.0);
+      if (directions > atmosphere::kMaxSkyDirections)
+        throw CommandError("--zenith-step, --azimuth-step: " + std::to_string(static_cast<long long>(directions)) +
+                           " directions, more than " + std::to_string(atmosphere::kMaxSkyDirections));
       if (o->orders < 1 || o->orders > 10) throw CommandError("--orders: expected 1 to 10");
       if (o->wavelengths < 3 || o->wavelengths > 47) throw CommandError("--wavelengths: expected 3 to 47");
       if (o->plotSize < 16 || o->plotSize > 4096) throw CommandError("--plot-size: expected 16 to 4096");

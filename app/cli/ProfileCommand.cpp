@@ -10,6 +10,8 @@
 #include "SolarDisc.hpp"
 #include "vtkEclipseShadowLutSource.h"
 #include "vtkShadowProfileFilter.h"
+#include "FieldParameters.h"
+#include "ShadowLutData.h"
 
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -110,7 +112,19 @@ void addProfileCommand(CLI::App& app, Action& action) {
       if (withAtmosphere && o->exact) {
         exactAtmospheric = atmosphericProfile(o->atmosphere, occ, distanceM, maxOffsetM, o->samples, o->limbDarkening);
       } else if (!o->lut.empty() && !o->exact) {
-        filter->SetInputData(readShadowLut(o->lut));
+        vtkSmartPointer<vtkImageData> table = readShadowLut(o->lut);
+        // Whose shadow it is: an atmospheric LuT holds its occluder's atmosphere; an airless
+        // one (Eq. 3-6 scale the discs away) serves any occluder, with a note.
+        const auto header = filters::fieldParameters(table);
+        const auto of = header.find("occluder"), kind = header.find("kind");
+        if (of != header.end() && !of->second.empty() && of->second != occ.name) {
+          if (kind != header.end() && kind->second == filters::kAtmosphereShadowLutKind)
+            throw CommandError("--lut: " + o->lut + " is the shadow of " + of->second + " through its atmosphere, not " +
+                               occ.name + "'s (--occluder)");
+          std::cerr << "note: --lut " << o->lut << " was made for " << of->second << "; an airless LuT serves "
+                    << occ.name << " as well\n";
+        }
+        filter->SetInputData(table);
       } else if (!o->exact) {
         // Near the occluder the penumbra is 2u of the LuT's height (docs/eclipse-shadows.md):
         // below 16 rows the LuT covers only this cross-section's ranges.

@@ -92,7 +92,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
   render->add_option("SCENE", o->scene, "Scene file (JSON, see docs/scene-format.md)")->required();
   render->add_option("--time", o->time, "UTC time, ISO 8601 (default: the scene's)");
   render->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default: the scene's)");
-  render->add_option("--exposure", o->exposure, "Exposure in EV (default: the scene's)");
+  render->add_option("--exposure", o->exposure, "Exposure in EV (default: the scene's)")->check(CLI::Range(-60.0, 60.0));
   render->add_option("--glare", o->glare,
                      "Glare strength in [0, 10] (default 0: none): halos of 0.03, 0.15, 0.75 deg around bright "
                      "pixels holding 4, 2, 1 % of their light per unit; the frame's total radiance is kept")

@@ -1,4 +1,5 @@
 #include "ShadowCommon.hpp"
+#include "vtkAtmosphereTablesSource.h"
 
 #include "ShadowLutData.h"
 #include "scene/Bodies.hpp"
@@ -127,10 +128,15 @@ void EclipseAtmosphereChoice::configure(vtkEclipseAtmosphereSource* source, cons
 void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& what, const CacheOptions& cache) {
   source->SetCacheDirectory(cache.directory.c_str());
   source->SetUseCache(!cache.disabled);
-  source->ConnectAtmosphereTables();  // the Bruneton and refraction tables from their cache
+  // The Bruneton and refraction tables from their cache; a failure there is the reason.
+  auto* tables = vtkAtmosphereTablesSource::SafeDownCast(source->ConnectAtmosphereTables());
   ProgressLine progress(what, source);
   source->Update();
-  if (source->GetOutput()->GetNumberOfPoints() == 0) throw CommandError("the " + what + " could not be computed");
+  if (source->GetOutput()->GetNumberOfPoints() == 0) {
+    std::string why = source->GetLastError();
+    if (why.empty() && tables && !tables->GetLastError().empty()) why = "atmosphere tables: " + tables->GetLastError();
+    throw CommandError("the " + what + " could not be computed" + (why.empty() ? std::string() : ": " + why));
+  }
   if (source->GetLastUpdateWasCacheHit())
     std::cerr << "cache hit: " << source->GetCachePath() << "\n";
   else if (!cache.disabled && source->GetCacheWarning().empty())

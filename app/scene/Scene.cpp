@@ -1,6 +1,7 @@
 #include "scene/Scene.hpp"
 
 #include "SceneDetail.hpp"
+#include "JsonErrors.hpp"  // readJsonFileText
 #include "scene/Ephemeris.hpp"
 
 #include <GeographicLib/Geocentric.hpp>
@@ -157,18 +158,9 @@ void setTime(Scene& scene, UtcTime time) {
 }
 
 Scene loadScene(const std::string& path) {
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (file == nullptr)
-    throw SceneError(path + ": cannot open file: " + std::strerror(errno));
-  std::string text;
-  char buffer[65536];
-  std::size_t count = 0;
-  while ((count = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, count);
-  const bool readError = std::ferror(file) != 0;
-  const int readErrno = errno;
-  std::fclose(file);
-  if (readError) throw SceneError(path + ": cannot read file: " + std::strerror(readErrno));
-  return parseScene(text, path);
+  atmosphere::FileText f = atmosphere::readJsonFileText(path);
+  if (!f.error.empty()) throw SceneError(f.error);
+  return parseScene(f.text, path);
 }
 
 } // namespace umbra::scene

@@ -349,11 +349,11 @@ Observer parseObserver(const Reader& in, const json& value, const Scene& scene) 
   observer.body = body.name;
   observer.latDeg =
       in.number(value["latDeg"], field + ".latDeg", -90.0, 90.0, "a latitude in [-90, 90] degrees");
-  observer.lonDeg = in.number(value["lonDeg"], field + ".lonDeg", -HUGE_VAL, HUGE_VAL,
-                              "a longitude in degrees");
+  observer.lonDeg = in.number(value["lonDeg"], field + ".lonDeg", -360.0, 360.0,
+                              "a longitude in [-360, 360] degrees");
   if (value.contains("altM"))
-    observer.altM = in.number(value["altM"], field + ".altM", -1e4, HUGE_VAL,
-                              "an altitude >= -10000 metres");
+    observer.altM = in.number(value["altM"], field + ".altM", -1e4, 1e12,
+                              "an altitude from -10000 m to 1e12 m");
   return observer;
 }
 
@@ -448,7 +448,7 @@ Scene parseScene(const std::string& jsonText, const std::string& pathForMessages
 
   if (root.contains("exposure"))
     scene.exposureEv =
-        in.number(root["exposure"], "exposure", -HUGE_VAL, HUGE_VAL, "a number (EV)");
+        in.number(root["exposure"], "exposure", -60.0, 60.0, "an exposure in [-60, 60] EV");
   if (root.contains("image")) {
     const json& image = root["image"];
     in.object(image, "image", {"width", "height"});

@@ -60,8 +60,8 @@ double parseLengthM(const std::string& text) {
 }
 
 double parseDurationS(const std::string& text) {
-  return parseQuantity(text, {{"", 1.0}, {"s", 1.0}, {"min", 60.0}, {"h", 3600.0}, {"d", 86400.0}}, "duration",
-                       "s, min, h or d");
+  // A unit is required: "15" could be seconds, minutes or days.
+  return parseQuantity(text, {{"s", 1.0}, {"min", 60.0}, {"h", 3600.0}, {"d", 86400.0}}, "duration", "s, min, h or d");
 }
 
 } // namespace umbra::scene

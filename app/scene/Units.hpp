@@ -14,8 +14,8 @@ inline constexpr double kAuM = 149597870700.0;
 /// NaN/inf, unknown unit, trailing garbage).
 double parseLengthM(const std::string& text);
 
-/// The same for a duration in seconds: unit s, min, h or d (86400 s); a bare number is
-/// seconds.
+/// The same for a duration in seconds: unit s, min, h or d (86400 s), required (a bare
+/// number is an error: seconds, minutes or days?).
 double parseDurationS(const std::string& text);
 
 } // namespace umbra::scene

@@ -239,6 +239,7 @@ int defaultScatteringNu(const std::string& occluderName, int otherwise) {
 }
 
 void LimbRayProfile::at(double b, double& dev, double& contact, double* T) const {
+  if (std::isnan(b)) throw std::domain_error("limb ray profile lookup at a non-finite impact parameter");
   const int n = samples();
   const double x = std::clamp((b - occluderRadiusM) / (atmosphereRadiusM - occluderRadiusM), 0.0, 1.0) * (n - 1);
   const int k0 = std::min(static_cast<int>(x), n - 2);
@@ -253,6 +254,7 @@ void LimbRayProfile::deviationRange(double bLo, double bHi, double& lo, double& 
   const int n = samples();
   const double scale = (n - 1) / (atmosphereRadiusM - occluderRadiusM);
   auto deviation = [&](double b) {
+    if (std::isnan(b)) throw std::domain_error("limb ray profile lookup at a non-finite impact parameter");
     const double x = std::clamp((b - occluderRadiusM) * scale, 0.0, n - 1.0);
     const int k = std::min(static_cast<int>(x), n - 2);
     return deviationRad[k] + (x - k) * (deviationRad[k + 1] - deviationRad[k]);

@@ -264,6 +264,7 @@ int vtkEclipseAtmosphereSource::RequestFailed(const std::exception& e, vtkDataOb
     if (output) output->Initialize();
     return 1;
   }
+  this->LastError = e.what();
   vtkErrorMacro(<< e.what());
   return 0;
 }

@@ -125,6 +125,8 @@ public:
   /// observer; a cancel of the input's precomputation). A cancel is not an error: the
   /// output is empty and nothing is printed; the next update computes it.
   bool GetLastUpdateAborted() const { return this->LastAborted; }
+  /// After an update that failed: why (the exception's message, one line), else empty.
+  const std::string& GetLastError() const { return this->LastError; }
 
 protected:
   vtkEclipseAtmosphereSource();
@@ -151,7 +153,7 @@ protected:
   /// What RequestData returns when it caught `e`: after an abort (GetAbortExecute, or
   /// atmosphere::PrecomputeCancelled) 1 with `output` emptied and LastAborted set (the
   /// executive would print a failure); else the error is reported (vtkErrorMacro) and 0.
-  /// RequestData clears LastAborted first.
+  /// RequestData clears LastAborted and LastError first; RequestFailed keeps the message.
   int RequestFailed(const std::exception& e, vtkDataObject* output);
 
   /// Whole extent, spacing and origin of a LuT with texel centres at
@@ -192,6 +194,7 @@ protected:
   std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> Prepared;
   bool LastCacheHit = false;
   bool LastAborted = false;
+  std::string LastError;
   std::string CachePath;
   std::string CacheWarning;
 

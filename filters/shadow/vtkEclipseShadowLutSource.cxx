@@ -34,6 +34,7 @@ int vtkEclipseShadowLutSource::RequestData(vtkInformation*, vtkInformationVector
   using namespace umbra;
   vtkImageData* output = vtkImageData::GetData(out);
   this->LastAborted = false;
+  this->LastError.clear();
   if (this->HasAtmosphere()) return this->RequestAtmospheric(out->GetInformationObject(0), output);
   eclipse::ShadowLutParams params{this->Width, this->Height, this->LimbDarkening, this->RelativeTolerance};
   params.uMin = this->URange[0], params.uMax = this->URange[1];
@@ -41,8 +42,7 @@ int vtkEclipseShadowLutSource::RequestData(vtkInformation*, vtkInformationVector
   try {
     eclipse::checkLutRange(params.uMin, params.uMax, params.vMin, params.vMax, params.vLowFraction);
   } catch (const std::exception& e) {
-    vtkErrorMacro(<< e.what());
-    return 0;
+    return this->RequestFailed(e, output);
   }
   const auto parameters = filters::airlessLutParameters(params);
   const tables::TableCache cache(this->CacheDirectory.empty() ? tables::TableCache::defaultDirectory()

@@ -29,6 +29,7 @@ int vtkLimbLuminanceSource::RequestData(vtkInformation*, vtkInformationVector**,
   using namespace umbra;
   vtkImageData* output = vtkImageData::GetData(out);
   this->LastAborted = false;
+  this->LastError.clear();
   try {
     if (!this->HasAtmosphere()) throw std::invalid_argument("the limb-luminance LuT needs an atmosphere");
     if (this->Layers > this->LimbRows) throw std::invalid_argument("more layers than limb-view rows");

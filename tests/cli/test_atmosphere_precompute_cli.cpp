@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 
 using namespace umbra::test;
 namespace fs = std::filesystem;
@@ -102,4 +103,24 @@ TEST(AtmospherePrecomputeCli, BadInputWritesNothing) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_EQ(dir.fileCount(), 0) << c.message;
   }
+}
+
+// Killed while it computes (kill -9): no DIR, only its hidden staging directory, which the
+// next run removes (its process is gone) before it writes DIR whole.
+TEST(AtmospherePrecomputeCli, AKilledRunLeavesNoHalfFilledDirectory) {
+  TempDir dir;
+  const std::string out = dir / "tables";
+  // The default sizes take seconds: killed after half a second, mid-way.
+  const std::string cmd = std::string("(") + UMBRA_EXE + " atmosphere precompute --preset earth --no-cache --output " +
+                          quote(out) + " >/dev/null 2>&1 & pid=$!; sleep 0.5; kill -9 $pid; wait $pid) 2>/dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()) == -1, false);
+  EXPECT_FALSE(fs::exists(out));
+  // A staging directory a killed run left while it wrote (no process 999999999).
+  fs::create_directories(dir / ".tables.tmp-999999999");
+  std::ofstream(dir / ".tables.tmp-999999999/atmosphere-transmittance.exr") << "half";
+  const RunResult r = run(UMBRA_EXE, tiny({"atmosphere", "precompute", "--preset", "earth", "--output", out,
+                                           "--no-cache"}));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(filesIn(out).size(), 6u);
+  EXPECT_EQ(filesIn(dir.path.string()), std::vector<std::string>{"tables"});  // no staging left
 }

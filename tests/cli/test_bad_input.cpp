@@ -245,3 +245,22 @@ TEST(BadInput, HostileFiles) {
   expectFailure(dir, {"atmosphere", "refraction", "--config", dir / "tall.json", "--csv", dir / "r.csv"},
                 "topRadiusM: expected a radius from 1 m to 1e12 m, got 1e+308");
 }
+
+// Raw library messages no more: a number too large for JSON, an endless file, a directory
+// for a file, a sample count that would not fit in memory.
+TEST(BadInput, LibraryMessagesBecomeOurs) {
+  TempDir dir;
+  {
+    std::ofstream(dir / "big.json") << R"({"time": "2015-09-28T02:00:00Z", "bodies": [{"preset": "Sun"},
+      {"preset": "Moon", "albedo": 1e999}], "camera": {"position": [0, 0, 0], "target": "Moon"}})";
+  }
+  expectFailure(dir, {"render", dir / "big.json", "--output", dir / "x.png"}, "big.json: number overflow parsing '1e999'");
+  expectFailure(dir, {"render", "/dev/zero", "--output", dir / "x.png"},
+                "/dev/zero: larger than 16 MiB: not a scene or atmosphere file");
+  std::filesystem::create_directory(dir / "a-directory");
+  expectFailure(dir, {"atmosphere", "refraction", "--config", dir / "a-directory", "--csv", dir / "r.csv"},
+                "a-directory: is a directory, not a file");
+  expectFailure(dir, {"atmosphere", "sky", "--preset", "earth", "--sun-zenith-deg", "30", "--zenith-step", "1e-9",
+                      "--csv", dir / "s.csv"},
+                "--zenith-step, --azimuth-step: 1710000000019 directions, more than 1000000");
+}

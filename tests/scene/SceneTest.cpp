@@ -240,7 +240,7 @@ TEST(SceneValidation, CameraMessages) {
             "can stand on Sun, Earth, Moon, Mars)");
   EXPECT_EQ(errorFor(head + R"({"observer": {"body": "Earth", "latDeg": 0, "lonDeg": 0,
                                 "altM": -20000}, "target": "Moon"}})"),
-            "examples/x.json: camera.observer.altM: expected an altitude >= -10000 metres, "
+            "examples/x.json: camera.observer.altM: expected an altitude from -10000 m to 1e12 m, "
             "got -20000");
   EXPECT_EQ(errorFor(head + R"({"observer": {"body": "Earth", "latDeg": 0, "lonDeg": 0},
                                 "target": "Moon", "zoom": 2}})"),

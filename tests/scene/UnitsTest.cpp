@@ -53,7 +53,7 @@ TEST(Units, ParsesDurations) {
   EXPECT_DOUBLE_EQ(parseDurationS("30min"), 1800.0);
   EXPECT_DOUBLE_EQ(parseDurationS("1.5 h"), 5400.0);
   EXPECT_DOUBLE_EQ(parseDurationS("2d"), 172800.0);
-  EXPECT_DOUBLE_EQ(parseDurationS("90"), 90.0);
+  EXPECT_THROW(parseDurationS("90"), std::invalid_argument);  // seconds? minutes? a unit is required
   EXPECT_DOUBLE_EQ(parseDurationS("90 s"), 90.0);
   for (const char* text : {"", "min", "nan s", "1 week", "30 mins", "0x10"})
     EXPECT_THROW(parseDurationS(text), std::invalid_argument) << "'" << text << "'";

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 
 #include "TestSupport.h"
@@ -120,7 +121,12 @@ TEST_F(TableCacheTest, StoreThenLoadHits) {
   EXPECT_EQ(hit->channels, t.channels);
   EXPECT_EQ(hit->data, t.data);
   EXPECT_EQ(hit->parameters, withKind("shadow"));
-  EXPECT_EQ(readExr(cache.pathFor("shadow", params_)).parameters, withKind("shadow"));
+  // The file's header: the parameters, the kind and the values' checksum (16 hex digits).
+  Parameters header = readExr(cache.pathFor("shadow", params_)).parameters;
+  ASSERT_EQ(header.count("checksum"), 1u);
+  EXPECT_EQ(header["checksum"].size(), 16u);
+  header.erase("checksum");
+  EXPECT_EQ(header, withKind("shadow"));
 }
 
 TEST_F(TableCacheTest, ChangedParameterOrKindMisses) {
@@ -172,9 +178,69 @@ TEST_F(TableCacheTest, FileWithOtherStoredParametersMisses) {
   writeExr(path, t);
   EXPECT_FALSE(cache.load("shadow", params_).has_value());
 
-  t.parameters = withKind("shadow");
+  t.parameters = withKind("shadow");  // right parameters, no checksum: not the cache's
   writeExr(path, t);
+  EXPECT_FALSE(cache.load("shadow", params_).has_value());
+  cache.store("shadow", params_, t);
   EXPECT_TRUE(cache.load("shadow", params_).has_value());
+}
+
+// A table whose content is not what its header says: the right header over NaN values, a
+// short table, another table's values: a miss (the caller computes it again and
+// overwrites), never a hit; and a table with a NaN is not stored.
+TEST_F(TableCacheTest, ContentIsCheckedOnEveryLoad) {
+  const TableCache cache(dir_.string());
+  const std::string path = cache.pathFor("shadow", params_);
+  const Table good = makeTable(4, 4, {"R", "G", "B"});
+  cache.store("shadow", params_, good);
+  const Parameters header = readExr(path).parameters;
+  ASSERT_TRUE(cache.load("shadow", params_).has_value());
+
+  Table nan = good;
+  nan.data[7] = std::nanf("");
+  nan.parameters = header;
+  writeExr(path, nan);
+  EXPECT_FALSE(cache.load("shadow", params_).has_value());
+
+  Table other = good;
+  other.data[3] += 0.5f;  // the header's checksum is the good table's
+  other.parameters = header;
+  writeExr(path, other);
+  EXPECT_FALSE(cache.load("shadow", params_).has_value());
+
+  Table smaller = makeTable(2, 2, {"R", "G", "B"});
+  smaller.parameters = header;
+  writeExr(path, smaller);
+  EXPECT_FALSE(cache.load("shadow", params_).has_value());
+
+  EXPECT_THROW(cache.store("shadow", params_, nan), TableError);
+  cache.store("shadow", params_, good);  // rebuilt
+  const auto hit = cache.load("shadow", params_);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->data, good.data);
+}
+
+// A writer killed (kill -9) leaves its temporary: removed at the next store when its
+// process is gone or it is over an hour old, and counted in the cap while its writer lives.
+TEST_F(TableCacheTest, StaleTemporariesAreRemovedLiveOnesCounted) {
+  const TableCache unlimited(dir_.string(), 0);
+  const std::string a = storeNumbered(unlimited, 1);
+  const std::uintmax_t size = fs::file_size(a);
+  const std::string dead = a + ".tmp-999999999-0123456789abcdef";  // no such process
+  const std::string old = a + ".tmp-" + std::to_string(::getpid()) + "-00000000000000aa";
+  const std::string live = a + ".tmp-" + std::to_string(::getpid()) + "-00000000000000bb";
+  for (const std::string& t : {dead, old, live}) writeBytes(t, std::string(size, 'x'));
+  setUsedHoursAgo(old, 2);
+  // A cap of three tables: a, the live temporary and the new table fill it.
+  storeNumbered(TableCache(dir_.string(), 3 * size + size / 2), 2);
+  EXPECT_FALSE(fs::exists(dead));
+  EXPECT_FALSE(fs::exists(old));
+  EXPECT_TRUE(fs::exists(live));
+  EXPECT_TRUE(fs::exists(a));
+  // A cap of two: the live temporary counts, so a goes.
+  storeNumbered(TableCache(dir_.string(), 2 * size + size / 2), 3);
+  EXPECT_TRUE(fs::exists(live));
+  EXPECT_FALSE(fs::exists(a));
 }
 
 TEST_F(TableCacheTest, StoreIntoAnUnusableDirectoryThrows) {
@@ -313,8 +379,7 @@ TEST_F(TableCacheTest, CapLeavesForeignFilesAlone) {
       "lut0123456789abcdef.exr",
       "-0123456789abcdef.exr",
       ".lut-0123456789abcdef.exr",
-      "lut-0123456789abcdef.exr.bak",
-      name(unlimited.pathFor("lut", numbered(8))) + ".tmp-1234-0123456789abcdef"};  // writeExr's
+      "lut-0123456789abcdef.exr.bak"};
   for (const std::string& f : foreign) {
     writeBytes(file(f), big);
     setUsedHoursAgo(file(f), 10);

@@ -3,7 +3,14 @@
 #include <pwd.h>
 #include <unistd.h>
 
+#include <sys/types.h>
+#include <signal.h>
+
 #include <algorithm>
+#include <cstdio>
+#include <csignal>
+#include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
@@ -69,6 +76,65 @@ std::map<std::string, std::string> withKind(const std::string& kind,
                                             std::map<std::string, std::string> parameters) {
   parameters["kind"] = kind;
   return parameters;
+}
+
+// The header entry that holds the checksum of a cached table's values (not a parameter).
+constexpr const char* kChecksumKey = "checksum";
+
+// FNV-1a (64 bits) of the values' bytes and of the size, as 16 hex digits: a truncated,
+// swapped or edited table no longer matches its header.
+std::string checksumOf(const Table& t) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&](const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  };
+  const std::int64_t dims[3] = {t.width, t.height, static_cast<std::int64_t>(t.channels.size())};
+  mix(dims, sizeof dims);
+  mix(t.data.data(), t.data.size() * sizeof(float));
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+// Why a cached table cannot be used as it is (its size, a non-finite value, its checksum),
+// or empty.
+std::string contentProblem(const Table& t) {
+  const std::size_t expected = static_cast<std::size_t>(std::max(t.width, 0)) * std::max(t.height, 0) * t.channels.size();
+  if (t.data.size() != expected || expected == 0)
+    return std::to_string(t.data.size()) + " values for " + std::to_string(t.width) + "x" + std::to_string(t.height) +
+           "x" + std::to_string(t.channels.size());
+  for (std::size_t i = 0; i < t.data.size(); ++i)
+    if (!std::isfinite(t.data[i])) return "a non-finite value (at " + std::to_string(i) + ")";
+  const auto stored = t.parameters.find(kChecksumKey);
+  if (stored == t.parameters.end()) return "no checksum in its header";
+  if (stored->second != checksumOf(t)) return "its values do not match the checksum in its header";
+  return {};
+}
+
+// A writer's temporary: <name>.tmp-<pid>-<random>; its pid, or 0 for another name.
+long temporaryOwner(const std::string& name) {
+  const auto at = name.rfind(".tmp-");
+  if (at == std::string::npos) return 0;
+  const std::string rest = name.substr(at + 5);
+  const auto dash = rest.find('-');
+  if (dash == std::string::npos || dash == 0) return 0;
+  try {
+    std::size_t used = 0;
+    const long pid = std::stol(rest.substr(0, dash), &used);
+    return used == dash && pid > 0 ? pid : 0;
+  } catch (const std::exception&) {
+    return 0;
+  }
+}
+
+// A temporary left by a writer that is gone (its process does not exist) or that has been
+// writing for more than an hour.
+bool staleTemporary(const fs::path& path, long pid) {
+  std::error_code ec;
+  const auto age = fs::file_time_type::clock::now() - fs::last_write_time(path, ec);
+  if (!ec && age > std::chrono::hours(1)) return true;
+  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
 }
 
 // Whether name is one pathFor makes: <kind>-<16 lowercase hex digits (parameterHash)>.exr.
@@ -162,9 +228,15 @@ std::optional<Table> TableCache::load(const std::string& kind,
   Table table;
   try {
     table = readExr(path);
-  } catch (const TableError&) {
+  } catch (const TableError& e) {
+    std::cerr << "umbra: cache: " << e.what() << "; computing it again\n";
     return std::nullopt;  // corrupt or unreadable: the caller recomputes and overwrites
   }
+  if (const std::string problem = contentProblem(table); !problem.empty()) {
+    std::cerr << "umbra: cache: " << path << ": " << problem << "; computing it again\n";
+    return std::nullopt;
+  }
+  table.parameters.erase(kChecksumKey);
   if (table.parameters != withKind(kind, parameters)) {
     return std::nullopt;  // stale file or hash collision
   }
@@ -181,7 +253,11 @@ void TableCache::store(const std::string& kind,
   if (ec) {
     throw TableError(path, "cannot create cache directory '" + directory_ + "': " + ec.message());
   }
-  detail::writeExr(path, table, withKind(kind, parameters));
+  for (float v : table.data)
+    if (!std::isfinite(v)) throw TableError(path, "not cached: the table holds a non-finite value");
+  auto header = withKind(kind, parameters);
+  header[kChecksumKey] = checksumOf(table);
+  detail::writeExr(path, table, header);
   enforceCap(path);
 }
 
@@ -198,9 +274,20 @@ void TableCache::enforceCap(const std::string& keepPath) const {
   for (fs::directory_iterator it(directory_, ec), end; !ec && it != end; it.increment(ec)) {
     const fs::path& path = it->path();
     std::error_code fileEc;
+    // A writer's temporary: removed when its writer is gone (kill -9), else counted.
+    const std::string name = path.filename().string();
+    const auto tmp = name.rfind(".tmp-");
+    if (tmp != std::string::npos && isCacheFileName(name.substr(0, tmp)) &&
+        fs::is_regular_file(fs::symlink_status(path, fileEc))) {
+      if (const long pid = temporaryOwner(name); pid > 0 && staleTemporary(path, pid)) {
+        fs::remove(path, fileEc);
+      } else {
+        total += fs::file_size(path, fileEc);
+      }
+      continue;
+    }
     // symlink_status: a link is never one of ours, even with a cache file's name.
-    if (!isCacheFileName(path.filename().string()) ||
-        !fs::is_regular_file(fs::symlink_status(path, fileEc))) {
+    if (!isCacheFileName(name) || !fs::is_regular_file(fs::symlink_status(path, fileEc))) {
       continue;
     }
     const std::uintmax_t bytes = fs::file_size(path, fileEc);
