@@ -34,9 +34,14 @@ struct CacheOptions {
 /// units s, min, h, d), at most 100 000 of them. Throws CommandError naming the option.
 std::vector<scene::UtcTime> timeSteps(const std::string& from, const std::string& to, const std::string& step);
 
-/// Every number option of `app` and its subcommands refuses an empty value, NaN and
-/// infinities, naming the option (CLI11 would read "" as 0 and let NaN through its ranges).
-void requireFiniteNumbers(CLI::App& app);
+/// The whole command line on `app`: its description, version flag, one-line parse
+/// errors, every command and the number checks; `action` is set by the command parsed.
+void addCommands(CLI::App& app, Action& action);
+
+/// Every option of `app` and its subcommands that takes a value refuses an empty one, and
+/// every number option NaN and infinities, naming the option (CLI11 would read "" as 0 and
+/// let NaN through its ranges).
+void refuseEmptyAndNonFinite(CLI::App& app);
 
 void addRenderCommand(CLI::App& app, Action& action);
 void addMoonCommand(CLI::App& app, Action& action);

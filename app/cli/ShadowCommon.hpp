@@ -3,6 +3,7 @@
 // occluder and building (or loading from the cache) its shadow LuT.
 #include "Commands.hpp"
 #include "ShadowLut.hpp"
+#include "scene/Units.hpp"
 #include "scene/ReceiverShadow.hpp"
 
 #include <vtkSmartPointer.h>
@@ -42,8 +43,8 @@ double lengthOption(const std::string& option, const std::string& text);
 /// from <min> to <max>, got <text>" (the physical limits: radii 1 m..1e12 m, distances up
 /// to 1e15 m, a hundred times Neptune's).
 double lengthOption(const std::string& option, const std::string& text, double minM, double maxM);
-inline constexpr double kMaxRadiusM = 1.0e12;
-inline constexpr double kMaxDistanceM = 1.0e15;
+using scene::kMaxDistanceM;
+using scene::kMaxRadiusM;
 
 /// --distance-range MIN:MAX ("9000km:9800km"): the LuT's ranges for receivers at those
 /// distances from the occluder's centre (eclipse::lutRangeForDistances; `darkUmbra` for an

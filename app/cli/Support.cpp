@@ -51,7 +51,7 @@ std::vector<scene::UtcTime> timeSteps(const std::string& from, const std::string
   return times;
 }
 
-void requireFiniteNumbers(CLI::App& app) {
+void refuseEmptyAndNonFinite(CLI::App& app) {
   const CLI::Validator finite(
       [](std::string& text) -> std::string {
         if (text.find_first_not_of(" \t") == std::string::npos) return "expected a number, got an empty value";
@@ -65,13 +65,21 @@ void requireFiniteNumbers(CLI::App& app) {
         return "";
       },
       "");
+  const CLI::Validator notEmpty(
+      [](std::string& text) -> std::string {
+        return text.find_first_not_of(" \t") == std::string::npos ? "expected a value, got an empty one" : "";
+      },
+      "");
   for (CLI::Option* option : app.get_options()) {
+    if (option->get_expected_max() == 0) continue;  // a flag
     const std::string type = option->get_type_name();  // "FLOAT", or "FLOAT:..." with its validators
+    bool isNumber = false;
     for (const char* number : {"FLOAT", "INT", "UINT"})
-      if (type.rfind(number, 0) == 0 && (type.size() == std::strlen(number) || type[std::strlen(number)] == ':'))
-        option->check(finite);
+      isNumber = isNumber || (type.rfind(number, 0) == 0 &&
+                              (type.size() == std::strlen(number) || type[std::strlen(number)] == ':'));
+    option->check(isNumber ? finite : notEmpty);
   }
-  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) requireFiniteNumbers(*sub);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuseEmptyAndNonFinite(*sub);
 }
 
 void CacheOptions::addTo(CLI::App* command) {

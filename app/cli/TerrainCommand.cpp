@@ -139,7 +139,7 @@ int runShadow(const Options& o) {
       dem.field = terrain::makeCraterField(c);
       dem.field.validate();
     } catch (const std::exception& e) {
-      throw CommandError(std::string("--synthetic: ") + e.what());
+      throw CommandError(std::string("--synthetic with --size and --spacing: ") + e.what());
     }
     source = "synthetic crater field, seed " + std::to_string(o.seed);
   }

@@ -7,6 +7,7 @@
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkOpenGLRenderWindow.h>
+#include <vtkOutputWindow.h>
 #include <vtkPNGWriter.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkRenderWindow.h>
@@ -21,8 +22,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <limits>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 namespace umbra::render {
@@ -30,11 +33,35 @@ namespace {
 
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-std::string hex(unsigned v) {
+/// "0x0505 (GL_OUT_OF_MEMORY)".
+std::string glErrorName(unsigned v) {
   char buf[16];
   std::snprintf(buf, sizeof buf, "0x%04x", v);
-  return buf;
+  const char* name = v == GL_INVALID_ENUM                    ? "GL_INVALID_ENUM"
+                     : v == GL_INVALID_VALUE                 ? "GL_INVALID_VALUE"
+                     : v == GL_INVALID_OPERATION             ? "GL_INVALID_OPERATION"
+                     : v == GL_OUT_OF_MEMORY                 ? "GL_OUT_OF_MEMORY"
+                     : v == GL_INVALID_FRAMEBUFFER_OPERATION ? "GL_INVALID_FRAMEBUFFER_OPERATION"
+                                                             : nullptr;
+  return name ? std::string(buf) + " (" + name + ")" : std::string(buf);
 }
+
+/// Text VTK writes to std::cout while alive (its framebuffer dumps on a failure) goes to
+/// VTK's output window instead, with its other messages: stdout holds only umbra's output.
+class CoutToOutputWindow {
+public:
+  CoutToOutputWindow() : previous_(std::cout.rdbuf(captured_.rdbuf())) {}
+  ~CoutToOutputWindow() {
+    std::cout.rdbuf(previous_);
+    if (!captured_.str().empty()) vtkOutputWindow::GetInstance()->DisplayText(captured_.str().c_str());
+  }
+  CoutToOutputWindow(const CoutToOutputWindow&) = delete;
+  CoutToOutputWindow& operator=(const CoutToOutputWindow&) = delete;
+
+private:
+  std::ostringstream captured_;
+  std::streambuf* previous_;
+};
 
 struct BodyProp {
   SphereBody body;
@@ -246,13 +273,23 @@ void BodyView::Render() {
   Impl& m = *impl_;
   if (!m.cameraSet) throw std::runtime_error("BodyView::Render: SetCamera first");
   m.renderer->GetActiveCamera()->SetClippingRange(m.nearM, m.farM);
-  m.window->Render();
+  {
+    CoutToOutputWindow quiet;
+    m.window->Render();
+  }
   m.window->MakeCurrent();
   std::string errors;
+  bool outOfMemory = false;
   for (int i = 0; i < 16; ++i) {
     const GLenum e = glGetError();
     if (e == GL_NO_ERROR) break;
-    errors += (errors.empty() ? "" : ", ") + hex(e);
+    outOfMemory = outOfMemory || e == GL_OUT_OF_MEMORY;
+    errors += (errors.empty() ? "" : ", ") + glErrorName(e);
+  }
+  if (outOfMemory) {
+    const int* size = m.window->GetSize();
+    throw std::runtime_error("OpenGL ran out of memory rendering " + std::to_string(size[0]) + " x " +
+                             std::to_string(size[1]) + " pixels (" + errors + "): give a smaller image size");
   }
   if (!errors.empty()) throw std::runtime_error("OpenGL error(s) " + errors + " while rendering");
 }

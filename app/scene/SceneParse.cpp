@@ -96,9 +96,11 @@ public:
     return metres;
   }
 
+  /// A radius or spacing: a length from 1 m to 1e12 m.
   double positiveLength(const json& value, const std::string& field) const {
-    const double metres = length(value, field, "a positive length");
-    if (!(metres > 0.0)) fail(field, "expected a positive length, " + got(value));
+    const double metres = length(value, field, "a length from 1 m to 1e12 m");
+    if (!(metres >= kMinRadiusM && metres <= kMaxRadiusM))
+      fail(field, "expected a length from 1 m to 1e12 m, " + got(value));
     return metres;
   }
 
@@ -107,8 +109,11 @@ public:
     if (!value.is_array() || value.size() != 3)
       fail(field, "expected [x, y, z] in metres, " + got(value));
     glm::dvec3 v;
-    for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t i = 0; i < 3; ++i) {
       v[static_cast<int>(i)] = length(value[i], index(field, i), "a length in metres");
+      if (std::abs(v[static_cast<int>(i)]) > kMaxDistanceM)
+        fail(index(field, i), "expected a length within 1e15 m of the Sun, " + got(value[i]));
+    }
     return v;
   }
 

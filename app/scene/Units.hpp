@@ -7,6 +7,13 @@ namespace umbra::scene {
 /// The astronomical unit in metres (IAU 2012 Resolution B2, exact).
 inline constexpr double kAuM = 149597870700.0;
 
+/// The physical limits every length read from the user keeps to: radii (and grid
+/// spacings) from 1 m to 1e12 m, positions and distances up to 1e15 m (a hundred times
+/// Neptune's distance).
+inline constexpr double kMinRadiusM = 1.0;
+inline constexpr double kMaxRadiusM = 1.0e12;
+inline constexpr double kMaxDistanceM = 1.0e15;
+
 /// Parses a length with an optional unit (m, km, au; a bare number is metres) and
 /// returns it in metres. Spaces around the number and the unit are allowed.
 /// Negative values are accepted (callers check their ranges).

@@ -142,7 +142,7 @@ TEST(BadInput, NegativeRadiusInScene) {
   TempDir dir;
   const std::string scene = writeScene(dir, "neg.json", std::string(kSceneHead) +
       R"({"name": "Rock", "radius": -5, "position": [1.5e11, 1e9, 0]})" + kSceneTail);
-  expectFailure(dir, {"render", scene, "--output", dir / "x.png"}, "neg.json: bodies[1].radius: expected a positive length");
+  expectFailure(dir, {"render", scene, "--output", dir / "x.png"}, "neg.json: bodies[1].radius: expected a length from 1 m to 1e12 m");
 }
 
 TEST(BadInput, MissingSceneFile) {

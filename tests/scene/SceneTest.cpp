@@ -70,14 +70,25 @@ TEST(SceneErrors, UnknownPreset) {
             "(known: Sun, Earth, Moon, Mars, Phobos, Deimos)");
 }
 
+// Lengths beyond the physical limits are named, not passed on to overflow later (a
+// position of 1e308 m made the camera's up vector "parallel to the view direction").
+TEST(SceneErrors, LengthsBeyondPhysicalLimits) {
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"name": "Rock", "radius": "1e13", "position": [0, 0, 1]})")),
+            "examples/x.json: bodies[1].radius: expected a length from 1 m to 1e12 m, got \"1e13\"");
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"name": "Rock", "radius": 0.5, "position": [0, 0, 1]})")),
+            "examples/x.json: bodies[1].radius: expected a length from 1 m to 1e12 m, got 0.5");
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"name": "Rock", "radius": 5, "position": [0, -1e308, 1]})")),
+            "examples/x.json: bodies[1].position[1]: expected a length within 1e15 m of the Sun, got -1e+308");
+}
+
 TEST(SceneErrors, NegativeRadius) {
   EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"name": "Moonlet", "radius": "1km",
                                    "position": [0, 0, 1]},
                                    {"name": "Rock", "radius": -5, "position": [0, 0, 1]})")),
-            "examples/x.json: bodies[2].radius: expected a positive length, got -5");
+            "examples/x.json: bodies[2].radius: expected a length from 1 m to 1e12 m, got -5");
   EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"},
                                    {"name": "Rock", "radius": "-5 km", "position": [0, 0, 1]})")),
-            "examples/x.json: bodies[1].radius: expected a positive length, got \"-5 km\"");
+            "examples/x.json: bodies[1].radius: expected a length from 1 m to 1e12 m, got \"-5 km\"");
 }
 
 TEST(SceneErrors, MissingFile) {

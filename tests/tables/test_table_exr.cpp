@@ -370,6 +370,51 @@ TEST_F(ExrTest, TextFileNamedExrIsRejected) {
   EXPECT_EQ(tableErrorOf([&] { readExr(path); }), path + ": not an OpenEXR file");
 }
 
+// A damaged header must be refused before anything is allocated at its word: an attribute
+// claiming 2 GB (OpenEXR would allocate it), a data window of more values than the file
+// could hold, and one over the largest table read.
+TEST_F(ExrTest, HeadersPromisingMoreThanTheFileHoldsAreRejected) {
+  const std::string path = file("h.exr");
+  Table t = makeTable(8, 8, {"R", "G", "B"});
+  t.parameters["marker"] = "MMMMMMMM";
+  writeExr(path, t);
+  const std::string good = readBytes(path);
+  const auto patched = [&](std::size_t at, std::initializer_list<std::int32_t> values) {
+    std::string bytes = good;
+    for (std::int32_t v : values) {
+      for (int b = 0; b < 4; ++b) bytes[at++] = static_cast<char>((static_cast<std::uint32_t>(v) >> (8 * b)) & 0xff);
+    }
+    writeBytes(path, bytes);
+  };
+  const std::size_t marker = good.find("MMMMMMMM");
+  ASSERT_NE(marker, std::string::npos);
+  patched(marker - 4, {0x7fffffff});
+  EXPECT_EQ(tableErrorOf([&] { readExr(path); }),
+            path + ": corrupt OpenEXR file: header attribute 'umbra:marker' of 2147483647 bytes runs past the end "
+                   "of the file");
+
+  // The fuzzer's find: a channel list shorter than its declared size made OpenEXR read the
+  // next attribute from the middle of this one, with a size of 1.8 GB.
+  const std::string channels = std::string("channels") + '\0' + "chlist" + '\0';
+  const std::size_t channelsSize = good.find(channels) + channels.size();
+  std::int32_t declared = 0;
+  std::memcpy(&declared, good.data() + channelsSize, 4);
+  patched(channelsSize, {declared - 18});
+  EXPECT_EQ(tableErrorOf([&] { readExr(path); }),
+            path + ": corrupt OpenEXR file: header attribute 'channels' (chlist) of " + std::to_string(declared - 18) +
+                " bytes");
+
+  const std::string window = std::string("dataWindow") + '\0' + "box2i" + '\0';
+  const std::size_t box = good.find(window) + window.size() + 4;  // after the size: xMin, yMin, xMax, yMax
+  patched(box, {0, 0, 60000, 7});  // still one block of scanlines: OpenEXR opens it
+  const std::string tooMany = tableErrorOf([&] { readExr(path); });
+  EXPECT_NE(tooMany.find("60001 x 8 values cannot come from"), std::string::npos) << tooMany;
+  patched(box, {0, 0, 3999, 3999});
+  EXPECT_NE(tableErrorOf([&] { readExr(path); }).find("4000 x 4000 values cannot come from"), std::string::npos);
+  patched(box, {0, 0, 65535, 65535});
+  EXPECT_NE(tableErrorOf([&] { readExr(path); }).find("corrupt"), std::string::npos);
+}
+
 TEST_F(ExrTest, TruncatedFilesAreRejected) {
   const std::string path = file("t.exr");
   writeExr(path, noiseTable(64, 64));

@@ -6,11 +6,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <random>
 #include <set>
 #include <system_error>
@@ -29,7 +31,13 @@
 namespace fs = std::filesystem;
 
 namespace umbra::tables {
+
 namespace {
+/// The largest table read: 2^28 values (1 GiB of floats), at most 65536 a side.
+constexpr uint64_t kMaxTableValues = uint64_t{1} << 28;
+constexpr int kMaxTableSide = 1 << 16;
+/// Deflate's limit is 1032:1; EXR's other compressions pack less.
+constexpr uint64_t kMaxCompressionRatio = 2048;
 
 std::string errorText(int err) { return std::error_code(err, std::generic_category()).message(); }
 
@@ -103,6 +111,89 @@ private:
   uint64_t pos_ = 0;
   int error_ = 0;
 };
+
+// OpenEXR trusts a file's header: it allocates each attribute at its declared size (and a
+// string list's strings, a preview's pixels, line buffers for the data window at theirs)
+// before reading, and reads fixed-size types without checking the declared size, so that a
+// damaged size desynchronises the rest. This walks the header as OpenEXR will (name, type,
+// size, value; an empty name ends it) and refuses, before OpenEXR sees it, any size that
+// disagrees with its type or with the file. Multi-part and deep files are not tables.
+void checkHeader(int fd, uint64_t size, const std::string& path) {
+  std::vector<unsigned char> window;
+  uint64_t windowStart = 0;
+  const auto byteAt = [&](uint64_t pos) -> unsigned char {
+    if (pos >= size) throw TableError(path, "truncated or corrupt OpenEXR file: the header runs past the end of the file");
+    if (pos < windowStart || pos >= windowStart + window.size()) {
+      window.resize(static_cast<size_t>(std::min<uint64_t>(size - pos, 1 << 16)));
+      windowStart = pos;
+      if (::pread(fd, window.data(), window.size(), static_cast<off_t>(pos)) != static_cast<ssize_t>(window.size()))
+        throw TableError(path, "cannot read: " + errorText(errno));
+    }
+    return window[static_cast<size_t>(pos - windowStart)];
+  };
+  const auto int32At = [&](uint64_t pos) {
+    return static_cast<int32_t>(byteAt(pos) | (byteAt(pos + 1) << 8) | (byteAt(pos + 2) << 16) |
+                                (uint32_t{byteAt(pos + 3)} << 24));
+  };
+  const auto corrupt = [&](const std::string& what) { return TableError(path, "corrupt OpenEXR file: " + what); };
+  if (static_cast<uint32_t>(int32At(4)) & (0x800u | 0x1000u))
+    throw TableError(path, "not a table: a deep or multi-part OpenEXR file");
+  uint64_t at = 8;
+  const auto name = [&](uint64_t& pos) {
+    std::string text;
+    for (unsigned char c; (c = byteAt(pos++)) != 0;) {
+      if (text.size() >= 255) throw corrupt("a header name over 255 bytes");
+      text += static_cast<char>(c);
+    }
+    return text;
+  };
+  static const std::map<std::string, uint32_t> fixedSizes{
+      {"box2i", 16}, {"box2f", 16}, {"v2i", 8},   {"v2f", 8},         {"v3i", 12},       {"v3f", 12},
+      {"v2d", 16},   {"v3d", 24},   {"int", 4},   {"float", 4},       {"double", 8},     {"compression", 1},
+      {"lineOrder", 1}, {"envmap", 1}, {"deepImageState", 1}, {"tiledesc", 9}, {"rational", 8},
+      {"timecode", 8}, {"keycode", 28}, {"chromaticities", 32}, {"m33f", 36}, {"m44f", 64}, {"m33d", 72},
+      {"m44d", 128}};
+  for (int count = 0; count < 4096; ++count) {
+    const std::string attribute = name(at);
+    if (attribute.empty()) return;
+    const std::string type = name(at);
+    const int32_t declared = int32At(at);
+    at += 4;
+    if (declared < 0 || static_cast<uint64_t>(declared) > size - std::min(at, size))
+      throw corrupt("header attribute '" + attribute + "' of " + std::to_string(static_cast<uint32_t>(declared)) +
+                    " bytes runs past the end of the file");
+    const auto bytes = static_cast<uint64_t>(declared);
+    const auto wrongSize = [&] {
+      return corrupt("header attribute '" + attribute + "' (" + type + ") of " + std::to_string(bytes) + " bytes");
+    };
+    if (const auto fixed = fixedSizes.find(type); fixed != fixedSizes.end() && fixed->second != bytes) throw wrongSize();
+    if (type == "chlist") {  // entries of a name and 16 bytes, up to an empty name
+      uint64_t pos = at;
+      while (!name(pos).empty()) pos += 16;
+      if (pos != at + bytes) throw wrongSize();
+    } else if (type == "stringvector") {  // entries of a length and that many bytes
+      uint64_t pos = at;
+      while (pos < at + bytes) {
+        const int32_t length = int32At(pos);
+        if (length < 0 || static_cast<uint64_t>(length) > at + bytes - pos - 4) throw wrongSize();
+        pos += 4 + static_cast<uint64_t>(length);
+      }
+    } else if (type == "preview") {  // width, height, then 4 bytes a pixel
+      if (bytes < 8 || uint64_t{static_cast<uint32_t>(int32At(at))} * static_cast<uint32_t>(int32At(at + 4)) * 4 !=
+                           bytes - 8)
+        throw wrongSize();
+    } else if (attribute == "dataWindow" && type == "box2i") {  // OpenEXR sizes its line buffers from it
+      const int64_t width = int64_t{int32At(at + 8)} - int32At(at) + 1;
+      const int64_t height = int64_t{int32At(at + 12)} - int32At(at + 4) + 1;
+      if (width > 0 && height > 0 && width <= kMaxTableSide && height <= kMaxTableSide &&
+          static_cast<uint64_t>(width * height) * sizeof(float) > kMaxCompressionRatio * size + (uint64_t{1} << 16))
+        throw corrupt(std::to_string(width) + " x " + std::to_string(height) + " values cannot come from " +
+                      std::to_string(size) + " bytes");
+    }
+    at += bytes;
+  }
+  throw corrupt("over 4096 header attributes");
+}
 
 // An OpenEXR input stream on a file descriptor of known size.
 class FdIStream final : public Imf::IStream {
@@ -289,6 +380,15 @@ Table readExr(const std::string& path, const std::vector<std::string>& requiredC
   }
 
   try {
+    // OpenEXR sizes its line buffers from the header before any pixel is read: a damaged
+    // header must not make it allocate gigabytes.
+    static const bool limited = [] {
+      Imf::Header::setMaxImageSize(kMaxTableSide, kMaxTableSide);
+      Imf::Header::setMaxTileSize(kMaxTableSide, kMaxTableSide);
+      return true;
+    }();
+    (void)limited;
+    checkHeader(fd.get(), size, path);
     FdIStream in(fd.get(), path, size);
     Imf::InputFile file(in);
     const Imf::Header& header = file.header();
@@ -344,15 +444,23 @@ Table readExr(const std::string& path, const std::vector<std::string>& requiredC
       throw TableError(path, text + ")");
     }
 
-    if (!file.isComplete()) {
-      throw TableError(path, "truncated or incomplete OpenEXR file (scanlines are missing)");
-    }
     const uint64_t count = static_cast<uint64_t>(width) * static_cast<uint64_t>(height) *
                            static_cast<uint64_t>(wanted.size());
-    if (count > (uint64_t{1} << 31)) {
+    if (count > kMaxTableValues) {
       throw TableError(path, "table too large: " + std::to_string(width) + " x " +
                                  std::to_string(height) + " x " +
                                  std::to_string(wanted.size()));
+    }
+    // No compression of EXR packs more than about 1000 bytes into one: a header promising
+    // more values than the file could hold is damaged (checked before allocating them).
+    if (count * sizeof(float) > kMaxCompressionRatio * size + (uint64_t{1} << 16)) {
+      throw TableError(path, "corrupt OpenEXR file: " + std::to_string(width) + " x " + std::to_string(height) +
+                                 " x " + std::to_string(wanted.size()) + " values cannot come from " +
+                                 std::to_string(size) + " bytes");
+    }
+
+    if (!file.isComplete()) {
+      throw TableError(path, "truncated or incomplete OpenEXR file (scanlines are missing)");
     }
 
     Table table;

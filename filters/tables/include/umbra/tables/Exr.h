@@ -23,8 +23,9 @@ void writeExr(const std::string& path, const Table& table);
 // Reads a table. With requiredChannels empty, reads every channel in the stored order;
 // otherwise exactly those channels, in that order. Throws TableError (one line, starting
 // with path) for a missing / unreadable file, a file that is not OpenEXR, a truncated or
-// corrupt file, a missing channel or a channel that is not FLOAT. Non-finite values are
-// returned as they are.
+// corrupt file, a missing channel or a channel that is not FLOAT, a table of more than
+// 2^28 values or 65536 a side, and a header promising more values than the file's size
+// could hold (before allocating them). Non-finite values are returned as they are.
 Table readExr(const std::string& path, const std::vector<std::string>& requiredChannels = {});
 
 }  // namespace umbra::tables

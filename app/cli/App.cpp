@@ -1,0 +1,28 @@
+#include "Commands.hpp"
+
+#include <string>
+
+namespace umbra::cli {
+
+void addCommands(CLI::App& app, Action& action) {
+  app.description("umbra: physically based visualization of eclipses, atmospheres and terrain shadows.\n"
+                  "Run 'umbra COMMAND --help' for the options of a command.");
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "umbra 0.1.0");
+  app.add_flag("--verbose", "Print VTK's own messages (warnings, GL errors) as they come; without it a failure is one line");
+  app.fallthrough();  // --verbose after the command's name too
+  // Parse errors read like every other error: one line on stderr.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "umbra: error: " + std::string(e.what()) + " (see --help)\n";
+  });
+  addRenderCommand(app, action);
+  addMoonCommand(app, action);
+  addPrecomputeCommand(app, action);
+  addProfileCommand(app, action);
+  addInspectCommand(app, action);
+  addAtmosphereCommand(app, action);
+  addTerrainCommand(app, action);
+  refuseEmptyAndNonFinite(app);
+}
+
+}  // namespace umbra::cli
