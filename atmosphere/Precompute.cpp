@@ -956,7 +956,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       const double* row1 = Ttab.at(0, iy + 1);
       for (std::size_t i = 0; i < Trow.size(); ++i) Trow[i] = (1 - wy) * row0[i] + wy * row1[i];
       sunTexels(shell, alpha, s.r[k], s.xr[k], s.yr[k], sxA.data(), muSA.data(), W, TW, visA.data(), fxA.data());
-      const double* a = &A[static_cast<std::size_t>(k) * ns * nl];
+      const double* a = A.data() + static_cast<std::size_t>(k) * ns * nl;  // A is empty without scatterers
       for (int x = 0; x < W; ++x) {
         const double vis = visA[x];
         if (vis == 0.0) continue;
@@ -964,7 +964,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
         const double wx = fxA[x] - ix;
         const double* T0 = &Trow[static_cast<std::size_t>(ix) * nl];
         const double* T1 = T0 + nl;
-        double* ax = &acc[static_cast<std::size_t>(x) * ns * nl];
+        double* ax = acc.data() + static_cast<std::size_t>(x) * ns * nl;
         for (int q = 0; q < ns; ++q)
           for (int l = 0; l < nl; ++l) ax[q * nl + l] += a[q * nl + l] * ((1 - wx) * T0[l] + wx * T1[l]) * vis;
       }

@@ -96,11 +96,11 @@ public:
     return metres;
   }
 
-  /// A radius or spacing: a length from 1 m to 1e12 m.
-  double positiveLength(const json& value, const std::string& field) const {
-    const double metres = length(value, field, "a length from 1 m to 1e12 m");
-    if (!(metres >= kMinRadiusM && metres <= kMaxRadiusM))
-      fail(field, "expected a length from 1 m to 1e12 m, " + got(value));
+  /// A radius: a length from 1 m to 1e12 m; a grid spacing: from 1 mm.
+  double positiveLength(const json& value, const std::string& field, double minM = kMinRadiusM,
+                        const char* range = "a length from 1 m to 1e12 m") const {
+    const double metres = length(value, field, range);
+    if (!(metres >= minM && metres <= kMaxRadiusM)) fail(field, std::string("expected ") + range + ", " + got(value));
     return metres;
   }
 
@@ -190,7 +190,8 @@ Terrain parseTerrain(const Reader& in, const json& value, const std::string& fie
     t.seed = static_cast<std::uint64_t>(in.integer(value["seed"], field + ".seed", 0, 2147483647));
     if (value.contains("size")) t.size = in.integer(value["size"], field + ".size", 2, 4096);
   }
-  if (value.contains("spacing")) t.spacingM = in.positiveLength(value["spacing"], field + ".spacing");
+  if (value.contains("spacing")) t.spacingM = in.positiveLength(value["spacing"], field + ".spacing", 1e-3,
+                                                                 "a length from 1 mm to 1e12 m");
   t.latDeg = in.number(value["latDeg"], field + ".latDeg", -90.0, 90.0, "a latitude in [-90, 90] degrees");
   t.lonDeg = in.number(value["lonDeg"], field + ".lonDeg", -360.0, 360.0, "a longitude in [-360, 360] degrees");
   return t;
