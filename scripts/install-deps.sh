@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs umbra's build and run dependencies from Debian 12 packages, and the data read
-# at run time: the Moon's albedo map (the Clementine mosaic in marble-qt-data).
+# at run time: the Moon's albedo map (the Clementine mosaic in marble-qt-data) and the star
+# catalogue (the Hipparcos/Tycho stars of kstars-data).
 # Idempotent: packages already present are not touched, and apt-get runs only when
 # something is missing. Uses sudo when not run as root.
 set -euo pipefail
@@ -11,7 +12,7 @@ packages=(
   libopenexr-dev libgeographiclib-dev libglm-dev liberfa-dev libboost-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev libgdal-dev
   xvfb xauth libgl1-mesa-dri libegl-dev libegl-mesa0
-  marble-qt-data
+  marble-qt-data kstars-data
 )
 
 missing=()

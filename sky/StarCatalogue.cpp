@@ -1,0 +1,86 @@
+#include "StarCatalogue.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+
+namespace umbra::sky {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// The number in columns [begin, end) of `line`, all of it.
+double field(const std::string& line, std::size_t begin, std::size_t end, const char* what) {
+  if (line.size() < end) throw std::invalid_argument(std::string(what) + ": the line ends before column " + std::to_string(end));
+  const std::string text = line.substr(begin, end - begin);
+  const char* start = text.c_str();
+  while (*start == ' ') ++start;
+  char* stop = nullptr;
+  errno = 0;
+  const double value = std::strtod(start, &stop);
+  if (stop == start || *stop != '\0' || errno == ERANGE || !std::isfinite(value))
+    throw std::invalid_argument(std::string(what) + ": expected a number in columns " + std::to_string(begin + 1) + "-" +
+                                std::to_string(end) + ", got '" + text + "'");
+  return value;
+}
+
+std::string trimmed(const std::string& s) {
+  const std::size_t a = s.find_first_not_of(' '), b = s.find_last_not_of(' ');
+  return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+}
+
+}  // namespace
+
+std::optional<CatalogueStar> parseKStarsLine(const std::string& line) {
+  if (line.empty() || line[0] == '#' || trimmed(line).empty()) return std::nullopt;
+  CatalogueStar s;
+  const double h = field(line, 0, 2, "RA hours"), m = field(line, 2, 4, "RA minutes"), sec = field(line, 4, 9, "RA seconds");
+  // Seconds of 60.00 occur (rounded up): they are taken as they are.
+  if (h >= 24.0 || m >= 60.0 || sec > 60.0) throw std::invalid_argument("RA: '" + line.substr(0, 9) + "' is not hhmmss.ss");
+  s.raRad = (h + m / 60.0 + sec / 3600.0) * kPi / 12.0;
+  if (line.size() < 19 || (line[10] != '+' && line[10] != '-'))
+    throw std::invalid_argument("Dec: expected a sign in column 11");
+  const double d = field(line, 11, 13, "Dec degrees"), dm = field(line, 13, 15, "Dec minutes"),
+               ds = field(line, 15, 19, "Dec seconds");
+  if (d > 90.0 || dm >= 60.0 || ds > 60.0) throw std::invalid_argument("Dec: '" + line.substr(10, 9) + "' is not sddmmss.s");
+  s.decRad = (line[10] == '-' ? -1.0 : 1.0) * (d + dm / 60.0 + ds / 3600.0) * kPi / 180.0;
+  if (std::abs(s.decRad) > kPi / 2.0) throw std::invalid_argument("Dec: beyond a pole");
+  s.pmRaCosDecMasPerYear = field(line, 20, 29, "proper motion in RA");
+  s.pmDecMasPerYear = field(line, 29, 38, "proper motion in Dec");
+  s.parallaxMas = field(line, 38, 45, "parallax");
+  s.vMag = field(line, 46, 51, "magnitude");
+  s.bMinusV = field(line, 51, 56, "B-V");
+  if (const std::size_t comma = line.find(','); comma != std::string::npos) {
+    const std::string rest = line.substr(comma + 1);
+    const std::size_t second = rest.find(',');
+    const std::string bayer = trimmed(rest.substr(0, second));
+    const std::string common = second == std::string::npos ? "" : trimmed(rest.substr(second + 1));
+    s.name = common.empty() ? bayer : common;
+  }
+  return s;
+}
+
+std::vector<CatalogueStar> readKStarsCatalogue(const std::string& path, double faintestVMag) {
+  std::ifstream in(path);
+  if (!in) throw StarCatalogueError(path + ": cannot open: " + std::strerror(errno) +
+                                    " (the star catalogue comes with Debian's kstars-data)");
+  std::vector<CatalogueStar> stars;
+  std::string line;
+  for (long number = 1; std::getline(in, line); ++number) {
+    try {
+      const std::optional<CatalogueStar> star = parseKStarsLine(line);
+      if (!star) continue;
+      if (star->vMag > faintestVMag) break;
+      stars.push_back(*star);
+    } catch (const std::invalid_argument& e) {
+      throw StarCatalogueError(path + ":" + std::to_string(number) + ": " + e.what());
+    }
+  }
+  if (in.bad()) throw StarCatalogueError(path + ": read error");
+  if (stars.empty() && faintestVMag >= 99.0) throw StarCatalogueError(path + ": no stars");
+  return stars;
+}
+
+}  // namespace umbra::sky

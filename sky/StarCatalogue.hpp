@@ -1,0 +1,38 @@
+#pragma once
+// A star catalogue: J2000 (ICRS) places with proper motions and parallaxes, V magnitudes and
+// B-V colours. Reads the Hipparcos/Tycho catalogue that KStars ships (Debian's kstars-data,
+// /usr/share/kstars/stars.dat: fixed-column text, 125 982 stars to V 8.99, brightest first).
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace umbra::sky {
+
+/// Where Debian's kstars-data puts the catalogue.
+inline constexpr const char* kKStarsCatalogue = "/usr/share/kstars/stars.dat";
+
+struct CatalogueStar {
+  double raRad = 0.0, decRad = 0.0;      ///< J2000, ICRS
+  double pmRaCosDecMasPerYear = 0.0;     ///< proper motion in RA times cos(Dec)
+  double pmDecMasPerYear = 0.0;
+  double parallaxMas = 0.0;
+  double vMag = 0.0;
+  double bMinusV = 0.0;
+  std::string name;  ///< the common name ("Sirius"), else the Bayer name ("alp CMa"), else ""
+};
+
+/// A catalogue file that cannot be read: what() is "<path>:<line>: <what>" or "<path>: <what>".
+struct StarCatalogueError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// One line of stars.dat: nullopt for a comment ('#') or a blank line. Throws
+/// std::invalid_argument naming the column that is not what the format says.
+std::optional<CatalogueStar> parseKStarsLine(const std::string& line);
+
+/// Every star of the file down to `faintestVMag` (the file is sorted by magnitude, so the
+/// reading stops at the first fainter star).
+std::vector<CatalogueStar> readKStarsCatalogue(const std::string& path, double faintestVMag = 99.0);
+
+}  // namespace umbra::sky

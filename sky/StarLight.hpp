@@ -1,0 +1,20 @@
+#pragma once
+// A star's light from its catalogue numbers: irradiance from the V magnitude relative to
+// the Sun's, and its colour temperature from B-V.
+
+namespace umbra::sky {
+
+/// The Sun's apparent V magnitude at 1 au.
+inline constexpr double kSunVMag = -26.74;
+
+/// Irradiance of a star of magnitude `vMag` relative to the Sun's at 1 au:
+/// 10^(-0.4 (V - V_sun)).
+double irradianceRelativeToSun(double vMag);
+
+/// Effective temperature from B-V (Ballesteros 2012, EPL 97, 34008):
+/// T = 4600 K (1 / (0.92 (B-V) + 1.7) + 1 / (0.92 (B-V) + 0.62)), for B-V in [-0.4, 2.0]
+/// (clamped there: beyond it the formula leaves the stars it was fitted to; at
+/// B-V = -0.6739 it would divide by zero).
+double ballesterosTemperatureK(double bMinusV);
+
+}  // namespace umbra::sky

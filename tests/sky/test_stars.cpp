@@ -1,0 +1,149 @@
+// The star catalogue (sky/StarCatalogue) on real rows of kstars-data's stars.dat typed in
+// here, and the closed forms of sky/StarLight.
+#include "StarCatalogue.hpp"
+#include "StarLight.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+using namespace umbra::sky;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kArcsecRad = kPi / 180.0 / 3600.0;
+
+// Rows of /usr/share/kstars/stars.dat (kstars-data 3.6.2), as they are in the file.
+const char* const kSirius =
+    "064508.92 -164258.0 -000546.0-001223.100379.2 -1.4400.01A0 1            , alp CMa, Sirius";
+const char* const kVega =
+    "183656.34 +384701.3 +000201.0+000287.500128.9 00.03-0.00A0 0            , alp Lyr, Vega";
+const char* const kPolaris =
+    "023149.09 +891550.8 +000044.2-000011.700007.6 01.9700.64F7 0 0.04   3.97, alp UMi, Polaris";
+const char* const kFaint = "191157.63 -201446.3 -000076.4+000009.700020.4 08.9902.02M? 0";
+
+double hms(double h, double m, double s) { return (h + m / 60.0 + s / 3600.0) * kPi / 12.0; }
+double dms(double sign, double d, double m, double s) { return sign * (d + m / 60.0 + s / 3600.0) * kPi / 180.0; }
+
+std::string writeFile(const std::string& name, const std::string& text) {
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+}  // namespace
+
+TEST(StarCatalogue, ReadsAKStarsRow) {
+  const auto sirius = parseKStarsLine(kSirius);
+  ASSERT_TRUE(sirius.has_value());
+  EXPECT_NEAR(sirius->raRad, hms(6, 45, 8.92), 0.001 * kArcsecRad);
+  EXPECT_NEAR(sirius->decRad, dms(-1, 16, 42, 58.0), 0.001 * kArcsecRad);
+  EXPECT_DOUBLE_EQ(sirius->pmRaCosDecMasPerYear, -546.0);
+  EXPECT_DOUBLE_EQ(sirius->pmDecMasPerYear, -1223.1);
+  EXPECT_DOUBLE_EQ(sirius->parallaxMas, 379.2);
+  EXPECT_DOUBLE_EQ(sirius->vMag, -1.44);
+  EXPECT_DOUBLE_EQ(sirius->bMinusV, 0.01);
+  EXPECT_EQ(sirius->name, "Sirius");
+
+  const auto vega = parseKStarsLine(kVega);
+  ASSERT_TRUE(vega.has_value());
+  EXPECT_DOUBLE_EQ(vega->bMinusV, 0.0);  // "-0.00"
+  EXPECT_NEAR(vega->decRad, dms(+1, 38, 47, 1.3), 0.001 * kArcsecRad);
+
+  const auto polaris = parseKStarsLine(kPolaris);  // with a variability amplitude and period
+  ASSERT_TRUE(polaris.has_value());
+  EXPECT_EQ(polaris->name, "Polaris");
+  EXPECT_NEAR(polaris->decRad, dms(+1, 89, 15, 50.8), 0.001 * kArcsecRad);
+
+  const auto faint = parseKStarsLine(kFaint);  // no name
+  ASSERT_TRUE(faint.has_value());
+  EXPECT_EQ(faint->name, "");
+  EXPECT_DOUBLE_EQ(faint->vMag, 8.99);
+
+  EXPECT_FALSE(parseKStarsLine("#  RA        DEC      pmRA").has_value());
+  EXPECT_FALSE(parseKStarsLine("   ").has_value());
+}
+
+TEST(StarCatalogue, BadRowsNameTheColumn) {
+  const auto messageOf = [](const std::string& line) {
+    try {
+      parseKStarsLine(line);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  std::string row = kSirius;
+  EXPECT_NE(messageOf(row.substr(0, 40)).find("parallax: the line ends before column 45"), std::string::npos);
+  row[47] = 'x';
+  EXPECT_NE(messageOf(row).find("magnitude: expected a number in columns 47-51"), std::string::npos);
+  row = kSirius;
+  row[10] = ' ';
+  EXPECT_NE(messageOf(row).find("Dec: expected a sign in column 11"), std::string::npos);
+  row = kSirius;
+  row.replace(0, 2, "25");
+  EXPECT_NE(messageOf(row).find("RA: '254508.92' is not hhmmss.ss"), std::string::npos);
+  row = kSirius;
+  row.replace(11, 2, "91");
+  EXPECT_NE(messageOf(row).find("is not sddmmss.s"), std::string::npos);
+}
+
+TEST(StarCatalogue, ReadsAFileToTheFaintestMagnitudeAndNamesBadLines) {
+  const std::string path = writeFile("umbra-stars-test.dat", std::string("# comment\n") + kSirius + "\n" + kVega +
+                                                                 "\n" + kPolaris + "\n" + kFaint + "\n");
+  EXPECT_EQ(readKStarsCatalogue(path).size(), 4u);
+  const auto bright = readKStarsCatalogue(path, 2.0);
+  ASSERT_EQ(bright.size(), 3u);
+  EXPECT_EQ(bright.back().name, "Polaris");
+
+  const std::string bad = writeFile("umbra-stars-bad.dat", std::string(kSirius) + "\n" + "064508.92 -16\n");
+  try {
+    readKStarsCatalogue(bad);
+    ADD_FAILURE() << "no error";
+  } catch (const StarCatalogueError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(bad + ":2: ", 0), 0u) << e.what();
+  }
+  try {
+    readKStarsCatalogue("/nonexistent/stars.dat");
+    ADD_FAILURE() << "no error";
+  } catch (const StarCatalogueError& e) {
+    EXPECT_NE(std::string(e.what()).find("kstars-data"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+  std::filesystem::remove(bad);
+}
+
+// The whole packaged catalogue, where kstars-data is installed: its size and brightest star.
+TEST(StarCatalogue, ThePackagedCatalogue) {
+  if (!std::filesystem::exists(kKStarsCatalogue)) GTEST_SKIP() << "kstars-data is not installed";
+  const auto stars = readKStarsCatalogue(kKStarsCatalogue);
+  EXPECT_EQ(stars.size(), 125982u);
+  EXPECT_EQ(stars.front().name, "Sirius");
+  EXPECT_DOUBLE_EQ(stars.back().vMag, 8.99);
+  EXPECT_EQ(readKStarsCatalogue(kKStarsCatalogue, 6.0).back().vMag <= 6.0, true);
+}
+
+TEST(StarLight, IrradianceFollowsTheMagnitudeScale) {
+  EXPECT_DOUBLE_EQ(irradianceRelativeToSun(kSunVMag), 1.0);
+  EXPECT_NEAR(irradianceRelativeToSun(kSunVMag + 5.0), 0.01, 1e-15);
+  EXPECT_NEAR(irradianceRelativeToSun(0.0) / irradianceRelativeToSun(1.0), std::pow(10.0, 0.4), 1e-12);
+}
+
+// Ballesteros' formula gives the Sun's effective temperature (5772 K, IAU 2015 B3) for
+// the Sun's B-V of 0.65 within 0.5 %, 10 125 K for B-V 0, and falls monotonically.
+TEST(StarLight, TemperatureFromBMinusV) {
+  EXPECT_NEAR(ballesterosTemperatureK(0.65), 5772.0, 0.005 * 5772.0);
+  EXPECT_NEAR(ballesterosTemperatureK(0.0), 4600.0 * (1.0 / 1.7 + 1.0 / 0.62), 1e-9);
+  double last = ballesterosTemperatureK(-0.4);
+  for (double bv = -0.35; bv <= 2.0; bv += 0.05) {
+    const double t = ballesterosTemperatureK(bv);
+    EXPECT_LT(t, last) << "B-V " << bv;
+    last = t;
+  }
+  EXPECT_TRUE(std::isfinite(ballesterosTemperatureK(-0.6739)));  // clamped, no division by zero
+  EXPECT_EQ(ballesterosTemperatureK(5.0), ballesterosTemperatureK(2.0));
+}
