@@ -1,7 +1,10 @@
 #include "StarLight.hpp"
 
+#include "Spectrum.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace umbra::sky {
 
@@ -11,5 +14,23 @@ double ballesterosTemperatureK(double bMinusV) {
   const double bv = std::clamp(bMinusV, -0.4, 2.0);
   return 4600.0 * (1.0 / (0.92 * bv + 1.7) + 1.0 / (0.92 * bv + 0.62));
 }
+
+glm::dvec3 blackbodyXyz(double temperatureK) {
+  if (!(temperatureK > 0.0) || !std::isfinite(temperatureK))
+    throw std::invalid_argument("blackbody: temperature must be positive and finite");
+  // Planck's law up to a constant factor (the result is scaled to Y = 1): h c / k = 0.014388 m K.
+  constexpr double kSecondRadiationConstantMK = 1.438776877e-2;
+  glm::dvec3 xyz(0.0);
+  for (int nm = static_cast<int>(atmosphere::kCmfMinNm); nm <= static_cast<int>(atmosphere::kCmfMaxNm); ++nm) {
+    const double lambdaM = nm * 1e-9;
+    const double planck = 1.0 / (std::pow(lambdaM * 1e6, 5) * std::expm1(kSecondRadiationConstantMK / (lambdaM * temperatureK)));
+    xyz += planck * atmosphere::cie1931(nm);
+  }
+  return xyz / xyz.y;
+}
+
+glm::dvec3 blackbodyLinearSrgb(double temperatureK) { return atmosphere::xyzToLinearSrgb(blackbodyXyz(temperatureK)); }
+
+glm::dvec3 starLinearSrgb(double bMinusV) { return blackbodyLinearSrgb(ballesterosTemperatureK(bMinusV)); }
 
 }  // namespace umbra::sky

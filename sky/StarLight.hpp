@@ -1,6 +1,7 @@
 #pragma once
 // A star's light from its catalogue numbers: irradiance from the V magnitude relative to
-// the Sun's, and its colour temperature from B-V.
+// the Sun's, its colour temperature from B-V, and its colour.
+#include <glm/vec3.hpp>
 
 namespace umbra::sky {
 
@@ -16,5 +17,16 @@ double irradianceRelativeToSun(double vMag);
 /// (clamped there: beyond it the formula leaves the stars it was fitted to; at
 /// B-V = -0.6739 it would divide by zero).
 double ballesterosTemperatureK(double bMinusV);
+
+/// CIE 1931 XYZ of a blackbody at `temperatureK` (Planck's law through the colour-matching
+/// functions in 1 nm steps, 360-830 nm), scaled to Y = 1.
+glm::dvec3 blackbodyXyz(double temperatureK);
+
+/// Its colour as umbra shows the Sun's: linear sRGB of blackbodyXyz, with no white balance
+/// of its own (the Sun's spectrum takes the same route), at unit luminance.
+glm::dvec3 blackbodyLinearSrgb(double temperatureK);
+
+/// blackbodyLinearSrgb(ballesterosTemperatureK(bMinusV)).
+glm::dvec3 starLinearSrgb(double bMinusV);
 
 }  // namespace umbra::sky

@@ -3,6 +3,8 @@
 #include "StarCatalogue.hpp"
 #include "StarLight.hpp"
 
+#include "Spectrum.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -146,4 +148,43 @@ TEST(StarLight, TemperatureFromBMinusV) {
   }
   EXPECT_TRUE(std::isfinite(ballesterosTemperatureK(-0.6739)));  // clamped, no division by zero
   EXPECT_EQ(ballesterosTemperatureK(5.0), ballesterosTemperatureK(2.0));
+}
+
+// The Planckian locus: CIE 1931 chromaticities of blackbodies from the CIE's tables
+// (CIE 15:2004; illuminant A is a 2856 K blackbody: x 0.44757, y 0.40745).
+TEST(StarLight, BlackbodyChromaticityOnThePlanckianLocus) {
+  const auto xy = [](double t) {
+    const glm::dvec3 c = blackbodyXyz(t);
+    return std::pair<double, double>(c.x / (c.x + c.y + c.z), c.y / (c.x + c.y + c.z));
+  };
+  EXPECT_NEAR(xy(2856.0).first, 0.44757, 5e-4);
+  EXPECT_NEAR(xy(2856.0).second, 0.40745, 5e-4);
+  EXPECT_NEAR(xy(5000.0).first, 0.3451, 5e-4);
+  EXPECT_NEAR(xy(5000.0).second, 0.3516, 5e-4);
+  EXPECT_DOUBLE_EQ(blackbodyXyz(5000.0).y, 1.0);
+  EXPECT_THROW(blackbodyXyz(0.0), std::invalid_argument);
+}
+
+// A star of the Sun's B-V (0.65) has the Sun's colour: the rgb chromaticity of the ASTM
+// G173 solar spectrum umbra lights its scenes with, within 0.01. Bluer stars (B-V 0) are
+// bluer, redder (1.5) redder, monotonically.
+TEST(StarLight, ColourFromBMinusV) {
+  glm::dvec3 sunXyz(0.0);
+  for (int nm = 360; nm <= 830; ++nm)
+    sunXyz += umbra::atmosphere::solarIrradianceWm2PerNm(nm) * umbra::atmosphere::cie1931(nm);
+  const glm::dvec3 sun = umbra::atmosphere::xyzToLinearSrgb(sunXyz / sunXyz.y);
+  const auto chroma = [](const glm::dvec3& c) { return c / (c.r + c.g + c.b); };
+  const glm::dvec3 star = starLinearSrgb(0.65);
+  EXPECT_NEAR(chroma(star).r, chroma(sun).r, 0.01);
+  EXPECT_NEAR(chroma(star).g, chroma(sun).g, 0.01);
+  EXPECT_NEAR(chroma(star).b, chroma(sun).b, 0.01);
+
+  double lastRedOverBlue = 0.0;
+  for (double bv = 0.0; bv <= 1.5 + 1e-9; bv += 0.1) {
+    const glm::dvec3 c = starLinearSrgb(bv);
+    EXPECT_GT(c.r / c.b, lastRedOverBlue) << "B-V " << bv;
+    lastRedOverBlue = c.r / c.b;
+  }
+  EXPECT_GT(starLinearSrgb(0.0).b, starLinearSrgb(0.0).r);
+  EXPECT_GT(starLinearSrgb(1.5).r, starLinearSrgb(1.5).b);
 }
