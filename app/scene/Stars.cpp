@@ -1,0 +1,51 @@
+#include "scene/Stars.hpp"
+
+#include "scene/Ephemeris.hpp"
+
+#include <erfa.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace umbra::scene {
+namespace {
+
+constexpr double kAuM = 149597870700.0;
+constexpr double kMasRad = 3.14159265358979323846 / 180.0 / 3600.0 / 1000.0;
+
+}  // namespace
+
+StarObserver observerOnEarth(double latDeg, double lonDeg, double altM, UtcTime time) {
+  constexpr double deg = 3.14159265358979323846 / 180.0;
+  double fixed[3];
+  if (eraGd2gc(1, lonDeg * deg, latDeg * deg, altM, fixed) != 0)
+    throw std::invalid_argument("observer: latitude, longitude or height out of range");
+  const glm::dvec3 r(fixed[0], fixed[1], fixed[2]);
+  // The velocity from the turning frame, by a central difference over 1 s.
+  const glm::dmat3 now = bodyFixedToInertial("Earth", time);
+  const glm::dmat3 before = bodyFixedToInertial("Earth", addSeconds(time, -1.0));
+  const glm::dmat3 after = bodyFixedToInertial("Earth", addSeconds(time, 1.0));
+  return {now * r, (after * r - before * r) / 2.0};
+}
+
+glm::dvec3 apparentStarDirection(const sky::CatalogueStar& star, UtcTime time, const StarObserver& observer) {
+  double tt1 = 0.0, tt2 = 0.0;
+  toTt(time, tt1, tt2);  // TDB differs from TT by < 2 ms: nothing here
+  double pv[2][3];
+  for (int i = 0; i < 3; ++i) {
+    pv[0][i] = observer.geocentricPositionM[i];
+    pv[1][i] = observer.geocentricVelocityMPerS[i];
+  }
+  eraASTROM astrom;
+  eraApcs13(tt1, tt2, pv, &astrom);  // ICRS to GCRS: its bpn is the identity
+  if (astrom.em * kAuM < 1000.0) throw std::invalid_argument("star places: the observer is at the Sun's centre");
+  // ERFA takes the proper motion in RA as dRA/dt, the catalogue gives it times cos(Dec).
+  const double cosDec = std::cos(star.decRad);
+  const double pmRa = cosDec > 1e-12 ? star.pmRaCosDecMasPerYear * kMasRad / cosDec : 0.0;
+  double ra = 0.0, dec = 0.0;
+  eraAtciq(star.raRad, star.decRad, pmRa, star.pmDecMasPerYear * kMasRad, star.parallaxMas / 1000.0, 0.0, &astrom, &ra,
+           &dec);
+  return {std::cos(dec) * std::cos(ra), std::cos(dec) * std::sin(ra), std::sin(dec)};
+}
+
+}  // namespace umbra::scene

@@ -1,0 +1,29 @@
+#pragma once
+// Where a catalogue star is seen: its apparent direction from an observer, in the scene's
+// ICRS-aligned axes, by ERFA: proper motion and parallax to the date, the Sun's light
+// deflection, and the aberration of the observer's motion (annual and, on a turning
+// body, diurnal). Refraction is the atmosphere's, not this.
+#include "StarCatalogue.hpp"
+#include "scene/Time.hpp"
+
+#include <glm/glm.hpp>
+
+namespace umbra::scene {
+
+/// An observer of star places: position [m] and velocity [m/s] relative to the Earth's
+/// centre, in GCRS (the scene's axes).
+struct StarObserver {
+  glm::dvec3 geocentricPositionM{0.0};
+  glm::dvec3 geocentricVelocityMPerS{0.0};
+};
+
+/// A point at geodetic latitude, longitude (degrees) and height (m) on the WGS84
+/// ellipsoid, turning with the Earth (bodyFixedToInertial("Earth")), at `time`.
+StarObserver observerOnEarth(double latDeg, double lonDeg, double altM, UtcTime time);
+
+/// Unit vector towards the star as `observer` sees it at `time`, in GCRS axes. The
+/// catalogue's places are taken as of J2000.0. Throws std::invalid_argument for an
+/// observer within 1 km of the Sun's centre (no light deflection to compute).
+glm::dvec3 apparentStarDirection(const sky::CatalogueStar& star, UtcTime time, const StarObserver& observer);
+
+}  // namespace umbra::scene
