@@ -91,3 +91,28 @@ TEST(StarPlaces, AberrationAndProperMotionMoveTheStar) {
   const glm::dvec3 a2100 = scene::apparentStarDirection(alphaCen, scene::parseUtc("2100-01-01T12:00:00Z"), scene::StarObserver{});
   EXPECT_NEAR(std::acos(glm::dot(a2000, a2100)) / kArcsec, 100.0 * std::hypot(3678.2, 481.8) / 1000.0, 30.0);
 }
+
+// The extremes: observers at the poles, 1 au from the Earth, dates 2000 years off: unit
+// vectors, never NaN; an observer at the Sun's centre is refused.
+TEST(StarPlaces, ExtremesGiveUnitDirectionsOrAClearError) {
+  const sky::CatalogueStar polaris = *sky::parseKStarsLine(kRows[2]);
+  const sky::CatalogueStar alphaCen = *sky::parseKStarsLine(kRows[3]);
+  for (const char* when : {"0026-06-01T00:00:00Z", "2026-06-01T00:00:00Z", "4026-06-01T00:00:00Z"}) {
+    const scene::UtcTime t = scene::parseUtc(when);
+    for (double lat : {90.0, -90.0}) {
+      const scene::StarObserver pole = scene::observerOnEarth(lat, 0.0, 0.0, t);
+      for (const auto* star : {&polaris, &alphaCen}) {
+        const glm::dvec3 d = scene::apparentStarDirection(*star, t, pole);
+        EXPECT_NEAR(glm::length(d), 1.0, 1e-12) << when << " latitude " << lat;
+      }
+    }
+    const scene::StarObserver farAway{{149597870700.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+    EXPECT_NEAR(glm::length(scene::apparentStarDirection(alphaCen, t, farAway)), 1.0, 1e-12) << when;
+    const glm::dvec3 sunFromEarth = scene::heliocentricPositionM("Sun", t) - scene::heliocentricPositionM("Earth", t);
+    EXPECT_THROW(scene::apparentStarDirection(alphaCen, t, scene::StarObserver{sunFromEarth, {}}), std::invalid_argument);
+  }
+  // A 2000-year baseline: Rigel Kentaurus has moved by 2000 x 3.7" = 2 deg.
+  const glm::dvec3 a = scene::apparentStarDirection(alphaCen, scene::parseUtc("0026-06-01T00:00:00Z"), {});
+  const glm::dvec3 b = scene::apparentStarDirection(alphaCen, scene::parseUtc("2026-06-01T00:00:00Z"), {});
+  EXPECT_NEAR(std::acos(glm::dot(a, b)) / kDeg, 2000.0 * std::hypot(3678.2, 481.8) / 1000.0 / 3600.0, 0.05);
+}
