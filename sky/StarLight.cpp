@@ -1,5 +1,6 @@
 #include "StarLight.hpp"
 
+#include "Sky.hpp"
 #include "Spectrum.hpp"
 
 #include <algorithm>
@@ -32,5 +33,14 @@ glm::dvec3 blackbodyXyz(double temperatureK) {
 glm::dvec3 blackbodyLinearSrgb(double temperatureK) { return atmosphere::xyzToLinearSrgb(blackbodyXyz(temperatureK)); }
 
 glm::dvec3 starLinearSrgb(double bMinusV) { return blackbodyLinearSrgb(ballesterosTemperatureK(bMinusV)); }
+
+double starIlluminanceLux(double vMag) {
+  static const double sunLux = atmosphere::solarIlluminanceLux();
+  return sunLux * irradianceRelativeToSun(vMag);
+}
+
+glm::dvec3 starIlluminanceLinearSrgb(double vMag, double bMinusV) {
+  return starLinearSrgb(bMinusV) * starIlluminanceLux(vMag);
+}
 
 }  // namespace umbra::sky

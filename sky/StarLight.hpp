@@ -29,4 +29,12 @@ glm::dvec3 blackbodyLinearSrgb(double temperatureK);
 /// blackbodyLinearSrgb(ballesterosTemperatureK(bMinusV)).
 glm::dvec3 starLinearSrgb(double bMinusV);
 
+/// A star's illuminance at normal incidence [lx] above any atmosphere: the Sun's at 1 au
+/// (atmosphere::solarIlluminanceLux, from its spectrum) times irradianceRelativeToSun(V).
+double starIlluminanceLux(double vMag);
+
+/// The same as linear sRGB: starLinearSrgb(bMinusV) times starIlluminanceLux(vMag), so
+/// that its luminance (Y) is the illuminance.
+glm::dvec3 starIlluminanceLinearSrgb(double vMag, double bMinusV);
+
 }  // namespace umbra::sky

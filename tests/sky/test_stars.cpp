@@ -188,3 +188,14 @@ TEST(StarLight, ColourFromBMinusV) {
   EXPECT_GT(starLinearSrgb(0.0).b, starLinearSrgb(0.0).r);
   EXPECT_GT(starLinearSrgb(1.5).r, starLinearSrgb(1.5).b);
 }
+
+// A star's illuminance: V = 0 gives 2.54e-6 lx by the relation V = -13.98 - 2.5 log10(E / lx)
+// (Allen's Astrophysical Quantities) within 0.1 mag, through the Sun's spectrum and
+// V_sun = -26.74; its linear sRGB has that illuminance as its luminance.
+TEST(StarLight, IlluminanceOfAZeroMagnitudeStar) {
+  EXPECT_NEAR(-13.98 - 2.5 * std::log10(starIlluminanceLux(0.0)), 0.0, 0.1);
+  EXPECT_NEAR(starIlluminanceLux(-1.44) / starIlluminanceLux(6.0), std::pow(10.0, 0.4 * 7.44), 1e-9 * std::pow(10.0, 2.976));
+  const glm::dvec3 sirius = starIlluminanceLinearSrgb(-1.44, 0.01);
+  EXPECT_NEAR(0.2126 * sirius.r + 0.7152 * sirius.g + 0.0722 * sirius.b, starIlluminanceLux(-1.44),
+              2e-3 * starIlluminanceLux(-1.44));
+}
