@@ -5,6 +5,7 @@
 #include "OutputFile.hpp"
 #include "ShadowCommon.hpp"  // lengthOption
 
+#include "scene/Ephemeris.hpp"
 #include "scene/Moon.hpp"
 #include "scene/Time.hpp"
 
@@ -132,6 +133,11 @@ void addMoonCommand(CLI::App& app, Action& action) {
           throw CommandError(std::string("--time: ") + e.what());
         }
       }
+      for (const scene::UtcTime& t : {times.front(), times.back()})
+        if (const std::string note = scene::ephemerisRangeNote(t); !note.empty()) {
+          std::cerr << "umbra: " << note << "\n";
+          break;
+        }
       std::vector<std::string> rows;
       std::vector<scene::MoonNumbers> numbers;
       for (const scene::UtcTime& t : times) {

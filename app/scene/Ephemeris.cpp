@@ -84,6 +84,16 @@ glm::dvec3 heliocentricPositionM(const std::string& body, UtcTime time) {
   return auToM(pv[0]);
 }
 
+std::string ephemerisRangeNote(UtcTime time) {
+  double tt1 = 0.0, tt2 = 0.0;
+  toTt(time, tt1, tt2);
+  double pvh[2][3], pvb[2][3];
+  if (eraEpv00(tt1, tt2, pvh, pvb) == 0) return "";
+  return "note: " + formatUtc(time) +
+         " is outside 1900-2100, the years ERFA's Earth ephemeris (epv00) is fitted to: the positions of the Earth, "
+         "the Moon and the planets are less exact there";
+}
+
 bool hasRotationModel(const std::string& body) { return hasEphemeris(body); }
 
 glm::dmat3 iauBodyFixedToInertial(double alpha0Deg, double delta0Deg, double wDeg) {

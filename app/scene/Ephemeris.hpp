@@ -18,6 +18,11 @@ bool hasEphemeris(const std::string& body);
 /// eraMoon98), Mars (eraPlan94). Throws std::invalid_argument for other bodies.
 glm::dvec3 heliocentricPositionM(const std::string& body, UtcTime time);
 
+/// "" at times the ephemerides are made for, else a note that positions degrade there:
+/// ERFA's Earth ephemeris (eraEpv00, which the Moon's and every heliocentric place go
+/// through) is fitted to 1900-2100; outside, it still gives positions, less exact.
+std::string ephemerisRangeNote(UtcTime time);
+
 /// True for the bodies bodyFixedToInertial knows: Sun, Earth, Moon, Mars.
 bool hasRotationModel(const std::string& body);
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -40,6 +41,20 @@ TEST(MoonCli, MeeusExampleDate) {
   EXPECT_NE(r.out.find("-1.20"), std::string::npos) << r.out;  // l'
   EXPECT_NE(r.out.find("+4.19"), std::string::npos) << r.out;  // b'
   EXPECT_EQ(r.out.find("altitude"), std::string::npos);       // geocentric: no horizon
+}
+
+// Inside 1900-2100 no note; beyond it the numbers still come, with one note that the
+// ephemeris degrades there.
+TEST(MoonCli, ANoteBeyondTheEphemerisYears) {
+  const RunResult inside = run(UMBRA_EXE, {"moon", "--time", "2026-10-26T04:00:00Z"});
+  ASSERT_EQ(inside.exitCode, 0) << inside.err;
+  EXPECT_EQ(inside.err, "");
+  const RunResult beyond = run(UMBRA_EXE, {"moon", "--time", "2300-01-01T00:00:00Z"});
+  ASSERT_EQ(beyond.exitCode, 0) << beyond.err;
+  EXPECT_EQ(beyond.err.rfind("umbra: note: 2300-01-01T00:00:00", 0), 0u) << beyond.err;
+  EXPECT_NE(beyond.err.find("outside 1900-2100"), std::string::npos) << beyond.err;
+  EXPECT_EQ(std::count(beyond.err.begin(), beyond.err.end(), '\n'), 1) << beyond.err;
+  EXPECT_NE(beyond.out.find("distance"), std::string::npos) << beyond.out;
 }
 
 // A table over a month from an observer: one row per day, every value finite, the phase

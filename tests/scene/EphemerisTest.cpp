@@ -32,6 +32,17 @@ void expectRotation(const glm::dmat3& m) {
 
 } // namespace
 
+// The years ERFA's Earth ephemeris is fitted to: no note inside, one naming the time outside.
+TEST(Ephemeris, RangeNoteOutside1900To2100) {
+  EXPECT_EQ(ephemerisRangeNote(parseUtc("2026-10-26T04:00:00Z")), "");
+  EXPECT_EQ(ephemerisRangeNote(parseUtc("1901-01-01T00:00:00Z")), "");
+  for (const char* t : {"1850-01-01T00:00:00Z", "2150-01-01T00:00:00Z"}) {
+    const std::string note = ephemerisRangeNote(parseUtc(t));
+    EXPECT_EQ(note.rfind(std::string("note: ") + std::string(t).substr(0, 10), 0), 0u) << note;
+    EXPECT_NE(note.find("outside 1900-2100"), std::string::npos) << note;
+  }
+}
+
 TEST(Ephemeris, SunIsTheOrigin) {
   EXPECT_EQ(heliocentricPositionM("Sun", parseUtc("2015-09-28T02:47Z")), glm::dvec3(0.0));
 }
