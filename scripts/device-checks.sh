@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# The GPU checks of issue #6, on EGL (no X server, no VTK installed), from
-# scripts/device-kit.sh's .devkit/kit.tar.xz. For the `device` tool's machine, from the
-# repository root:
+# The GPU checks (paper Tables 1-2, CPU against GLSL), on EGL (no X server, no VTK
+# installed), from scripts/device-kit.sh's .devkit/kit.tar.xz. On the GPU machine, with
+# .devkit/ and .gl/ beside the source tree, from the repository root (about 8 minutes):
 #
-#   run  command: bash scripts/device-checks.sh   carry: [".devkit", ".gl"]   timeout_s: 480
+#   bash scripts/device-checks.sh
 #
 # 1. $OUT/glsl-tests.txt: the rendering tests (CPU reference against GLSL, the extremes)
 #    with every window on the GPU (UMBRA_TEST_EGL=1).

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Packs what the GPU checks need on a machine that has no VTK, no X server and no package
-# mirror (the `device` tool's machine; docs/accuracy-vs-speed.md, "Frame-time ratios on a
+# mirror (a GPU machine; docs/accuracy-vs-speed.md, "Frame-time ratios on a
 # GPU"): .devkit/kit.tar.xz with the two frame-time benches, the rendering tests (CPU
 # against GLSL), the shared libraries they load (all but glibc >= 2.36,
 # libstdc++ and the GL loaders), the benches' small tables from the cache; and .gl/ with
@@ -9,7 +9,7 @@
 #
 #   scripts/device-kit.sh [BUILD_DIR]      (default: build; builds the benches first)
 #
-# Both .devkit/ and .gl/ are ignored by git; name them in the device tool's `carry`.
+# Both .devkit/ and .gl/ are ignored by git; copy them with the source tree to the GPU machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -58,7 +58,7 @@ mkdir -p .devkit
 tar -C "$stage" -cJf .devkit/kit.tar.xz.part kit
 mv .devkit/kit.tar.xz.part .devkit/kit.tar.xz
 
-# The GL loaders, as the device tool's README asks (Debian's packages, unpacked there).
+# The GL loaders (Debian's packages, unpacked on the GPU machine).
 mkdir -p .gl
 (cd .gl && apt-get download libegl1 libglvnd0 libopengl0 libgl1 libglx0 >/dev/null)
 echo "device-kit: .devkit/kit.tar.xz ($(du -h .devkit/kit.tar.xz | cut -f1)), .gl/ ($(du -sh .gl | cut -f1))"
