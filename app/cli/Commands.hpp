@@ -34,6 +34,10 @@ struct CacheOptions {
 /// units s, min, h, d), at most 100 000 of them. Throws CommandError naming the option.
 std::vector<scene::UtcTime> timeSteps(const std::string& from, const std::string& to, const std::string& step);
 
+/// One "umbra: note:" line on stderr when the first or the last of `times` lies beyond
+/// the years the ephemerides are fitted to (scene::ephemerisRangeNote).
+void noteTimesBeyondEphemeris(const std::vector<scene::UtcTime>& times);
+
 /// The whole command line on `app`: its description, version flag, one-line parse
 /// errors, every command and the number checks; `action` is set by the command parsed.
 void addCommands(CLI::App& app, Action& action);

@@ -5,7 +5,6 @@
 #include "OutputFile.hpp"
 #include "ShadowCommon.hpp"  // lengthOption
 
-#include "scene/Ephemeris.hpp"
 #include "scene/Moon.hpp"
 #include "scene/Time.hpp"
 
@@ -133,11 +132,7 @@ void addMoonCommand(CLI::App& app, Action& action) {
           throw CommandError(std::string("--time: ") + e.what());
         }
       }
-      for (const scene::UtcTime& t : {times.front(), times.back()})
-        if (const std::string note = scene::ephemerisRangeNote(t); !note.empty()) {
-          std::cerr << "umbra: " << note << "\n";
-          break;
-        }
+      noteTimesBeyondEphemeris(times);
       std::vector<std::string> rows;
       std::vector<scene::MoonNumbers> numbers;
       for (const scene::UtcTime& t : times) {

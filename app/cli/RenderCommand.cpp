@@ -21,7 +21,6 @@
 #include "vtkEclipseShadowLutSource.h"
 #include "vtkLimbLuminanceSource.h"
 
-#include "scene/Ephemeris.hpp"
 #include "scene/Scene.hpp"
 #include "scene/Time.hpp"
 #include "scene/Units.hpp"
@@ -142,14 +141,10 @@ void addRenderCommand(CLI::App& app, Action& action) {
           throw CommandError(std::string("--time: ") + e.what());
         }
       }
-      // A note when the scene's time (or an animation's first or last frame) is beyond the ephemerides.
-      for (const scene::UtcTime& t : animation ? std::vector<scene::UtcTime>{frames.front().time, frames.back().time}
-                                               : std::vector<scene::UtcTime>{s.time})
-        if (s.hasTime || animation)
-          if (const std::string note = scene::ephemerisRangeNote(t); !note.empty()) {
-            std::cerr << "umbra: " << note << "\n";
-            break;
-          }
+      if (animation)
+        noteTimesBeyondEphemeris({frames.front().time, frames.back().time});
+      else if (s.hasTime)
+        noteTimesBeyondEphemeris({s.time});
       if (!o->size.empty()) parseSize(o->size, s.width, s.height);
       if (o->exposure) s.exposureEv = *o->exposure;
       if (o->atmosphereTables != "default" && o->atmosphereTables != "small")

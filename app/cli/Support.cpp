@@ -1,5 +1,6 @@
 #include "Commands.hpp"
 
+#include "scene/Ephemeris.hpp"
 #include "scene/Units.hpp"
 
 #include <unistd.h>
@@ -49,6 +50,15 @@ std::vector<scene::UtcTime> timeSteps(const std::string& from, const std::string
   std::vector<scene::UtcTime> times;
   for (int k = 0; k < static_cast<int>(count); ++k) times.push_back(scene::addSeconds(t0, k * stepS));
   return times;
+}
+
+void noteTimesBeyondEphemeris(const std::vector<scene::UtcTime>& times) {
+  if (times.empty()) return;
+  for (const scene::UtcTime& t : {times.front(), times.back()})
+    if (const std::string note = scene::ephemerisRangeNote(t); !note.empty()) {
+      std::cerr << "umbra: " << note << "\n";
+      return;
+    }
 }
 
 void refuseEmptyAndNonFinite(CLI::App& app) {

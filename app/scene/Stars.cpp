@@ -1,6 +1,6 @@
 #include "scene/Stars.hpp"
 
-#include "scene/Ephemeris.hpp"
+#include "scene/Units.hpp"
 
 #include <erfa.h>
 
@@ -10,22 +10,15 @@
 namespace umbra::scene {
 namespace {
 
-constexpr double kAuM = 149597870700.0;
 constexpr double kMasRad = 3.14159265358979323846 / 180.0 / 3600.0 / 1000.0;
 
 }  // namespace
 
-StarObserver observerOnEarth(double latDeg, double lonDeg, double altM, UtcTime time) {
-  constexpr double deg = 3.14159265358979323846 / 180.0;
-  double fixed[3];
-  if (eraGd2gc(1, lonDeg * deg, latDeg * deg, altM, fixed) != 0)
-    throw std::invalid_argument("observer: latitude, longitude or height out of range");
-  const glm::dvec3 r(fixed[0], fixed[1], fixed[2]);
+StarObserver observerOnEarth(const Body& earth, const Observer& observer, UtcTime time) {
   // The velocity from the turning frame, by a central difference over 1 s.
-  const glm::dmat3 now = bodyFixedToInertial("Earth", time);
-  const glm::dmat3 before = bodyFixedToInertial("Earth", addSeconds(time, -1.0));
-  const glm::dmat3 after = bodyFixedToInertial("Earth", addSeconds(time, 1.0));
-  return {now * r, (after * r - before * r) / 2.0};
+  const glm::dvec3 before = observerPositionM(earth, observer, addSeconds(time, -1.0));
+  const glm::dvec3 after = observerPositionM(earth, observer, addSeconds(time, 1.0));
+  return {observerPositionM(earth, observer, time) - earth.positionM, (after - before) / 2.0};
 }
 
 glm::dvec3 apparentStarDirection(const sky::CatalogueStar& star, UtcTime time, const StarObserver& observer) {

@@ -4,6 +4,7 @@
 // deflection, and the aberration of the observer's motion (annual and, on a turning
 // body, diurnal). Refraction is the atmosphere's, not this.
 #include "StarCatalogue.hpp"
+#include "scene/Scene.hpp"
 #include "scene/Time.hpp"
 
 #include <glm/glm.hpp>
@@ -17,9 +18,9 @@ struct StarObserver {
   glm::dvec3 geocentricVelocityMPerS{0.0};
 };
 
-/// A point at geodetic latitude, longitude (degrees) and height (m) on the WGS84
-/// ellipsoid, turning with the Earth (bodyFixedToInertial("Earth")), at `time`.
-StarObserver observerOnEarth(double latDeg, double lonDeg, double altM, UtcTime time);
+/// A scene observer on the Earth (observerPositionM: the body's ellipsoid, turning with
+/// it), at `time`; its velocity is the Earth's rotation.
+StarObserver observerOnEarth(const Body& earth, const Observer& observer, UtcTime time);
 
 /// Unit vector towards the star as `observer` sees it at `time`, in GCRS axes. The
 /// catalogue's places are taken as of J2000.0. Throws std::invalid_argument for an

@@ -36,8 +36,11 @@ namespace {
 /// The largest table read: 2^28 values (1 GiB of floats), at most 65536 a side.
 constexpr uint64_t kMaxTableValues = uint64_t{1} << 28;
 constexpr int kMaxTableSide = 1 << 16;
-/// Deflate's limit is 1032:1; EXR's other compressions pack less.
-constexpr uint64_t kMaxCompressionRatio = 2048;
+/// Whether `values` floats can come from a file of `fileBytes`: deflate's limit is
+/// 1032:1 and EXR's other compressions pack less, so 2048:1 (and 64 KiB) is generous.
+bool valuesFitFile(uint64_t values, uint64_t fileBytes) {
+  return values * sizeof(float) <= 2048 * fileBytes + (uint64_t{1} << 16);
+}
 
 std::string errorText(int err) { return std::error_code(err, std::generic_category()).message(); }
 
@@ -186,7 +189,7 @@ void checkHeader(int fd, uint64_t size, const std::string& path) {
       const int64_t width = int64_t{int32At(at + 8)} - int32At(at) + 1;
       const int64_t height = int64_t{int32At(at + 12)} - int32At(at + 4) + 1;
       if (width > 0 && height > 0 && width <= kMaxTableSide && height <= kMaxTableSide &&
-          static_cast<uint64_t>(width * height) * sizeof(float) > kMaxCompressionRatio * size + (uint64_t{1} << 16))
+          !valuesFitFile(static_cast<uint64_t>(width * height), size))
         throw corrupt(std::to_string(width) + " x " + std::to_string(height) + " values cannot come from " +
                       std::to_string(size) + " bytes");
     }
@@ -453,7 +456,7 @@ Table readExr(const std::string& path, const std::vector<std::string>& requiredC
     }
     // No compression of EXR packs more than about 1000 bytes into one: a header promising
     // more values than the file could hold is damaged (checked before allocating them).
-    if (count * sizeof(float) > kMaxCompressionRatio * size + (uint64_t{1} << 16)) {
+    if (!valuesFitFile(count, size)) {
       throw TableError(path, "corrupt OpenEXR file: " + std::to_string(width) + " x " + std::to_string(height) +
                                  " x " + std::to_string(wanted.size()) + " values cannot come from " +
                                  std::to_string(size) + " bytes");
