@@ -1,4 +1,4 @@
-// Speed against accuracy of the atmosphere tables (Bruneton 2017 scheme, issue #3):
+// Speed against accuracy of the atmosphere tables (Bruneton 2017 scheme):
 // time per stage and in total against table sizes, scattering orders, the refraction step
 // and the number of wavelengths, with the error of the sky radiance looked up in each
 // against a reference configuration, and the peak memory. Prints Markdown for

@@ -1,4 +1,4 @@
-// Time and error of the eclipse tables through an atmosphere (issue 4): the complete Earth
+// Time and error of the eclipse tables through an atmosphere: the complete Earth
 // set (atmosphere tables with refraction, shadow LuT, limb-luminance LuT), how each stage
 // scales with its size, the full LuT against the part a scene needs (the u range of the
 // Moon's distances), and the error of the shadow LuT, the limb-view size and the refraction

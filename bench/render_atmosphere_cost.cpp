@@ -1,4 +1,4 @@
-// Frame time of the atmosphere in the render pass (issue #6; eclipse paper Tables 1-2:
+// Frame time of the atmosphere in the render pass (eclipse paper Tables 1-2:
 // refraction +20 %): the earth-sunset example rendered without the atmosphere, with it,
 // with refraction, and with the atmosphere and glare (strength 1), interleaved frame by frame, timed with GL timer queries
 // (GL_TIME_ELAPSED around the frame) and with the wall clock (after glFinish); prints the

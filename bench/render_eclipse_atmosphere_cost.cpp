@@ -1,5 +1,5 @@
-// Frame time of the eclipse through an atmosphere in the render pass (issue #6, part 3;
-// eclipse paper 6.2): two scenes of the 2015-09-28 eclipse at 1920x1080, every
+// Frame time of the eclipse through an atmosphere in the render pass (eclipse paper
+// 6.2): two scenes of the 2015-09-28 eclipse at 1920x1080, every
 // configuration interleaved frame by frame in one run, timed with GL timer queries
 // (GL_TIME_ELAPSED around the frame) and the wall clock (after glFinish); prints medians.
 //   The Moon from Earth (no sky drawn): shadow off (no occluder), airless shadow LuT,

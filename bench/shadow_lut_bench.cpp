@@ -1,4 +1,4 @@
-// Speed against accuracy of the airless eclipse-shadow LuT (issue: foundation).
+// Speed against accuracy of the airless eclipse-shadow LuT.
 // For each size, the build time (best of --repeats runs) and the error of the bilinearly
 // sampled LuT against a 1024x1024 reference LuT and against the exact shadow function.
 // Prints a Markdown table for docs/accuracy-vs-speed.md.

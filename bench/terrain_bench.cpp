@@ -1,4 +1,4 @@
-// Soft terrain shadows (issue #5): the dynamic-programming search (DP) against uniform
+// Soft terrain shadows: the dynamic-programming search (DP) against uniform
 // stepping, both against the reference, on the synthetic crater field, at several DEM sizes.
 //
 // Error: |fraction - reference| at --receivers random receivers (mean, sigma, 99th

@@ -1,5 +1,5 @@
 #pragma once
-// Glare of the HDR frame (issue 6, HDR): a bright source (the Sun, a thin lit limb) spreads
+// Glare of the HDR frame: a bright source (the Sun, a thin lit limb) spreads
 // a little of its light into halos around it, as in an eye or a camera lens, without
 // changing the frame's total energy:
 //     out = (1 - sum_k f_k) in + sum_k f_k (G_k * in)

@@ -1,5 +1,5 @@
 #pragma once
-// vtkAtmosphereTablesSource: the precomputed tables of a model atmosphere (issue #3) as
+// vtkAtmosphereTablesSource: the precomputed tables of a model atmosphere as
 // a vtkMultiBlockDataSet of vtkImageData blocks, each with its parameters in field data
 // (umbra::filters::fieldParameters; "kind" names the table). Only the tables asked for
 // (SetTables) are made; each is cached on disk as one EXR file, keyed by a hash of the
