@@ -42,16 +42,18 @@ double skyLowestSunZenithRad(double sunZenithRad) {
   return std::clamp(sunZenithRad + 20.0 * deg, 102.0 * deg, 170.0 * deg);
 }
 
-double solarIlluminanceLux() {
+glm::dvec3 solarXyzLux() {
   // 1 nm trapezoid; both functions are piecewise linear on (at most) 1 nm pieces or
   // smoother, so this is accurate to far better than 0.1 %.
-  double sum = 0.0;
+  glm::dvec3 sum(0.0);
   for (int nm = static_cast<int>(kCmfMinNm); nm <= static_cast<int>(kCmfMaxNm); ++nm) {
     const double w = (nm == static_cast<int>(kCmfMinNm) || nm == static_cast<int>(kCmfMaxNm)) ? 0.5 : 1.0;
-    sum += w * solarIrradianceWm2PerNm(nm) * cie1931(nm).y;
+    sum += w * solarIrradianceWm2PerNm(nm) * cie1931(nm);
   }
   return kMaxLuminousEfficacyLmPerW * sum;
 }
+
+double solarIlluminanceLux() { return solarXyzLux().y; }
 
 SkySample skyLuminanceAt(const AtmosphereTables& tables, const Atmosphere& atmosphere,
                          const WavelengthSet& wavelengths, double sunZenithRad, double observerAltitudeM,

@@ -29,6 +29,10 @@ namespace umbra::atmosphere {
 /// solarIrradianceWm2PerNm and the CIE 1931 ybar). About 1.33e5 lx (docs/sky-validation.md).
 double solarIlluminanceLux();
 
+/// X, Y, Z [lx] of that Sun (the same integral with xbar, ybar, zbar): Y is
+/// solarIlluminanceLux(). Its chromaticity is the white every render is balanced to.
+glm::dvec3 solarXyzLux();
+
 struct SkySample {
   double viewZenithRad = 0.0;
   double azimuthRad = 0.0;      ///< from the Sun's azimuth

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <map>
+#include <mutex>
 
 namespace umbra::sky {
 namespace {
@@ -80,6 +83,25 @@ std::vector<CatalogueStar> readKStarsCatalogue(const std::string& path, double f
   }
   if (in.bad()) throw StarCatalogueError(path + ": read error");
   if (stars.empty() && faintestVMag >= 99.0) throw StarCatalogueError(path + ": no stars");
+  return stars;
+}
+
+std::shared_ptr<const std::vector<CatalogueStar>> cachedCatalogue(const std::string& path) {
+  struct Entry {
+    std::uintmax_t size = 0;
+    std::filesystem::file_time_type time;
+    std::shared_ptr<const std::vector<CatalogueStar>> stars;
+  };
+  static std::mutex mutex;
+  static std::map<std::string, Entry> entries;
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  const std::filesystem::file_time_type time = ec ? std::filesystem::file_time_type() : std::filesystem::last_write_time(path, ec);
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto it = entries.find(path);
+  if (!ec && it != entries.end() && it->second.size == size && it->second.time == time) return it->second.stars;
+  auto stars = std::make_shared<const std::vector<CatalogueStar>>(readKStarsCatalogue(path));
+  if (!ec) entries[path] = {size, time, stars};
   return stars;
 }
 

@@ -2,6 +2,7 @@
 // A star catalogue: J2000 (ICRS) places with proper motions and parallaxes, V magnitudes and
 // B-V colours. Reads the Hipparcos/Tycho catalogue that KStars ships (Debian's kstars-data,
 // /usr/share/kstars/stars.dat: fixed-column text, 125 982 stars to V 8.99, brightest first).
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -34,5 +35,10 @@ std::optional<CatalogueStar> parseKStarsLine(const std::string& line);
 /// Every star of the file down to `faintestVMag` (the file is sorted by magnitude, so the
 /// reading stops at the first fainter star).
 std::vector<CatalogueStar> readKStarsCatalogue(const std::string& path, double faintestVMag = 99.0);
+
+/// The whole catalogue at `path` (readKStarsCatalogue), read once per process and kept
+/// while the file's size and modification time stay the same. Thread-safe. Throws as
+/// readKStarsCatalogue.
+std::shared_ptr<const std::vector<CatalogueStar>> cachedCatalogue(const std::string& path);
 
 }  // namespace umbra::sky

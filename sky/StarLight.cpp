@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace umbra::sky {
 
@@ -41,6 +42,34 @@ double starIlluminanceLux(double vMag) {
 
 glm::dvec3 starIlluminanceLinearSrgb(double vMag, double bMinusV) {
   return starLinearSrgb(bMinusV) * starIlluminanceLux(vMag);
+}
+
+glm::dvec3 sunLinearSrgb() {
+  static const glm::dvec3 rgb = [] {
+    const glm::dvec3 xyz = atmosphere::solarXyzLux();
+    return atmosphere::xyzToLinearSrgb(xyz / xyz.y);
+  }();
+  return rgb;
+}
+
+glm::dvec3 starFrameColour(double bMinusV) {
+  constexpr double kLo = -0.4, kHi = 2.0, kStep = 0.01;
+  constexpr int kCount = 241;  // (kHi - kLo) / kStep + 1
+  static const std::vector<glm::dvec3> table = [] {
+    std::vector<glm::dvec3> t(kCount);
+    const glm::dvec3 sun = sunLinearSrgb();
+    for (int i = 0; i < kCount; ++i) t[i] = starLinearSrgb(kLo + i * kStep) / sun;
+    return t;
+  }();
+  if (!std::isfinite(bMinusV)) throw std::invalid_argument("star colour: B-V must be finite");
+  const double x = (std::clamp(bMinusV, kLo, kHi) - kLo) / kStep;
+  const int i = std::min(static_cast<int>(std::floor(x)), kCount - 2);
+  const double f = x - i;
+  return f < 1e-9 ? table[i] : table[i] * (1.0 - f) + table[i + 1] * f;
+}
+
+glm::dvec3 starFrameIrradianceWm2(double vMag, double bMinusV, double sunIrradianceAt1AuWm2) {
+  return sunIrradianceAt1AuWm2 * irradianceRelativeToSun(vMag) * starFrameColour(bMinusV);
 }
 
 }  // namespace umbra::sky

@@ -37,4 +37,20 @@ double starIlluminanceLux(double vMag);
 /// that its luminance (Y) is the illuminance.
 glm::dvec3 starIlluminanceLinearSrgb(double vMag, double bMinusV);
 
+/// The Sun's colour in linear sRGB at unit luminance: the top-of-atmosphere solar spectrum
+/// (atmosphere::solarXyzLux) through the CIE functions. umbra's frames are white-balanced
+/// to it: the bare Sun is drawn (1, 1, 1) times its irradiance.
+glm::dvec3 sunLinearSrgb();
+
+/// A star's colour in the frames' white balance: starLinearSrgb(bMinusV) divided channel by
+/// channel by sunLinearSrgb(), so that a star with the Sun's spectrum would be (1, 1, 1)
+/// and undoing the balance (times sunLinearSrgb) gives back luminance 1. Tabulated in
+/// 0.01 steps of B-V (the catalogue's precision: exact there), linear in between.
+glm::dvec3 starFrameColour(double bMinusV);
+
+/// A star's irradiance above any atmosphere in the frames' units: linear sRGB in W m^-2,
+/// white-balanced to the Sun, for a Sun of `sunIrradianceAt1AuWm2` at 1 au:
+/// sunIrradianceAt1AuWm2 * irradianceRelativeToSun(vMag) * starFrameColour(bMinusV).
+glm::dvec3 starFrameIrradianceWm2(double vMag, double bMinusV, double sunIrradianceAt1AuWm2);
+
 }  // namespace umbra::sky

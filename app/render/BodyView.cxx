@@ -78,6 +78,7 @@ struct BodyView::Impl {
   vtkSmartPointer<vtkUmbraRenderPass> pass;
   EclipseShading shading;
   AtmosphereRendering atmosphere;
+  StarRendering stars;
   std::vector<BodyProp> bodies;
   ViewCamera camera;
   bool cameraSet = false;
@@ -99,6 +100,7 @@ BodyView::BodyView(int width, int height, bool offscreen) : impl_(std::make_uniq
   m.renderer->RemoveAllLights();
   m.renderer->SetPass(m.pass);
   m.pass->SetAtmosphere(&m.atmosphere);
+  m.pass->SetStars(&m.stars);
   m.window = vtkSmartPointer<vtkRenderWindow>::New();
   m.window->SetOffScreenRendering(offscreen ? 1 : 0);
   m.window->SetMultiSamples(0);
@@ -299,6 +301,7 @@ vtkRenderer* BodyView::GetRenderer() { return impl_->renderer; }
 vtkUmbraRenderPass* BodyView::GetRenderPass() { return impl_->pass; }
 EclipseShading& BodyView::GetShading() { return impl_->shading; }
 AtmosphereRendering& BodyView::GetAtmosphere() { return impl_->atmosphere; }
+void BodyView::SetStars(const std::vector<StarPoint>& stars) { impl_->stars.SetStars(stars); }
 
 void BodyView::WritePng(const std::string& path) {
   namespace fs = std::filesystem;

@@ -15,6 +15,7 @@
 // Rendering needs an X display (Debian's VTK has no EGL/OSMesa): run under xvfb-run.
 #include "AtmosphereRendering.h"
 #include "EclipseShading.h"
+#include "StarRendering.h"
 
 #include <glm/vec3.hpp>
 
@@ -69,6 +70,8 @@ class BodyView {
   vtkRenderer* GetRenderer();
   vtkUmbraRenderPass* GetRenderPass();
   EclipseShading& GetShading();
+  /// The stars drawn behind everything (StarRendering.h; none by default).
+  void SetStars(const std::vector<StarPoint>& stars);
   /// The atmosphere drawn over the bodies (AtmosphereRendering::SetAtmosphere; none by
   /// default). Its Sun and origin follow SetBodies and SetCamera.
   AtmosphereRendering& GetAtmosphere();

@@ -14,6 +14,9 @@
 #include "ShadowLut.hpp"  // luminance()
 #include "scene/Ephemeris.hpp"
 #include "scene/Scene.hpp"
+#include "scene/Stars.hpp"
+#include "StarCatalogue.hpp"
+#include "StarLight.hpp"
 #include "scene/Units.hpp"  // kAuM
 
 #include "Earthshine.hpp"
@@ -66,6 +69,19 @@ glm::dvec3 earthshineOn(const scene::Body& body, const scene::Body& earth, const
   const double e = sky::earthshineIrradiance(sky::kSolarConstantWm2 * auOverR * auOverR, earth.albedo, earth.radiusM,
                                              glm::length(toBody), sky::angleBetween(toSun, toBody));
   return e * sky::earthshineColour();
+}
+// The scene's stars to its limiting magnitude, seen from its camera.
+std::vector<StarPoint> sceneStars(const scene::Scene& s, double sunIrradianceAt1AuWm2) {
+  const auto all = sky::cachedCatalogue(s.stars->cataloguePath);
+  std::vector<sky::CatalogueStar> bright;
+  for (const sky::CatalogueStar& star : *all)
+    if (star.vMag <= s.stars->limitingMagnitude) bright.push_back(star);
+  const std::vector<glm::dvec3> directions =
+      scene::apparentStarDirections(bright, s.time, scene::starObserverOf(s));
+  std::vector<StarPoint> stars(bright.size());
+  for (std::size_t i = 0; i < bright.size(); ++i)
+    stars[i] = {directions[i], sky::starFrameIrradianceWm2(bright[i].vMag, bright[i].bMinusV, sunIrradianceAt1AuWm2)};
+  return stars;
 }
 } // namespace
 
@@ -125,6 +141,7 @@ SceneInputs sceneInputs(const scene::Scene& s) {
   }
   in.camera.up = s.camera.up;
   in.camera.fovDeg = s.camera.fovDeg;
+  if (s.stars) in.stars = sceneStars(s, in.sun.irradianceAt1AuWm2);
   return in;
 }
 

@@ -29,6 +29,9 @@ struct SceneInputs {
   std::vector<SphereBody> bodies;
   ViewCamera camera;
   std::optional<SceneAtmosphere> atmosphere;
+  /// The scene's stars to its limiting magnitude (none without "stars"): apparent places for
+  /// the camera at the scene's time (scene::starObserverOf), irradiance for this Sun.
+  std::vector<StarPoint> stars;
 };
 
 /// The scene at its current time. A body's albedo is 3/2 of its geometric albedo, for
@@ -36,6 +39,7 @@ struct SceneInputs {
 /// tinted by its colour at equal luminance; it keeps its photometry, its albedo map and its
 /// body-fixed frame (with a rotation model), and a Hapke body is lit by the Earth too
 /// (earthshine) when the scene has one.
+/// The stars come from the scene's catalogue (read once per process: sky::cachedCatalogue).
 /// A body whose sphere would enclose the camera (an observer near a pole, below the mean
 /// radius) is shrunk to just below the camera.
 ///

@@ -3,6 +3,7 @@
 #include "AtmosphereRendering.h"
 #include "Glare.h"
 #include "RenderGlsl.hpp"
+#include "StarRendering.h"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLError.h>
@@ -107,8 +108,8 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   this->StageTimesPending = false;
   // Timestamps need GL 3.3 or ARB_timer_query (VTK asks for 3.2): without, no stage times.
   if (this->StageTiming && this->StageQueries.empty() && glQueryCounter && glGetQueryObjectui64v) {
-    this->StageQueries.assign(5, 0);
-    glGenQueries(5, this->StageQueries.data());
+    this->StageQueries.assign(kStageMarks, 0);
+    glGenQueries(kStageMarks, this->StageQueries.data());
   }
   this->MarkStage(0);
 
@@ -132,8 +133,16 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   s2.SetFrameBuffer(this->FrameBufferObject);
   this->DelegatePass->Render(&s2);
   this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
-  ostate->PopFramebufferBindings();
   this->MarkStage(1);
+
+  // 1a. The stars behind it.
+  if (this->Stars && !this->Stars->Draw(renWin, r, w, h)) {
+    ostate->PopFramebufferBindings();
+    vtkErrorMacro("cannot draw the stars.");
+    return;
+  }
+  ostate->PopFramebufferBindings();
+  this->MarkStage(2);
 
   // 1b. The atmosphere over it, into the composed buffer.
   vtkTextureObject* hdr = this->ColorTexture;
@@ -166,7 +175,7 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
     hdr = this->ComposedTexture;
     this->HdrComposed = true;
   }
-  this->MarkStage(2);
+  this->MarkStage(3);
 
   // 1c. Glare.
   this->HdrGlared = false;
@@ -181,7 +190,7 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
     hdr = this->Glare->Output();
     this->HdrGlared = true;
   }
-  this->MarkStage(3);
+  this->MarkStage(4);
 
   // 2. Tone-map onto the current framebuffer.
   if (!this->QuadHelper) {
@@ -214,7 +223,7 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   ostate->vtkglScissor(x, y, w, h);
   this->QuadHelper->Render();
   hdr->Deactivate();
-  this->MarkStage(4);
+  this->MarkStage(5);
   this->StageTimesPending = this->StageTiming;
 
   this->LastWindow = renWin;
@@ -255,12 +264,12 @@ void vtkUmbraRenderPass::MarkStage(int stage) {
 
 bool vtkUmbraRenderPass::GetLastStageTimes(StageTimes& times) {
   vtkOpenGLRenderWindow* renWin = this->LastWindow;
-  if (!this->StageTimesPending || !renWin || this->StageQueries.size() != 5) return false;
+  if (!this->StageTimesPending || !renWin || this->StageQueries.size() != kStageMarks) return false;
   renWin->MakeCurrent();
-  GLuint64 ns[5] = {};
-  for (int k = 0; k < 5; ++k) glGetQueryObjectui64v(this->StageQueries[k], GL_QUERY_RESULT, &ns[k]);
+  GLuint64 ns[kStageMarks] = {};
+  for (int k = 0; k < kStageMarks; ++k) glGetQueryObjectui64v(this->StageQueries[k], GL_QUERY_RESULT, &ns[k]);
   auto ms = [&](int k) { return ns[k + 1] >= ns[k] ? (ns[k + 1] - ns[k]) * 1e-6 : 0.0; };
-  times = {ms(0), ms(1), ms(2), ms(3)};
+  times = {ms(0), ms(1), ms(2), ms(3), ms(4)};
   return true;
 }
 
@@ -299,6 +308,7 @@ void vtkUmbraRenderPass::ReleaseGraphicsResources(vtkWindow* w) {
     this->ComposedTexture = nullptr;
   }
   if (this->Glare) this->Glare->ReleaseGraphicsResources(w);
+  if (this->Stars) this->Stars->ReleaseGraphicsResources(vtkOpenGLRenderWindow::SafeDownCast(w));
   if (this->Atmosphere) this->Atmosphere->ReleaseGraphicsResources(vtkOpenGLRenderWindow::SafeDownCast(w));
   this->HdrValid = false;
   this->LastWindow = nullptr;

@@ -9,6 +9,9 @@
 // and sRGB the exact IEC 61966-2-1 encoding. The last HDR frame stays readable with
 // ReadHdrPixels (EXR output, tests).
 //
+// With stars (SetStars, StarRendering.h), they are added to the delegate's frame where it
+// holds nothing, before the atmosphere.
+//
 // With an atmosphere (SetAtmosphere), the frame is composed with it
 // (AtmosphereRendering::Draw) into a second float buffer between the delegate and the tone
 // map; that composed frame is the HDR frame.
@@ -38,6 +41,7 @@ class vtkTextureObject;
 namespace umbra::render {
 class AtmosphereRendering;
 class GlareRendering;
+class StarRendering;
 }
 
 class vtkUmbraRenderPass : public vtkImageProcessingPass {
@@ -72,10 +76,14 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
   /// The atmosphere drawn over the frame (not owned; nullptr: none).
   void SetAtmosphere(umbra::render::AtmosphereRendering* atmosphere) { this->Atmosphere = atmosphere; }
 
+  /// The stars drawn behind everything (not owned; nullptr: none).
+  void SetStars(umbra::render::StarRendering* stars) { this->Stars = stars; }
+
   /// GPU time per stage of a frame (GL_TIMESTAMP queries between the stages), for the
   /// benches: the paper's Table 1 times the receivers alone, Table 2 the atmosphere.
   struct StageTimes {
     double receiversMs = 0.0;   ///< the delegate: bodies, their eclipse shading, terrain
+    double starsMs = 0.0;       ///< the star splats (0: none)
     double atmosphereMs = 0.0;  ///< the atmosphere composite or limb ring (0: none)
     double glareMs = 0.0;       ///< 0 without glare
     double toneMapMs = 0.0;     ///< the tone map onto the window's framebuffer
@@ -98,6 +106,7 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
   vtkSmartPointer<vtkTextureObject> DepthTexture;
   std::unique_ptr<vtkOpenGLQuadHelper> QuadHelper;
   umbra::render::AtmosphereRendering* Atmosphere = nullptr;
+  umbra::render::StarRendering* Stars = nullptr;
   vtkSmartPointer<vtkOpenGLFramebufferObject> ComposedFrameBuffer;  // the atmosphere's output
   vtkSmartPointer<vtkTextureObject> ComposedTexture;
   bool HdrComposed = false;
@@ -105,6 +114,7 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
   std::unique_ptr<umbra::render::GlareRendering> Glare;
   bool HdrGlared = false;
 
+  static constexpr int kStageMarks = 6;  // before the delegate and after each stage
   bool StageTiming = false;
   std::vector<unsigned int> StageQueries;  // GL query names: before and after each stage
   bool StageTimesPending = false;

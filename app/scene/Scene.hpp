@@ -90,6 +90,12 @@ struct Camera {
   double fovDeg = 45.0;             ///< vertical field of view
 };
 
+/// The stars a scene draws behind everything ("stars": docs/scene-format.md).
+struct StarSky {
+  std::string cataloguePath;        ///< a catalogue in KStars' stars.dat format (absolute)
+  double limitingMagnitude = 6.5;   ///< the faintest V drawn
+};
+
 struct Scene {
   std::string path;     ///< the file it came from (for messages)
   std::string name;
@@ -101,6 +107,7 @@ struct Scene {
   int width = 960;
   int height = 720;
   int shadowLutSize = 256;
+  std::optional<StarSky> stars;  ///< none: no stars
   /// What the user should know but that is no error (a preset's albedo map not installed:
   /// a uniform albedo instead), one line each, for stderr or a status line.
   std::vector<std::string> notes;

@@ -2,6 +2,7 @@
 #include "Atmosphere.hpp"
 #include "JsonErrors.hpp"
 #include "Spectrum.hpp"
+#include "StarCatalogue.hpp"
 #include "scene/Scene.hpp"
 
 #include "SceneDetail.hpp"
@@ -215,6 +216,38 @@ std::string parseAlbedoMap(const Reader& in, const json& value, const std::strin
   if (!std::filesystem::is_regular_file(path))
     in.fail(field, "no such file: " + path + " (or a named map: " + namedAlbedoMapList() + ", or \"none\")");
   return path;
+}
+
+/// "stars": true (the packaged catalogue to V 6.5), false, or an object with "catalogue"
+/// (a file relative to the scene) and "limitingMagnitude". The packaged catalogue not
+/// installed is a note, not an error (the scene is drawn without stars); a named file that
+/// is not there is an error.
+std::optional<StarSky> parseStars(const Reader& in, const json& value, const std::string& sceneFile,
+                                  std::vector<std::string>& notes) {
+  if (value.is_boolean() && !value.get<bool>()) return std::nullopt;
+  StarSky stars;
+  stars.cataloguePath = sky::kKStarsCatalogue;
+  bool named = false;
+  if (!value.is_boolean()) {
+    if (!value.is_object()) in.fail("stars", "expected true, false or an object, " + got(value));
+    in.object(value, "stars", {"catalogue", "limitingMagnitude"});
+    if (value.contains("catalogue")) {
+      std::filesystem::path p(in.string(value["catalogue"], "stars.catalogue"));
+      if (p.is_relative()) p = std::filesystem::path(sceneFile).parent_path() / p;
+      stars.cataloguePath = p.lexically_normal().string();
+      named = true;
+    }
+    if (value.contains("limitingMagnitude"))
+      stars.limitingMagnitude = in.number(value["limitingMagnitude"], "stars.limitingMagnitude", -30.0, 30.0,
+                                          "a V magnitude in [-30, 30]");
+  }
+  if (!std::filesystem::is_regular_file(stars.cataloguePath)) {
+    if (named) in.fail("stars.catalogue", "no such file: " + stars.cataloguePath);
+    notes.push_back("no stars: the star catalogue " + stars.cataloguePath +
+                    " is not installed (Debian package kstars-data)");
+    return std::nullopt;
+  }
+  return stars;
 }
 
 Body parseBody(const Reader& in, const json& value, const std::string& field, const std::string& sceneFile,
@@ -434,7 +467,7 @@ Scene parseScene(const std::string& jsonText, const std::string& pathForMessages
   const Reader in(pathForMessages);
   const json root = parseJson(jsonText, pathForMessages);
   if (!root.is_object()) in.fail("", "expected a JSON object at the top level, " + got(root));
-  in.object(root, "", {"name", "time", "bodies", "camera", "exposure", "image", "shadow"});
+  in.object(root, "", {"name", "time", "bodies", "camera", "exposure", "image", "shadow", "stars"});
 
   Scene scene;
   scene.path = pathForMessages;
@@ -467,6 +500,12 @@ Scene parseScene(const std::string& jsonText, const std::string& pathForMessages
     in.object(shadow, "shadow", {"lutSize"});
     if (shadow.contains("lutSize"))
       scene.shadowLutSize = in.integer(shadow["lutSize"], "shadow.lutSize", 8, 4096);
+  }
+
+  if (root.contains("stars")) {
+    if (!scene.hasTime && !(root["stars"].is_boolean() && !root["stars"].get<bool>()))
+      in.fail("time", "required: the stars' places are for a date");
+    scene.stars = parseStars(in, root["stars"], pathForMessages, scene.notes);
   }
 
   detail::resolve(scene);

@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include <vector>
+
 namespace umbra::scene {
 
 /// An observer of star places: position [m] and velocity [m/s] relative to the Earth's
@@ -26,5 +28,16 @@ StarObserver observerOnEarth(const Body& earth, const Observer& observer, UtcTim
 /// catalogue's places are taken as of J2000.0. Throws std::invalid_argument for an
 /// observer within 1 km of the Sun's centre (no light deflection to compute).
 glm::dvec3 apparentStarDirection(const sky::CatalogueStar& star, UtcTime time, const StarObserver& observer);
+
+/// apparentStarDirection for every star of `stars`, the observer's astrometry computed once.
+std::vector<glm::dvec3> apparentStarDirections(const std::vector<sky::CatalogueStar>& stars, UtcTime time,
+                                               const StarObserver& observer);
+
+/// The star observer of a scene: its camera. A camera standing on the Earth
+/// (camera.observer) turns with it (observerOnEarth); any other camera keeps its position
+/// relative to the Earth's centre (the scene's Earth, else the ephemeris's) and moves with
+/// the Earth (no velocity of its own: the aberration of a spacecraft's few km/s relative to
+/// the Earth, a few arcseconds, is left out).
+StarObserver starObserverOf(const Scene& scene);
 
 }  // namespace umbra::scene

@@ -105,7 +105,7 @@ TEST(SceneErrors, MissingFile) {
 TEST(SceneErrors, UnknownTopLevelKey) {
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "exposre": -5)")),
             "examples/x.json: exposre: unknown key (expected one of: name, time, bodies, "
-            "camera, exposure, image, shadow)");
+            "camera, exposure, image, shadow, stars)");
 }
 
 TEST(SceneErrors, TwoSuns) {
@@ -530,4 +530,34 @@ TEST(SceneErrors, DuplicateKeyIsNamed) {
   EXPECT_EQ(errorFor(R"({"name": "a", "name": "b"})"), "examples/x.json: name: duplicate key");
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "image": {"width": 64, "height": 64, "width": 32})")),
             "examples/x.json: image.width: duplicate key");
+}
+
+// "stars": false draws none; an object names a catalogue (relative to the scene) and a
+// limiting magnitude; a named file that is not there, a bad magnitude, an unknown key and
+// a scene without a time are errors naming the field.
+TEST(SceneStars, CatalogueAndLimitingMagnitude) {
+  const std::string dir = (std::filesystem::temp_directory_path() / ("umbra-scene-stars-" + std::to_string(::getpid()))).string();
+  std::filesystem::create_directories(dir);
+  const std::string catalogue = dir + "/few.dat";
+  std::ofstream(catalogue) << "064508.92 -164258.0 -000546.0-001223.100379.2 -1.4400.01A0 1            , alp CMa, Sirius\n";
+  const std::string timed = R"(, "time": "2024-03-20T22:00:00Z")";
+  EXPECT_FALSE(parseScene(fixedScene(kSunAndRock, timed + R"(, "stars": false)"), kFile).stars);
+  const Scene s = parseScene(fixedScene(kSunAndRock, timed + R"(, "stars": {"catalogue": "few.dat", "limitingMagnitude": 4.5})"),
+                             dir + "/scene.json");
+  ASSERT_TRUE(s.stars);
+  EXPECT_EQ(s.stars->cataloguePath, catalogue);
+  EXPECT_EQ(s.stars->limitingMagnitude, 4.5);
+
+  EXPECT_EQ(errorFor(fixedScene(kSunAndRock, timed + R"(, "stars": {"catalogue": "none.dat"})")),
+            "examples/x.json: stars.catalogue: no such file: examples/none.dat");
+  EXPECT_EQ(errorFor(fixedScene(kSunAndRock, timed + R"(, "stars": {"limitingMagnitude": "bright"})")),
+            "examples/x.json: stars.limitingMagnitude: expected a V magnitude in [-30, 30], got \"bright\"");
+  EXPECT_EQ(errorFor(fixedScene(kSunAndRock, timed + R"(, "stars": {"limit": 6})")).rfind(
+                "examples/x.json: stars.limit: unknown key", 0),
+            0u);
+  EXPECT_EQ(errorFor(fixedScene(kSunAndRock, timed + R"(, "stars": 6)")),
+            "examples/x.json: stars: expected true, false or an object, got 6");
+  EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "stars": true)")),
+            "examples/x.json: time: required: the stars' places are for a date");
+  std::filesystem::remove_all(dir);
 }

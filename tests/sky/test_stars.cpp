@@ -199,3 +199,33 @@ TEST(StarLight, IlluminanceOfAZeroMagnitudeStar) {
   EXPECT_NEAR(0.2126 * sirius.r + 0.7152 * sirius.g + 0.0722 * sirius.b, starIlluminanceLux(-1.44),
               2e-3 * starIlluminanceLux(-1.44));
 }
+
+// The frames' white balance: the Sun's own colour (the G173 spectrum through the CIE
+// functions, summed here independently) divides each star's; a star of B-V 0.65 is then
+// white within 0.01 in chromaticity, undoing the balance gives back unit luminance, the
+// table is exact at the catalogue's 0.01 steps and linear between them.
+TEST(StarLight, FrameColourIsBalancedToTheSun) {
+  glm::dvec3 sunXyz(0.0);
+  for (int nm = 360; nm <= 830; ++nm)
+    sunXyz += umbra::atmosphere::solarIrradianceWm2PerNm(nm) * umbra::atmosphere::cie1931(nm);
+  const glm::dvec3 sun = umbra::atmosphere::xyzToLinearSrgb(sunXyz / sunXyz.y);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(sunLinearSrgb()[c], sun[c], 1e-3);
+
+  const glm::dvec3 solarTwin = starFrameColour(0.65);
+  const auto chroma = [](const glm::dvec3& c) { return c / (c.r + c.g + c.b); };
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(chroma(solarTwin)[c], 1.0 / 3.0, 0.01);
+  for (double bv : {-0.4, -0.12, 0.0, 0.65, 1.5, 2.0}) {
+    const glm::dvec3 f = starFrameColour(bv), expected = starLinearSrgb(bv) / sunLinearSrgb();
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], expected[c], 1e-12) << "B-V " << bv;
+    const glm::dvec3 unbalanced = f * sunLinearSrgb();
+    EXPECT_NEAR(0.2126 * unbalanced.r + 0.7152 * unbalanced.g + 0.0722 * unbalanced.b, 1.0, 2e-3) << "B-V " << bv;
+  }
+  const glm::dvec3 mid = starFrameColour(0.655), lo = starFrameColour(0.65), hi = starFrameColour(0.66);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(mid[c], 0.5 * (lo[c] + hi[c]), 1e-12);
+  // Outside the Ballesteros range the colour is that of its ends.
+  EXPECT_EQ(starFrameColour(3.0), starFrameColour(2.0));
+  EXPECT_THROW(starFrameColour(std::nan("")), std::invalid_argument);
+
+  const glm::dvec3 e = starFrameIrradianceWm2(6.0, 0.65, 1361.0);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(e[c] / (1361.0 * std::pow(10.0, -0.4 * (6.0 + 26.74))), lo[c], 1e-12);
+}

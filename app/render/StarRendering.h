@@ -1,0 +1,58 @@
+#pragma once
+// StarRendering: catalogue stars drawn into vtkUmbraRenderPass's HDR frame, behind
+// everything, before the atmosphere is composed over it. So the composite does to a star
+// what it does to any background: the air's transmittance dims and reddens it, refraction
+// moves it, the sky's light is added over it (and outshines it by day: no fade factor),
+// and the glare stage spreads it.
+//
+// Each star is an energy-conserving splat (glsl/StarSplat.glsl): its irradiance E (linear
+// sRGB, W m^-2, in the frames' white balance: sky::starFrameIrradianceWm2) goes to the
+// 2 x 2 pixels around its image point p with the bilinear weights
+// w = (1 - |dx|)(1 - |dy|) (dx, dy from p to the pixel's centre), each as radiance
+// E w / Omega_pixel, Omega_pixel the pixel's solid angle. So sum(radiance * Omega) over the
+// footprint is E (the weights sum to 1) and the weighted centroid of the pixels is p.
+// A pixel of a perspective view with ray basis F, X, Y (dir = F + x X + y Y at NDC x, y,
+// as AtmosphereRendering) spans
+//     Omega = |(X x Y) . F| (2 / W)(2 / H) / |F + x X + y Y|^3.
+// Stars are added only where the frame holds nothing (depth 1): a body in front hides them.
+// Perspective views only; a parallel view draws none.
+#include <glm/vec3.hpp>
+
+#include <memory>
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+class vtkRenderer;
+
+namespace umbra::render {
+
+/// A star to draw: its apparent direction (unit, world axes) and its irradiance above any
+/// atmosphere (linear sRGB, W m^-2, white-balanced to the Sun).
+struct StarPoint {
+  glm::dvec3 direction{0.0, 0.0, 1.0};
+  glm::dvec3 irradianceWm2{0.0};
+};
+
+class StarRendering {
+ public:
+  StarRendering();
+  ~StarRendering();
+  StarRendering(const StarRendering&) = delete;
+  StarRendering& operator=(const StarRendering&) = delete;
+
+  /// Replaces the stars (uploaded at the next Draw). Throws std::invalid_argument for a
+  /// non-unit or non-finite direction or a negative or non-finite irradiance.
+  void SetStars(const std::vector<StarPoint>& stars);
+  std::size_t GetNumberOfStars() const;
+
+  /// Adds the stars to the bound framebuffer (the HDR frame, its depth attached) for the
+  /// renderer's camera; width x height its size. False when the program cannot be built.
+  bool Draw(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, int width, int height);
+  void ReleaseGraphicsResources(vtkOpenGLRenderWindow* window);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace umbra::render
