@@ -70,10 +70,10 @@ inline void printRenderer(render::BodyView& view) {
 /// frame), on the wall clock (render + glFinish), and the process's CPU time over the same
 /// span (all threads: with Mesa's llvmpipe the fragment work itself, and the steadier
 /// figure on a machine shared with other jobs); and the GPU time of the render pass's
-/// receivers and atmosphere stages (GL_TIMESTAMP between the stages: what the paper's
+/// receivers, stars and atmosphere stages (GL_TIMESTAMP between the stages: what the paper's
 /// Tables 1 and 2 time).
 struct FrameTimes {
-  std::vector<double> glMs, wallMs, cpuMs, receiversMs, atmosphereMs;
+  std::vector<double> glMs, wallMs, cpuMs, receiversMs, starsMs, atmosphereMs;
 };
 
 inline double processCpuMs() {
@@ -92,7 +92,7 @@ inline double median(std::vector<double> v) {
 // to be warmed up already (shaders compiled, textures uploaded).
 inline FrameTimes medianFrameTimes(const std::vector<render::BodyView*>& views, int frames) {
   const std::size_t n = views.size();
-  std::vector<std::vector<double>> gl(n), wall(n), cpu(n), receivers(n), atmosphere(n);
+  std::vector<std::vector<double>> gl(n), wall(n), cpu(n), receivers(n), stars(n), atmosphere(n);
   std::vector<GLuint> queries(n, 0);
   for (std::size_t k = 0; k < n; ++k) {
     views[k]->GetRenderWindow()->MakeCurrent();
@@ -118,6 +118,7 @@ inline FrameTimes medianFrameTimes(const std::vector<render::BodyView*>& views, 
       vtkUmbraRenderPass::StageTimes stages;
       if (views[k]->GetRenderPass()->GetLastStageTimes(stages)) {
         receivers[k].push_back(stages.receiversMs);
+        stars[k].push_back(stages.starsMs);
         atmosphere[k].push_back(stages.atmosphereMs);
       }
     }
@@ -128,6 +129,7 @@ inline FrameTimes medianFrameTimes(const std::vector<render::BodyView*>& views, 
     glDeleteQueries(1, &queries[k]);
     views[k]->GetRenderPass()->SetStageTiming(false);
     t.receiversMs.push_back(receivers[k].empty() ? 0.0 : median(receivers[k]));
+    t.starsMs.push_back(stars[k].empty() ? 0.0 : median(stars[k]));
     t.atmosphereMs.push_back(atmosphere[k].empty() ? 0.0 : median(atmosphere[k]));
     t.glMs.push_back(median(gl[k]));
     t.wallMs.push_back(median(wall[k]));

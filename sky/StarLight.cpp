@@ -10,7 +10,7 @@
 
 namespace umbra::sky {
 
-double irradianceRelativeToSun(double vMag) { return std::pow(10.0, -0.4 * (vMag - kSunVMag)); }
+double irradianceRelativeToSun(double vMag) { return std::pow(10.0, -0.4 * (vMag - kSunMagnitudeV)); }
 
 double ballesterosTemperatureK(double bMinusV) {
   const double bv = std::clamp(bMinusV, -0.4, 2.0);
@@ -70,6 +70,11 @@ glm::dvec3 starFrameColour(double bMinusV) {
 
 glm::dvec3 starFrameIrradianceWm2(double vMag, double bMinusV, double sunIrradianceAt1AuWm2) {
   return sunIrradianceAt1AuWm2 * irradianceRelativeToSun(vMag) * starFrameColour(bMinusV);
+}
+
+double radianceOfSurfaceBrightnessWm2Sr(double vMagPerArcsec2, double sunIrradianceAt1AuWm2) {
+  constexpr double kArcsecPerRad = 180.0 / 3.14159265358979323846 * 3600.0;
+  return sunIrradianceAt1AuWm2 * irradianceRelativeToSun(vMagPerArcsec2) * kArcsecPerRad * kArcsecPerRad;
 }
 
 }  // namespace umbra::sky

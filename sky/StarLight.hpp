@@ -1,15 +1,14 @@
 #pragma once
 // A star's light from its catalogue numbers: irradiance from the V magnitude relative to
 // the Sun's, its colour temperature from B-V, and its colour.
+#include "Photometry.hpp"  // kSunMagnitudeV
+
 #include <glm/vec3.hpp>
 
 namespace umbra::sky {
 
-/// The Sun's apparent V magnitude at 1 au.
-inline constexpr double kSunVMag = -26.74;
-
 /// Irradiance of a star of magnitude `vMag` relative to the Sun's at 1 au:
-/// 10^(-0.4 (V - V_sun)).
+/// 10^(-0.4 (V - V_sun)), V_sun = kSunMagnitudeV.
 double irradianceRelativeToSun(double vMag);
 
 /// Effective temperature from B-V (Ballesteros 2012, EPL 97, 34008):
@@ -52,5 +51,15 @@ glm::dvec3 starFrameColour(double bMinusV);
 /// white-balanced to the Sun, for a Sun of `sunIrradianceAt1AuWm2` at 1 au:
 /// sunIrradianceAt1AuWm2 * irradianceRelativeToSun(vMag) * starFrameColour(bMinusV).
 glm::dvec3 starFrameIrradianceWm2(double vMag, double bMinusV, double sunIrradianceAt1AuWm2);
+
+/// The zenith of a dark site's moonless night sky at the ground, V mag per square arcsecond
+/// (airglow, zodiacal light and unresolved stars together; Benn & Ellison 1998 measured
+/// 21.9 at La Palma at solar minimum, Walker's dark sites 21.6-22.0).
+inline constexpr double kDarkSkyZenithVMagPerArcsec2 = 22.0;
+
+/// The radiance of a surface brightness of `vMagPerArcsec2` in the frames' units (W m^-2
+/// sr^-1 of white-balanced sunlight): irradianceRelativeToSun(mu) * E_sun per square
+/// arcsecond, times the square arcseconds in a steradian.
+double radianceOfSurfaceBrightnessWm2Sr(double vMagPerArcsec2, double sunIrradianceAt1AuWm2);
 
 }  // namespace umbra::sky

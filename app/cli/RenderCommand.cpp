@@ -199,7 +199,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
           lutRange = range;
         }
         view.SetBodies(in.sun, in.bodies, lut->GetOutput());
-        view.SetStars(in.stars);
+        render::showSceneSky(view, in);
         if (in.atmosphere) {
           try {
             render::applySceneAtmosphere(view, in, tables, o->refraction, tableSizes);

@@ -202,6 +202,16 @@ MainWindow::MainWindow() {
   this->glare->setToolTip("Glare: halos around bright pixels that keep the frame's total light (0: none)");
   connect(this->glare, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this](double g) { this->setGlare(g); });
 
+  this->starLimit = new QDoubleSpinBox;
+  this->starLimit->setRange(-2.0, 9.0);
+  this->starLimit->setSingleStep(0.5);
+  this->starLimit->setDecimals(1);
+  this->starLimit->setValue(6.5);
+  this->starLimit->setEnabled(false);
+  this->starLimit->setToolTip("The faintest stars drawn, V magnitude (the scene's \"stars\"; the catalogue ends at 9)");
+  connect(this->starLimit, qOverload<double>(&QDoubleSpinBox::valueChanged), this,
+          [this](double v) { this->setLimitingMagnitude(v); });
+
   this->atmosphereChoice = new QComboBox;
   this->atmosphereChoice->addItem("none", QString());
   for (const std::string& name : atmosphere::presetNames()) this->atmosphereChoice->addItem(qs(name), qs(name));
@@ -262,6 +272,8 @@ MainWindow::MainWindow() {
   controls->addWidget(this->exposure);
   controls->addWidget(new QLabel("Glare"));
   controls->addWidget(this->glare);
+  controls->addWidget(new QLabel("Stars to V"));
+  controls->addWidget(this->starLimit);
   controls->addSpacing(16);
   controls->addWidget(new QLabel("Atmosphere"));
   controls->addWidget(this->atmosphereChoice);
@@ -291,19 +303,29 @@ MainWindow::MainWindow() {
     if (!t) return;
     // 3 digits; a stage that drew nothing (two timestamps in a row) shows 0.
     auto ms = [](double v) { return v < 1e-3 ? QString("0") : QString::number(v, 'g', 3); };
-    const double total = t->receiversMs + t->atmosphereMs + t->glareMs + t->toneMapMs;
+    const double total = t->receiversMs + t->starsMs + t->atmosphereMs + t->glareMs + t->toneMapMs;
     this->gpuLabel->setText(QString("GPU %1 ms: bodies %2, atmosphere %3, glare %4")
                                 .arg(ms(total), ms(t->receiversMs), ms(t->atmosphereMs), ms(t->glareMs)));
     this->gpuLabel->setToolTip(QString("GPU time of the 3D view's last frame (GL timestamp queries): %1 ms in all; the "
-                                       "bodies with their eclipse shading %2 ms, the atmosphere %3 ms, the glare %4 ms, "
-                                       "the tone map %5 ms")
+                                       "bodies with their eclipse shading %2 ms, the stars %6 ms, the atmosphere %3 ms, "
+                                       "the glare %4 ms, the tone map %5 ms")
                                    .arg(ms(total), ms(t->receiversMs), ms(t->atmosphereMs), ms(t->glareMs),
-                                        ms(t->toneMapMs)));
+                                        ms(t->toneMapMs), ms(t->starsMs)));
   });
   this->resize(1200, 720);
 }
 
 MainWindow::~MainWindow() { this->cancelAtmosphere(); }
+
+void MainWindow::setLimitingMagnitude(double vMag) {
+  {
+    const QSignalBlocker block(this->starLimit);
+    this->starLimit->setValue(vMag);
+  }
+  if (!this->current || !this->current->stars) return;
+  this->current->stars->limitingMagnitude = this->starLimit->value();
+  this->refresh();
+}
 
 void MainWindow::setGlare(double strength) {
   {
@@ -668,6 +690,11 @@ void MainWindow::showCurrent(double exposureEv) {
     this->exposure->setValue(exposureEv);
   }
   this->view->setExposureEV(exposureEv);
+  {
+    const QSignalBlocker block(this->starLimit);
+    this->starLimit->setEnabled(this->current->stars.has_value());
+    if (this->current->stars) this->starLimit->setValue(this->current->stars->limitingMagnitude);
+  }
   this->slider->setEnabled(this->current->hasTime);
   if (this->current->hasTime) {
     this->showTime(this->current->time);

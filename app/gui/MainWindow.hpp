@@ -107,6 +107,9 @@ public:
   void setExposure(double ev);
   /// Glare strength of the 3D view (0..10).
   void setGlare(double strength);
+  /// The faintest V of the scene's stars (the "Stars to V" spin box, -2..9; a scene
+  /// without "stars" has none to change: the box is disabled and this does nothing).
+  void setLimitingMagnitude(double vMag);
 
   /// Renders both views now.
   void renderViews();
@@ -155,6 +158,7 @@ private:
   QProgressBar* atmosphereProgress = nullptr;
   QPushButton* atmosphereCancel = nullptr;
   QDoubleSpinBox* glare = nullptr;
+  QDoubleSpinBox* starLimit = nullptr;
   QPushButton* atmosphereEdit = nullptr;
   QCheckBox* refractionBox = nullptr;
   QDockWidget* editorDock = nullptr;

@@ -144,7 +144,7 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
     impl->rangedHeight = dims[1];
   }
   impl->bodies->SetBodies(in.sun, in.bodies, range ? impl->ranged->GetOutput() : shadowLut);
-  impl->bodies->SetStars(in.stars);
+  render::showSceneSky(*impl->bodies, in);
   const bool drawn = impl->tables && in.atmosphere && impl->tables->GetAtmosphere() == in.atmosphere->model;
   render::AtmosphereRendering& atmosphere = impl->bodies->GetAtmosphere();
   const auto body = in.atmosphere ? std::find_if(in.bodies.begin(), in.bodies.end(),

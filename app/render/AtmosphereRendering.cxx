@@ -178,6 +178,8 @@ struct AtmosphereRendering::Impl {
   glm::dvec3 origin{0.0};
   glm::dmat3 colour{1.0};
   double limbDarkening = 0.6;
+  glm::dvec3 moonPositionM{0.0}, moonIrradianceWm2{0.0};
+  double nightGlowWm2Sr = 0.0, glowLayerAltitudeM = 90.0e3;
   bool texturesStale = true;
 
   vtkSmartPointer<vtkTextureObject> transmittance, scattering, irradiance, refraction;
@@ -191,6 +193,7 @@ struct AtmosphereRendering::Impl {
   eclipse::LutRange limbRange;  // its u and v ranges (field data; [0, 1] when absent)
   vtkSmartPointer<vtkTextureObject> limb;
   std::unique_ptr<vtkOpenGLQuadHelper> limbQuad;
+  std::unique_ptr<vtkOpenGLQuadHelper> moonQuad;  // the composite with the Moon's light
   std::unique_ptr<vtkOpenGLQuadHelper> backgroundQuad;  // umbraAtmosphereBackground
   double limbThresholdPx = 5.0;
   double terrainMeanElevationM = 0.0;
@@ -334,6 +337,24 @@ bool AtmosphereRendering::HasRefraction() const { return !impl_->refractionValue
 void AtmosphereRendering::SetOrigin(const glm::dvec3& originM) { impl_->origin = originM; }
 void AtmosphereRendering::SetColourMatrix(const glm::dmat3& m) { impl_->colour = m; }
 void AtmosphereRendering::SetLimbDarkening(double u) { impl_->limbDarkening = u; }
+
+void AtmosphereRendering::SetMoonLight(const glm::dvec3& moonPositionM, const glm::dvec3& irradianceWm2) {
+  for (int c = 0; c < 3; ++c) {
+    if (!std::isfinite(moonPositionM[c])) throw std::invalid_argument("moon light: the Moon's position is not finite");
+    if (!(irradianceWm2[c] >= 0.0 && std::isfinite(irradianceWm2[c])))
+      throw std::invalid_argument("moon light: irradiance must be finite and >= 0");
+  }
+  impl_->moonPositionM = moonPositionM;
+  impl_->moonIrradianceWm2 = irradianceWm2;
+}
+
+void AtmosphereRendering::SetNightGlow(double zenithRadianceWm2Sr, double layerAltitudeM) {
+  if (!(zenithRadianceWm2Sr >= 0.0 && std::isfinite(zenithRadianceWm2Sr)) ||
+      !(layerAltitudeM > 0.0 && std::isfinite(layerAltitudeM)))
+    throw std::invalid_argument("night glow: radiance must be finite and >= 0, the layer's altitude > 0");
+  impl_->nightGlowWm2Sr = zenithRadianceWm2Sr;
+  impl_->glowLayerAltitudeM = layerAltitudeM;
+}
 void AtmosphereRendering::SetTerrainMeanElevation(double meanElevationM) {
   if (!(std::isfinite(meanElevationM) && meanElevationM >= 0.0))
     throw std::invalid_argument("terrain mean elevation must be finite and >= 0 m");
@@ -371,10 +392,12 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
 
   // A full-screen program running `function` (texCoord) of AtmosphereComposite.glsl (with
   // LimbRing.glsl for the ring), bound.
-  auto ready = [&](std::unique_ptr<vtkOpenGLQuadHelper>& quad, const char* function, bool limbCode) {
+  auto ready = [&](std::unique_ptr<vtkOpenGLQuadHelper>& quad, const char* function, bool limbCode,
+                   bool moonCode = false) {
     if (!quad) {
       std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
-      std::string decl = std::string(atmosphere::kAtmosphereGlsl) + "\n" + glsl::kAtmosphereComposite + "\n";
+      std::string decl = std::string(moonCode ? "#define UMBRA_MOON_LIGHT\n" : "") + atmosphere::kAtmosphereGlsl + "\n" +
+                         glsl::kAtmosphereComposite + "\n";
       if (limbCode) decl += std::string(glsl::kLimbRing) + "\n";
       vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl", decl + "//VTK::FSQ::Decl");
       vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
@@ -431,6 +454,12 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     p->SetUniformf("umbraSunAngularRadius", static_cast<float>(std::asin(std::min(1.0, m.sun.radiusM / dSun))));
     p->SetUniformf("umbraSolarIrradiance", static_cast<float>(m.sun.irradianceAt1AuWm2 * (kAuM / dSun) * (kAuM / dSun)));
     p->SetUniformf("umbraLimbDarkening", static_cast<float>(m.limbDarkening));
+    const glm::dvec3 toMoon = m.moonPositionM - m.centre;
+    setVec3(p, "umbraMoonDirection", glm::length(toMoon) > 0.0 ? glm::normalize(toMoon) : glm::dvec3(0.0, 0.0, 1.0));
+    setVec3(p, "umbraMoonIrradiance", m.moonIrradianceWm2);
+    p->SetUniformf("umbraNightGlow", static_cast<float>(m.nightGlowWm2Sr));
+    p->SetUniformf("umbraGlowLayerRatio",
+                   static_cast<float>(std::min(camRadius / (t.bottomRadiusM + m.glowLayerAltitudeM), 0.9999)));
     float mat[9];
     for (int col = 0; col < 3; ++col)
       for (int row = 0; row < 3; ++row) mat[3 * col + row] = static_cast<float>(m.colour[col][row]);
@@ -493,8 +522,11 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     }
     ok = b != nullptr;
   }
+  // The Moon's light is a program of its own: a SIMD rasteriser pays for every branch.
+  const bool moonLight = glm::length(m.moonIrradianceWm2) > 0.0 && glm::length(m.moonPositionM - m.centre) > 0.0;
+  std::unique_ptr<vtkOpenGLQuadHelper>& composite = m.lastUsedLimb ? m.limbQuad : moonLight ? m.moonQuad : m.quad;
   vtkShaderProgram* p = m.lastUsedLimb ? ready(m.limbQuad, "umbraLimbRing", true)
-                                       : ready(m.quad, "umbraAtmosphereComposite", false);
+                                       : ready(composite, "umbraAtmosphereComposite", false, moonLight);
   ok = ok && p;
   if (ok && !rect.empty()) {
     setUniforms(p);
@@ -503,7 +535,7 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     vtkOpenGLState::ScopedglScissor scissorBoxSaver(state);
     state->vtkglEnable(GL_SCISSOR_TEST);
     state->vtkglScissor(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0);
-    (m.lastUsedLimb ? m.limbQuad : m.quad)->Render();
+    composite->Render();
   }
   if (m.lastUsedLimb) m.limb->Deactivate();
   m.refraction->Deactivate();
@@ -517,7 +549,7 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
 
 void AtmosphereRendering::ReleaseGraphicsResources(vtkOpenGLRenderWindow* window) {
   Impl& m = *impl_;
-  for (auto* q : {&m.quad, &m.limbQuad, &m.backgroundQuad}) {
+  for (auto* q : {&m.quad, &m.limbQuad, &m.moonQuad, &m.backgroundQuad}) {
     if (*q) {
       (*q)->ReleaseGraphicsResources(window);
       q->reset();

@@ -133,6 +133,19 @@ class AtmosphereRendering {
   double GetLastRingWidthPixels() const;
   bool GetLastDrawUsedLimbLuminance() const;
 
+  /// The Moon as a second light (the night sky, lit by it): the same tables looked up with
+  /// its direction from the planet's centre, times `irradianceWm2` per table channel (the
+  /// Sun's light would be E_sun in each), added to the sky, the aerial perspective and the
+  /// ground's light. irradianceWm2 zero: none (the default). Throws std::invalid_argument
+  /// for non-finite values or a negative irradiance.
+  void SetMoonLight(const glm::dvec3& moonPositionM, const glm::dvec3& irradianceWm2);
+  /// The night sky's glow above the air (airglow, zodiacal light, unresolved stars): a
+  /// layer `layerAltitudeM` above the ground radiating `zenithRadianceWm2Sr` (grey, frame
+  /// units) at the zenith and more towards the horizon (van Rhijn), dimmed by the air below
+  /// it; seen from inside the atmosphere only. 0: none (the default). Throws
+  /// std::invalid_argument for a negative or non-finite value.
+  void SetNightGlow(double zenithRadianceWm2Sr, double layerAltitudeM = 90.0e3);
+
   /// Limb darkening of the Sun's disc (eclipse/SolarDisc.hpp's Eq. 1 coefficient).
   void SetLimbDarkening(double u);
   /// Rough land of the body (eclipse::TerrainModel, eclipse paper 5.2; default 0 m: only

@@ -83,6 +83,39 @@ std::vector<StarPoint> sceneStars(const scene::Scene& s, double sunIrradianceAt1
     stars[i] = {directions[i], sky::starFrameIrradianceWm2(bright[i].vMag, bright[i].bMinusV, sunIrradianceAt1AuWm2)};
   return stars;
 }
+// The Moon's light and the night glow of in.atmosphere (SceneAtmosphere), for a camera in
+// the air at night.
+void nightLights(const scene::Scene& s, SceneInputs& in) {
+  SceneAtmosphere& a = *in.atmosphere;
+  const scene::Body* planet = s.find(a.body);
+  if (!planet) return;
+  const glm::dvec3 cam = in.camera.positionM, up = glm::normalize(cam - planet->positionM);
+  if (glm::length(cam - planet->positionM) >= a.topRadiusM) return;
+  const auto elevationDeg = [&](const glm::dvec3& p) {
+    return 90.0 - sky::angleBetween(up, p - cam) * 180.0 / glm::pi<double>();
+  };
+  if (elevationDeg(in.sun.positionM) >= 0.0) return;
+  const atmosphere::Atmosphere model = atmosphere::loadAtmosphere(a.model, atmosphere::WavelengthSet::rgb().nm);
+  if (planet->preset == "Earth") {
+    const double tau550 = model.verticalOpticalDepth(0.0, model.thicknessM())[1];
+    a.nightGlowWm2Sr = sky::radianceOfSurfaceBrightnessWm2Sr(sky::kDarkSkyZenithVMagPerArcsec2,
+                                                             in.sun.irradianceAt1AuWm2) * std::exp(tau550);
+  }
+  for (const scene::Body& b : s.bodies) {
+    if (b.preset != "Moon" || b.name == a.body || elevationDeg(b.positionM) < -5.0) continue;
+    const sky::HapkeParameters hapke =
+        b.photometry.law == sky::Photometry::Law::Hapke ? b.photometry.hapke : sky::moonParameters();
+    const double v = sky::apparentMagnitudeV(b.albedo, hapke, sky::angleBetween(in.sun.positionM - b.positionM, cam - b.positionM),
+                                             b.radiusM, glm::length(in.sun.positionM - b.positionM), glm::length(cam - b.positionM));
+    const glm::dvec3 shadow = eclipse::eclipseFactor(b.positionM, in.sun.positionM, in.sun.radiusM,
+                                                     {planet->positionM, a.bottomRadiusM}, nullptr);
+    const double tintLuminance = eclipse::luminance(b.color);
+    const glm::dvec3 tint = tintLuminance > 0.0 ? b.color / tintLuminance : glm::dvec3(1.0);
+    a.moonPositionM = b.positionM;
+    a.moonIrradianceWm2 = in.sun.irradianceAt1AuWm2 * sky::irradianceRelativeToSun(v) * tint * shadow;
+    return;
+  }
+}
 } // namespace
 
 SceneInputs sceneInputs(const scene::Scene& s) {
@@ -142,6 +175,7 @@ SceneInputs sceneInputs(const scene::Scene& s) {
   in.camera.up = s.camera.up;
   in.camera.fovDeg = s.camera.fovDeg;
   if (s.stars) in.stars = sceneStars(s, in.sun.irradianceAt1AuWm2);
+  if (in.atmosphere) nightLights(s, in);
   return in;
 }
 
@@ -198,6 +232,14 @@ void showSceneAtmosphereTables(BodyView& view, const SceneInputs& in, vtkAtmosph
                                      body.albedoRgb);
   view.GetAtmosphere().SetRefraction(refraction ? refractionBlock(source->GetOutput()) : nullptr);
   view.GetAtmosphere().SetTerrainMeanElevation(eclipse::defaultTerrain(a.body).meanElevationM);
+}
+
+void showSceneSky(BodyView& view, const SceneInputs& in) {
+  view.SetStars(in.stars);
+  const SceneAtmosphere none;
+  const SceneAtmosphere& a = in.atmosphere ? *in.atmosphere : none;
+  view.GetAtmosphere().SetMoonLight(a.moonPositionM, a.moonIrradianceWm2);
+  view.GetAtmosphere().SetNightGlow(a.nightGlowWm2Sr);
 }
 
 void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTablesSource* source, bool refraction,

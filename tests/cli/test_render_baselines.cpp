@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 using namespace umbra;
@@ -100,6 +101,17 @@ TEST(RenderBaselines, LunarEclipse2015Moon) {
 TEST(RenderBaselines, LunarEclipse2015EarthFromTheMoon) {
   TempDir cache;
   expectSeriesMatches(cache, "earth-from-lunar-north-pole-2015-09-28", {"--refraction"});
+}
+
+// The night sky: Orion's stars on a moonless night, the moonlit sky and ground of a full
+// Moon, the 2015-09-28 eclipse in a 40 degree field at totality (the catalogue of
+// kstars-data: skipped without it).
+TEST(RenderBaselines, NightSky) {
+  if (!std::filesystem::exists("/usr/share/kstars/stars.dat")) GTEST_SKIP() << "kstars-data is not installed";
+  TempDir cache;
+  expectSceneMatches(cache, "orion-night-sky", "orion-night-sky");
+  expectSceneMatches(cache, "moonlit-night-2026-10-26", "moonlit-night-2026-10-26");
+  expectSceneMatches(cache, "lunar-eclipse-2015-09-28-sky", "lunar-eclipse-2015-09-28-sky");
 }
 
 // The Moon as it is seen (Hapke's law, the Clementine map, libration, earthshine): the full

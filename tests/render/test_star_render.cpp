@@ -5,6 +5,7 @@
 #include "AtmosphereTestSupport.hpp"
 #include "SceneInputs.h"
 #include "StarCatalogue.hpp"
+#include "Photometry.hpp"
 #include "StarLight.hpp"
 #include "scene/Scene.hpp"
 #include "scene/Stars.hpp"
@@ -88,7 +89,7 @@ Measured measure(const std::vector<float>& rgb, double cx, double cy, int radius
 double vMagnitudeOf(const glm::dvec3& frameIrradiance) {
   const glm::dvec3 unbalanced = frameIrradiance * sky::sunLinearSrgb();
   const double y = 0.2126 * unbalanced.r + 0.7152 * unbalanced.g + 0.0722 * unbalanced.b;
-  return sky::kSunVMag - 2.5 * std::log10(y / 1361.0);
+  return sky::kSunMagnitudeV - 2.5 * std::log10(y / 1361.0);
 }
 
 std::vector<float> renderStars(BodyView& view, const std::vector<StarPoint>& stars,
@@ -356,4 +357,106 @@ TEST(StarRender, TwilightRevealsStarsInOrderOfBrightness) {
   EXPECT_GT(firstShown[0], 0);
   EXPECT_LT(firstShown[0], firstShown[1]);
   EXPECT_LT(firstShown[1], firstShown[2]);
+}
+
+namespace {
+
+// The V surface brightness (mag per square arcsecond) of a frame radiance: its luminance
+// once the Sun's white balance is undone, against sky::radianceOfSurfaceBrightnessWm2Sr.
+double surfaceBrightnessOf(const glm::dvec3& frameRadiance) {
+  const glm::dvec3 unbalanced = frameRadiance * sky::sunLinearSrgb();
+  const double y = 0.2126 * unbalanced.r + 0.7152 * unbalanced.g + 0.0722 * unbalanced.b;
+  return -2.5 * std::log10(y / sky::radianceOfSurfaceBrightnessWm2Sr(0.0, 1361.0));
+}
+
+// The mean frame radiance of the 9 x 9 pixels at the image centre.
+glm::dvec3 centreRadiance(BodyView& view) {
+  std::vector<float> rgb;
+  int w = 0, h = 0;
+  view.ReadHdr(rgb, w, h);
+  glm::dvec3 sum(0.0);
+  for (int j = h / 2 - 4; j <= h / 2 + 4; ++j)
+    for (int i = w / 2 - 4; i <= w / 2 + 4; ++i)
+      for (int c = 0; c < 3; ++c) sum[c] += rgb[(static_cast<std::size_t>(j) * w + i) * 3 + c];
+  return sum / 81.0;
+}
+
+}  // namespace
+
+// The night sky's glow: a moonless zenith at the ground shows the dark site's 22.0 V mag per
+// square arcsecond within 0.02 (the glow set above the air as that over the zenith
+// transmittance at 550 nm);
+// towards the horizon it brightens (van Rhijn) but less than the bare layer would.
+// The full Moon 45 degrees up lights the zenith to the brightness of Krisciunas & Schaefer's
+// (1991) model with the preset's own extinction (k = 1.086 tau_550) within 0.5 mag.
+TEST(StarRender, MoonlitAndMoonlessZenith) {
+  const AtmosphereFixture& f = atmosphereFixture();
+  const double tau = f.model.verticalOpticalDepth(0.0, f.model.thicknessM())[1];
+  const double glowAboveAir = sky::radianceOfSurfaceBrightnessWm2Sr(22.0, 1361.0) * std::exp(tau);
+  AtmosphereScene zenith(64, groundCamera(2.0, 89.9, 5.0), directionFromAngles(-60.0, 180.0));
+  zenith.view.GetAtmosphere().SetNightGlow(glowAboveAir);
+  zenith.view.Render();
+  const double moonless = surfaceBrightnessOf(centreRadiance(zenith.view));
+  AtmosphereScene low(64, groundCamera(2.0, 10.0, 5.0), directionFromAngles(-60.0, 180.0));
+  low.view.GetAtmosphere().SetNightGlow(glowAboveAir);
+  low.view.Render();
+  const double atTen = surfaceBrightnessOf(centreRadiance(low.view));
+
+  // The full Moon: V -12.7 (0.0032 W m^-2), grey, 45 degrees up.
+  const double moonV = -12.7;
+  const double moonE = 1361.0 * sky::irradianceRelativeToSun(moonV);
+  zenith.view.GetAtmosphere().SetMoonLight(4.0e8 * directionFromAngles(45.0, 90.0), glm::dvec3(moonE));
+  zenith.view.GetAtmosphere().SetNightGlow(0.0);
+  zenith.view.Render();
+  const double moonlit = surfaceBrightnessOf(centreRadiance(zenith.view));
+  // Krisciunas & Schaefer 1991 (PASP 103, 1033), Eq. 15-21, B in nanolamberts.
+  const double k = 2.5 / std::log(10.0) * tau, rho = 45.0, alpha = 0.0;
+  const double fRho = std::pow(10.0, 5.36) * (1.06 + std::pow(std::cos(rho * kPi / 180.0), 2)) +
+                      std::pow(10.0, 6.15 - rho / 40.0);
+  const double iStar = std::pow(10.0, -0.4 * (3.84 + 0.026 * alpha + 4e-9 * std::pow(alpha, 4)));
+  const double xMoon = 1.0 / std::sqrt(1.0 - 0.96 * std::pow(std::sin(45.0 * kPi / 180.0), 2));
+  const double bNl = fRho * iStar * std::pow(10.0, -0.4 * k * xMoon) * (1.0 - std::pow(10.0, -0.4 * k));
+  const double ks = (20.7233 - std::log(bNl / 34.08)) / 0.92104;
+  std::printf("zenith: moonless %.3f, 10 deg up %.3f; full Moon 45 deg up %.3f (Krisciunas & Schaefer %.3f, k %.3f) "
+              "V mag/arcsec^2\n", moonless, atTen, moonlit, ks, k);
+  EXPECT_NEAR(moonless, 22.0, 0.02);  // luminance over three channels, the glow set at 550 nm
+  EXPECT_LT(atTen, moonless - 0.3);
+  EXPECT_GT(atTen, 22.0 - 2.5 * std::log10(1.0 / std::sin(10.0 * kPi / 180.0)));
+  EXPECT_NEAR(moonlit, ks, 0.5);
+}
+
+namespace {
+
+// A scene of the Earth (with air), the Moon and the Sun, from (latDeg, lonDeg) at `time`.
+scene::Scene groundScene(const std::string& time, double latDeg, double lonDeg) {
+  return scene::parseScene(R"({"time": ")" + time + R"(",
+    "bodies": [{"preset": "Sun"}, {"preset": "Earth", "atmosphere": "earth"}, {"preset": "Moon"}],
+    "camera": {"observer": {"body": "Earth", "latDeg": )" + std::to_string(latDeg) +
+                               R"(, "lonDeg": )" + std::to_string(lonDeg) + R"(, "altM": 10},
+               "target": {"azimuthDeg": 0, "elevationDeg": 20}, "up": "zenith"}})",
+                           "ground.json");
+}
+
+double moonMagnitudeOf(const SceneInputs& in) {
+  const glm::dvec3 e = in.atmosphere->moonIrradianceWm2;
+  return sky::magnitudeOfIrradiance(0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b);
+}
+
+}  // namespace
+
+// The night's lights a scene asks for: the full Moon of 2026-10-26 from San Juan lights the
+// sky with its own magnitude (V -12.7, `umbra moon` and Allen's phase law) and the glow is
+// on; the same place by day has neither; the totally eclipsed Moon of 2015-09-28 (from the
+// mid-Atlantic) lights nothing (the airless shadow at its centre).
+TEST(StarRender, NightLightsOfAScene) {
+  const SceneInputs night = sceneInputs(groundScene("2026-10-26T04:00:00Z", 18.47, -66.11));
+  ASSERT_TRUE(night.atmosphere);
+  EXPECT_NEAR(moonMagnitudeOf(night), -12.7, 0.1);
+  EXPECT_GT(night.atmosphere->nightGlowWm2Sr, 0.0);
+  const SceneInputs day = sceneInputs(groundScene("2026-10-26T16:00:00Z", 18.47, -66.11));
+  EXPECT_EQ(day.atmosphere->moonIrradianceWm2, glm::dvec3(0.0));
+  EXPECT_EQ(day.atmosphere->nightGlowWm2Sr, 0.0);
+  const SceneInputs totality = sceneInputs(groundScene("2015-09-28T02:47:00Z", 1.33, -29.02));
+  EXPECT_GT(totality.atmosphere->nightGlowWm2Sr, 0.0);
+  EXPECT_LT(glm::length(totality.atmosphere->moonIrradianceWm2), 1e-12);
 }

@@ -130,8 +130,8 @@ TEST(StarCatalogue, ThePackagedCatalogue) {
 }
 
 TEST(StarLight, IrradianceFollowsTheMagnitudeScale) {
-  EXPECT_DOUBLE_EQ(irradianceRelativeToSun(kSunVMag), 1.0);
-  EXPECT_NEAR(irradianceRelativeToSun(kSunVMag + 5.0), 0.01, 1e-15);
+  EXPECT_DOUBLE_EQ(irradianceRelativeToSun(kSunMagnitudeV), 1.0);
+  EXPECT_NEAR(irradianceRelativeToSun(kSunMagnitudeV + 5.0), 0.01, 1e-15);
   EXPECT_NEAR(irradianceRelativeToSun(0.0) / irradianceRelativeToSun(1.0), std::pow(10.0, 0.4), 1e-12);
 }
 

@@ -27,11 +27,16 @@ uniform sampler2D umbraRefractionTable;  // deviation (rad), contact altitude (m
 uniform float umbraTerrainMeanElevation;  // m (eclipse::TerrainModel): rough land at the contact
 uniform float umbraPixelAngle;        // rad per pixel (perspective)
 uniform int umbraLimbSubsamples;      // sub-rays across a pixel for the Sun through the limb (>= 1)
+uniform vec3 umbraMoonDirection;      // unit, from the planet towards the Moon (UMBRA_MOON_LIGHT)
+uniform vec3 umbraMoonIrradiance;     // per table channel, W m^-2 (the Sun's light: E_sun each)
+uniform float umbraNightGlow;         // zenith radiance of the glow above the air, W m^-2 sr^-1 (0: none)
+uniform float umbraGlowLayerRatio;    // the camera's radius over the glow layer's (< 1)
 
 const float umbraLogDepthMinM = 1.0e-3;           // as ReceiverFragment.glsl
 const float umbraLogDepthOctaves = 53.150849518;
 const float umbraFarAway = 3.0e38;
 const float umbraGroundTolerance = 0.01;
+const float umbraGroundRadiusToleranceM = 3.0;
 
 // Distance along the ray to what the frame holds at this pixel (umbraFarAway: nothing).
 float umbraFrameDistance(float depth) {
@@ -159,6 +164,14 @@ vec3 umbraRefractedBackground(vec3 x, float r, float mu, vec3 dir, vec3 centre, 
   return seen + umbraLimbSun(centre, dir);
 }
 
+// The night sky's glow (airglow, zodiacal light, unresolved stars) above the air, seen
+// from inside it along a ray of view cosine mu: a thin emitting layer's van Rhijn factor
+// 1 / sqrt(1 - (r / r_layer)^2 (1 - mu^2)) times its zenith radiance.
+float umbraGlow(float mu) {
+  float k = umbraGlowLayerRatio;
+  return umbraNightGlow / sqrt(max(1.0 - k * k * (1.0 - mu * mu), 1e-4));
+}
+
 vec3 umbraAtmosphereComposite(vec2 uv) {
   vec2 ndc = 2.0 * uv - vec2(1.0);
   vec3 dir = umbraRayDirection(ndc);
@@ -199,20 +212,36 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
   bool ground = umbraAtmRayIntersectsGround(r, mu);
   float dEnd = ground ? umbraAtmDistanceToBottom(r, mu) : umbraAtmDistanceToTop(r, mu);
   float dObject = dFrame - t0;
-  // What the frame holds within 1 % of the ground hit is the planet itself (its depth is
-  // that of the analytic sphere, but with float camera matrices: grazing hits seen from
-  // a few km up move by a few tenths of a percent); it becomes the analytic ground.
-  bool onGround = ground && dObject >= dEnd * (1.0 - umbraGroundTolerance);
+  // What the frame holds within 1 % of the ground hit, or within 3 m of the ground's radius,
+  // is the planet itself (its depth is that of the analytic sphere, but with float camera
+  // matrices: grazing hits seen from a few km up move by a few tenths of a percent, from
+  // 10 m up by a few percent); it becomes the analytic ground.
+  bool onGround = ground && (dObject >= dEnd * (1.0 - umbraGroundTolerance) ||
+                             length(x + dObject * dir) < umbraAtmBottom + umbraGroundRadiusToleranceM);
   bool onObject = !onGround && dObject < dEnd;
 
   // S(x), the same for the three cases (the sky's ray misses the ground): looked up once,
   // as the segment's T. A SIMD rasteriser (Mesa's llvmpipe) runs every branch, masked.
   vec3 sx = umbraAtmScatteredRadiance(r, mu, muS, nu, ground);
+  // The Moon's light, when it counts (night; a program of its own, UMBRA_MOON_LIGHT): the
+  // same tables, lit from the Moon.
+#ifdef UMBRA_MOON_LIGHT
+  float muM = dot(x, umbraMoonDirection) / r;
+  float nuM = dot(dir, umbraMoonDirection);
+  vec3 sxMoon = umbraAtmScatteredRadiance(r, mu, muM, nuM, ground);
+#else
+  vec3 sxMoon = vec3(0.0);
+#endif
   if (onGround || onObject) {
     float d = onGround ? dEnd : dObject;
     vec3 T = umbraAtmTransmittance(r, mu, d, ground, onGround);
     vec3 S = umbraAtmInScatteringFrom(sx, T, r, mu, muS, nu, d, ground, onGround);
-    if (onObject) return T * frame + umbraAtmToDisplay * S * umbraSolarIrradiance;
+#ifdef UMBRA_MOON_LIGHT
+    vec3 moonS = umbraAtmInScatteringFrom(sxMoon, T, r, mu, muM, nuM, d, ground, onGround) * umbraMoonIrradiance;
+#else
+    vec3 moonS = vec3(0.0);
+#endif
+    if (onObject) return T * frame + umbraAtmToDisplay * (S * umbraSolarIrradiance + moonS);
     vec3 y = x + dEnd * dir;
     float muSg = dot(normalize(y), umbraSunDirection);
     float rg = umbraAtmBottom;
@@ -224,15 +253,23 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
       eclipse = clamp(frame / unshadowed, vec3(0.0), vec3(1.0));
     vec3 E = eclipse * umbraAtmDirectIrradiance(rg, muSg) + umbraAtmIndirectIrradiance(rg, muSg);
     vec3 raw = T * umbraGroundAlbedo * 0.31830988618 * E + S;
+    vec3 moonRaw = moonS;
+#ifdef UMBRA_MOON_LIGHT
+    float muMg = dot(normalize(y), umbraMoonDirection);
+    vec3 Em = umbraAtmDirectIrradiance(rg, muMg) + umbraAtmIndirectIrradiance(rg, muMg);
+    moonRaw += T * umbraGroundAlbedo * 0.31830988618 * Em * umbraMoonIrradiance;
+#endif
     // A pixel on the limb seen from outside: the part of it past the ground sees the Sun
     // through the atmosphere (the ring seen from the shadow, a few pixels wide).
     vec3 limbSun = umbraRefraction == 1 && umbraParallel == 0 && !inside && umbraLimbSubsamples > 1 &&
                            h + 0.5 * umbraPixelAngle * tc > umbraAtmBottom
                        ? umbraLimbSun(centre, dir) : vec3(0.0);
-    return umbraAtmToDisplay * raw * umbraSolarIrradiance + limbSun;
+    return umbraAtmToDisplay * (raw * umbraSolarIrradiance + moonRaw) + limbSun;
   }
+  vec3 sky = umbraAtmToDisplay * (sx * umbraSolarIrradiance + sxMoon * umbraMoonIrradiance);
+  vec3 glow = inside && dFrame >= umbraFarAway ? umbraAtmTransmittanceToTop(r, mu) * umbraGlow(mu) : vec3(0.0);
   if (umbraRefraction == 1 && umbraParallel == 0 && dFrame >= umbraFarAway)
-    return umbraRefractedBackground(x, r, mu, dir, centre, !inside) + umbraAtmToDisplay * sx * umbraSolarIrradiance;
+    return umbraRefractedBackground(x, r, mu, dir, centre, !inside) + glow + sky;
   vec3 T = umbraAtmTransmittanceToTop(r, mu);
-  return T * background + umbraAtmToDisplay * sx * umbraSolarIrradiance;
+  return T * background + glow + sky;
 }
