@@ -86,7 +86,7 @@ std::vector<CatalogueStar> readKStarsCatalogue(const std::string& path, double f
   return stars;
 }
 
-std::shared_ptr<const std::vector<CatalogueStar>> cachedCatalogue(const std::string& path) {
+std::shared_ptr<const std::vector<CatalogueStar>> cachedCatalogue(const std::string& path, const CatalogueReader& read) {
   struct Entry {
     std::uintmax_t size = 0;
     std::filesystem::file_time_type time;
@@ -100,7 +100,7 @@ std::shared_ptr<const std::vector<CatalogueStar>> cachedCatalogue(const std::str
   const std::lock_guard<std::mutex> lock(mutex);
   auto it = entries.find(path);
   if (!ec && it != entries.end() && it->second.size == size && it->second.time == time) return it->second.stars;
-  auto stars = std::make_shared<const std::vector<CatalogueStar>>(readKStarsCatalogue(path));
+  auto stars = std::make_shared<const std::vector<CatalogueStar>>(read ? read(path) : readKStarsCatalogue(path));
   if (!ec) entries[path] = {size, time, stars};
   return stars;
 }

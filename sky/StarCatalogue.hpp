@@ -2,6 +2,7 @@
 // A star catalogue: J2000 (ICRS) places with proper motions and parallaxes, V magnitudes and
 // B-V colours. Reads the Hipparcos/Tycho catalogue that KStars ships (Debian's kstars-data,
 // /usr/share/kstars/stars.dat: fixed-column text, 125 982 stars to V 8.99, brightest first).
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -36,9 +37,13 @@ std::optional<CatalogueStar> parseKStarsLine(const std::string& line);
 /// reading stops at the first fainter star).
 std::vector<CatalogueStar> readKStarsCatalogue(const std::string& path, double faintestVMag = 99.0);
 
-/// The whole catalogue at `path` (readKStarsCatalogue), read once per process and kept
-/// while the file's size and modification time stay the same. Thread-safe. Throws as
-/// readKStarsCatalogue.
-std::shared_ptr<const std::vector<CatalogueStar>> cachedCatalogue(const std::string& path);
+/// Reads a whole catalogue (readKStarsCatalogue, or a faster copy of it).
+using CatalogueReader = std::function<std::vector<CatalogueStar>(const std::string& path)>;
+
+/// The whole catalogue at `path` through `read` (default readKStarsCatalogue), read once per
+/// process and kept while the file's size and modification time stay the same. Thread-safe.
+/// Throws what `read` throws.
+std::shared_ptr<const std::vector<CatalogueStar>> cachedCatalogue(const std::string& path,
+                                                                  const CatalogueReader& read = {});
 
 }  // namespace umbra::sky

@@ -72,6 +72,38 @@ glm::dvec3 starFrameIrradianceWm2(double vMag, double bMinusV, double sunIrradia
   return sunIrradianceAt1AuWm2 * irradianceRelativeToSun(vMag) * starFrameColour(bMinusV);
 }
 
+double airMass(double zenithAngleRad) {
+  const double deg = zenithAngleRad * 180.0 / 3.14159265358979323846;
+  if (!(deg >= 0.0 && deg <= 90.0)) throw std::invalid_argument("air mass: the zenith angle must be in [0, 90] deg");
+  return 1.0 / (std::cos(zenithAngleRad) + 0.50572 * std::pow(96.07995 - deg, -1.6364));
+}
+
+namespace {
+// SplitMix64 (Steele, Lea & Flood 2014): a well-mixed 64-bit value from a counter.
+std::uint64_t splitMix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+// A uniform draw in (0, 1) from 53 bits.
+double unitOpen(std::uint64_t bits) { return ((bits >> 11) + 0.5) * 0x1.0p-53; }
+}  // namespace
+
+double scintillationFactor(double sigmaAtZenith, double airMassX, std::uint64_t seed, std::uint64_t index) {
+  if (!(sigmaAtZenith >= 0.0 && std::isfinite(sigmaAtZenith)))
+    throw std::invalid_argument("scintillation: sigma must be finite and >= 0");
+  if (!(airMassX >= 1.0 && std::isfinite(airMassX)))
+    throw std::invalid_argument("scintillation: the air mass must be finite and >= 1");
+  if (sigmaAtZenith == 0.0) return 1.0;
+  const double s = std::min(sigmaAtZenith * std::pow(airMassX, 1.5), 1.0);
+  // Box-Muller on two draws keyed by (seed, index).
+  const std::uint64_t key = splitMix64(seed ^ splitMix64(index));
+  const double u1 = unitOpen(splitMix64(key)), u2 = unitOpen(splitMix64(key + 1));
+  const double g = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2);
+  return std::exp(s * g - 0.5 * s * s);
+}
+
 double radianceOfSurfaceBrightnessWm2Sr(double vMagPerArcsec2, double sunIrradianceAt1AuWm2) {
   constexpr double kArcsecPerRad = 180.0 / 3.14159265358979323846 * 3600.0;
   return sunIrradianceAt1AuWm2 * irradianceRelativeToSun(vMagPerArcsec2) * kArcsecPerRad * kArcsecPerRad;

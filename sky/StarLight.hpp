@@ -5,6 +5,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <cstdint>
+
 namespace umbra::sky {
 
 /// Irradiance of a star of magnitude `vMag` relative to the Sun's at 1 au:
@@ -51,6 +53,18 @@ glm::dvec3 starFrameColour(double bMinusV);
 /// white-balanced to the Sun, for a Sun of `sunIrradianceAt1AuWm2` at 1 au:
 /// sunIrradianceAt1AuWm2 * irradianceRelativeToSun(vMag) * starFrameColour(bMinusV).
 glm::dvec3 starFrameIrradianceWm2(double vMag, double bMinusV, double sunIrradianceAt1AuWm2);
+
+/// The air mass at a zenith angle (Kasten & Young 1989, Applied Optics 28, 4735):
+/// 1 / (cos z + 0.50572 (96.07995 - z[deg])^-1.6364); 1 at the zenith, 38 at the horizon.
+/// Throws std::invalid_argument for z outside [0, 90] deg.
+double airMass(double zenithAngleRad);
+
+/// Scintillation: a factor exp(s g - s^2 / 2) on a star's irradiance, log-normal with mean 1
+/// (g a standard normal draw), s = min(sigmaAtZenith * X^(3/2), 1): the variance of the log
+/// grows as the air mass cubed (Young 1967, AJ 72, 747). g comes from (seed, index) by a
+/// counter-based hash: the same pair always gives the same factor, whatever else is drawn.
+/// Throws std::invalid_argument for a negative or non-finite sigma or an air mass below 1.
+double scintillationFactor(double sigmaAtZenith, double airMassX, std::uint64_t seed, std::uint64_t index);
 
 /// The zenith of a dark site's moonless night sky at the ground, V mag per square arcsecond
 /// (airglow, zodiacal light and unresolved stars together; Benn & Ellison 1998 measured

@@ -16,6 +16,7 @@
 #include "scene/Scene.hpp"
 #include "scene/Stars.hpp"
 #include "StarCatalogue.hpp"
+#include "StarCatalogueCache.h"
 #include "StarLight.hpp"
 #include "scene/Units.hpp"  // kAuM
 
@@ -27,6 +28,8 @@
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
+#include <cstdint>
+#include <utility>
 #include <cmath>
 #include <stdexcept>
 
@@ -70,17 +73,29 @@ glm::dvec3 earthshineOn(const scene::Body& body, const scene::Body& earth, const
                                              glm::length(toBody), sky::angleBetween(toSun, toBody));
   return e * sky::earthshineColour();
 }
-// The scene's stars to its limiting magnitude, seen from its camera.
-std::vector<StarPoint> sceneStars(const scene::Scene& s, double sunIrradianceAt1AuWm2) {
-  const auto all = sky::cachedCatalogue(s.stars->cataloguePath);
+// The scene's stars to its limiting magnitude, seen from its camera; with scintillation
+// when the camera is in an atmosphere (`air`: the planet's centre and top radius).
+std::vector<StarPoint> sceneStars(const scene::Scene& s, const glm::dvec3& cameraM, double sunIrradianceAt1AuWm2,
+                                  const std::optional<std::pair<glm::dvec3, double>>& air) {
+  const auto all = starCatalogue(s.stars->cataloguePath);
   std::vector<sky::CatalogueStar> bright;
   for (const sky::CatalogueStar& star : *all)
     if (star.vMag <= s.stars->limitingMagnitude) bright.push_back(star);
   const std::vector<glm::dvec3> directions =
       scene::apparentStarDirections(bright, s.time, scene::starObserverOf(s));
   std::vector<StarPoint> stars(bright.size());
-  for (std::size_t i = 0; i < bright.size(); ++i)
+  const bool twinkle = s.stars->scintillation > 0.0 && air && glm::length(cameraM - air->first) < air->second;
+  const glm::dvec3 zenith = air ? glm::normalize(cameraM - air->first) : glm::dvec3(0.0, 0.0, 1.0);
+  // The frame's time mixed into the seed (milliseconds since J2000.0).
+  const auto ms = static_cast<std::int64_t>(std::llround(1e3 * scene::secondsBetween(scene::parseUtc("2000-01-01T12:00:00Z"), s.time)));
+  const std::uint64_t seed = s.stars->seed * 0x9e3779b97f4a7c15ull ^ static_cast<std::uint64_t>(ms);
+  for (std::size_t i = 0; i < bright.size(); ++i) {
     stars[i] = {directions[i], sky::starFrameIrradianceWm2(bright[i].vMag, bright[i].bMinusV, sunIrradianceAt1AuWm2)};
+    const double cosZ = glm::dot(zenith, directions[i]);
+    if (twinkle && cosZ > 0.0)
+      stars[i].irradianceWm2 *= sky::scintillationFactor(s.stars->scintillation, sky::airMass(std::acos(std::min(cosZ, 1.0))),
+                                                         seed, i);
+  }
   return stars;
 }
 // The Moon's light and the night glow of in.atmosphere (SceneAtmosphere), for a camera in
@@ -174,7 +189,12 @@ SceneInputs sceneInputs(const scene::Scene& s) {
   }
   in.camera.up = s.camera.up;
   in.camera.fovDeg = s.camera.fovDeg;
-  if (s.stars) in.stars = sceneStars(s, in.sun.irradianceAt1AuWm2);
+  if (s.stars) {
+    std::optional<std::pair<glm::dvec3, double>> air;
+    if (in.atmosphere)
+      if (const scene::Body* planet = s.find(in.atmosphere->body)) air = {{planet->positionM, in.atmosphere->topRadiusM}};
+    in.stars = sceneStars(s, in.camera.positionM, in.sun.irradianceAt1AuWm2, air);
+  }
   if (in.atmosphere) nightLights(s, in);
   return in;
 }

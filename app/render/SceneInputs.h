@@ -48,7 +48,8 @@ struct SceneInputs {
 /// tinted by its colour at equal luminance; it keeps its photometry, its albedo map and its
 /// body-fixed frame (with a rotation model), and a Hapke body is lit by the Earth too
 /// (earthshine) when the scene has one.
-/// The stars come from the scene's catalogue (read once per process: sky::cachedCatalogue).
+/// The stars come from the scene's catalogue (read once per process, from the table cache's
+/// binary copy when there is one: StarCatalogueCache.h).
 /// A body whose sphere would enclose the camera (an observer near a pole, below the mean
 /// radius) is shrunk to just below the camera.
 ///

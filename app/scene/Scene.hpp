@@ -94,6 +94,11 @@ struct Camera {
 struct StarSky {
   std::string cataloguePath;        ///< a catalogue in KStars' stars.dat format (absolute)
   double limitingMagnitude = 6.5;   ///< the faintest V drawn
+  /// Scintillation seen through an atmosphere: the log's spread at the zenith
+  /// (sky::scintillationFactor; 0: none), and the seed of its draws (each frame's time is
+  /// mixed in, so that an animation twinkles).
+  double scintillation = 0.0;
+  std::uint64_t seed = 1;
 };
 
 struct Scene {

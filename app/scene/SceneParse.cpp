@@ -230,7 +230,7 @@ std::optional<StarSky> parseStars(const Reader& in, const json& value, const std
   bool named = false;
   if (!value.is_boolean()) {
     if (!value.is_object()) in.fail("stars", "expected true, false or an object, " + got(value));
-    in.object(value, "stars", {"catalogue", "limitingMagnitude"});
+    in.object(value, "stars", {"catalogue", "limitingMagnitude", "scintillation", "seed"});
     if (value.contains("catalogue")) {
       std::filesystem::path p(in.string(value["catalogue"], "stars.catalogue"));
       if (p.is_relative()) p = std::filesystem::path(sceneFile).parent_path() / p;
@@ -240,6 +240,10 @@ std::optional<StarSky> parseStars(const Reader& in, const json& value, const std
     if (value.contains("limitingMagnitude"))
       stars.limitingMagnitude = in.number(value["limitingMagnitude"], "stars.limitingMagnitude", -30.0, 30.0,
                                           "a V magnitude in [-30, 30]");
+    if (value.contains("scintillation"))
+      stars.scintillation = in.number(value["scintillation"], "stars.scintillation", 0.0, 1.0,
+                                      "the spread of the log of a star's light at the zenith, in [0, 1]");
+    if (value.contains("seed")) stars.seed = static_cast<std::uint64_t>(in.integer(value["seed"], "stars.seed", 0, 2147483647));
   }
   if (!std::filesystem::is_regular_file(stars.cataloguePath)) {
     if (named) in.fail("stars.catalogue", "no such file: " + stars.cataloguePath);

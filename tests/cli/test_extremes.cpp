@@ -387,10 +387,67 @@ TEST(Extremes, SceneFields) {
                 "terrain": {"seed": 1, "size": 16, "spacing": "30m", "latDeg": -10, "lonDeg": 10}}],
     "camera": {"observer": {"body": "Earth", "latDeg": 1.33, "lonDeg": -29.02, "altM": 10},
                "target": "Moon", "fovDeg": 0.71},
+    "stars": {"limitingMagnitude": 4.0},
     "exposure": -5, "image": {"width": 32, "height": 24}, "shadow": {"lutSize": 16}})");
   sweepJson(scene, "scene.json", [](const std::string& file) {
     return std::vector<std::string>{"render", file, "-o", "@/r.png"};
   });
+}
+
+// Stars at the extremes of place and time: an observer at the pole looking at the horizon,
+// a camera 2 au from the Sun, a date 2000 years on (proper motion applied; a note that the
+// ephemeris's years are left), each rendered with finite output; a catalogue with a bad row
+// refused with the file, the line and the column, and no image left behind.
+TEST(Extremes, StarScenes) {
+  TempDir dir;
+  nlohmann::json base = nlohmann::json::parse(R"({
+    "time": "2024-01-15T21:30:00Z",
+    "bodies": [{"preset": "Sun"}, {"preset": "Earth", "atmosphere": "earth"}],
+    "camera": {"observer": {"body": "Earth", "latDeg": 90, "lonDeg": 0, "altM": 2},
+               "target": {"azimuthDeg": 0, "elevationDeg": 0}, "up": "zenith", "fovDeg": 60},
+    "stars": {"catalogue": "few.dat", "limitingMagnitude": 9},
+    "exposure": 8, "image": {"width": 32, "height": 24}, "shadow": {"lutSize": 16}})");
+  std::ofstream(dir.path / "few.dat")
+      << "064508.92 -164258.0 -000546.0-001223.100379.2 -1.4400.01A0 1            , alp CMa, Sirius\n"
+         "023149.09 +891550.8 +000044.2-000011.700007.6 01.9700.64F7 0 0.04   3.97, alp UMi, Polaris\n"
+         "183656.34 +384701.3 +000201.0+000287.500128.9 00.03-0.00A0 0            , alp Lyr, Vega\n";
+  std::ofstream(dir.path / "bad.dat")
+      << "064508.92 -164258.0 -000546.0-001223.100379.2 -1.4400.01A0 1            , alp CMa, Sirius\n"
+         "183656.34 +38470X.3 +000201.0\n";
+  auto render = [&](const nlohmann::json& scene, const std::string& name) {
+    std::ofstream(dir.path / (name + ".json")) << scene.dump();
+    return run(UMBRA_EXE, {"render", (dir.path / (name + ".json")).string(), "--atmosphere-tables", "small", "-o",
+                           (dir.path / (name + ".exr")).string()});
+  };
+  auto expectFinite = [&](const std::string& name) {
+    const umbra::tables::Table t = umbra::tables::readExr((dir.path / (name + ".exr")).string(), {"R", "G", "B"});
+    for (float v : t.data) ASSERT_TRUE(std::isfinite(v)) << name;
+  };
+
+  RunResult r = render(base, "pole");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  expectFinite("pole");
+
+  nlohmann::json far = base;
+  far["bodies"][1].erase("atmosphere");
+  far["camera"] = {{"position", {0, 3.0e11, 1.5e11}}, {"target", {0, 3.0e11, 0}}, {"fovDeg", 60}};
+  r = render(far, "far");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  expectFinite("far");
+
+  nlohmann::json future = base;
+  future["time"] = "4024-01-15T21:30:00Z";
+  r = render(future, "future");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("outside 1900-2100"), std::string::npos) << r.err;
+  expectFinite("future");
+
+  nlohmann::json bad = base;
+  bad["stars"]["catalogue"] = "bad.dat";
+  r = render(bad, "bad");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("bad.dat:2: "), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path / "bad.exr"));
 }
 
 // A scene of fixed positions (Phobos in Mars' shadow): positions, the up vector.

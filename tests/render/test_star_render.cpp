@@ -5,6 +5,7 @@
 #include "AtmosphereTestSupport.hpp"
 #include "SceneInputs.h"
 #include "StarCatalogue.hpp"
+#include "StarCatalogueCache.h"
 #include "Photometry.hpp"
 #include "StarLight.hpp"
 #include "scene/Scene.hpp"
@@ -459,4 +460,78 @@ TEST(StarRender, NightLightsOfAScene) {
   const SceneInputs totality = sceneInputs(groundScene("2015-09-28T02:47:00Z", 1.33, -29.02));
   EXPECT_GT(totality.atmosphere->nightGlowWm2Sr, 0.0);
   EXPECT_LT(glm::length(totality.atmosphere->moonIrradianceWm2), 1e-12);
+}
+
+// Scintillation through the air ("stars": "scintillation", "seed"): each star's light is
+// changed, the same time and seed give the same light, another time other light; a star
+// below the horizon and a scene without air are left alone (the factors' mean:
+// test_sky's StarLight.ScintillationKeepsTheMean).
+TEST(StarRender, SceneScintillation) {
+  const std::string catalogue =
+      (std::filesystem::temp_directory_path() / ("umbra-twinkle-" + std::to_string(::getpid()) + ".dat")).string();
+  std::ofstream(catalogue) << kCatalogueRows;
+  auto sceneWith = [&](const std::string& time, double sigma, bool air) {
+    return scene::parseScene(R"({"time": ")" + time + R"(",
+      "bodies": [{"preset": "Sun"}, {"preset": "Earth")" + (air ? R"(, "atmosphere": "earth")" : "") + R"(}],
+      "camera": {"observer": {"body": "Earth", "latDeg": 0.0, "lonDeg": 0.0, "altM": 2},
+                 "target": {"azimuthDeg": 240, "elevationDeg": 40}, "up": "zenith"},
+      "stars": {"catalogue": ")" + catalogue + R"(", "scintillation": )" + std::to_string(sigma) + R"(, "seed": 3}})",
+                             "twinkle.json");
+  };
+  const std::string t0 = "2024-03-20T22:00:00Z", t1 = "2024-03-20T22:00:01Z";
+  const SceneInputs still = sceneInputs(sceneWith(t0, 0.0, true));
+  const SceneInputs a = sceneInputs(sceneWith(t0, 0.3, true)), b = sceneInputs(sceneWith(t0, 0.3, true));
+  const SceneInputs later = sceneInputs(sceneWith(t1, 0.3, true));
+  ASSERT_EQ(a.stars.size(), 2u);
+  EXPECT_NE(a.stars[0].irradianceWm2, still.stars[0].irradianceWm2);  // Sirius, 40 deg up
+  EXPECT_EQ(a.stars[0].irradianceWm2, b.stars[0].irradianceWm2);
+  EXPECT_NE(a.stars[0].irradianceWm2, later.stars[0].irradianceWm2);
+  EXPECT_EQ(a.stars[1].irradianceWm2, still.stars[1].irradianceWm2);  // Vega, below the horizon
+  const SceneInputs space = sceneInputs(sceneWith(t0, 0.3, false));
+  EXPECT_EQ(space.stars[0].irradianceWm2, still.stars[0].irradianceWm2);
+  std::filesystem::remove(catalogue);
+}
+
+// The catalogue's binary copy: the second read comes from it with every number exactly as
+// the text gave it (names dropped); a truncated or foreign copy is read past (the text
+// again, and the copy rewritten); a changed text file has another copy.
+TEST(StarRender, CatalogueCopyRoundTrip) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("umbra-star-copy-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string catalogue = (dir / "few.dat").string(), cache = (dir / "cache").string();
+  std::ofstream(catalogue) << kCatalogueRows;
+  const std::vector<sky::CatalogueStar> text = sky::readKStarsCatalogue(catalogue);
+  const std::vector<sky::CatalogueStar> first = readStarCatalogue(catalogue, cache);
+  const std::string copy = starCatalogueCopyPath(catalogue, cache);
+  ASSERT_TRUE(std::filesystem::exists(copy));
+  auto same = [&](const std::vector<sky::CatalogueStar>& got) {
+    ASSERT_EQ(got.size(), text.size());
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      EXPECT_EQ(got[i].raRad, text[i].raRad);
+      EXPECT_EQ(got[i].decRad, text[i].decRad);
+      EXPECT_EQ(got[i].pmRaCosDecMasPerYear, text[i].pmRaCosDecMasPerYear);
+      EXPECT_EQ(got[i].pmDecMasPerYear, text[i].pmDecMasPerYear);
+      EXPECT_EQ(got[i].parallaxMas, text[i].parallaxMas);
+      EXPECT_EQ(got[i].vMag, text[i].vMag);
+      EXPECT_EQ(got[i].bMinusV, text[i].bMinusV);
+      EXPECT_EQ(got[i].name, "");
+    }
+  };
+  same(first);
+  // From the copy: change the text's numbers in place would change its key, so corrupt the
+  // copy's magnitudes instead and see them come back.
+  {
+    std::fstream f(copy, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(24 + 5 * 8);
+    const double v = 42.0;
+    f.write(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  EXPECT_EQ(readStarCatalogue(catalogue, cache)[0].vMag, 42.0);
+  std::filesystem::resize_file(copy, 30);
+  same(readStarCatalogue(catalogue, cache));
+  EXPECT_EQ(std::filesystem::file_size(copy), 24u + 2u * 7u * 8u);
+  std::ofstream(catalogue, std::ios::app) << "\n";
+  EXPECT_NE(starCatalogueCopyPath(catalogue, cache), copy);
+  std::filesystem::remove_all(dir);
 }

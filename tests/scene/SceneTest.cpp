@@ -555,6 +555,11 @@ TEST(SceneStars, CatalogueAndLimitingMagnitude) {
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, timed + R"(, "stars": {"limit": 6})")).rfind(
                 "examples/x.json: stars.limit: unknown key", 0),
             0u);
+  EXPECT_EQ(errorFor(fixedScene(kSunAndRock, timed + R"(, "stars": {"scintillation": 2})")),
+            "examples/x.json: stars.scintillation: expected the spread of the log of a star's light at the zenith, in "
+            "[0, 1], got 2");
+  EXPECT_EQ(parseScene(fixedScene(kSunAndRock, timed + R"(, "stars": {"catalogue": "few.dat", "scintillation": 0.2, "seed": 9})"),
+                       dir + "/scene.json").stars->seed, 9u);
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, timed + R"(, "stars": 6)")),
             "examples/x.json: stars: expected true, false or an object, got 6");
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "stars": true)")),

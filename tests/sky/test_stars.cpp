@@ -229,3 +229,38 @@ TEST(StarLight, FrameColourIsBalancedToTheSun) {
   const glm::dvec3 e = starFrameIrradianceWm2(6.0, 0.65, 1361.0);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(e[c] / (1361.0 * std::pow(10.0, -0.4 * (6.0 + 26.74))), lo[c], 1e-12);
 }
+
+// The air mass: 1 at the zenith, 2 at 60 deg (1.994 by Kasten & Young's own table), 38 at
+// the horizon.
+TEST(StarLight, AirMass) {
+  EXPECT_NEAR(airMass(0.0), 1.0, 1e-3);
+  EXPECT_NEAR(airMass(60.0 * kPi / 180.0), 1.994, 2e-3);
+  EXPECT_NEAR(airMass(kPi / 2.0), 38.0, 0.1);
+  EXPECT_THROW(airMass(-0.1), std::invalid_argument);
+}
+
+// Scintillation keeps the mean (log-normal with mean 1) within the sampling error of 200 000
+// stars; the log's spread is sigma X^(3/2) (0.05 at the zenith, 0.26 at X = 3); the same
+// (seed, index) gives the same factor, another seed another; sigma 0 gives 1.
+TEST(StarLight, ScintillationKeepsTheMean) {
+  for (double x : {1.0, 3.0}) {
+    const double s = 0.05 * std::pow(x, 1.5);
+    double sum = 0.0, sumLog = 0.0, sumLog2 = 0.0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) {
+      const double f = scintillationFactor(0.05, x, 42, static_cast<std::uint64_t>(i));
+      sum += f;
+      sumLog += std::log(f);
+      sumLog2 += std::log(f) * std::log(f);
+    }
+    const double mean = sum / n, meanLog = sumLog / n, sdLog = std::sqrt(sumLog2 / n - meanLog * meanLog);
+    EXPECT_NEAR(mean, 1.0, 4.0 * s / std::sqrt(n)) << "X " << x;
+    EXPECT_NEAR(sdLog, s, 0.01 * s) << "X " << x;
+    EXPECT_NEAR(meanLog, -0.5 * s * s, 4.0 * s / std::sqrt(n)) << "X " << x;
+  }
+  EXPECT_EQ(scintillationFactor(0.1, 2.0, 7, 123), scintillationFactor(0.1, 2.0, 7, 123));
+  EXPECT_NE(scintillationFactor(0.1, 2.0, 7, 123), scintillationFactor(0.1, 2.0, 8, 123));
+  EXPECT_EQ(scintillationFactor(0.0, 5.0, 7, 123), 1.0);
+  EXPECT_THROW(scintillationFactor(-0.1, 1.0, 1, 1), std::invalid_argument);
+  EXPECT_THROW(scintillationFactor(0.1, 0.5, 1, 1), std::invalid_argument);
+}
