@@ -506,10 +506,13 @@ Scene parseScene(const std::string& jsonText, const std::string& pathForMessages
       scene.shadowLutSize = in.integer(shadow["lutSize"], "shadow.lutSize", 8, 4096);
   }
 
+  // Stars by default in a scene with a time (their places are for a date).
   if (root.contains("stars")) {
     if (!scene.hasTime && !(root["stars"].is_boolean() && !root["stars"].get<bool>()))
       in.fail("time", "required: the stars' places are for a date");
     scene.stars = parseStars(in, root["stars"], pathForMessages, scene.notes);
+  } else if (scene.hasTime) {
+    scene.stars = parseStars(in, json(true), pathForMessages, scene.notes);
   }
 
   detail::resolve(scene);
