@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <sstream>
 
 namespace umbra::sky {
 namespace {
@@ -65,15 +66,46 @@ std::optional<CatalogueStar> parseKStarsLine(const std::string& line) {
   return s;
 }
 
-std::vector<CatalogueStar> readKStarsCatalogue(const std::string& path, double faintestVMag) {
-  std::ifstream in(path);
-  if (!in) throw StarCatalogueError(path + ": cannot open: " + std::strerror(errno) +
-                                    " (the star catalogue comes with Debian's kstars-data)");
+std::optional<CatalogueStar> parseXplanetLine(const std::string& line) {
+  if (line.empty() || line[0] == '#' || trimmed(line).empty()) return std::nullopt;
+  const std::size_t quote = line.find('"');
+  std::istringstream numbers(line.substr(0, quote));
+  std::string dec, ra, mag;
+  numbers >> dec >> ra >> mag;
+  const auto number = [](const std::string& text, const char* what) {
+    char* stop = nullptr;
+    errno = 0;
+    const double value = std::strtod(text.c_str(), &stop);
+    if (text.empty() || *stop != '\0' || errno == ERANGE || !std::isfinite(value))
+      throw std::invalid_argument(std::string(what) + ": expected a number, got '" + text + "'");
+    return value;
+  };
+  CatalogueStar s;
+  const double decDeg = number(dec, "Dec (deg)"), raHours = number(ra, "RA (h)");
+  if (std::abs(decDeg) > 90.0) throw std::invalid_argument("Dec (deg): beyond a pole");
+  if (raHours < 0.0 || raHours > 24.0) throw std::invalid_argument("RA (h): outside [0, 24]");
+  s.decRad = decDeg * kPi / 180.0;
+  s.raRad = raHours * kPi / 12.0;
+  s.vMag = number(mag, "magnitude");
+  s.bMinusV = kColourlessBMinusV;
+  if (quote != std::string::npos) {
+    const std::size_t close = line.find('"', quote + 1);
+    s.name = trimmed(line.substr(quote + 1, close == std::string::npos ? std::string::npos : close - quote - 1));
+  }
+  return s;
+}
+
+namespace {
+
+using LineParser = std::optional<CatalogueStar> (*)(const std::string&);
+
+// Every star of `in` through `parse`, down to faintestVMag; errors name path and line.
+std::vector<CatalogueStar> readWith(std::istream& in, const std::string& path, double faintestVMag, LineParser parse) {
   std::vector<CatalogueStar> stars;
   std::string line;
   for (long number = 1; std::getline(in, line); ++number) {
     try {
-      const std::optional<CatalogueStar> star = parseKStarsLine(line);
+      const std::optional<CatalogueStar> star = parse(line);
       if (!star) continue;
       if (star->vMag > faintestVMag) break;
       stars.push_back(*star);
@@ -84,6 +116,34 @@ std::vector<CatalogueStar> readKStarsCatalogue(const std::string& path, double f
   if (in.bad()) throw StarCatalogueError(path + ": read error");
   if (stars.empty() && faintestVMag >= 99.0) throw StarCatalogueError(path + ": no stars");
   return stars;
+}
+
+std::ifstream openCatalogue(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw StarCatalogueError(path + ": cannot open: " + std::strerror(errno) +
+                                    " (the star catalogue comes with Debian's kstars-data)");
+  return in;
+}
+
+}  // namespace
+
+std::vector<CatalogueStar> readKStarsCatalogue(const std::string& path, double faintestVMag) {
+  std::ifstream in = openCatalogue(path);
+  return readWith(in, path, faintestVMag, parseKStarsLine);
+}
+
+std::vector<CatalogueStar> readCatalogue(const std::string& path, double faintestVMag) {
+  std::ifstream in = openCatalogue(path);
+  std::string line;
+  bool xplanet = false;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || trimmed(line).empty()) continue;
+    xplanet = line.find('"') != std::string::npos;
+    break;
+  }
+  in.clear();
+  in.seekg(0);
+  return readWith(in, path, faintestVMag, xplanet ? parseXplanetLine : parseKStarsLine);
 }
 
 std::shared_ptr<const std::vector<CatalogueStar>> cachedCatalogue(const std::string& path, const CatalogueReader& read) {
@@ -100,7 +160,7 @@ std::shared_ptr<const std::vector<CatalogueStar>> cachedCatalogue(const std::str
   const std::lock_guard<std::mutex> lock(mutex);
   auto it = entries.find(path);
   if (!ec && it != entries.end() && it->second.size == size && it->second.time == time) return it->second.stars;
-  auto stars = std::make_shared<const std::vector<CatalogueStar>>(read ? read(path) : readKStarsCatalogue(path));
+  auto stars = std::make_shared<const std::vector<CatalogueStar>>(read ? read(path) : readCatalogue(path));
   if (!ec) entries[path] = {size, time, stars};
   return stars;
 }

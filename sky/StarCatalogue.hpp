@@ -1,7 +1,9 @@
 #pragma once
 // A star catalogue: J2000 (ICRS) places with proper motions and parallaxes, V magnitudes and
 // B-V colours. Reads the Hipparcos/Tycho catalogue that KStars ships (Debian's kstars-data,
-// /usr/share/kstars/stars.dat: fixed-column text, 125 982 stars to V 8.99, brightest first).
+// /usr/share/kstars/stars.dat: fixed-column text, 125 982 stars to V 8.99, brightest first),
+// and as a fallback the Yale Bright Star Catalogue that xplanet ships (Debian's xplanet,
+// /usr/share/xplanet/stars/BSC: 9 096 stars to V 7.96 with places and magnitudes only).
 #include <functional>
 #include <memory>
 #include <optional>
@@ -13,6 +15,11 @@ namespace umbra::sky {
 
 /// Where Debian's kstars-data puts the catalogue.
 inline constexpr const char* kKStarsCatalogue = "/usr/share/kstars/stars.dat";
+/// Where Debian's xplanet puts the Yale Bright Star Catalogue (5th revised ed.).
+inline constexpr const char* kXplanetCatalogue = "/usr/share/xplanet/stars/BSC";
+/// The B-V given to a star its catalogue has no colour for (the Yale catalogue of xplanet):
+/// the Sun's, drawn white.
+inline constexpr double kColourlessBMinusV = 0.65;
 
 struct CatalogueStar {
   double raRad = 0.0, decRad = 0.0;      ///< J2000, ICRS
@@ -37,10 +44,19 @@ std::optional<CatalogueStar> parseKStarsLine(const std::string& line);
 /// reading stops at the first fainter star).
 std::vector<CatalogueStar> readKStarsCatalogue(const std::string& path, double faintestVMag = 99.0);
 
-/// Reads a whole catalogue (readKStarsCatalogue, or a faster copy of it).
+/// One line of xplanet's BSC: "Dec[deg] RA[h] V \"name\" BSN HD SAO"; nullopt for a comment
+/// ('#') or a blank line. No proper motion, parallax nor colour (kColourlessBMinusV). Throws
+/// std::invalid_argument naming the field that is not a number or out of range.
+std::optional<CatalogueStar> parseXplanetLine(const std::string& line);
+
+/// Either format, told by the first star line (xplanet's quote their names), as
+/// readKStarsCatalogue does.
+std::vector<CatalogueStar> readCatalogue(const std::string& path, double faintestVMag = 99.0);
+
+/// Reads a whole catalogue (readCatalogue, or a faster copy of it).
 using CatalogueReader = std::function<std::vector<CatalogueStar>(const std::string& path)>;
 
-/// The whole catalogue at `path` through `read` (default readKStarsCatalogue), read once per
+/// The whole catalogue at `path` through `read` (default readCatalogue), read once per
 /// process and kept while the file's size and modification time stay the same. Thread-safe.
 /// Throws what `read` throws.
 std::shared_ptr<const std::vector<CatalogueStar>> cachedCatalogue(const std::string& path,

@@ -91,11 +91,11 @@ std::string starCatalogueCopyPath(const std::string& path, const std::string& ca
 }
 
 std::vector<sky::CatalogueStar> readStarCatalogue(const std::string& path, const std::string& cacheDirectory) {
-  if (!fs::is_regular_file(path)) return sky::readKStarsCatalogue(path);  // its error
+  if (!fs::is_regular_file(path)) return sky::readCatalogue(path);  // its error
   const std::string copy = starCatalogueCopyPath(path, cacheDirectory);
   std::vector<sky::CatalogueStar> stars = readCopy(copy);
   if (!stars.empty()) return stars;
-  stars = sky::readKStarsCatalogue(path);
+  stars = sky::readCatalogue(path);
   for (sky::CatalogueStar& s : stars) s.name.clear();
   writeCopy(copy, stars);
   return stars;

@@ -20,7 +20,7 @@ namespace umbra::render {
 std::string starCatalogueCopyPath(const std::string& path, const std::string& cacheDirectory);
 
 /// Every star of the catalogue at `path` without names: from the copy in `cacheDirectory`
-/// when it matches, else from the text (sky::readKStarsCatalogue, then the copy is written).
+/// when it matches, else from the text (sky::readCatalogue, then the copy is written).
 std::vector<sky::CatalogueStar> readStarCatalogue(const std::string& path, const std::string& cacheDirectory);
 
 /// readStarCatalogue once per process, in tables::TableCache::defaultDirectory().

@@ -220,8 +220,8 @@ std::string parseAlbedoMap(const Reader& in, const json& value, const std::strin
 
 /// "stars": true (the packaged catalogue to V 6.5), false, or an object with "catalogue"
 /// (a file relative to the scene) and "limitingMagnitude". The packaged catalogue not
-/// installed is a note, not an error (the scene is drawn without stars); a named file that
-/// is not there is an error.
+/// installed is a note, not an error (xplanet's Yale catalogue instead when it is there,
+/// else no stars); a named file that is not there is an error.
 std::optional<StarSky> parseStars(const Reader& in, const json& value, const std::string& sceneFile,
                                   std::vector<std::string>& notes) {
   if (value.is_boolean() && !value.get<bool>()) return std::nullopt;
@@ -247,6 +247,13 @@ std::optional<StarSky> parseStars(const Reader& in, const json& value, const std
   }
   if (!std::filesystem::is_regular_file(stars.cataloguePath)) {
     if (named) in.fail("stars.catalogue", "no such file: " + stars.cataloguePath);
+    if (std::filesystem::is_regular_file(sky::kXplanetCatalogue)) {
+      notes.push_back(std::string("the star catalogue ") + sky::kKStarsCatalogue +
+                      " is not installed (Debian package kstars-data): the Yale Bright Star Catalogue " +
+                      sky::kXplanetCatalogue + " instead (to V 8, without colours)");
+      stars.cataloguePath = sky::kXplanetCatalogue;
+      return stars;
+    }
     notes.push_back("no stars: the star catalogue " + stars.cataloguePath +
                     " is not installed (Debian package kstars-data)");
     return std::nullopt;

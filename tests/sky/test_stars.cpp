@@ -264,3 +264,46 @@ TEST(StarLight, ScintillationKeepsTheMean) {
   EXPECT_THROW(scintillationFactor(-0.1, 1.0, 1, 1), std::invalid_argument);
   EXPECT_THROW(scintillationFactor(0.1, 0.5, 1, 1), std::invalid_argument);
 }
+
+// Rows of /usr/share/xplanet/stars/BSC (xplanet 1.3.1), as they are in the file.
+namespace {
+const char* const kBscHeader = "# From the Bright Star Catalogue, 5th Revised Ed.,\n\n#    Dec      RA   Mag         Name  BSN     HD    SAO\n";
+const char* const kBscSirius = "-16.7161  6.7525 -1.46 \"  9Alp CMa\" 2491  48915 151881";
+const char* const kBscVega = " 38.7836 18.6156  0.03 \"  3Alp Lyr\" 7001 172167  67174";
+}  // namespace
+
+// The Yale catalogue of xplanet: Dec in degrees, RA in hours, V; no colour (the Sun's B-V);
+// readCatalogue tells it from the KStars format by its quoted names and names a bad line.
+TEST(StarCatalogue, ReadsXplanetsYaleCatalogue) {
+  const std::optional<CatalogueStar> s = parseXplanetLine(kBscSirius);
+  ASSERT_TRUE(s);
+  EXPECT_NEAR(s->decRad, -16.7161 * kPi / 180.0, 1e-12);
+  EXPECT_NEAR(s->raRad, 6.7525 * kPi / 12.0, 1e-12);
+  EXPECT_EQ(s->vMag, -1.46);
+  EXPECT_EQ(s->bMinusV, kColourlessBMinusV);
+  EXPECT_EQ(s->pmRaCosDecMasPerYear, 0.0);
+  EXPECT_EQ(s->name, "9Alp CMa");
+  // The same star in the two catalogues: within 1 arcsec (the Yale file's 4 decimals).
+  const CatalogueStar k = *parseKStarsLine(kSirius);
+  EXPECT_NEAR(s->decRad, k.decRad, 1.0 * kArcsecRad);
+  EXPECT_NEAR(s->raRad, k.raRad, 3.0 * kArcsecRad);
+
+  const std::string bsc = writeFile("umbra-bsc-test.dat", std::string(kBscHeader) + kBscSirius + "\n" + kBscVega + "\n");
+  const std::vector<CatalogueStar> stars = readCatalogue(bsc);
+  ASSERT_EQ(stars.size(), 2u);
+  EXPECT_EQ(stars[1].vMag, 0.03);
+  EXPECT_EQ(readCatalogue(bsc, 0.0).size(), 1u);
+  const std::string kstars = writeFile("umbra-kstars-test.dat", std::string(kSirius) + "\n" + kVega + "\n");
+  EXPECT_EQ(readCatalogue(kstars)[0].bMinusV, 0.01);
+  const std::string bad = writeFile("umbra-bsc-bad.dat", std::string(kBscSirius) + "\n 95.0 1.0 2.0 \"x\"\n");
+  try {
+    readCatalogue(bad);
+    ADD_FAILURE() << "no error for a Dec beyond a pole";
+  } catch (const StarCatalogueError& e) {
+    EXPECT_EQ(std::string(e.what()), bad + ":2: Dec (deg): beyond a pole");
+  }
+  EXPECT_THROW(parseXplanetLine("-16.7161 six -1.46 \"x\""), std::invalid_argument);
+  std::filesystem::remove(bsc);
+  std::filesystem::remove(kstars);
+  std::filesystem::remove(bad);
+}
