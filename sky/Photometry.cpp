@@ -1,10 +1,13 @@
 #include "Photometry.hpp"
 
+#include "Spectrum.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace umbra::sky {
 
@@ -85,6 +88,24 @@ double apparentMagnitudeV(double geometricAlbedo, const HapkeParameters& p, doub
 double magnitudeOfIrradiance(double irradianceWm2) {
   if (!(irradianceWm2 > 0.0)) return std::numeric_limits<double>::infinity();
   return kSunMagnitudeV - 2.5 * std::log10(irradianceWm2 / kSolarConstantWm2);
+}
+
+glm::dvec3 reflectanceTint(const glm::dvec3& reflectance) {
+  for (int c = 0; c < 3; ++c)
+    if (!(reflectance[c] >= 0.0 && std::isfinite(reflectance[c])))
+      throw std::invalid_argument("reflectance must be finite and >= 0");
+  if (!(reflectance.x + reflectance.y + reflectance.z > 0.0))
+    throw std::invalid_argument("reflectance must not be zero at every wavelength");
+  const atmosphere::WavelengthSet set = atmosphere::WavelengthSet::rgb();  // 680, 550, 440 nm
+  std::vector<double> sun(3), reflected(3);
+  for (int i = 0; i < 3; ++i) {
+    sun[i] = atmosphere::solarIrradianceWm2PerNm(set.nm[i]);
+    reflected[i] = reflectance[i] * sun[i];
+  }
+  const glm::dvec3 s = atmosphere::spectralRadianceToLinearSrgb(set, sun);
+  const glm::dvec3 r = atmosphere::spectralRadianceToLinearSrgb(set, reflected);
+  const double ys = atmosphere::luminanceCdM2(set, sun), yr = atmosphere::luminanceCdM2(set, reflected);
+  return r / s * (ys / yr);
 }
 
 std::string describe(const HapkeParameters& p) {

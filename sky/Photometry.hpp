@@ -21,6 +21,8 @@
 //   I(alpha) = int_disc F dA / (pi R^2) x pi = B S J / 3,   J(alpha) = 1 - sin(alpha/2) tan(alpha/2) ln cot(alpha/4)
 // the flux of the sphere over that of a white Lambert disc of its size at normal incidence,
 // so a body of albedo A has geometric albedo p = A I(0) = 2 A / 3 (B(0) = 2, S(0) = J(0) = 1).
+#include <glm/vec3.hpp>
+
 #include <string>
 
 namespace umbra::sky {
@@ -76,6 +78,15 @@ double apparentMagnitudeV(double geometricAlbedo, const HapkeParameters& p, doub
 double magnitudeOfIrradiance(double irradianceWm2);
 /// The Sun's irradiance at 1 au that kSunMagnitudeV stands for (W m^-2).
 constexpr double kSolarConstantWm2 = 1361.0;
+
+/// A body's colour from its relative reflectance at 680, 550 and 440 nm (the R, G, B
+/// wavelengths of the atmosphere's tables): the sunlight it reflects (the ASTM G173
+/// spectrum times the reflectance, interpolated between the three as the atmosphere's
+/// colours are: atmosphere/Spectrum.hpp, the solar-ratio rule) in linear sRGB, divided by
+/// the Sun's own (the frames' white balance), at unit luminance (its light's Y over the
+/// Sun's is the reflectance's luminance-weighted mean: the albedo sets the brightness).
+/// Throws std::invalid_argument for a negative, non-finite or all-zero reflectance.
+glm::dvec3 reflectanceTint(const glm::dvec3& reflectance680_550_440);
 
 /// "hapke(g=0.72, w=0.72, c=0)" for messages.
 std::string describe(const HapkeParameters& p);

@@ -65,6 +65,12 @@ double bodyAlbedo(const scene::Body& b) {
                                                           : 1.5 * b.albedo;
 }
 
+// A body's colour in the frames' white balance at unit luminance: its "color" read as its
+// reflectance at 680, 550, 440 nm (sky::reflectanceTint); white when that is all zero.
+glm::dvec3 bodyTint(const scene::Body& b) {
+  return b.color.x + b.color.y + b.color.z > 0.0 ? sky::reflectanceTint(b.color) : glm::dvec3(1.0);
+}
+
 // The earthshine on `body` (sky::earthshineIrradiance), with its colour: W m^-2 per channel.
 glm::dvec3 earthshineOn(const scene::Body& body, const scene::Body& earth, const glm::dvec3& sunM) {
   const glm::dvec3 toSun = sunM - earth.positionM, toBody = body.positionM - earth.positionM;
@@ -124,10 +130,8 @@ void nightLights(const scene::Scene& s, SceneInputs& in) {
                                              b.radiusM, glm::length(in.sun.positionM - b.positionM), glm::length(cam - b.positionM));
     const glm::dvec3 shadow = eclipse::eclipseFactor(b.positionM, in.sun.positionM, in.sun.radiusM,
                                                      {planet->positionM, a.bottomRadiusM}, nullptr);
-    const double tintLuminance = eclipse::luminance(b.color);
-    const glm::dvec3 tint = tintLuminance > 0.0 ? b.color / tintLuminance : glm::dvec3(1.0);
     a.moonPositionM = b.positionM;
-    a.moonIrradianceWm2 = in.sun.irradianceAt1AuWm2 * sky::irradianceRelativeToSun(v) * tint * shadow;
+    a.moonIrradianceWm2 = in.sun.irradianceAt1AuWm2 * sky::irradianceRelativeToSun(v) * bodyTint(b) * shadow;
     return;
   }
 }
@@ -143,9 +147,7 @@ SceneInputs sceneInputs(const scene::Scene& s) {
     if (b.preset == "Earth") earth = &b;
   for (const scene::Body& b : s.bodies) {
     if (b.isSun()) continue;
-    const double tintLuminance = eclipse::luminance(b.color);
-    const glm::dvec3 tint = tintLuminance > 0.0 ? b.color / tintLuminance : glm::dvec3(1.0);
-    SphereBody body{b.name, b.positionM, b.radiusM, bodyAlbedo(b) * tint};
+    SphereBody body{b.name, b.positionM, b.radiusM, bodyAlbedo(b) * bodyTint(b)};
     body.photometry = b.photometry;
     body.albedoMapPath = b.albedoMapPath;
     if (!b.preset.empty() && scene::hasRotationModel(b.preset) && s.hasTime)

@@ -45,7 +45,8 @@ struct SceneInputs {
 
 /// The scene at its current time. A body's albedo is 3/2 of its geometric albedo, for
 /// Lambert's law (exact for a Lambertian sphere) and for Hapke's (A = p / I(0), I(0) = 2/3),
-/// tinted by its colour at equal luminance; it keeps its photometry, its albedo map and its
+/// tinted by its colour (its reflectance at 680, 550, 440 nm: sky::reflectanceTint) at equal
+/// luminance; it keeps its photometry, its albedo map and its
 /// body-fixed frame (with a rotation model), and a Hapke body is lit by the Earth too
 /// (earthshine) when the scene has one.
 /// The stars come from the scene's catalogue (read once per process, from the table cache's

@@ -20,7 +20,7 @@ struct BodyPreset {
   double meanDistanceFromParentM; ///< mean orbital distance (semi-major axis)
   bool hasAtmosphere;
   double geometricAlbedo;
-  std::array<double, 3> color;    ///< linear RGB tint in [0, 1] (the Moon's: its reddish hue)
+  std::array<double, 3> color;    ///< relative reflectance at 680, 550, 440 nm (the Moon's: its reddish hue)
   sky::Photometry photometry;     ///< Lambert's law, or Hapke's for the dusty airless bodies
   std::string albedoMap;          ///< a named map (namedAlbedoMapFile) used when installed; "" for none
 };

@@ -47,7 +47,7 @@ struct Body {
   /// preset name or a file), never by a preset's default.
   std::string atmosphereModel;
   double albedo = 0.0;           ///< geometric albedo
-  glm::dvec3 color{1.0};         ///< linear RGB tint in [0, 1]
+  glm::dvec3 color{1.0};         ///< relative reflectance at 680, 550, 440 nm, in [0, 1]
   sky::Photometry photometry;    ///< Lambert's or Hapke's law (the preset's; "photometry")
   /// An equirectangular albedo map (sky/AlbedoMap.hpp): an absolute path, "" for a uniform
   /// albedo. The Moon's preset takes the Clementine mosaic when it is installed.

@@ -3,11 +3,15 @@
 // by pixel; the rendered light summed over the disc against the V magnitude of the
 // photometry; the albedo map's place in the body-fixed frame; and the extremes.
 #include "RenderTestSupport.hpp"
+#include "SceneInputs.h"
+#include "scene/Scene.hpp"
 
 #include "AlbedoMap.hpp"
 #include "Earthshine.hpp"
 #include "MoonGeometry.hpp"
 #include "Photometry.hpp"
+#include "Spectrum.hpp"
+#include "StarLight.hpp"
 
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -276,4 +280,53 @@ TEST(MoonRender, Extremes) {
   ground.fovDeg = 60.0;
   const Frame surface = renderFrame(sunTowards({-1.0, 0.0, 0.1}), {moon}, ground, 64);
   EXPECT_GT(surface.at(32, 60).g, 0.0);
+}
+
+// The Moon's colour: the full Moon of the preset (its reflectance 0.92, 0.79, 0.64 at 680,
+// 550, 440 nm) rendered, its disc's light with the frames' white balance undone, has the
+// chromaticity of that reflectance (linear between the three, constant beyond) times the
+// solar spectrum through the CIE functions in 1 nm steps, within 0.001 in x and y (the
+// bound asked is 0.005; tinting linear sRGB by the three numbers directly is 0.004 off in
+// x); faintly warm (x above the Sun's). The scenes' Moon takes that colour.
+TEST(MoonRender, FullMoonColourIsItsReflectanceSpectrum) {
+  const glm::dvec3 reflectance(0.92, 0.79, 0.64);
+  SphereBody moon = hapkeMoon();
+  moon.albedoRgb = 0.18 * sky::reflectanceTint(reflectance);
+  const glm::dvec3 toSun(1.0, 0.0, 0.0);
+  const Frame f = renderFrame(sunTowards(toSun), {moon}, cameraAt(glm::dvec3(1.0, 0.02, 0.0), 3.844e8), 96);
+  glm::dvec3 sum(0.0);
+  for (int j = 0; j < f.h; ++j)
+    for (int i = 0; i < f.w; ++i) sum += f.at(i, j);
+  ASSERT_GT(sum.g, 0.0);
+  const auto xyOf = [](const glm::dvec3& xyz) { return glm::dvec2(xyz.x, xyz.y) / (xyz.x + xyz.y + xyz.z); };
+  const auto srgbToXyz = [](const glm::dvec3& c) {
+    return glm::dvec3(0.4124 * c.r + 0.3576 * c.g + 0.1805 * c.b, 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b,
+                      0.0193 * c.r + 0.1192 * c.g + 0.9505 * c.b);
+  };
+  const glm::dvec2 rendered = xyOf(srgbToXyz(sum * sky::sunLinearSrgb()));
+  glm::dvec3 moonXyz(0.0), sunXyz(0.0);
+  for (int nm = 360; nm <= 830; ++nm) {
+    const double r = nm <= 440 ? 0.64
+                     : nm <= 550 ? 0.64 + (0.79 - 0.64) * (nm - 440) / 110.0
+                     : nm <= 680 ? 0.79 + (0.92 - 0.79) * (nm - 550) / 130.0
+                                 : 0.92;
+    moonXyz += r * atmosphere::solarIrradianceWm2PerNm(nm) * atmosphere::cie1931(nm);
+    sunXyz += atmosphere::solarIrradianceWm2PerNm(nm) * atmosphere::cie1931(nm);
+  }
+  const glm::dvec2 expected = xyOf(moonXyz), sun = xyOf(sunXyz);
+  // What tinting linear sRGB by the three numbers directly would give.
+  const glm::dvec3 rgbTint = reflectance / (0.2126 * reflectance.r + 0.7152 * reflectance.g + 0.0722 * reflectance.b);
+  const glm::dvec2 rgbWay = xyOf(srgbToXyz(rgbTint * sky::sunLinearSrgb()));
+  std::printf("full Moon xy: rendered (%.4f, %.4f), reflectance x Sun (%.4f, %.4f), Sun (%.4f, %.4f), sRGB tint "
+              "(%.4f, %.4f)\n", rendered.x, rendered.y, expected.x, expected.y, sun.x, sun.y, rgbWay.x, rgbWay.y);
+  EXPECT_NEAR(rendered.x, expected.x, 0.001);
+  EXPECT_NEAR(rendered.y, expected.y, 0.001);
+  EXPECT_GT(rendered.x, sun.x + 0.01);
+
+  const SceneInputs in = sceneInputs(scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/full-moon-2026-10-26.json"));
+  for (const SphereBody& b : in.bodies)
+    if (b.name == "Moon")
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(b.albedoRgb[c] / b.albedoRgb.g, sky::reflectanceTint(reflectance)[c] / sky::reflectanceTint(reflectance).g,
+                    1e-12);
 }
