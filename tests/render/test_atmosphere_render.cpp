@@ -209,10 +209,12 @@ umbra::test::DiscExtent discOf(const Frame& f) {
 
 // A frame with or without refraction (the refracted-path tables and the refraction table,
 // or the plain ones).
-Frame renderRefracted(const ViewCamera& cam, const glm::dvec3& sunDir, int size, bool refraction) {
+Frame renderRefracted(const ViewCamera& cam, const glm::dvec3& sunDir, int size, bool refraction,
+                      const std::vector<StarPoint>& stars = {}) {
   const RefractionFixture& rf = refractionFixture();
   const AtmosphereFixture& f = atmosphereFixture();
   AtmosphereScene scene(size, cam, sunDir);
+  scene.view.SetStars(stars);
   scene.view.GetAtmosphere().SetAtmosphere(f.model, refraction ? rf.tables : f.tables, glm::dvec3(0.0),
                                            scene.earth.albedoRgb);
   scene.view.GetAtmosphere().SetRefraction(refraction ? rf.refraction.Get() : nullptr);
@@ -258,6 +260,52 @@ TEST(AtmosphereRender, RefractionLiftsAndFlattensTheSettingSun) {
   };
   check(d.top, 1.0);
   check(d.bottom, -1.0);
+}
+
+// A star 2 degrees above the geometric horizon at night is lifted by refraction as the
+// Sun is: its rendered centroid's apparent elevation minus the deviation of the ray
+// through it is its geometric elevation within 1.5 pixels (0.0125 deg each); without
+// refraction it stays where it is.
+TEST(AtmosphereRender, RefractionLiftsAStar) {
+  const AtmosphereFixture& f = atmosphereFixture();
+  const ViewCamera cam = groundCamera(2.0, 2.0, 2.5);
+  const double starElevationDeg = 2.0;
+  const std::vector<StarPoint> star = {{directionFromAngles(starElevationDeg, 0.0), glm::dvec3(1e-6)}};
+  const glm::dvec3 sunDir = directionFromAngles(-40.0, 180.0);
+  const int size = 200;
+  auto centroidRow = [&](const Frame& fr) {
+    double sum = 0.0, rows = 0.0;
+    for (int j = 0; j < fr.h; ++j)
+      for (int i = 0; i < fr.w; ++i) {
+        const double g = fr.at(i, j).g;
+        sum += g;
+        rows += g * (j + 0.5);
+      }
+    return rows / sum;
+  };
+  const double bentRow = centroidRow(renderRefracted(cam, sunDir, size, true, star));
+  const double straightRow = centroidRow(renderRefracted(cam, sunDir, size, false, star));
+  const double pxDeg = 2.5 / size;
+  auto directionOfRow = [&](double row) {  // the pixel rows' centres are at j + 0.5
+    const double t = std::tan(0.5 * cam.fovDeg * kPi / 180.0);
+    const double y = (1.0 - 2.0 * row / size) * t;
+    const glm::dvec3 fwd = glm::normalize(cam.targetM - cam.positionM);
+    const glm::dvec3 right = glm::normalize(glm::cross(fwd, cam.up)), up = glm::cross(right, fwd);
+    const glm::dvec3 d = glm::normalize(fwd + y * up);
+    return d;
+  };
+  const glm::dvec3 bentDir = directionOfRow(bentRow);
+  const double mu = glm::dot(bentDir, glm::normalize(cam.positionM));
+  const atmosphere::RefractiveMedium medium =
+      atmosphere::refractiveMedium(f.model, f.model.refractivityReferenceWavelengthNm);
+  const double deviationDeg = atmosphere::traceRay(medium, glm::length(cam.positionM), mu).deviationRad * 180.0 / kPi;
+  const double apparentDeg = std::asin(mu) * 180.0 / kPi;
+  const double straightDeg = std::asin(glm::dot(directionOfRow(straightRow), glm::normalize(cam.positionM))) * 180.0 / kPi;
+  std::printf("  star at %.2f deg: apparent %.4f deg with refraction (deviation %.4f deg), %.4f deg without\n",
+              starElevationDeg, apparentDeg, deviationDeg, straightDeg);
+  EXPECT_NEAR(apparentDeg - deviationDeg, starElevationDeg, 1.5 * pxDeg);
+  EXPECT_NEAR(straightDeg, starElevationDeg, 1.5 * pxDeg);
+  EXPECT_GT(deviationDeg, 0.1);
 }
 
 // A solar eclipse seen from space: the Moon's shadow on the ground survives the
