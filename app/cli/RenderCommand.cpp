@@ -72,6 +72,16 @@ std::vector<Frame> animationFrames(const std::string& from, const std::string& t
   return frames;
 }
 
+/// "6.5": a magnitude with at most two decimals, trailing zeros dropped.
+std::string formatMagnitude(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", v);
+  std::string t = text;
+  while (t.back() == '0') t.pop_back();
+  if (t.back() == '.') t.pop_back();
+  return t;
+}
+
 } // namespace
 
 void addRenderCommand(CLI::App& app, Action& action) {
@@ -81,6 +91,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
   struct Options {
     std::string scene, time, size, output, from, to, step;
     std::optional<double> exposure;
+    std::optional<double> limitingMagnitude;
     double glare = 0.0;
     std::string atmosphereTables = "default";
     bool refraction = false;
@@ -93,6 +104,9 @@ void addRenderCommand(CLI::App& app, Action& action) {
   render->add_option("--time", o->time, "UTC time, ISO 8601 (default: the scene's)");
   render->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default: the scene's)");
   render->add_option("--exposure", o->exposure, "Exposure in EV (default: the scene's)")->check(CLI::Range(-60.0, 60.0));
+  render->add_option("--limiting-magnitude", o->limitingMagnitude,
+                     "The faintest stars drawn, V magnitude (default: the scene's, 6.5; the catalogue ends at 9)")
+      ->check(CLI::Range(-30.0, 30.0));
   render->add_option("--glare", o->glare,
                      "Glare strength in [0, 10] (default 0: none): halos of 0.03, 0.15, 0.75 deg around bright "
                      "pixels holding 4, 2, 1 % of their light per unit; the frame's total radiance is kept")
@@ -147,6 +161,10 @@ void addRenderCommand(CLI::App& app, Action& action) {
         noteTimesBeyondEphemeris({s.time});
       if (!o->size.empty()) parseSize(o->size, s.width, s.height);
       if (o->exposure) s.exposureEv = *o->exposure;
+      if (o->limitingMagnitude) {
+        if (!s.stars) throw CommandError("--limiting-magnitude: the scene draws no stars (it has no time, or \"stars\": false)");
+        s.stars->limitingMagnitude = *o->limitingMagnitude;
+      }
       if (o->atmosphereTables != "default" && o->atmosphereTables != "small")
         throw CommandError("--atmosphere-tables: expected default or small, got '" + o->atmosphereTables + "'");
       if (o->egl) {
@@ -179,6 +197,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
       const ProgressLine limbProgress("limb-luminance LuT", limb);
       std::vector<std::unique_ptr<render::TerrainRendering>> terrains;  // (drawn by the view)
       std::optional<ProgressLine> progress;
+      std::size_t starCount = 0;
       if (animation) progress.emplace("frames (" + std::to_string(frames.size()) + ")");
       for (std::size_t k = 0; k < frames.size(); ++k) {
         const Frame& f = frames[k];
@@ -190,6 +209,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
           }
         }
         const render::SceneInputs in = render::sceneInputs(s);
+        starCount = in.stars.size();
         // Near an occluder (Phobos by Mars) a whole LuT is too coarse: one over the
         // receivers' u and v ranges (render::sceneLutRange), as the atmospheric one's.
         const auto range = render::sceneLutRange(in.sun, in.bodies, in.bodies, /*darkUmbra=*/true, s.shadowLutSize);
@@ -251,7 +271,10 @@ void addRenderCommand(CLI::App& app, Action& action) {
           const std::optional<double> sunDeg = scene::sunElevationDeg(s);
           std::cout << "wrote " << f.path << " (" << s.width << "x" << s.height << ", " << s.name
                     << (s.hasTime ? ", " + scene::formatUtc(s.time) : std::string())
-                    << (sunDeg ? ", " + scene::describeSunElevation(*sunDeg) : std::string()) << ")\n";
+                    << (sunDeg ? ", " + scene::describeSunElevation(*sunDeg) : std::string())
+                    << (s.stars ? ", " + std::to_string(starCount) + " stars to V " + formatMagnitude(s.stars->limitingMagnitude)
+                                : std::string())
+                    << ")\n";
         }
       }
       if (progress) {

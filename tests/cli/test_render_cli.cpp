@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <vector>
 
 using namespace umbra;
@@ -429,4 +430,33 @@ TEST(RenderCli, MoonAtTheHorizonAndWithoutItsMap) {
   EXPECT_NE(r.err.find("umbra: Moon: uniform albedo (the clementine map is not installed: Debian package "
                        "marble-qt-data)"), std::string::npos) << r.err;
   EXPECT_TRUE(std::filesystem::exists(dir / "nomap.png"));
+}
+
+// --limiting-magnitude: the line says how many stars were drawn to which V; fewer to V 1
+// than to V 3 (kstars-data's catalogue); refused for a scene without stars.
+TEST(RenderCli, LimitingMagnitudeCountsTheStars) {
+  if (!std::filesystem::exists("/usr/share/kstars/stars.dat")) GTEST_SKIP() << "kstars-data is not installed";
+  TempDir dir;
+  auto starsTo = [&](const std::string& v) {
+    const RunResult r = run(UMBRA_EXE, {"render", kScene, "--size", "32x24", "--limiting-magnitude", v, "--output",
+                                        dir / "stars.png"},
+                            {"UMBRA_CACHE_DIR=" + dir / "cache"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    const std::smatch m = [&] {
+      std::smatch match;
+      std::regex_search(r.out, match, std::regex(", (\\d+) stars to V " + v + "\\)"));
+      return match;
+    }();
+    EXPECT_FALSE(m.empty()) << r.out;
+    return m.empty() ? -1 : std::stoi(m[1].str());
+  };
+  const int bright = starsTo("1"), more = starsTo("3");
+  EXPECT_GT(bright, 0);
+  EXPECT_GT(more, bright);
+  const RunResult r = run(UMBRA_EXE, {"render", std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/phobos-in-mars-shadow.json", "--size",
+                                      "32x24", "--limiting-magnitude", "3", "--output", dir / "none.png"},
+                          {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("--limiting-magnitude: the scene draws no stars"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "none.png"));
 }
