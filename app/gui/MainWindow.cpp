@@ -327,6 +327,9 @@ void MainWindow::setLimitingMagnitude(double vMag) {
   this->refresh();
 }
 
+double MainWindow::limitingMagnitude() const { return this->starLimit->value(); }
+bool MainWindow::limitingMagnitudeEnabled() const { return this->starLimit->isEnabled(); }
+
 void MainWindow::setGlare(double strength) {
   {
     const QSignalBlocker block(this->glare);

@@ -110,6 +110,9 @@ public:
   /// The faintest V of the scene's stars (the "Stars to V" spin box, -2..9; a scene
   /// without "stars" has none to change: the box is disabled and this does nothing).
   void setLimitingMagnitude(double vMag);
+  /// The box's value, and whether the scene has stars to change.
+  double limitingMagnitude() const;
+  bool limitingMagnitudeEnabled() const;
 
   /// Renders both views now.
   void renderViews();

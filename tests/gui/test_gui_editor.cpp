@@ -18,6 +18,7 @@
 #include "DiscExtent.hpp"
 
 #include <QApplication>
+#include <filesystem>
 #include <QComboBox>
 #include <QProgressBar>
 #include <QRegularExpression>
@@ -767,4 +768,31 @@ int main(int argc, char** argv) {
   QApplication app(argc, argv);
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
+}
+
+// The "Stars to V" box: enabled with the scene's limit (6.5) for a scene with stars (Orion
+// on a moonless night), and the view's stars follow it: above the horizon fewer pixels
+// stand out of the dark sky to V 2 than to V 6.5. A scene without stars (no time) leaves
+// it disabled.
+TEST(GuiEditor, StarsToVFollowsTheLimitingMagnitude) {
+  if (!std::filesystem::exists("/usr/share/kstars/stars.dat")) GTEST_SKIP() << "kstars-data is not installed";
+  Window win(std::nullopt, std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/orion-night-sky.json", std::nullopt, true);
+  EXPECT_TRUE(win.w.limitingMagnitudeEnabled());
+  EXPECT_EQ(win.w.limitingMagnitude(), 6.5);
+  auto brightPixels = [&](const QImage& image) {
+    const QRect v = win.w.viewRect();
+    int n = 0;
+    for (int y = v.top(); y < v.bottom(); ++y)
+      for (int x = v.left(); x < v.right(); ++x) n += qGreen(image.pixel(x, y)) > 40 ? 1 : 0;
+    return n;
+  };
+  const int many = brightPixels(win.shot("stars-6.5.png"));
+  win.w.setLimitingMagnitude(2.0);
+  EXPECT_EQ(win.w.limitingMagnitude(), 2.0);
+  const int few = brightPixels(win.shot("stars-2.png"));
+  std::printf("  pixels above 40 of 255: %d to V 6.5, %d to V 2\n", many, few);
+  EXPECT_GT(many, few);
+  EXPECT_GT(few, 0);
+  win.w.loadScene(std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/phobos-in-mars-shadow.json");
+  EXPECT_FALSE(win.w.limitingMagnitudeEnabled());
 }
