@@ -8,7 +8,10 @@
 #   4. writes the cross-section of Earth's shadow at the Moon's distance in that scene
 #      (356 849 km, the eclipse's perigee) as CSV and PNG,
 #   5. writes the same cross-section through Earth's atmosphere after the 2015 Calbuco
-#      eruption (refracted and scattered light in the umbra, R/G/B, log scale) as CSV and PNG.
+#      eruption (refracted and scattered light in the umbra, R/G/B, log scale) as CSV and PNG,
+#   6. renders the sky around the Moon in a 40 degree field at the partial phase and at
+#      totality: the moonlit air hides the fainter stars, then the stars of kstars-data's
+#      catalogue come out as the Moon's light goes.
 #   The atmosphere tables and the atmospheric shadow LuT are computed once (about a minute
 #   on 2 cores) and cached.
 # Output goes to out/ (or the folder given as the first argument).
@@ -37,11 +40,16 @@ echo "== Earth's shadow at the Moon's distance"
 echo "== Earth's shadow at the Moon's distance, through the atmosphere (earth-2015-calbuco)"
 "${xvfb[@]}" "$umbra" profile shadow --occluder Earth --atmosphere earth-2015-calbuco \
   --distance 356849km --csv "$out/earth-shadow-at-moon-atmosphere.csv" --plot "$out/earth-shadow-at-moon-atmosphere.png"
+echo "== the sky around the Moon, partial phase (01:30Z) and totality (02:47Z)"
+sky=examples/scenes/lunar-eclipse-2015-09-28-sky.json
+"${xvfb[@]}" "$umbra" render "$sky" --time 2015-09-28T01:30:00Z --output "$out/lunar-eclipse-2015-09-28-sky-partial.png"
+"${xvfb[@]}" "$umbra" render "$sky" --time 2015-09-28T02:47:00Z --output "$out/lunar-eclipse-2015-09-28-sky-totality.png"
 
 echo
 echo "Files written:"
 for f in lunar-eclipse-2015-09-28-totality.png lunar-eclipse-2015-09-28-partial.png earth-shadow-lut.exr \
   earth-shadow-at-moon.csv earth-shadow-at-moon.png earth-shadow-at-moon-atmosphere.csv \
-  earth-shadow-at-moon-atmosphere.png; do
+  earth-shadow-at-moon-atmosphere.png lunar-eclipse-2015-09-28-sky-partial.png \
+  lunar-eclipse-2015-09-28-sky-totality.png; do
   echo "  $(cd "$out" && pwd)/$f"
 done
