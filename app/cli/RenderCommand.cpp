@@ -93,6 +93,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
     std::optional<double> exposure;
     std::optional<double> limitingMagnitude;
     double glare = 0.0;
+    bool nightVision = false;
     std::string atmosphereTables = "default";
     bool refraction = false;
     double limbRingThresholdPx = 5.0;
@@ -104,6 +105,9 @@ void addRenderCommand(CLI::App& app, Action& action) {
   render->add_option("--time", o->time, "UTC time, ISO 8601 (default: the scene's)");
   render->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default: the scene's)");
   render->add_option("--exposure", o->exposure, "Exposure in EV (default: the scene's)")->check(CLI::Range(-60.0, 60.0));
+  render->add_flag("--night-vision", o->nightVision,
+                   "Show the PNG as the eye sees dim light: below about 5 cd/m^2 colour fades to the rods' grey, "
+                   "fully below 0.005 (CIE 191 mesopic adaptation at each pixel; EXR output keeps the radiance)");
   render->add_option("--limiting-magnitude", o->limitingMagnitude,
                      "The faintest stars drawn, V magnitude (default: the scene's, 6.5; the catalogue ends at 9)")
       ->check(CLI::Range(-30.0, 30.0));
@@ -246,6 +250,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
           throw CommandError(o->scene + ": " + e.what());
         }
         view.SetExposureEV(s.exposureEv);
+        view.GetRenderPass()->SetNightVision(o->nightVision);
         view.GetRenderPass()->SetGlareStrength(o->glare);
         view.Render();
         if (k == 0 && render::usingEglRenderWindows())

@@ -4,6 +4,8 @@
 #include "Glare.h"
 #include "RenderGlsl.hpp"
 #include "StarRendering.h"
+#include "NightVision.hpp"
+#include "StarLight.hpp"
 
 #include <vtkObjectFactory.h>
 #include <vtkOpenGLError.h>
@@ -35,6 +37,7 @@ vtkUmbraRenderPass::~vtkUmbraRenderPass() = default;
 void vtkUmbraRenderPass::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ExposureEV: " << this->ExposureEV << "\n";
+  os << indent << "NightVision: " << (this->NightVision ? "on" : "off") << "\n";
   os << indent << "GlareStrength: " << this->GlareStrength << "\n";
   os << indent << "ToneMapping: " << (this->ToneMapping == Linear ? "Linear" : "Reinhard") << "\n";
   os << indent << "HDR frame: " << this->HdrWidth << "x" << this->HdrHeight
@@ -216,6 +219,15 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   program->SetUniformi("umbraHdr", hdr->GetTextureUnit());
   program->SetUniformf("umbraExposureScale", static_cast<float>(std::exp2(this->ExposureEV)));
   program->SetUniformi("umbraToneMapping", this->ToneMapping);
+  program->SetUniformi("umbraNightVision", this->NightVision ? 1 : 0);
+  if (this->NightVision) {
+    static const glm::dvec3 sun = umbra::sky::sunLinearSrgb();
+    const float sunF[3] = {static_cast<float>(sun.x), static_cast<float>(sun.y), static_cast<float>(sun.z)};
+    program->SetUniform3f("umbraSunLinearSrgb", sunF);
+    static const double efficacy = umbra::sky::sunlightEfficacyLmPerW(), scotopic = umbra::sky::sunlightScotopicRatio();
+    program->SetUniformf("umbraSunlightEfficacy", static_cast<float>(efficacy));
+    program->SetUniformf("umbraSunlightScotopic", static_cast<float>(scotopic));
+  }
 
   ostate->vtkglDisable(GL_BLEND);
   ostate->vtkglDisable(GL_DEPTH_TEST);

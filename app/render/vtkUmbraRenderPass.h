@@ -63,6 +63,12 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
   vtkSetClampMacro(ToneMapping, int, Linear, Reinhard);
   vtkGetMacro(ToneMapping, int);
 
+  /// Night vision on the display (not on the HDR frame): each pixel as the eye sees it at
+  /// its own luminance (sky/NightVision.hpp: CIE 191 mesopic adaptation, scotopic grey).
+  /// Off by default.
+  vtkSetMacro(NightVision, bool);
+  vtkGetMacro(NightVision, bool);
+
   /// Glare strength in [0, 10]: 0 (default) none, 1 moves 7 % of the light into halos
   /// (Glare.h); the frame's total radiance is kept.
   vtkSetClampMacro(GlareStrength, double, 0.0, 10.0);
@@ -100,6 +106,7 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
 
   double ExposureEV = 0.0;
   int ToneMapping = Reinhard;
+  bool NightVision = false;
 
   vtkSmartPointer<vtkOpenGLFramebufferObject> FrameBufferObject;
   vtkSmartPointer<vtkTextureObject> ColorTexture;
