@@ -212,6 +212,11 @@ MainWindow::MainWindow() {
   connect(this->starLimit, qOverload<double>(&QDoubleSpinBox::valueChanged), this,
           [this](double v) { this->setLimitingMagnitude(v); });
 
+  this->nightVisionBox = new QCheckBox("Night vision");
+  this->nightVisionBox->setToolTip("Show the view as the eye sees dim light: below about 5 cd/m^2 colour fades to the "
+                                   "rods' grey, fully below 0.005 (CIE 191 mesopic adaptation at each pixel)");
+  connect(this->nightVisionBox, &QCheckBox::toggled, this, [this](bool on) { this->setNightVision(on); });
+
   this->atmosphereChoice = new QComboBox;
   this->atmosphereChoice->addItem("none", QString());
   for (const std::string& name : atmosphere::presetNames()) this->atmosphereChoice->addItem(qs(name), qs(name));
@@ -274,6 +279,7 @@ MainWindow::MainWindow() {
   controls->addWidget(this->glare);
   controls->addWidget(new QLabel("Stars to V"));
   controls->addWidget(this->starLimit);
+  controls->addWidget(this->nightVisionBox);
   controls->addSpacing(16);
   controls->addWidget(new QLabel("Atmosphere"));
   controls->addWidget(this->atmosphereChoice);
@@ -326,6 +332,16 @@ void MainWindow::setLimitingMagnitude(double vMag) {
   this->current->stars->limitingMagnitude = this->starLimit->value();
   this->refresh();
 }
+
+void MainWindow::setNightVision(bool on) {
+  {
+    const QSignalBlocker block(this->nightVisionBox);
+    this->nightVisionBox->setChecked(on);
+  }
+  this->view->setNightVision(on);
+  this->view->render();
+}
+bool MainWindow::nightVision() const { return this->nightVisionBox->isChecked(); }
 
 double MainWindow::limitingMagnitude() const { return this->starLimit->value(); }
 bool MainWindow::limitingMagnitudeEnabled() const { return this->starLimit->isEnabled(); }

@@ -107,6 +107,9 @@ public:
   void setExposure(double ev);
   /// Glare strength of the 3D view (0..10).
   void setGlare(double strength);
+  /// Night vision on the 3D view (the "Night vision" check box; umbra render --night-vision).
+  void setNightVision(bool on);
+  bool nightVision() const;
   /// The faintest V of the scene's stars (the "Stars to V" spin box, -2..9; a scene
   /// without "stars" has none to change: the box is disabled and this does nothing).
   void setLimitingMagnitude(double vMag);
@@ -162,6 +165,7 @@ private:
   QPushButton* atmosphereCancel = nullptr;
   QDoubleSpinBox* glare = nullptr;
   QDoubleSpinBox* starLimit = nullptr;
+  QCheckBox* nightVisionBox = nullptr;
   QPushButton* atmosphereEdit = nullptr;
   QCheckBox* refractionBox = nullptr;
   QDockWidget* editorDock = nullptr;

@@ -232,6 +232,7 @@ bool SceneView::lastDrawUsedLimbLuminance() const {
 double SceneView::lastRingWidthPixels() const { return impl->bodies->GetAtmosphere().GetLastRingWidthPixels(); }
 
 void SceneView::setGlareStrength(double strength) { impl->bodies->GetRenderPass()->SetGlareStrength(strength); }
+void SceneView::setNightVision(bool on) { impl->bodies->GetRenderPass()->SetNightVision(on); }
 
 void SceneView::setAtmosphereTables(vtkAtmosphereTablesSource* tables, const render::AtmosphereTableChoice& choice) {
   impl->tables = tables;

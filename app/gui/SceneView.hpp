@@ -43,6 +43,8 @@ public:
   void setOnFrame(std::function<void()> onFrame);
   /// Glare strength (vtkUmbraRenderPass::SetGlareStrength), 0..10.
   void setGlareStrength(double strength);
+  /// Night vision on the display (vtkUmbraRenderPass::SetNightVision).
+  void setNightVision(bool on);
   /// Tables (already updated) for the atmosphere the scene asks for; nullptr: none. The
   /// atmosphere is drawn while the scene's atmosphere is the one the tables were made for
   /// (they are applied again on every setScene, as the body moves). Call setScene next.

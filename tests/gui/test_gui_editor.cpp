@@ -772,8 +772,8 @@ int main(int argc, char** argv) {
 
 // The "Stars to V" box: enabled with the scene's limit (6.5) for a scene with stars (Orion
 // on a moonless night), and the view's stars follow it: above the horizon fewer pixels
-// stand out of the dark sky to V 2 than to V 6.5. A scene without stars (no time) leaves
-// it disabled.
+// stand out of the dark sky to V 2 than to V 6.5. The "Night vision" box turns that
+// starlit view grey. A scene without stars (no time) leaves the limit disabled.
 TEST(GuiEditor, StarsToVFollowsTheLimitingMagnitude) {
   if (!std::filesystem::exists("/usr/share/kstars/stars.dat")) GTEST_SKIP() << "kstars-data is not installed";
   Window win(std::nullopt, std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/orion-night-sky.json", std::nullopt, true);
@@ -793,6 +793,25 @@ TEST(GuiEditor, StarsToVFollowsTheLimitingMagnitude) {
   std::printf("  pixels above 40 of 255: %d to V 6.5, %d to V 2\n", many, few);
   EXPECT_GT(many, few);
   EXPECT_GT(few, 0);
+  // Night vision: the starlit view turns grey (the stars and the glow far below 0.005 cd/m^2).
+  auto colourfulness = [&](const QImage& image) {
+    const QRect v = win.w.viewRect();
+    long spread = 0;
+    for (int y = v.top(); y < v.bottom(); y += 2)
+      for (int x = v.left(); x < v.right(); x += 2) {
+        const QRgb c = image.pixel(x, y);
+        spread += std::max({qRed(c), qGreen(c), qBlue(c)}) - std::min({qRed(c), qGreen(c), qBlue(c)});
+      }
+    return spread;
+  };
+  win.w.setLimitingMagnitude(6.5);
+  const long colour = colourfulness(win.shot("colour.png"));
+  win.w.setNightVision(true);
+  EXPECT_TRUE(win.w.nightVision());
+  const long grey = colourfulness(win.shot("night-vision.png"));
+  std::printf("  colour spread over the view: %ld, with night vision %ld\n", colour, grey);
+  EXPECT_LT(grey, colour / 4 + 1);
+  win.w.setNightVision(false);
   win.w.loadScene(std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/phobos-in-mars-shadow.json");
   EXPECT_FALSE(win.w.limitingMagnitudeEnabled());
 }
