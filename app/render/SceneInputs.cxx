@@ -79,6 +79,7 @@ glm::dvec3 earthshineOn(const scene::Body& body, const scene::Body& earth, const
                                              glm::length(toBody), sky::angleBetween(toSun, toBody));
   return e * sky::earthshineColour();
 }
+
 // The scene's stars to its limiting magnitude, seen from its camera; with scintillation
 // when the camera is in an atmosphere (`air`: the planet's centre and top radius).
 std::vector<StarPoint> sceneStars(const scene::Scene& s, const glm::dvec3& cameraM, double sunIrradianceAt1AuWm2,
@@ -93,17 +94,20 @@ std::vector<StarPoint> sceneStars(const scene::Scene& s, const glm::dvec3& camer
   const bool twinkle = s.stars->scintillation > 0.0 && air && glm::length(cameraM - air->first) < air->second;
   const glm::dvec3 zenith = air ? glm::normalize(cameraM - air->first) : glm::dvec3(0.0, 0.0, 1.0);
   // The frame's time mixed into the seed (milliseconds since J2000.0).
-  const auto ms = static_cast<std::int64_t>(std::llround(1e3 * scene::secondsBetween(scene::parseUtc("2000-01-01T12:00:00Z"), s.time)));
+  static const scene::UtcTime j2000 = scene::parseUtc("2000-01-01T12:00:00Z");
+  const auto ms = static_cast<std::int64_t>(std::llround(1e3 * scene::secondsBetween(j2000, s.time)));
   const std::uint64_t seed = s.stars->seed * 0x9e3779b97f4a7c15ull ^ static_cast<std::uint64_t>(ms);
   for (std::size_t i = 0; i < bright.size(); ++i) {
     stars[i] = {directions[i], sky::starFrameIrradianceWm2(bright[i].vMag, bright[i].bMinusV, sunIrradianceAt1AuWm2)};
     const double cosZ = glm::dot(zenith, directions[i]);
-    if (twinkle && cosZ > 0.0)
-      stars[i].irradianceWm2 *= sky::scintillationFactor(s.stars->scintillation, sky::airMass(std::acos(std::min(cosZ, 1.0))),
-                                                         seed, i);
+    if (twinkle && cosZ > 0.0) {
+      const double airMass = sky::airMass(std::acos(std::min(cosZ, 1.0)));
+      stars[i].irradianceWm2 *= sky::scintillationFactor(s.stars->scintillation, airMass, seed, i);
+    }
   }
   return stars;
 }
+
 // The Moon's light and the night glow of in.atmosphere (SceneAtmosphere), for a camera in
 // the air at night.
 void nightLights(const scene::Scene& s, SceneInputs& in) {
@@ -126,8 +130,9 @@ void nightLights(const scene::Scene& s, SceneInputs& in) {
     if (b.preset != "Moon" || b.name == a.body || elevationDeg(b.positionM) < -5.0) continue;
     const sky::HapkeParameters hapke =
         b.photometry.law == sky::Photometry::Law::Hapke ? b.photometry.hapke : sky::moonParameters();
-    const double v = sky::apparentMagnitudeV(b.albedo, hapke, sky::angleBetween(in.sun.positionM - b.positionM, cam - b.positionM),
-                                             b.radiusM, glm::length(in.sun.positionM - b.positionM), glm::length(cam - b.positionM));
+    const glm::dvec3 toSun = in.sun.positionM - b.positionM, toCamera = cam - b.positionM;
+    const double v = sky::apparentMagnitudeV(b.albedo, hapke, sky::angleBetween(toSun, toCamera), b.radiusM,
+                                             glm::length(toSun), glm::length(toCamera));
     const glm::dvec3 shadow = eclipse::eclipseFactor(b.positionM, in.sun.positionM, in.sun.radiusM,
                                                      {planet->positionM, a.bottomRadiusM}, nullptr);
     a.moonPositionM = b.positionM;
