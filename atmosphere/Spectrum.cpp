@@ -164,6 +164,12 @@ glm::dvec3 xyzToLinearSrgb(const glm::dvec3& c) {
                     0.0557 * c.x - 0.2040 * c.y + 1.0570 * c.z);
 }
 
+glm::dvec3 linearSrgbToXyz(const glm::dvec3& c) {
+  // IEC 61966-2-1:1999, linear sRGB to XYZ (D65).
+  return glm::dvec3(0.4124 * c.r + 0.3576 * c.g + 0.1805 * c.b, 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b,
+                    0.0193 * c.r + 0.1192 * c.g + 0.9505 * c.b);
+}
+
 double luminanceCdM2(const WavelengthSet& set, const std::vector<double>& radiance) {
   return spectralRadianceToXyz(set, radiance).y;
 }

@@ -102,6 +102,9 @@ glm::dvec3 spectralRadianceToXyz(const WavelengthSet& set, const std::vector<dou
 /// maps to (1, 1, 1). Out-of-gamut colours give negative components; nothing is clamped.
 glm::dvec3 xyzToLinearSrgb(const glm::dvec3& xyz);
 
+/// Its converse, the standard's own 4-decimal matrix (so the two round-trip to about 1e-4).
+glm::dvec3 linearSrgbToXyz(const glm::dvec3& linearSrgb);
+
 /// Luminance [cd m^-2] of the sampled spectrum: the Y of spectralRadianceToXyz.
 double luminanceCdM2(const WavelengthSet& set, const std::vector<double>& radianceWm2SrNm);
 

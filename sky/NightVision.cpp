@@ -14,11 +14,6 @@ namespace {
 constexpr double kA = 0.7670, kB = 0.3334;
 constexpr double kV0 = 683.0 / 1699.0;
 
-glm::dvec3 linearSrgbToXyz(const glm::dvec3& c) {
-  return {0.4124 * c.r + 0.3576 * c.g + 0.1805 * c.b, 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b,
-          0.0193 * c.r + 0.1192 * c.g + 0.9505 * c.b};
-}
-
 double step(double m, double lp, double ls) {
   const double mes = (m * lp + (1.0 - m) * ls * kV0) / (m + (1.0 - m) * kV0);
   return std::clamp(kA + kB * std::log10(std::max(mes, 1e-30)), 0.0, 1.0);
@@ -60,7 +55,7 @@ double sunlightScotopicRatio() {
 
 glm::dvec3 nightVisionColour(const glm::dvec3& frameRgb) {
   const double k = sunlightEfficacyLmPerW();
-  const glm::dvec3 xyz = linearSrgbToXyz(frameRgb * sunLinearSrgb()) * k;  // cd m^-2
+  const glm::dvec3 xyz = atmosphere::linearSrgbToXyz(frameRgb * sunLinearSrgb()) * k;  // cd m^-2
   const double scotopic = scotopicLuminance(xyz);
   const double m = mesopicConeShareIterated(std::max(xyz.y, 0.0), scotopic, 8);
   const glm::dvec3 grey(scotopic / (k * sunlightScotopicRatio()));

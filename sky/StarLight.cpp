@@ -40,9 +40,6 @@ double starIlluminanceLux(double vMag) {
   return sunLux * irradianceRelativeToSun(vMag);
 }
 
-glm::dvec3 starIlluminanceLinearSrgb(double vMag, double bMinusV) {
-  return starLinearSrgb(bMinusV) * starIlluminanceLux(vMag);
-}
 
 glm::dvec3 sunLinearSrgb() {
   static const glm::dvec3 rgb = [] {
@@ -107,6 +104,11 @@ double scintillationFactor(double sigmaAtZenith, double airMassX, std::uint64_t 
 double radianceOfSurfaceBrightnessWm2Sr(double vMagPerArcsec2, double sunIrradianceAt1AuWm2) {
   constexpr double kArcsecPerRad = 180.0 / 3.14159265358979323846 * 3600.0;
   return sunIrradianceAt1AuWm2 * irradianceRelativeToSun(vMagPerArcsec2) * kArcsecPerRad * kArcsecPerRad;
+}
+
+double nightGlowAboveAirWm2Sr(double zenithOpticalDepth, double sunIrradianceAt1AuWm2) {
+  return radianceOfSurfaceBrightnessWm2Sr(kDarkSkyZenithVMagPerArcsec2, sunIrradianceAt1AuWm2) *
+         std::exp(zenithOpticalDepth);
 }
 
 }  // namespace umbra::sky

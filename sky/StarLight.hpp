@@ -34,9 +34,6 @@ glm::dvec3 starLinearSrgb(double bMinusV);
 /// (atmosphere::solarIlluminanceLux, from its spectrum) times irradianceRelativeToSun(V).
 double starIlluminanceLux(double vMag);
 
-/// The same as linear sRGB: starLinearSrgb(bMinusV) times starIlluminanceLux(vMag), so
-/// that its luminance (Y) is the illuminance.
-glm::dvec3 starIlluminanceLinearSrgb(double vMag, double bMinusV);
 
 /// The Sun's colour in linear sRGB at unit luminance: the top-of-atmosphere solar spectrum
 /// (atmosphere::solarXyzLux) through the CIE functions. umbra's frames are white-balanced
@@ -75,5 +72,10 @@ inline constexpr double kDarkSkyZenithVMagPerArcsec2 = 22.0;
 /// sr^-1 of white-balanced sunlight): irradianceRelativeToSun(mu) * E_sun per square
 /// arcsecond, times the square arcseconds in a steradian.
 double radianceOfSurfaceBrightnessWm2Sr(double vMagPerArcsec2, double sunIrradianceAt1AuWm2);
+
+/// The night sky's glow above an atmosphere of zenith optical depth `zenithOpticalDepth`
+/// (at 550 nm), in the frames' units: the dark site's kDarkSkyZenithVMagPerArcsec2 at the
+/// ground's zenith divided by the zenith transmittance exp(-tau).
+double nightGlowAboveAirWm2Sr(double zenithOpticalDepth, double sunIrradianceAt1AuWm2);
 
 }  // namespace umbra::sky

@@ -1,5 +1,7 @@
 #include "AtmosphereRendering.h"
 
+#include "CameraBasis.h"
+
 #include "AtmosphereGlsl.hpp"
 #include "FieldParameters.h"
 #include "RenderGlsl.hpp"
@@ -107,11 +109,6 @@ PixelRect sphereOnScreen(const glm::dvec3& centre, double radius, const glm::dve
 }
 
 std::vector<float> asFloat(const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); }
-
-void setVec3(vtkShaderProgram* p, const char* name, const glm::dvec3& v) {
-  const float f[3] = {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
-  p->SetUniform3f(name, f);
-}
 
 } // namespace
 
@@ -412,17 +409,11 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   };
 
   // The camera (double): world position, basis, projection.
-  glm::dvec3 focal, up;
-  cam->GetFocalPoint(&focal.x);
-  cam->GetViewUp(&up.x);
-  const glm::dvec3 fwd = glm::normalize(focal - pos);
-  const glm::dvec3 right = glm::normalize(glm::cross(fwd, up));
-  const glm::dvec3 camUp = glm::cross(right, fwd);
-  const double aspect = double(width) / height;
+  const CameraBasis basis = cameraBasis(cam, width, height);
+  const glm::dvec3 &fwd = basis.forward, &right = basis.right, &camUp = basis.up;
   const glm::dvec3 cameraWorld = m.origin + pos;
   const glm::dvec3 toCentre = m.centre - cameraWorld;
   const double camRadius = glm::length(toCentre);
-  const double halfHeight = parallel ? cam->GetParallelScale() : std::tan(0.5 * cam->GetViewAngle() * kPi / 180.0);
   double nearFar[2];
   cam->GetClippingRange(nearFar);
   const glm::dvec3 toSun = m.sun.positionM - m.centre;
@@ -442,7 +433,7 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     p->SetUniformf("umbraCameraRadius", static_cast<float>(camRadius));
     setVec3(p, "umbraRayForward", fwd);
     p->SetUniformi("umbraParallel", parallel ? 1 : 0);
-    const glm::dvec3 x = right * (halfHeight * aspect), y = camUp * halfHeight;
+    const glm::dvec3 x = basis.rayX(), y = basis.rayY();
     setVec3(p, "umbraRayOriginX", parallel ? x : glm::dvec3(0.0));
     setVec3(p, "umbraRayOriginY", parallel ? y : glm::dvec3(0.0));
     setVec3(p, "umbraRayX", parallel ? glm::dvec3(0.0) : x);
@@ -511,8 +502,8 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   // Every ray outside the atmosphere's rectangle on screen misses it and sees the
   // background: a cheap program draws that, the composite only the rectangle (a SIMD
   // rasteriser such as Mesa's llvmpipe pays the whole composite at every pixel it draws).
-  const PixelRect rect = sphereOnScreen(toCentre, t.topRadiusM, fwd, right, camUp, parallel, halfHeight * aspect,
-                                        halfHeight, width, height);
+  const PixelRect rect = sphereOnScreen(toCentre, t.topRadiusM, fwd, right, camUp, parallel, basis.halfWidth,
+                                        basis.halfHeight, width, height);
   bool ok = true;
   if (!rect.whole(width, height)) {
     vtkShaderProgram* b = ready(m.backgroundQuad, "umbraAtmosphereBackground", false);

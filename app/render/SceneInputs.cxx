@@ -120,12 +120,8 @@ void nightLights(const scene::Scene& s, SceneInputs& in) {
     return 90.0 - sky::angleBetween(up, p - cam) * 180.0 / glm::pi<double>();
   };
   if (elevationDeg(in.sun.positionM) >= 0.0) return;
-  const atmosphere::Atmosphere model = atmosphere::loadAtmosphere(a.model, atmosphere::WavelengthSet::rgb().nm);
-  if (planet->preset == "Earth") {
-    const double tau550 = model.verticalOpticalDepth(0.0, model.thicknessM())[1];
-    a.nightGlowWm2Sr = sky::radianceOfSurfaceBrightnessWm2Sr(sky::kDarkSkyZenithVMagPerArcsec2,
-                                                             in.sun.irradianceAt1AuWm2) * std::exp(tau550);
-  }
+  if (planet->preset == "Earth")
+    a.nightGlowWm2Sr = sky::nightGlowAboveAirWm2Sr(a.zenithOpticalDepth550, in.sun.irradianceAt1AuWm2);
   for (const scene::Body& b : s.bodies) {
     if (b.preset != "Moon" || b.name == a.body || elevationDeg(b.positionM) < -5.0) continue;
     const sky::HapkeParameters hapke =
@@ -169,6 +165,7 @@ SceneInputs sceneInputs(const scene::Scene& s) {
     }
     const atmosphere::Atmosphere model = atmosphere::loadAtmosphere(b.atmosphereModel, atmosphere::WavelengthSet::rgb().nm);
     in.atmosphere = SceneAtmosphere{b.name, b.atmosphereModel, model.bottomRadiusM, model.topRadiusM};
+    in.atmosphere->zenithOpticalDepth550 = model.verticalOpticalDepth(0.0, model.thicknessM())[1];  // 680, 550, 440 nm
     in.bodies.back().radiusM = model.bottomRadiusM;
   }
   in.camera.positionM = s.camera.positionM;

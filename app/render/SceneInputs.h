@@ -22,14 +22,15 @@ struct SceneAtmosphere {
   /// sphere and the model are read where needed). The eclipse tables are made for the
   /// ground radius, not for the body's sphere, which an observer on it may shrink.
   double bottomRadiusM = 0.0, topRadiusM = 0.0;
+  /// The model's vertical optical depth from the ground to the top at 550 nm.
+  double zenithOpticalDepth550 = 0.0;
   /// At night (the Sun's centre below the camera's horizon, the camera in the air), the
   /// Moon's light on the sky and the ground: its position and its irradiance at the camera
   /// per channel (sky::apparentMagnitudeV for its phase and distances, times the eclipse
   /// factor at its centre, in its colour); zero by day or without a Moon above -5 deg.
   glm::dvec3 moonPositionM{0.0}, moonIrradianceWm2{0.0};
-  /// The night sky's glow above an Earth atmosphere (AtmosphereRendering::SetNightGlow):
-  /// sky::kDarkSkyZenithVMagPerArcsec2 at the ground's zenith, so its value above the air is
-  /// that over the model's zenith transmittance at 550 nm; 0 for other bodies.
+  /// The night sky's glow above an Earth atmosphere (AtmosphereRendering::SetNightGlow;
+  /// sky::nightGlowAboveAirWm2Sr for zenithOpticalDepth550); 0 for other bodies.
   double nightGlowWm2Sr = 0.0;
 };
 

@@ -1,5 +1,6 @@
 #include "StarCatalogueCache.h"
 
+#include "OutputFile.hpp"
 #include "umbra/tables/Table.h"
 #include "umbra/tables/TableCache.h"
 
@@ -10,7 +11,6 @@
 #include <fstream>
 #include <map>
 #include <system_error>
-#include <unistd.h>
 
 namespace umbra::render {
 namespace {
@@ -52,26 +52,25 @@ std::vector<sky::CatalogueStar> readCopy(const std::string& copy) {
 void writeCopy(const std::string& copy, const std::vector<sky::CatalogueStar>& stars) {
   std::error_code ec;
   fs::create_directories(fs::path(copy).parent_path(), ec);
-  const std::string tmp = copy + ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    const std::uint64_t version = kVersion, count = stars.size();
-    out.write(kMagic, sizeof kMagic);
-    out.write(reinterpret_cast<const char*>(&version), sizeof version);
-    out.write(reinterpret_cast<const char*>(&count), sizeof count);
-    for (const sky::CatalogueStar& s : stars) {
-      const double v[kValuesPerStar] = {s.raRad, s.decRad, s.pmRaCosDecMasPerYear, s.pmDecMasPerYear,
-                                        s.parallaxMas, s.vMag, s.bMinusV};
-      out.write(reinterpret_cast<const char*>(v), sizeof v);
+  try {
+    output::OutputFile file(copy);  // written aside, then renamed: never half a copy
+    {
+      std::ofstream out(file.tempPath(), std::ios::binary | std::ios::trunc);
+      const std::uint64_t version = kVersion, count = stars.size();
+      out.write(kMagic, sizeof kMagic);
+      out.write(reinterpret_cast<const char*>(&version), sizeof version);
+      out.write(reinterpret_cast<const char*>(&count), sizeof count);
+      for (const sky::CatalogueStar& s : stars) {
+        const double v[kValuesPerStar] = {s.raRad, s.decRad, s.pmRaCosDecMasPerYear, s.pmDecMasPerYear,
+                                          s.parallaxMas, s.vMag, s.bMinusV};
+        out.write(reinterpret_cast<const char*>(v), sizeof v);
+      }
+      if (!out) return;  // the OutputFile removes its temporary
     }
-    if (!out) {
-      out.close();
-      fs::remove(tmp, ec);
-      return;
-    }
+    file.commit();
+  } catch (const std::runtime_error&) {
+    // A cache that cannot be written (read-only, full) only costs the next read its speed.
   }
-  fs::rename(tmp, copy, ec);
-  if (ec) fs::remove(tmp, ec);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "StarRendering.h"
 
+#include "CameraBasis.h"
 #include "RenderGlsl.hpp"
 
 #include <vtkCamera.h>
@@ -22,14 +23,7 @@
 namespace umbra::render {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-void setVec3(vtkShaderProgram* p, const char* name, const glm::dvec3& v) {
-  const float f[3] = {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
-  p->SetUniform3f(name, f);
-}
 
 }  // namespace
 
@@ -97,18 +91,11 @@ bool StarRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, i
     m.stale = false;
   }
 
-  // The perspective ray basis, as AtmosphereRendering's (world axes; the camera at origin).
-  glm::dvec3 pos, focal, up;
-  cam->GetPosition(&pos.x);
-  cam->GetFocalPoint(&focal.x);
-  cam->GetViewUp(&up.x);
-  const glm::dvec3 fwd = glm::normalize(focal - pos);
-  const glm::dvec3 right = glm::normalize(glm::cross(fwd, up));
-  const glm::dvec3 camUp = glm::cross(right, fwd);
-  const double halfHeight = std::tan(0.5 * cam->GetViewAngle() * kPi / 180.0);
-  setVec3(m.program, "umbraRayForward", fwd);
-  setVec3(m.program, "umbraRayX", right * (halfHeight * double(width) / height));
-  setVec3(m.program, "umbraRayY", camUp * halfHeight);
+  // The perspective ray basis, as the atmosphere's composite takes it.
+  const CameraBasis basis = cameraBasis(cam, width, height);
+  setVec3(m.program, "umbraRayForward", basis.forward);
+  setVec3(m.program, "umbraRayX", basis.rayX());
+  setVec3(m.program, "umbraRayY", basis.rayY());
   const float size[2] = {static_cast<float>(width), static_cast<float>(height)};
   m.program->SetUniform2f("umbraViewportSize", size);
 

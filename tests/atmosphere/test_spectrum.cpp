@@ -112,6 +112,13 @@ TEST(Srgb, D65WhitePointIsWhiteAndPrimariesComeBack) {
     EXPECT_NEAR(green[k], k == 1 ? 1.0 : 0.0, 1e-3);
     EXPECT_NEAR(blue[k], k == 2 ? 1.0 : 0.0, 1e-3);
   }
+  // The converse: white to D65's XYZ, and the round trip within the 4 decimals.
+  const glm::dvec3 d65 = linearSrgbToXyz({1.0, 1.0, 1.0});
+  EXPECT_NEAR(d65.x, 0.9505, 1e-4);
+  EXPECT_NEAR(d65.y, 1.0, 1e-4);
+  EXPECT_NEAR(d65.z, 1.089, 1e-4);
+  const glm::dvec3 colour(0.7, 0.2, 0.05), back = xyzToLinearSrgb(linearSrgbToXyz(colour));
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(back[k], colour[k], 2e-4);
 }
 
 TEST(Luminance, OneNanometreLineAt555nmGives683CdM2) {

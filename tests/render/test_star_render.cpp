@@ -393,7 +393,7 @@ glm::dvec3 centreRadiance(BodyView& view) {
 TEST(StarRender, MoonlitAndMoonlessZenith) {
   const AtmosphereFixture& f = atmosphereFixture();
   const double tau = f.model.verticalOpticalDepth(0.0, f.model.thicknessM())[1];
-  const double glowAboveAir = sky::radianceOfSurfaceBrightnessWm2Sr(22.0, 1361.0) * std::exp(tau);
+  const double glowAboveAir = sky::nightGlowAboveAirWm2Sr(tau, 1361.0);
   AtmosphereScene zenith(64, groundCamera(2.0, 89.9, 5.0), directionFromAngles(-60.0, 180.0));
   zenith.view.GetAtmosphere().SetNightGlow(glowAboveAir);
   zenith.view.Render();

@@ -3,6 +3,7 @@
 #include "StarCatalogue.hpp"
 #include "StarLight.hpp"
 
+#include "Sky.hpp"
 #include "Spectrum.hpp"
 
 #include <gtest/gtest.h>
@@ -191,11 +192,13 @@ TEST(StarLight, ColourFromBMinusV) {
 
 // A star's illuminance: V = 0 gives 2.54e-6 lx by the relation V = -13.98 - 2.5 log10(E / lx)
 // (Allen's Astrophysical Quantities) within 0.1 mag, through the Sun's spectrum and
-// V_sun = -26.74; its linear sRGB has that illuminance as its luminance.
+// V_sun = -26.74; the frames' irradiance of a star, its white balance undone, has that
+// illuminance as its luminance (sunlight's lux per W m^-2).
 TEST(StarLight, IlluminanceOfAZeroMagnitudeStar) {
   EXPECT_NEAR(-13.98 - 2.5 * std::log10(starIlluminanceLux(0.0)), 0.0, 0.1);
   EXPECT_NEAR(starIlluminanceLux(-1.44) / starIlluminanceLux(6.0), std::pow(10.0, 0.4 * 7.44), 1e-9 * std::pow(10.0, 2.976));
-  const glm::dvec3 sirius = starIlluminanceLinearSrgb(-1.44, 0.01);
+  const glm::dvec3 sirius = starFrameIrradianceWm2(-1.44, 0.01, kSolarConstantWm2) * sunLinearSrgb() *
+                            (umbra::atmosphere::solarIlluminanceLux() / kSolarConstantWm2);
   EXPECT_NEAR(0.2126 * sirius.r + 0.7152 * sirius.g + 0.0722 * sirius.b, starIlluminanceLux(-1.44),
               2e-3 * starIlluminanceLux(-1.44));
 }
