@@ -2,9 +2,13 @@
 #pragma once
 
 #include "BodyView.h"
+#include "SceneInputs.h"
+#include "scene/Scene.hpp"
+#include "vtkAtmosphereTablesSource.h"
 #include "vtkUmbraRenderPass.h"
 #include "EglRenderWindow.h"
 #include <CLI/CLI.hpp>
+#include <vtkNew.h>
 #include <vtkRenderWindow.h>
 #include <vtk_glew.h>
 #include <algorithm>
@@ -12,6 +16,7 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -75,6 +80,21 @@ inline void printRenderer(render::BodyView& view) {
 struct FrameTimes {
   std::vector<double> glMs, wallMs, cpuMs, receiversMs, starsMs, atmosphereMs;
 };
+
+/// A view of a scene's inputs as `umbra render` draws it (tables through the cache, the
+/// night sky, the camera, the exposure), rendered once to warm up (shaders, textures).
+inline std::unique_ptr<render::BodyView> sceneView(const scene::Scene& s, const render::SceneInputs& in, int width,
+                                                   int height, vtkImageData* lut) {
+  auto v = std::make_unique<render::BodyView>(width, height, true);
+  v->SetBodies(in.sun, in.bodies, lut);
+  vtkNew<vtkAtmosphereTablesSource> source;
+  render::applySceneAtmosphere(*v, in, source);
+  render::showSceneSky(*v, in);
+  v->SetCamera(in.camera);
+  v->SetExposureEV(s.exposureEv);
+  v->Render();
+  return v;
+}
 
 inline double processCpuMs() {
   timespec t{};

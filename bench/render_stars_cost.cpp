@@ -43,19 +43,6 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::unique_ptr<render::BodyView> viewOf(const scene::Scene& s, const render::SceneInputs& in, int width, int height,
-                                         vtkImageData* lut) {
-  auto v = std::make_unique<render::BodyView>(width, height, true);
-  v->SetBodies(in.sun, in.bodies, lut);
-  vtkNew<vtkAtmosphereTablesSource> source;
-  render::applySceneAtmosphere(*v, in, source);
-  render::showSceneSky(*v, in);
-  v->SetCamera(in.camera);
-  v->SetExposureEV(s.exposureEv);
-  v->Render();  // warm up: shaders, textures
-  return v;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -105,10 +92,10 @@ int main(int argc, char** argv) {
   render::SceneInputs lit = render::sceneInputs(moonlit), unlit = lit;
   unlit.atmosphere->moonIrradianceWm2 = glm::dvec3(0.0);
   std::vector<std::unique_ptr<render::BodyView>> views;
-  views.push_back(viewOf(orion, starry, width, height, lut));
-  views.push_back(viewOf(orion, starless, width, height, lut));
-  views.push_back(viewOf(moonlit, lit, width, height, lut));
-  views.push_back(viewOf(moonlit, unlit, width, height, lut));
+  views.push_back(bench::sceneView(orion, starry, width, height, lut));
+  views.push_back(bench::sceneView(orion, starless, width, height, lut));
+  views.push_back(bench::sceneView(moonlit, lit, width, height, lut));
+  views.push_back(bench::sceneView(moonlit, unlit, width, height, lut));
   bench::printRenderer(*views.front());
   std::vector<render::BodyView*> timed;
   for (auto& v : views) timed.push_back(v.get());

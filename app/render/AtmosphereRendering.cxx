@@ -3,11 +3,13 @@
 #include "CameraBasis.h"
 
 #include "AtmosphereGlsl.hpp"
+#include "CloudsGlsl.hpp"
 #include "FieldParameters.h"
 #include "RenderGlsl.hpp"
 #include "ShadowLutData.h"
 #include "ShadowMapping.hpp"
 #include "Spectrum.hpp"
+#include "Clouds.hpp"
 
 #include <vtkCamera.h>
 #include <vtkCompositeDataSet.h>
@@ -177,6 +179,8 @@ struct AtmosphereRendering::Impl {
   double limbDarkening = 0.6;
   glm::dvec3 moonPositionM{0.0}, moonIrradianceWm2{0.0};
   double nightGlowWm2Sr = 0.0, glowLayerAltitudeM = 90.0e3;
+  std::vector<CloudLayerView> clouds;
+  glm::dvec3 cloudSunFactor{1.0};
   bool texturesStale = true;
 
   vtkSmartPointer<vtkTextureObject> transmittance, scattering, irradiance, refraction;
@@ -190,7 +194,8 @@ struct AtmosphereRendering::Impl {
   eclipse::LutRange limbRange;  // its u and v ranges (field data; [0, 1] when absent)
   vtkSmartPointer<vtkTextureObject> limb;
   std::unique_ptr<vtkOpenGLQuadHelper> limbQuad;
-  std::unique_ptr<vtkOpenGLQuadHelper> moonQuad;  // the composite with the Moon's light
+  // The composite's programs: with the Moon's light (1), with clouds (2), both (3).
+  std::unique_ptr<vtkOpenGLQuadHelper> variantQuads[3];
   std::unique_ptr<vtkOpenGLQuadHelper> backgroundQuad;  // umbraAtmosphereBackground
   double limbThresholdPx = 5.0;
   double terrainMeanElevationM = 0.0;
@@ -352,6 +357,26 @@ void AtmosphereRendering::SetNightGlow(double zenithRadianceWm2Sr, double layerA
   impl_->nightGlowWm2Sr = zenithRadianceWm2Sr;
   impl_->glowLayerAltitudeM = layerAltitudeM;
 }
+void AtmosphereRendering::SetClouds(const std::vector<CloudLayerView>& layers, const glm::dvec3& sunFactor) {
+  if (layers.size() > static_cast<std::size_t>(kMaxCloudLayers))
+    throw std::invalid_argument("clouds: at most " + std::to_string(kMaxCloudLayers) + " layers are drawn");
+  for (const CloudLayerView& l : layers) {
+    const bool ok = std::isfinite(l.radiusM) && l.radiusM > 0.0 && std::isfinite(l.opticalDepth) && l.opticalDepth >= 0.0 &&
+                    l.coverage >= 0.0 && l.coverage <= 1.0 && std::isfinite(l.featureSizeM) && l.featureSizeM > 0.0;
+    bool frameOk = true;
+    for (int c = 0; c < 3; ++c) frameOk = frameOk && finite(l.worldToNoise[c]);
+    if (!ok || !frameOk)
+      throw std::invalid_argument("clouds: a layer needs a finite radius > 0, optical depth >= 0, coverage in [0, 1], "
+                                  "feature size > 0 and a finite frame");
+  }
+  if (!finite(sunFactor) || glm::min(sunFactor.x, glm::min(sunFactor.y, sunFactor.z)) < 0.0)
+    throw std::invalid_argument("clouds: the Sun's factor must be finite and >= 0");
+  Impl& m = *impl_;
+  m.clouds = layers;
+  m.cloudSunFactor = sunFactor;
+}
+int AtmosphereRendering::GetNumberOfCloudLayers() const { return static_cast<int>(impl_->clouds.size()); }
+
 void AtmosphereRendering::SetTerrainMeanElevation(double meanElevationM) {
   if (!(std::isfinite(meanElevationM) && meanElevationM >= 0.0))
     throw std::invalid_argument("terrain mean elevation must be finite and >= 0 m");
@@ -390,11 +415,12 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   // A full-screen program running `function` (texCoord) of AtmosphereComposite.glsl (with
   // LimbRing.glsl for the ring), bound.
   auto ready = [&](std::unique_ptr<vtkOpenGLQuadHelper>& quad, const char* function, bool limbCode,
-                   bool moonCode = false) {
+                   bool moonCode = false, bool cloudCode = false) {
     if (!quad) {
       std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
-      std::string decl = std::string(moonCode ? "#define UMBRA_MOON_LIGHT\n" : "") + atmosphere::kAtmosphereGlsl + "\n" +
-                         glsl::kAtmosphereComposite + "\n";
+      std::string decl = std::string(moonCode ? "#define UMBRA_MOON_LIGHT\n" : "") +
+                         (cloudCode ? std::string("#define UMBRA_CLOUDS\n") + sky::kCloudsGlsl + "\n" : std::string()) +
+                         atmosphere::kAtmosphereGlsl + "\n" + glsl::kAtmosphereComposite + "\n";
       if (limbCode) decl += std::string(glsl::kLimbRing) + "\n";
       vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl", decl + "//VTK::FSQ::Decl");
       vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
@@ -492,6 +518,33 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     }
   };
 
+  // The cloud layers (sorted by nothing: the shader orders the crossings of each ray).
+  auto setCloudUniforms = [&](vtkShaderProgram* p) {
+    const int n = static_cast<int>(m.clouds.size());
+    float radius[kMaxCloudLayers] = {}, tau[kMaxCloudLayers] = {}, cover[kMaxCloudLayers] = {}, scale[kMaxCloudLayers] = {};
+    int seed[kMaxCloudLayers] = {};
+    for (int k = 0; k < n; ++k) {
+      const CloudLayerView& l = m.clouds[k];
+      const double rc = std::clamp(l.radiusM, t.bottomRadiusM + 1.0, t.topRadiusM - 1.0);
+      radius[k] = static_cast<float>(rc);
+      tau[k] = static_cast<float>(l.opticalDepth);
+      cover[k] = static_cast<float>(l.coverage);
+      scale[k] = static_cast<float>(rc / std::max(l.featureSizeM, sky::kMinCloudFeatureSizeM));
+      seed[k] = static_cast<int>(l.seed & 0x7fffffffu);
+      float frame[9];
+      for (int col = 0; col < 3; ++col)
+        for (int row = 0; row < 3; ++row) frame[3 * col + row] = static_cast<float>(l.worldToNoise[col][row]);
+      p->SetUniformMatrix3x3(("umbraCloudFrame[" + std::to_string(k) + "]").c_str(), frame);
+    }
+    p->SetUniformi("umbraCloudCount", n);
+    p->SetUniform1fv("umbraCloudRadius", kMaxCloudLayers, radius);
+    p->SetUniform1fv("umbraCloudTau", kMaxCloudLayers, tau);
+    p->SetUniform1fv("umbraCloudCoverage", kMaxCloudLayers, cover);
+    p->SetUniform1fv("umbraCloudScale", kMaxCloudLayers, scale);
+    p->SetUniform1iv("umbraCloudSeed", kMaxCloudLayers, seed);
+    setVec3(p, "umbraCloudSunFactor", m.cloudSunFactor);
+  };
+
   colour->Activate();
   depth->Activate();
   m.transmittance->Activate();
@@ -513,14 +566,19 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     }
     ok = b != nullptr;
   }
-  // The Moon's light is a program of its own: a SIMD rasteriser pays for every branch.
+  // The Moon's light and the clouds are programs of their own: a SIMD rasteriser pays for
+  // every branch.
   const bool moonLight = glm::length(m.moonIrradianceWm2) > 0.0 && glm::length(m.moonPositionM - m.centre) > 0.0;
-  std::unique_ptr<vtkOpenGLQuadHelper>& composite = m.lastUsedLimb ? m.limbQuad : moonLight ? m.moonQuad : m.quad;
+  const bool clouds = !m.clouds.empty();
+  const int variant = (moonLight ? 1 : 0) + (clouds ? 2 : 0);
+  std::unique_ptr<vtkOpenGLQuadHelper>& composite =
+      m.lastUsedLimb ? m.limbQuad : variant == 0 ? m.quad : m.variantQuads[variant - 1];
   vtkShaderProgram* p = m.lastUsedLimb ? ready(m.limbQuad, "umbraLimbRing", true)
-                                       : ready(composite, "umbraAtmosphereComposite", false, moonLight);
+                                       : ready(composite, "umbraAtmosphereComposite", false, moonLight, clouds);
   ok = ok && p;
   if (ok && !rect.empty()) {
     setUniforms(p);
+    if (clouds && !m.lastUsedLimb) setCloudUniforms(p);
     vtkOpenGLState* state = window->GetState();
     vtkOpenGLState::ScopedglEnableDisable scissorSaver(state, GL_SCISSOR_TEST);
     vtkOpenGLState::ScopedglScissor scissorBoxSaver(state);
@@ -540,7 +598,7 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
 
 void AtmosphereRendering::ReleaseGraphicsResources(vtkOpenGLRenderWindow* window) {
   Impl& m = *impl_;
-  for (auto* q : {&m.quad, &m.limbQuad, &m.moonQuad, &m.backgroundQuad}) {
+  for (auto* q : {&m.quad, &m.limbQuad, &m.variantQuads[0], &m.variantQuads[1], &m.variantQuads[2], &m.backgroundQuad}) {
     if (*q) {
       (*q)->ReleaseGraphicsResources(window);
       q->reset();

@@ -53,8 +53,10 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 class vtkImageData;
 class vtkMultiBlockDataSet;
@@ -145,6 +147,23 @@ class AtmosphereRendering {
   /// it; seen from inside the atmosphere only. 0: none (the default). Throws
   /// std::invalid_argument for a negative or non-finite value.
   void SetNightGlow(double zenithRadianceWm2Sr, double layerAltitudeM = 90.0e3);
+
+  /// One cloud layer as the renderer draws it (sky/Clouds.hpp for the light through it).
+  struct CloudLayerView {
+    double radiusM = 0.0;        ///< from the planet's centre; drawn within [bottom + 1 m, top - 1 m]
+    double opticalDepth = 0.0;   ///< vertical, where whole
+    double coverage = 0.0;       ///< [0, 1] (the noise's; unused with the map)
+    double featureSizeM = 20.0e3;
+    std::uint32_t seed = 1;
+    glm::dmat3 worldToNoise{1.0};  ///< the world axes to the noise's (body-fixed, turned by the wind)
+  };
+  /// The cloud layers over this atmosphere (at most kMaxCloudLayers; none: a program without
+  /// them). `sunFactor`: the eclipse at the camera per channel, which dims the direct
+  /// sunlight on the clouds. Throws std::invalid_argument for more layers or a non-finite or
+  /// out-of-range value.
+  static constexpr int kMaxCloudLayers = 4;
+  void SetClouds(const std::vector<CloudLayerView>& layers, const glm::dvec3& sunFactor = glm::dvec3(1.0));
+  int GetNumberOfCloudLayers() const;
 
   /// Limb darkening of the Sun's disc (eclipse/SolarDisc.hpp's Eq. 1 coefficient).
   void SetLimbDarkening(double u);

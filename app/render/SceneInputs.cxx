@@ -136,6 +136,30 @@ void nightLights(const scene::Scene& s, SceneInputs& in) {
     return;
   }
 }
+// The cloud layers of in.atmosphere's body as the renderer draws them (SceneAtmosphere).
+void sceneClouds(const scene::Scene& s, SceneInputs& in) {
+  SceneAtmosphere& a = *in.atmosphere;
+  const scene::Body* planet = s.find(a.body);
+  if (!planet || planet->clouds.empty()) return;
+  const bool fixed = !planet->preset.empty() && scene::hasRotationModel(planet->preset) && s.hasTime;
+  const glm::dmat3 toBody = fixed ? glm::transpose(scene::bodyFixedToInertial(planet->preset, s.time)) : glm::dmat3(1.0);
+  const glm::dvec3 foot = toBody * (in.camera.positionM - planet->positionM);
+  const double seconds = s.hasTime ? scene::secondsBetween(s.fileTime, s.time) : 0.0;
+  for (const sky::CloudLayer& l : planet->clouds) {
+    AtmosphereRendering::CloudLayerView v;
+    v.radiusM = a.bottomRadiusM + l.altitudeM;
+    v.opticalDepth = l.opticalDepth;
+    v.coverage = l.coverage;
+    v.featureSizeM = l.featureSizeM;
+    v.seed = l.seed;
+    v.worldToNoise = sky::cloudDrift(l, foot, v.radiusM, 0.0, seconds) * toBody;
+    a.clouds.push_back(v);
+  }
+  for (const SphereBody& b : in.bodies)
+    if (b.name != a.body)
+      a.cloudSunFactor *= eclipse::eclipseFactor(in.camera.positionM, in.sun.positionM, in.sun.radiusM,
+                                                 {b.centreM, b.radiusM}, nullptr);
+}
 } // namespace
 
 SceneInputs sceneInputs(const scene::Scene& s) {
@@ -199,7 +223,10 @@ SceneInputs sceneInputs(const scene::Scene& s) {
       if (const scene::Body* planet = s.find(in.atmosphere->body)) air = {{planet->positionM, in.atmosphere->topRadiusM}};
     in.stars = sceneStars(s, in.camera.positionM, in.sun.irradianceAt1AuWm2, air);
   }
-  if (in.atmosphere) nightLights(s, in);
+  if (in.atmosphere) {
+    nightLights(s, in);
+    sceneClouds(s, in);
+  }
   return in;
 }
 
@@ -264,6 +291,7 @@ void showSceneSky(BodyView& view, const SceneInputs& in) {
   const SceneAtmosphere& a = in.atmosphere ? *in.atmosphere : none;
   view.GetAtmosphere().SetMoonLight(a.moonPositionM, a.moonIrradianceWm2);
   view.GetAtmosphere().SetNightGlow(a.nightGlowWm2Sr);
+  view.GetAtmosphere().SetClouds(a.clouds, a.cloudSunFactor);
 }
 
 void applySceneAtmosphere(BodyView& view, const SceneInputs& in, vtkAtmosphereTablesSource* source, bool refraction,

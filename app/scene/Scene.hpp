@@ -3,6 +3,7 @@
 // (format: docs/scene-format.md), with positions resolved at the scene time.
 #include "scene/Time.hpp"
 
+#include "Clouds.hpp"
 #include "Photometry.hpp"
 
 #include <glm/glm.hpp>
@@ -53,6 +54,9 @@ struct Body {
   /// albedo. The Moon's preset takes the Clementine mosaic when it is installed.
   std::string albedoMapPath;
   std::optional<Terrain> terrain;
+  /// Cloud layers over its atmosphere ("clouds"; at most sky::kMaxCloudLayers), drawn with
+  /// it; their wind moves them from the scene file's time (Scene::fileTime).
+  std::vector<sky::CloudLayer> clouds;
 
   bool isSun() const { return preset == "Sun"; }
 };
@@ -106,6 +110,7 @@ struct Scene {
   std::string name;
   UtcTime time;
   bool hasTime = false; ///< false: the file gave no time (no ephemeris was needed)
+  UtcTime fileTime;     ///< the file's time (setTime leaves it): where the clouds' drift starts
   std::vector<Body> bodies;
   Camera camera;
   double exposureEv = 0.0;

@@ -261,11 +261,47 @@ std::optional<StarSky> parseStars(const Reader& in, const json& value, const std
   return stars;
 }
 
+/// A body's "clouds": a list of layers (or one), each {"altitude": LENGTH, "coverage": 0..1,
+/// "opticalDepth": N, "seed": N, "featureSize": LENGTH, "wind": [east, north] m/s}.
+std::vector<sky::CloudLayer> parseClouds(const Reader& in, const json& value, const std::string& field) {
+  const json list = value.is_array() ? value : json::array({value});
+  if (list.size() > static_cast<std::size_t>(sky::kMaxCloudLayers))
+    in.fail(field, "at most " + std::to_string(sky::kMaxCloudLayers) + " layers, got " + std::to_string(list.size()));
+  std::vector<sky::CloudLayer> layers;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string f = value.is_array() ? index(field, i) : field;
+    const json& v = list[i];
+    if (!v.is_object()) in.fail(f, "expected a layer {\"altitude\", \"coverage\", \"opticalDepth\", ...}, " + got(v));
+    in.object(v, f, {"altitude", "coverage", "opticalDepth", "seed", "featureSize", "wind"});
+    sky::CloudLayer l;
+    if (v.contains("altitude")) {
+      l.altitudeM = in.length(v["altitude"], f + ".altitude", "a length from 0 m to 1e6 m");
+      if (!(l.altitudeM >= 0.0 && l.altitudeM <= 1.0e6)) in.fail(f + ".altitude", "expected a length from 0 m to 1e6 m, " + got(v["altitude"]));
+    }
+    if (v.contains("coverage")) l.coverage = in.number(v["coverage"], f + ".coverage", 0.0, 1.0, "a fraction in [0, 1]");
+    if (v.contains("opticalDepth"))
+      l.opticalDepth = in.number(v["opticalDepth"], f + ".opticalDepth", 0.0, 1.0e4, "an optical depth in [0, 1e4]");
+    if (v.contains("seed")) l.seed = static_cast<std::uint32_t>(in.integer(v["seed"], f + ".seed", 0, 2147483647));
+    if (v.contains("featureSize"))
+      l.featureSizeM = in.positiveLength(v["featureSize"], f + ".featureSize", sky::kMinCloudFeatureSizeM,
+                                         "a length from 1 km to 1e12 m");
+    if (v.contains("wind")) {
+      const json& w = v["wind"];
+      if (!w.is_array() || w.size() != 2 || !w[0].is_number() || !w[1].is_number())
+        in.fail(f + ".wind", "expected [east, north] in m/s, " + got(w));
+      l.windEastMs = in.number(w[0], f + ".wind[0]", -1000.0, 1000.0, "a speed in [-1000, 1000] m/s");
+      l.windNorthMs = in.number(w[1], f + ".wind[1]", -1000.0, 1000.0, "a speed in [-1000, 1000] m/s");
+    }
+    layers.push_back(l);
+  }
+  return layers;
+}
+
 Body parseBody(const Reader& in, const json& value, const std::string& field, const std::string& sceneFile,
                std::vector<std::string>& notes) {
   in.object(value, field,
             {"preset", "name", "radius", "equatorialRadius", "polarRadius", "position",
-             "atmosphere", "albedo", "color", "photometry", "albedoMap", "terrain"});
+             "atmosphere", "albedo", "color", "photometry", "albedoMap", "terrain", "clouds"});
   Body body;
   const BodyPreset* preset = nullptr;
   if (value.contains("preset")) {
@@ -344,6 +380,11 @@ Body parseBody(const Reader& in, const json& value, const std::string& field, co
     if (preset == nullptr || !hasRotationModel(preset->name))
       in.fail(field + ".terrain", "needs a body with a rotation model (a preset: Earth, Moon, Mars)");
     body.terrain = parseTerrain(in, value["terrain"], field + ".terrain", sceneFile);
+  }
+  if (value.contains("clouds")) {
+    if (body.atmosphereModel.empty())
+      in.fail(field + ".clouds", "clouds are drawn in an atmosphere: give the body \"atmosphere\" too");
+    body.clouds = parseClouds(in, value["clouds"], field + ".clouds");
   }
   return body;
 }
@@ -491,6 +532,7 @@ Scene parseScene(const std::string& jsonText, const std::string& pathForMessages
       in.fail("time", e.what());
     }
     scene.hasTime = true;
+    scene.fileTime = scene.time;
   }
   parseBodies(in, root, scene);
   parseCamera(in, root, scene);

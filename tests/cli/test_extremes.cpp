@@ -340,6 +340,19 @@ nlohmann::json readJson(const std::string& path) {
   return nlohmann::json::parse(in, nullptr, true, true);
 }
 
+// `umbra render` of `scene` written as dir/name.json, with small tables, to dir/name.exr.
+RunResult renderSceneIn(const TempDir& dir, const nlohmann::json& scene, const std::string& name) {
+  std::ofstream(dir.path / (name + ".json")) << scene.dump();
+  return run(UMBRA_EXE, {"render", (dir.path / (name + ".json")).string(), "--atmosphere-tables", "small", "-o",
+                         (dir.path / (name + ".exr")).string()});
+}
+
+// Every pixel of dir/name.exr is finite.
+void expectFiniteExr(const TempDir& dir, const std::string& name) {
+  const umbra::tables::Table t = umbra::tables::readExr((dir.path / (name + ".exr")).string(), {"R", "G", "B"});
+  for (float v : t.data) ASSERT_TRUE(std::isfinite(v)) << name;
+}
+
 }  // namespace
 
 TEST(Extremes, Render) { sweepCommand(commands()[0]); }
@@ -414,15 +427,8 @@ TEST(Extremes, StarScenes) {
   std::ofstream(dir.path / "bad.dat")
       << "064508.92 -164258.0 -000546.0-001223.100379.2 -1.4400.01A0 1            , alp CMa, Sirius\n"
          "183656.34 +38470X.3 +000201.0\n";
-  auto render = [&](const nlohmann::json& scene, const std::string& name) {
-    std::ofstream(dir.path / (name + ".json")) << scene.dump();
-    return run(UMBRA_EXE, {"render", (dir.path / (name + ".json")).string(), "--atmosphere-tables", "small", "-o",
-                           (dir.path / (name + ".exr")).string()});
-  };
-  auto expectFinite = [&](const std::string& name) {
-    const umbra::tables::Table t = umbra::tables::readExr((dir.path / (name + ".exr")).string(), {"R", "G", "B"});
-    for (float v : t.data) ASSERT_TRUE(std::isfinite(v)) << name;
-  };
+  auto render = [&](const nlohmann::json& scene, const std::string& name) { return renderSceneIn(dir, scene, name); };
+  auto expectFinite = [&](const std::string& name) { expectFiniteExr(dir, name); };
 
   RunResult r = render(base, "pole");
   EXPECT_EQ(r.exitCode, 0) << r.err;
@@ -448,6 +454,59 @@ TEST(Extremes, StarScenes) {
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.err.find("bad.dat:2: "), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir.path / "bad.exr"));
+}
+
+// Cloud layers at the extremes through the CLI: at 0 m and above the atmosphere's top,
+// coverage 0 and 1, optical depth 0 and 1000, four layers at once, seen from the ground by
+// day and by night and from space: each renders finite pixels. Bad layers are refused naming
+// the field, and no file is left.
+TEST(Extremes, CloudScenes) {
+  TempDir dir;
+  nlohmann::json base = nlohmann::json::parse(R"({
+    "time": "2024-01-15T12:00:00Z",
+    "bodies": [{"preset": "Sun"}, {"preset": "Earth", "atmosphere": "earth", "clouds": []}, {"preset": "Moon"}],
+    "camera": {"observer": {"body": "Earth", "latDeg": 10, "lonDeg": 0, "altM": 2},
+               "target": {"azimuthDeg": 180, "elevationDeg": 20}, "up": "zenith", "fovDeg": 120},
+    "stars": false, "exposure": -8, "image": {"width": 32, "height": 24}, "shadow": {"lutSize": 16}})");
+  auto render = [&](const nlohmann::json& scene, const std::string& name) { return renderSceneIn(dir, scene, name); };
+  auto expectFinite = [&](const std::string& name) { expectFiniteExr(dir, name); };
+  const nlohmann::json all = nlohmann::json::array(
+      {{{"altitude", 0}, {"coverage", 1}, {"opticalDepth", 1000}},
+       {{"altitude", "200 km"}, {"coverage", 0.5}, {"opticalDepth", 3}, {"seed", 2}},
+       {{"altitude", "1 km"}, {"coverage", 0}, {"opticalDepth", 0}},
+       {{"altitude", "5 km"}, {"coverage", 0.5}, {"opticalDepth", 1000}, {"featureSize", "1 km"}, {"wind", {1000, -1000}}}});
+  int n = 0;
+  for (const char* time : {"2024-01-15T12:00:00Z", "2024-01-15T23:00:00Z"}) {
+    for (const nlohmann::json& layers : {all, nlohmann::json::array({all[0]}), nlohmann::json::array({all[1]})}) {
+      for (double altM : {2.0, 4.0e7}) {
+        nlohmann::json scene = base;
+        scene["time"] = time;
+        scene["bodies"][1]["clouds"] = layers;
+        scene["camera"]["observer"]["altM"] = altM;
+        if (altM > 1e6) scene["camera"]["target"] = "Earth";
+        const std::string name = "clouds" + std::to_string(n++);
+        const RunResult r = render(scene, name);
+        EXPECT_EQ(r.exitCode, 0) << name << ": " << r.err;
+        expectFinite(name);
+      }
+    }
+  }
+  nlohmann::json bad = base;
+  bad["bodies"][1]["clouds"] = {{{"opticalDepth", -1}}};
+  RunResult r = render(bad, "bad");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("bodies[1].clouds[0].opticalDepth"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path / "bad.exr"));
+  bad["bodies"][1]["clouds"] = nlohmann::json::array({all[0], all[0], all[0], all[0], all[0]});
+  r = render(bad, "five");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("at most 4 layers"), std::string::npos) << r.err;
+  bad = base;
+  bad["bodies"][1].erase("atmosphere");
+  bad["bodies"][1]["clouds"] = {{{"coverage", 0.5}}};
+  r = render(bad, "noair");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("give the body \"atmosphere\""), std::string::npos) << r.err;
 }
 
 // A scene of fixed positions (Phobos in Mars' shadow): positions, the up vector.

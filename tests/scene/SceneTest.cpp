@@ -148,7 +148,7 @@ TEST(SceneValidation, MoreMessagesNameTheField) {
             "with unit m, km or au");
   EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "Moon", "albdo": 0.1})")),
             "examples/x.json: bodies[1].albdo: unknown key (expected one of: preset, name, "
-            "radius, equatorialRadius, polarRadius, position, atmosphere, albedo, color, photometry, albedoMap, terrain)");
+            "radius, equatorialRadius, polarRadius, position, atmosphere, albedo, color, photometry, albedoMap, terrain, clouds)");
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "image": {"width": 8})")),
             "examples/x.json: image.width: expected an integer in [16, 16384], got 8");
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "shadow": {"lutSize": 256.5})")),
@@ -565,4 +565,35 @@ TEST(SceneStars, CatalogueAndLimitingMagnitude) {
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "stars": true)")),
             "examples/x.json: time: required: the stars' places are for a date");
   std::filesystem::remove_all(dir);
+}
+
+// A body's cloud layers: a single object or a list, lengths with units, the defaults, the
+// wind; the file's time kept for their drift when the scene moves; errors name the field.
+TEST(SceneClouds, LayersParseAndNameTheirFields) {
+  const std::string earth =
+      R"({"preset": "Sun"}, {"name": "Air", "radius": "6371 km", "position": [1.5e11, 0, 0], "atmosphere": "earth", )";
+  const Scene one = parseScene(fixedScene(earth + R"("clouds": {"altitude": "1.5 km", "wind": [6, -2]}})"), kFile);
+  ASSERT_EQ(one.bodies[1].clouds.size(), 1u);
+  const umbra::sky::CloudLayer& l = one.bodies[1].clouds[0];
+  EXPECT_DOUBLE_EQ(l.altitudeM, 1500.0);
+  EXPECT_DOUBLE_EQ(l.coverage, 0.5);
+  EXPECT_DOUBLE_EQ(l.opticalDepth, 10.0);
+  EXPECT_DOUBLE_EQ(l.featureSizeM, 20.0e3);
+  EXPECT_DOUBLE_EQ(l.windEastMs, 6.0);
+  EXPECT_DOUBLE_EQ(l.windNorthMs, -2.0);
+  const Scene two = parseScene(
+      fixedScene(earth + R"("clouds": [{"altitude": 0, "coverage": 1, "opticalDepth": 1000, "seed": 4}, {"featureSize": "1 km"}]})"),
+      kFile);
+  ASSERT_EQ(two.bodies[1].clouds.size(), 2u);
+  EXPECT_EQ(two.bodies[1].clouds[0].seed, 4u);
+  EXPECT_DOUBLE_EQ(two.bodies[1].clouds[1].featureSizeM, 1000.0);
+
+  EXPECT_EQ(errorFor(fixedScene(earth + R"("clouds": [{"coverage": 1.5}]})")),
+            "examples/x.json: bodies[1].clouds[0].coverage: expected a fraction in [0, 1], got 1.5");
+  EXPECT_NE(errorFor(fixedScene(earth + R"("clouds": {"featureSize": "10 m"}})")).find("bodies[1].clouds.featureSize"),
+            std::string::npos);
+  EXPECT_NE(errorFor(fixedScene(earth + R"("clouds": [{"wind": 3}]})")).find("bodies[1].clouds[0].wind: expected [east, north]"),
+            std::string::npos);
+  EXPECT_NE(errorFor(fixedScene(earth + R"("clouds": [{"altitde": 3}]})")).find("bodies[1].clouds[0].altitde: unknown key"),
+            std::string::npos);
 }

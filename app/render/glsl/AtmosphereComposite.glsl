@@ -31,6 +31,17 @@ uniform vec3 umbraMoonDirection;      // unit, from the planet towards the Moon 
 uniform vec3 umbraMoonIrradiance;     // per table channel, W m^-2 (the Sun's light: E_sun each)
 uniform float umbraNightGlow;         // zenith radiance of the glow above the air, W m^-2 sr^-1 (0: none)
 uniform float umbraGlowLayerRatio;    // the camera's radius over the glow layer's (< 1)
+#ifdef UMBRA_CLOUDS
+// Cloud layers (sky/Clouds.hpp; needs sky/glsl/Clouds.glsl before this file).
+uniform int umbraCloudCount;
+uniform float umbraCloudRadius[4];    // m, from the planet's centre, within the atmosphere
+uniform float umbraCloudTau[4];       // vertical optical depth where whole
+uniform float umbraCloudCoverage[4];
+uniform float umbraCloudScale[4];     // the layer's radius over its feature size
+uniform int umbraCloudSeed[4];
+uniform mat3 umbraCloudFrame[4];      // planet axes -> the noise's (body-fixed, turned by the wind)
+uniform vec3 umbraCloudSunFactor;     // the eclipse at the camera: the direct sunlight on the clouds
+#endif
 
 const float umbraLogDepthMinM = 1.0e-3;           // as ReceiverFragment.glsl
 const float umbraLogDepthOctaves = 53.150849518;
@@ -172,6 +183,119 @@ float umbraGlow(float mu) {
   return umbraNightGlow / sqrt(max(1.0 - k * k * (1.0 - mu * mu), 1e-4));
 }
 
+#ifdef UMBRA_CLOUDS
+// The cloud density of layer k at the unit vector u from the planet's centre (0 outside a
+// cloud, 1 where whole).
+float umbraCloudDensityAt(int k, vec3 u) {
+  float c = umbraCloudCoverage[k];
+  if (c <= 0.0 || c >= 1.0) return clamp(c, 0.0, 1.0);
+  return umbraCloudDensity(umbraCloudNoise(umbraCloudFrame[k] * u * umbraCloudScale[k], uint(umbraCloudSeed[k])), c);
+}
+
+// Where the ray from y (radius r0) towards the unit direction d crosses the sphere of
+// radius rc >= r0, as a unit vector (straight up from y when d points down).
+vec3 umbraCloudCrossing(vec3 y, float r0, vec3 d, float rc) {
+  float m = dot(y, d) / r0;
+  if (m <= 0.0) return y / r0;
+  float s = (rc - r0) * (rc + r0) / (r0 * m + sqrt((rc - r0) * (rc + r0) + r0 * r0 * m * m));
+  return normalize(y + s * d);
+}
+
+// The share of the light arriving at cosine mu0 (and of the sky's light) that the layers
+// above the ground point y (radius r0) let through, direct and scattered (1 - R each). One
+// point per layer: where the ray to the light crosses it (the sky's light too: most of it
+// comes from around the light; straight up when the light is down).
+vec2 umbraCloudsAboveGround(vec3 y, float r0, vec3 towardsLight) {
+  float mu0 = dot(y, towardsLight) / r0;
+  vec2 through = vec2(1.0);
+  for (int k = 0; k < 4; ++k) {
+    if (k >= umbraCloudCount) break;
+    float tau = umbraCloudTau[k] * umbraCloudDensityAt(k, umbraCloudCrossing(y, r0, towardsLight, umbraCloudRadius[k]));
+    through *= vec2(mu0 > 0.0 ? 1.0 - umbraCloudReflectance(tau, mu0) : 1.0,
+                    1.0 - umbraCloudReflectance(tau, umbraCloudDiffuseCosine));
+  }
+  return through;
+}
+
+// The radiance (per unit irradiance at the top) the layer sends along the ray from the point
+// c (radius rc, unit normal n), lit by the light at unit direction l: its direct light (times
+// `direct`) and the sky's, reflected on the face the eye looks at (`above`) or through it.
+vec3 umbraCloudLight(float tau, vec3 n, float rc, vec3 l, bool above, vec3 direct) {
+  float mu0 = dot(n, l);
+  vec3 eDirect = umbraAtmDirectIrradiance(rc, mu0) * direct, eSky = umbraAtmIndirectIrradiance(rc, mu0);
+  float m0 = max(mu0, 0.0);
+  float shareDirect = above ? umbraCloudReflectance(tau, m0) : umbraCloudDiffuseTransmittance(tau, m0);
+  float shareSky = above ? umbraCloudReflectance(tau, umbraCloudDiffuseCosine)
+                         : umbraCloudDiffuseTransmittance(tau, umbraCloudDiffuseCosine);
+  return (shareDirect * eDirect + shareSky * eSky) * 0.31830988618;
+}
+
+// The cloud layers over `seen` (the radiance the ray brings without them, frame units), for
+// the ray from x (radius r, view cosine mu, direction dir) that ends at dLimit, along which
+// the air sends sEnd (the Sun's, per unit irradiance) and sEndMoon (the Moon's, W m^-2 sr^-1)
+// and lets tEnd through. Each crossing within the ray, from the farthest in:
+//   L <- t_v L + (1 - t_v) S(x -> c) + T(x, c) L_cloud(c)
+// (t_v: the layer's transmittance along the view; S(x -> c) is in L already, and the layer
+// hides t_v of it behind). S(x -> c) is the ray's in-scattering in proportion to its
+// extinction, S_end (1 - T(x, c)) / (1 - T_end): a uniform source along the ray (a second
+// scattering lookup per crossing would cost twice the atmosphere stage on a CPU rasteriser;
+// the error: docs/clouds.md).
+vec3 umbraCloudsOver(vec3 seen, vec3 x, float r, float mu, vec3 dir, float dLimit, bool ground, vec3 sEnd, vec3 tEnd,
+                     vec3 sEndMoon) {
+  float hitS[8];
+  int hitLayer[8];
+  int n = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (k >= umbraCloudCount) break;
+    float rc = umbraCloudRadius[k];
+    float q = -r * mu;
+    float disc = (rc - r) * (rc + r) + r * r * mu * mu;
+    if (disc < 0.0) continue;
+    float big = q + (q >= 0.0 ? 1.0 : -1.0) * sqrt(disc);
+    float small = big != 0.0 ? (r - rc) * (r + rc) / big : 0.0;
+    float roots[2] = float[2](big, small);
+    for (int j = 0; j < 2; ++j) {
+      if (roots[j] > 0.0 && roots[j] < dLimit && n < 8) {
+        hitS[n] = roots[j];
+        hitLayer[n] = k;
+        ++n;
+      }
+    }
+  }
+  // Farthest first.
+  for (int i = 1; i < 8; ++i) {
+    if (i >= n) break;
+    for (int j = i; j > 0 && hitS[j] > hitS[j - 1]; --j) {
+      float ts = hitS[j]; hitS[j] = hitS[j - 1]; hitS[j - 1] = ts;
+      int tl = hitLayer[j]; hitLayer[j] = hitLayer[j - 1]; hitLayer[j - 1] = tl;
+    }
+  }
+  vec3 L = seen;
+  for (int i = 0; i < 8; ++i) {
+    if (i >= n) break;
+    int k = hitLayer[i];
+    float s = hitS[i];
+    vec3 c = x + s * dir;
+    float rc = length(c);
+    vec3 nrm = c / rc;
+    float tau = umbraCloudTau[k] * umbraCloudDensityAt(k, nrm);
+    if (tau <= 0.0) continue;
+    float muV = dot(dir, nrm);
+    bool above = muV < 0.0;
+    float tv = umbraCloudDirect(tau, max(abs(muV), 0.02));
+    vec3 T = umbraAtmTransmittance(r, mu, s, ground, false);
+    vec3 share = clamp((vec3(1.0) - T) / max(vec3(1.0) - tEnd, vec3(1e-6)), vec3(0.0), vec3(1.0));
+    vec3 S = share * (sEnd * umbraSolarIrradiance + sEndMoon);
+    vec3 light = umbraCloudLight(tau, nrm, rc, umbraSunDirection, above, umbraCloudSunFactor) * umbraSolarIrradiance;
+#ifdef UMBRA_MOON_LIGHT
+    light += umbraCloudLight(tau, nrm, rc, umbraMoonDirection, above, vec3(1.0)) * umbraMoonIrradiance;
+#endif
+    L = tv * L + umbraAtmToDisplay * ((1.0 - tv) * S + T * light);
+  }
+  return L;
+}
+#endif
+
 vec3 umbraAtmosphereComposite(vec2 uv) {
   vec2 ndc = 2.0 * uv - vec2(1.0);
   vec3 dir = umbraRayDirection(ndc);
@@ -232,6 +356,13 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
 #else
   vec3 sxMoon = vec3(0.0);
 #endif
+  // The cloud layers over what the ray brings (a program of its own, UMBRA_CLOUDS).
+#ifdef UMBRA_CLOUDS
+#define umbraWithClouds(L, sEnd, tEnd, sEndMoon) \
+  umbraCloudsOver(L, x, r, mu, dir, onObject ? dObject : dEnd, ground, sEnd, tEnd, sEndMoon)
+#else
+#define umbraWithClouds(L, sEnd, tEnd, sEndMoon) (L)
+#endif
   if (onGround || onObject) {
     float d = onGround ? dEnd : dObject;
     vec3 T = umbraAtmTransmittance(r, mu, d, ground, onGround);
@@ -241,7 +372,7 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
 #else
     vec3 moonS = vec3(0.0);
 #endif
-    if (onObject) return T * frame + umbraAtmToDisplay * (S * umbraSolarIrradiance + moonS);
+    if (onObject) return umbraWithClouds(T * frame + umbraAtmToDisplay * (S * umbraSolarIrradiance + moonS), S, T, moonS);
     vec3 y = x + dEnd * dir;
     float muSg = dot(normalize(y), umbraSunDirection);
     float rg = umbraAtmBottom;
@@ -251,12 +382,22 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
     vec3 unshadowed = umbraGroundAlbedo * (0.31830988618 * umbraSolarIrradiance * muSg);
     if (dFrame < umbraFarAway && muSg > 0.05 && all(greaterThan(unshadowed, vec3(0.0))))
       eclipse = clamp(frame / unshadowed, vec3(0.0), vec3(1.0));
-    vec3 E = eclipse * umbraAtmDirectIrradiance(rg, muSg) + umbraAtmIndirectIrradiance(rg, muSg);
+#ifdef UMBRA_CLOUDS
+    vec2 clouds = umbraCloudsAboveGround(y, rg, umbraSunDirection);  // direct, sky light
+#else
+    vec2 clouds = vec2(1.0);
+#endif
+    vec3 E = clouds.x * eclipse * umbraAtmDirectIrradiance(rg, muSg) + clouds.y * umbraAtmIndirectIrradiance(rg, muSg);
     vec3 raw = T * umbraGroundAlbedo * 0.31830988618 * E + S;
     vec3 moonRaw = moonS;
 #ifdef UMBRA_MOON_LIGHT
     float muMg = dot(normalize(y), umbraMoonDirection);
-    vec3 Em = umbraAtmDirectIrradiance(rg, muMg) + umbraAtmIndirectIrradiance(rg, muMg);
+#ifdef UMBRA_CLOUDS
+    vec2 cloudsM = umbraCloudsAboveGround(y, rg, umbraMoonDirection);
+#else
+    vec2 cloudsM = vec2(1.0);
+#endif
+    vec3 Em = cloudsM.x * umbraAtmDirectIrradiance(rg, muMg) + cloudsM.y * umbraAtmIndirectIrradiance(rg, muMg);
     moonRaw += T * umbraGroundAlbedo * 0.31830988618 * Em * umbraMoonIrradiance;
 #endif
     // A pixel on the limb seen from outside: the part of it past the ground sees the Sun
@@ -264,12 +405,13 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
     vec3 limbSun = umbraRefraction == 1 && umbraParallel == 0 && !inside && umbraLimbSubsamples > 1 &&
                            h + 0.5 * umbraPixelAngle * tc > umbraAtmBottom
                        ? umbraLimbSun(centre, dir) : vec3(0.0);
-    return umbraAtmToDisplay * (raw * umbraSolarIrradiance + moonRaw) + limbSun;
+    return umbraWithClouds(umbraAtmToDisplay * (raw * umbraSolarIrradiance + moonRaw) + limbSun, S, T, moonS);
   }
   vec3 sky = umbraAtmToDisplay * (sx * umbraSolarIrradiance + sxMoon * umbraMoonIrradiance);
   vec3 glow = inside && dFrame >= umbraFarAway ? umbraAtmTransmittanceToTop(r, mu) * umbraGlow(mu) : vec3(0.0);
-  if (umbraRefraction == 1 && umbraParallel == 0 && dFrame >= umbraFarAway)
-    return umbraRefractedBackground(x, r, mu, dir, centre, !inside) + glow + sky;
   vec3 T = umbraAtmTransmittanceToTop(r, mu);
-  return T * background + glow + sky;
+  vec3 skyMoon = sxMoon * umbraMoonIrradiance;
+  if (umbraRefraction == 1 && umbraParallel == 0 && dFrame >= umbraFarAway)
+    return umbraWithClouds(umbraRefractedBackground(x, r, mu, dir, centre, !inside) + glow + sky, sx, T, skyMoon);
+  return umbraWithClouds(T * background + glow + sky, sx, T, skyMoon);
 }
