@@ -181,6 +181,18 @@ TEST(CloudRender, BrokenLayerFollowsTheCpuNoise) {
   EXPECT_GE(agree, total - 2);
 }
 
+// At night (the Sun 60 deg down, below the tables' lowest Sun) a deck seen from below is
+// dark: no sunlight reaches it, directly nor through the sky (whose table holds the lowest
+// Sun's light there).
+TEST(CloudRender, DarkAtNight) {
+  const Raw f = renderClouds(verticalCamera(10.0, 1.0), directionFromAngles(-60.0, 0.0), {layer(2000.0, 20.0)});
+  const glm::dvec3 cloud = f.at(f.w / 2, f.h / 2);
+  const glm::dvec3 day = renderClouds(verticalCamera(10.0, 1.0), directionFromAngles(30.0, 0.0), {layer(2000.0, 20.0)})
+                             .at(f.w / 2, f.h / 2);
+  std::printf("  deck from below at night %.3g, by day %.3g W m^-2 sr^-1 (G)\n", cloud.y, day.y);
+  EXPECT_LT(cloud.y, 1e-6 * day.y);
+}
+
 // The same layers give the same frame (the seed, not the clock, makes the clouds); another
 // seed another.
 TEST(CloudRender, DeterministicWithASeed) {
