@@ -1482,7 +1482,8 @@ std::vector<double> skyRadiance(const AtmosphereTables& tables, const Atmosphere
 }
 
 std::vector<double> indirectIrradiance(const AtmosphereTables& tables, double r, double muS) {
-  std::vector<double> v(tables.wavelengthCount());
+  std::vector<double> v(tables.wavelengthCount(), 0.0);
+  if (muS < tables.options.muSMin) return v;
   lookupIrradiance(tables.irradiance, tables.shell(), r, muS, v.data());
   return v;
 }

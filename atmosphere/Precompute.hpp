@@ -229,7 +229,10 @@ std::vector<double> skyRadiance(const AtmosphereTables& tables, const Atmosphere
 /// radius alphaRad whose centre is at zenith cosine muS: muS above alphaRad, 0 below
 /// -alphaRad, (muS + alphaRad)^2 / (4 alphaRad) between, the disc partly set (Bruneton 2017).
 double sunDiscCosine(double muS, double alphaRad);
-/// Bilinear lookup in the indirect irradiance table.
+/// Bilinear lookup in the indirect irradiance table; zero for a Sun below the tables'
+/// lowest (muS < options.muSMin), where the sky is dark (skyRadiance) and the table's cells
+/// hold only what the precomputation leaks from that lowest Sun (at night comparable to the
+/// Moon's light on the ground, far brighter than it in a lunar eclipse).
 std::vector<double> indirectIrradiance(const AtmosphereTables& tables, double r, double muS);
 /// The direct irradiance E_0 on a horizontal surface: the transmittance to the top along
 /// muS times sunDiscCosine (options.sunAngularRadiusRad), as its table's texels hold, but

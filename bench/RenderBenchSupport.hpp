@@ -52,18 +52,25 @@ inline bool startWindows(bool egl) {
   std::fprintf(stderr, "--egl: %s\n", error.c_str());
   return false;
 }
-/// The options every scene bench takes: --frames, --width, --height, --scene and --egl.
-struct SceneBenchOptions {
-  int frames = 40, width = 1920, height = 1080;
-  std::string scenePath;
+/// The options every frame bench takes: --frames, --width, --height and --egl.
+struct FrameBenchOptions {
+  int frames = 20, width = 1920, height = 1080;
   bool egl = false;
 };
-inline void addSceneBenchOptions(CLI::App& app, SceneBenchOptions& o) {
+inline void addFrameBenchOptions(CLI::App& app, FrameBenchOptions& o) {
   app.add_option("--frames", o.frames, "Frames per configuration")->capture_default_str();
   app.add_option("--width", o.width)->capture_default_str();
   app.add_option("--height", o.height)->capture_default_str();
-  app.add_option("--scene", o.scenePath)->capture_default_str();
   addEglOption(app, o.egl);
+}
+/// ... and a scene bench's --scene (40 frames by default).
+struct SceneBenchOptions : FrameBenchOptions {
+  SceneBenchOptions() { frames = 40; }
+  std::string scenePath;
+};
+inline void addSceneBenchOptions(CLI::App& app, SceneBenchOptions& o) {
+  addFrameBenchOptions(app, o);
+  app.add_option("--scene", o.scenePath)->capture_default_str();
 }
 
 /// Prints which GL implementation rendered (GPU or llvmpipe), after a first frame.

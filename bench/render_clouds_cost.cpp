@@ -29,14 +29,11 @@ using namespace umbra;
 
 int main(int argc, char** argv) {
   CLI::App app{"What the cloud layers cost"};
-  int frames = 20, width = 1920, height = 1080;
-  bool egl = false;
-  app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
-  app.add_option("--width", width)->capture_default_str();
-  app.add_option("--height", height)->capture_default_str();
-  bench::addEglOption(app, egl);
+  bench::FrameBenchOptions o;
+  bench::addFrameBenchOptions(app, o);
   CLI11_PARSE(app, argc, argv);
-  if (!bench::startWindows(egl)) return 1;
+  const int frames = o.frames, width = o.width, height = o.height;
+  if (!bench::startWindows(o.egl)) return 1;
 
   const auto lut = filters::toImageData(eclipse::buildAirlessShadowLut({64, 64}));
   const std::vector<std::string> names = {"partly-cloudy-afternoon", "earth-clouds-from-space",

@@ -47,18 +47,15 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 int main(int argc, char** argv) {
   CLI::App app{"What the stars and the moonlit sky cost"};
-  int frames = 20, width = 1920, height = 1080;
-  bool egl = false;
-  app.add_option("--frames", frames, "Frames per configuration")->capture_default_str();
-  app.add_option("--width", width)->capture_default_str();
-  app.add_option("--height", height)->capture_default_str();
-  bench::addEglOption(app, egl);
+  bench::FrameBenchOptions o;
+  bench::addFrameBenchOptions(app, o);
   CLI11_PARSE(app, argc, argv);
+  const int frames = o.frames, width = o.width, height = o.height;
   if (!std::filesystem::exists(sky::kKStarsCatalogue)) {
     std::fprintf(stderr, "%s is not installed (Debian package kstars-data)\n", sky::kKStarsCatalogue);
     return 1;
   }
-  if (!bench::startWindows(egl)) return 1;
+  if (!bench::startWindows(o.egl)) return 1;
 
   // The catalogue and the places.
   const std::filesystem::path cache =

@@ -9,7 +9,6 @@
 #include "ShadowLutData.h"
 #include "ShadowMapping.hpp"
 #include "Spectrum.hpp"
-#include "Clouds.hpp"
 
 #include <vtkCamera.h>
 #include <vtkCompositeDataSet.h>
@@ -360,13 +359,14 @@ void AtmosphereRendering::SetNightGlow(double zenithRadianceWm2Sr, double layerA
 void AtmosphereRendering::SetClouds(const std::vector<CloudLayerView>& layers, const glm::dvec3& sunFactor) {
   if (layers.size() > static_cast<std::size_t>(kMaxCloudLayers))
     throw std::invalid_argument("clouds: at most " + std::to_string(kMaxCloudLayers) + " layers are drawn");
-  for (const CloudLayerView& l : layers) {
-    const bool ok = std::isfinite(l.radiusM) && l.radiusM > 0.0 && std::isfinite(l.opticalDepth) && l.opticalDepth >= 0.0 &&
-                    l.coverage >= 0.0 && l.coverage <= 1.0 && std::isfinite(l.featureSizeM) && l.featureSizeM > 0.0;
-    bool frameOk = true;
-    for (int c = 0; c < 3; ++c) frameOk = frameOk && finite(l.worldToNoise[c]);
-    if (!ok || !frameOk)
-      throw std::invalid_argument("clouds: a layer needs a finite radius > 0, optical depth >= 0, coverage in [0, 1], "
+  for (const CloudLayerView& v : layers) {
+    const sky::CloudLayer& l = v.layer;
+    const bool ok = std::isfinite(l.altitudeM) && l.altitudeM >= 0.0 && std::isfinite(l.opticalDepth) &&
+                    l.opticalDepth >= 0.0 && l.coverage >= 0.0 && l.coverage <= 1.0 && std::isfinite(l.featureSizeM) &&
+                    l.featureSizeM > 0.0 && finite(v.worldToNoise[0]) && finite(v.worldToNoise[1]) &&
+                    finite(v.worldToNoise[2]);
+    if (!ok)
+      throw std::invalid_argument("clouds: a layer needs a finite altitude >= 0, optical depth >= 0, coverage in [0, 1], "
                                   "feature size > 0 and a finite frame");
   }
   if (!finite(sunFactor) || glm::min(sunFactor.x, glm::min(sunFactor.y, sunFactor.z)) < 0.0)
@@ -524,16 +524,16 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     float radius[kMaxCloudLayers] = {}, tau[kMaxCloudLayers] = {}, cover[kMaxCloudLayers] = {}, scale[kMaxCloudLayers] = {};
     int seed[kMaxCloudLayers] = {};
     for (int k = 0; k < n; ++k) {
-      const CloudLayerView& l = m.clouds[k];
-      const double rc = std::clamp(l.radiusM, t.bottomRadiusM + 1.0, t.topRadiusM - 1.0);
+      const sky::CloudLayer& l = m.clouds[k].layer;
+      const double rc = std::clamp(t.bottomRadiusM + l.altitudeM, t.bottomRadiusM + 1.0, t.topRadiusM - 1.0);
       radius[k] = static_cast<float>(rc);
       tau[k] = static_cast<float>(l.opticalDepth);
       cover[k] = static_cast<float>(l.coverage);
       scale[k] = static_cast<float>(rc / std::max(l.featureSizeM, sky::kMinCloudFeatureSizeM));
-      seed[k] = static_cast<int>(l.seed & 0x7fffffffu);
+      seed[k] = static_cast<int>(l.seed);  // its bits: the shader's uint() keeps them
       float frame[9];
       for (int col = 0; col < 3; ++col)
-        for (int row = 0; row < 3; ++row) frame[3 * col + row] = static_cast<float>(l.worldToNoise[col][row]);
+        for (int row = 0; row < 3; ++row) frame[3 * col + row] = static_cast<float>(m.clouds[k].worldToNoise[col][row]);
       p->SetUniformMatrix3x3(("umbraCloudFrame[" + std::to_string(k) + "]").c_str(), frame);
     }
     p->SetUniformi("umbraCloudCount", n);

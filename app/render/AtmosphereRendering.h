@@ -47,13 +47,14 @@
 // the eclipse paper's Eq. 1 (normalised to the disc's mean), attenuated by T.
 #include "EclipseShading.h"  // SunLight
 
+#include "Clouds.hpp"
+
 #include "Atmosphere.hpp"
 #include "Precompute.hpp"
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
-#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -148,14 +149,13 @@ class AtmosphereRendering {
   /// std::invalid_argument for a negative or non-finite value.
   void SetNightGlow(double zenithRadianceWm2Sr, double layerAltitudeM = 90.0e3);
 
-  /// One cloud layer as the renderer draws it (sky/Clouds.hpp for the light through it).
+  /// One cloud layer as the renderer draws it: the layer (sky/Clouds.hpp; its altitude above
+  /// this atmosphere's ground, drawn within [bottom + 1 m, top - 1 m]; its wind is already in
+  /// the frame) and the rotation from the world's axes to its noise's (body-fixed, turned by
+  /// the wind).
   struct CloudLayerView {
-    double radiusM = 0.0;        ///< from the planet's centre; drawn within [bottom + 1 m, top - 1 m]
-    double opticalDepth = 0.0;   ///< vertical, where whole
-    double coverage = 0.0;       ///< [0, 1] (the noise's; unused with the map)
-    double featureSizeM = 20.0e3;
-    std::uint32_t seed = 1;
-    glm::dmat3 worldToNoise{1.0};  ///< the world axes to the noise's (body-fixed, turned by the wind)
+    sky::CloudLayer layer;
+    glm::dmat3 worldToNoise{1.0};
   };
   /// The cloud layers over this atmosphere (at most kMaxCloudLayers; none: a program without
   /// them). `sunFactor`: the eclipse at the camera per channel, which dims the direct

@@ -145,16 +145,8 @@ void sceneClouds(const scene::Scene& s, SceneInputs& in) {
   const glm::dmat3 toBody = fixed ? glm::transpose(scene::bodyFixedToInertial(planet->preset, s.time)) : glm::dmat3(1.0);
   const glm::dvec3 foot = toBody * (in.camera.positionM - planet->positionM);
   const double seconds = s.hasTime ? scene::secondsBetween(s.fileTime, s.time) : 0.0;
-  for (const sky::CloudLayer& l : planet->clouds) {
-    AtmosphereRendering::CloudLayerView v;
-    v.radiusM = a.bottomRadiusM + l.altitudeM;
-    v.opticalDepth = l.opticalDepth;
-    v.coverage = l.coverage;
-    v.featureSizeM = l.featureSizeM;
-    v.seed = l.seed;
-    v.worldToNoise = sky::cloudDrift(l, foot, v.radiusM, 0.0, seconds) * toBody;
-    a.clouds.push_back(v);
-  }
+  for (const sky::CloudLayer& l : planet->clouds)
+    a.clouds.push_back({l, sky::cloudDrift(l, foot, a.bottomRadiusM + l.altitudeM, 0.0, seconds) * toBody});
   for (const SphereBody& b : in.bodies)
     if (b.name != a.body)
       a.cloudSunFactor *= eclipse::eclipseFactor(in.camera.positionM, in.sun.positionM, in.sun.radiusM,

@@ -32,8 +32,7 @@ struct SceneAtmosphere {
   /// The night sky's glow above an Earth atmosphere (AtmosphereRendering::SetNightGlow;
   /// sky::nightGlowAboveAirWm2Sr for zenithOpticalDepth550); 0 for other bodies.
   double nightGlowWm2Sr = 0.0;
-  /// The body's cloud layers as drawn (scene::Body::clouds): radius from its ground, the
-  /// noise fixed to the body (its rotation model, with a time; else the world's axes) and
+  /// The body's cloud layers as drawn (scene::Body::clouds): the noise fixed to the body (its rotation model, with a time; else the world's axes) and
   /// turned by the wind since the file's time; and the eclipse at the camera (the other
   /// bodies' shadow), which dims the direct sunlight on them.
   std::vector<AtmosphereRendering::CloudLayerView> clouds{};

@@ -253,6 +253,7 @@ vec2 umbraAtmIrradianceUv(vec2 size, float r, float muS) {
 
 // indirectIrradiance and directIrradiance (E_0) on a horizontal surface at radius r.
 vec3 umbraAtmIndirectIrradiance(float r, float muS) {
+  if (muS < umbraAtmMuSMin) return vec3(0.0);  // below the tables' lowest Sun: dark
   vec2 n = vec2(textureSize(umbraAtmIrradianceTable, 0));
   return texture(umbraAtmIrradianceTable, umbraAtmIrradianceUv(n, r, muS)).rgb;
 }

@@ -625,6 +625,16 @@ TEST(Precompute, EarthSecondOrderPositiveAndSmallerThanSingle) {
     EXPECT_GT(Ei[l], 0.0);
     EXPECT_LT(Ei[l], Ed[l]);
   }
+  // Below the tables' lowest Sun the sky is dark, and so is its light on the ground (the
+  // table's cells there hold what the precomputation leaks, not night); at it, twilight.
+  const double below = std::nextafter(t.options.muSMin, -1.0);
+  const std::vector<double> night = indirectIrradiance(t, b, below), deepNight = indirectIrradiance(t, b, -1.0);
+  const std::vector<double> lowest = indirectIrradiance(t, b, t.options.muSMin);
+  for (int l = 0; l < 3; ++l) {
+    EXPECT_EQ(night[l], 0.0);
+    EXPECT_EQ(deepNight[l], 0.0);
+    EXPECT_GT(lowest[l], 0.0);
+  }
 }
 
 // E_0 on a horizontal surface (directIrradiance): the transmittance to the top times the

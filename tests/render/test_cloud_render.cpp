@@ -56,13 +56,13 @@ ViewCamera verticalCamera(double altitudeM, double sign, double fovDeg = 1.0) {
 
 AtmosphereRendering::CloudLayerView layer(double altitudeM, double tau, double coverage = 1.0, std::uint32_t seed = 1,
                                           double featureSizeM = 2000.0) {
-  AtmosphereRendering::CloudLayerView l;
-  l.featureSizeM = featureSizeM;
-  l.radiusM = atmosphereFixture().tables.bottomRadiusM + altitudeM;
-  l.opticalDepth = tau;
-  l.coverage = coverage;
-  l.seed = seed;
-  return l;
+  AtmosphereRendering::CloudLayerView v;
+  v.layer.altitudeM = altitudeM;
+  v.layer.opticalDepth = tau;
+  v.layer.coverage = coverage;
+  v.layer.seed = seed;
+  v.layer.featureSizeM = featureSizeM;
+  return v;
 }
 
 glm::dvec3 vec(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
@@ -182,8 +182,7 @@ TEST(CloudRender, BrokenLayerFollowsTheCpuNoise) {
 }
 
 // At night (the Sun 60 deg down, below the tables' lowest Sun) a deck seen from below is
-// dark: no sunlight reaches it, directly nor through the sky (whose table holds the lowest
-// Sun's light there).
+// dark: no sunlight reaches it, directly nor through the sky.
 TEST(CloudRender, DarkAtNight) {
   const Raw f = renderClouds(verticalCamera(10.0, 1.0), directionFromAngles(-60.0, 0.0), {layer(2000.0, 20.0)});
   const glm::dvec3 cloud = f.at(f.w / 2, f.h / 2);
@@ -239,6 +238,7 @@ TEST(CloudRender, BadLayersAreRefused) {
   EXPECT_THROW(a.SetClouds({layer(1000.0, -1.0)}), std::invalid_argument);
   EXPECT_THROW(a.SetClouds({layer(1000.0, 1.0, 1.5)}), std::invalid_argument);
   EXPECT_THROW(a.SetClouds({layer(1000.0, std::nan(""))}), std::invalid_argument);
+  EXPECT_THROW(a.SetClouds({layer(-1.0, 1.0)}), std::invalid_argument);
   EXPECT_THROW(a.SetClouds({layer(1000.0, 1.0)}, glm::dvec3(-1.0)), std::invalid_argument);
   EXPECT_NO_THROW(a.SetClouds({layer(1000.0, 1.0)}));
   EXPECT_EQ(a.GetNumberOfCloudLayers(), 1);

@@ -156,8 +156,8 @@ TEST(SceneAtmosphereTables, DISABLED_DefaultSizesAgainstTheSkyCommand) {
 // the irradiance table spans mu_s in [-1, 1], so its cells are coarse just below the
 // horizon, where it falls by orders of magnitude; linear interpolation across a cell
 // overestimates it. Small sizes, day (16 cells) and twilight (64), against the sky
-// command's tables with 512 cells. Measured: the day's x3 at 4 deg down, x200 at 9, x130
-// at 14; the twilight ones x1.3, x1.9, x2.4 (the default sizes' in
+// command's tables with 512 cells. Measured: the day's x3 at 4 deg down, x200 at 9, black
+// at 14 (below its lowest Sun); the twilight ones x1.3, x1.9, x2.4 (the default sizes' in
 // DISABLED_DefaultSizesAgainstTheSkyCommand).
 TEST(SceneAtmosphereTables, TwilightTablesCarryTheGroundIrradiance) {
   const atmosphere::Atmosphere& model = atmosphereFixture().model;

@@ -222,9 +222,7 @@ vec2 umbraCloudsAboveGround(vec3 y, float r0, vec3 towardsLight) {
 // `direct`) and the sky's, reflected on the face the eye looks at (`above`) or through it.
 vec3 umbraCloudLight(float tau, vec3 n, float rc, vec3 l, bool above, vec3 direct) {
   float mu0 = dot(n, l);
-  // Below the tables' lowest Sun the sky's irradiance is night (the table holds that Sun's).
-  vec3 eDirect = umbraAtmDirectIrradiance(rc, mu0) * direct;
-  vec3 eSky = mu0 < umbraAtmMuSMin ? vec3(0.0) : umbraAtmIndirectIrradiance(rc, mu0);
+  vec3 eDirect = umbraAtmDirectIrradiance(rc, mu0) * direct, eSky = umbraAtmIndirectIrradiance(rc, mu0);
   float m0 = max(mu0, 0.0);
   float shareDirect = above ? umbraCloudReflectance(tau, m0) : umbraCloudDiffuseTransmittance(tau, m0);
   float shareSky = above ? umbraCloudReflectance(tau, umbraCloudDiffuseCosine)
