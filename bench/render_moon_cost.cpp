@@ -1,10 +1,11 @@
 // Frame time of the Moon's photometry in the receivers' shader (DESIGN.md: "Hapke Moon
 // <= +20 % of Lambert's stage"). Renders the 2015-09-28 scene's Moon filling a Full-HD
-// frame (Earth present as an occluder, so all shade the eclipse) three ways, interleaved:
+// frame (Earth present as an occluder, so all shade the eclipse) four ways, interleaved:
 // Lambert's law with a uniform albedo (the Moon before its photometry), the
 // Hapke–Lommel–Seeliger reflectance with a uniform albedo (and earthshine when the scene
-// has some), and Hapke with the albedo map as the scene draws it; prints the median frame
-// and receivers-stage times (GL_TIMESTAMP around the stage) and their cost over Lambert's.
+// has some), Hapke with the albedo map, and Hapke with the albedo map and the relief's
+// normal map as the scene draws it; prints the median frame and receivers-stage times
+// (GL_TIMESTAMP around the stage) and their cost over Lambert's.
 // Needs an X display (xvfb-run -a) or --egl (EGL, no X); on llvmpipe the fragment work runs on the CPU.
 //
 //   xvfb-run -a build/bench/umbra-bench-render-moon [--frames 40] [--width 1920 --height 1080]
@@ -39,38 +40,47 @@ int main(int argc, char** argv) {
   const scene::Scene s = scene::loadScene(scenePath);
   const render::SceneInputs in = render::sceneInputs(s);
   const auto lut = filters::toImageData(eclipse::buildAirlessShadowLut({256, 256}));
-  std::vector<render::SphereBody> lambert = in.bodies, uniform = in.bodies;
-  std::string map;
+  std::vector<render::SphereBody> lambert = in.bodies, uniform = in.bodies, mapOnly = in.bodies;
+  std::string map, normals;
   for (std::size_t k = 0; k < in.bodies.size(); ++k) {
     if (in.bodies[k].photometry.law != sky::Photometry::Law::Hapke) continue;
     if (!in.bodies[k].albedoMapPath.empty()) map = in.bodies[k].albedoMapPath;
+    if (!in.bodies[k].normalMapPath.empty()) normals = in.bodies[k].normalMapPath;
     lambert[k].photometry = {};
     lambert[k].albedoMapPath.clear();
+    lambert[k].normalMapPath.clear();
     lambert[k].earthshineWm2 = glm::dvec3(0.0);
     uniform[k].albedoMapPath.clear();
+    uniform[k].normalMapPath.clear();
+    mapOnly[k].normalMapPath.clear();
   }
   if (map.empty()) std::fprintf(stderr, "note: the scene's bodies have no albedo map (marble-qt-data not installed?)\n");
+  if (normals.empty()) std::fprintf(stderr, "note: the scene's bodies have no relief (stellarium-data not installed?)\n");
 
-  render::BodyView withMap(width, height, true), hapke(width, height, true), plain(width, height, true);
-  withMap.SetBodies(in.sun, in.bodies, lut);
+  render::BodyView withRelief(width, height, true), withMap(width, height, true), hapke(width, height, true),
+      plain(width, height, true);
+  withRelief.SetBodies(in.sun, in.bodies, lut);
+  withMap.SetBodies(in.sun, mapOnly, lut);
   hapke.SetBodies(in.sun, uniform, lut);
   plain.SetBodies(in.sun, lambert, lut);
-  for (render::BodyView* v : {&withMap, &hapke, &plain}) {
+  for (render::BodyView* v : {&withRelief, &withMap, &hapke, &plain}) {
     v->SetCamera(in.camera);
     v->SetExposureEV(s.exposureEv);
     v->Render();  // warm up: shader compilation, texture upload
   }
   bench::printRenderer(withMap);
-  const bench::FrameTimes t = bench::medianFrameTimes({&withMap, &hapke, &plain}, frames);
+  const bench::FrameTimes t = bench::medianFrameTimes({&withRelief, &withMap, &hapke, &plain}, frames);
   auto cost = [](double a, double b) { return 100.0 * (a / b - 1.0); };
-  std::printf("| %dx%d, %d frames, median | Lambert [ms] | Hapke [ms] | cost | Hapke + albedo map [ms] | cost |\n"
-              "|---|---:|---:|---:|---:|---:|\n", width, height, frames);
-  std::printf("| frame (wall) | %.2f | %.2f | %+.1f %% | %.2f | %+.1f %% |\n", t.wallMs[2], t.wallMs[1],
-              cost(t.wallMs[1], t.wallMs[2]), t.wallMs[0], cost(t.wallMs[0], t.wallMs[2]));
-  if (t.receiversMs[2] > 0.0)
-    std::printf("| receivers stage (GL) | %.2f | %.2f | %+.1f %% | %.2f | %+.1f %% |\n", t.receiversMs[2],
-                t.receiversMs[1], cost(t.receiversMs[1], t.receiversMs[2]), t.receiversMs[0],
-                cost(t.receiversMs[0], t.receiversMs[2]));
+  std::printf("| %dx%d, %d frames, median | Lambert [ms] | Hapke [ms] | cost | Hapke + albedo map [ms] | cost | "
+              "Hapke + albedo map + relief [ms] | cost |\n|---|---:|---:|---:|---:|---:|---:|---:|\n",
+              width, height, frames);
+  auto row = [&](const char* what, const std::vector<double>& ms) {
+    std::printf("| %s | %.2f | %.2f | %+.1f %% | %.2f | %+.1f %% | %.2f | %+.1f %% |\n", what, ms[3], ms[2],
+                cost(ms[2], ms[3]), ms[1], cost(ms[1], ms[3]), ms[0], cost(ms[0], ms[3]));
+  };
+  row("frame (wall)", t.wallMs);
+  if (t.receiversMs[3] > 0.0) row("receivers stage (GL)", t.receiversMs);
   if (!map.empty()) std::printf("albedo map: %s\n", map.c_str());
+  if (!normals.empty()) std::printf("normal map: %s\n", normals.c_str());
   return 0;
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs umbra's build and run dependencies from Debian 12 packages, and the data read
-# at run time: the Moon's albedo map (the Clementine mosaic in marble-qt-data) and the star
-# catalogue (the Hipparcos/Tycho stars of kstars-data).
+# at run time: the Moon's albedo map (the Clementine mosaic in marble-qt-data), the star
+# catalogue (the Hipparcos/Tycho stars of kstars-data) and the Moon's relief (the normal map
+# in stellarium-data).
 # Idempotent: packages already present are not touched, and apt-get runs only when
 # something is missing. Uses sudo when not run as root.
 set -euo pipefail
@@ -12,7 +13,7 @@ packages=(
   libopenexr-dev libgeographiclib-dev libglm-dev liberfa-dev libboost-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev libgdal-dev
   xvfb xauth libgl1-mesa-dri libegl-dev libegl-mesa0
-  marble-qt-data kstars-data
+  marble-qt-data kstars-data stellarium-data
 )
 
 missing=()

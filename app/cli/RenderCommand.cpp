@@ -92,8 +92,8 @@ void addRenderCommand(CLI::App& app, Action& action) {
     std::string scene, time, size, output, from, to, step;
     std::optional<double> exposure;
     std::optional<double> limitingMagnitude;
-    double glare = 0.0;
-    bool nightVision = false;
+    std::optional<double> glare;
+    bool nightVision = false, noNightVision = false;
     std::string atmosphereTables = "default";
     bool refraction = false;
     double limbRingThresholdPx = 5.0;
@@ -105,15 +105,21 @@ void addRenderCommand(CLI::App& app, Action& action) {
   render->add_option("--time", o->time, "UTC time, ISO 8601 (default: the scene's)");
   render->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default: the scene's)");
   render->add_option("--exposure", o->exposure, "Exposure in EV (default: the scene's)")->check(CLI::Range(-60.0, 60.0));
-  render->add_flag("--night-vision", o->nightVision,
-                   "Show the PNG as the eye sees dim light: below about 5 cd/m^2 colour fades to the rods' grey, "
-                   "fully below 0.005 (CIE 191 mesopic adaptation at each pixel; EXR output keeps the radiance)");
+  CLI::Option* nightOn = render->add_flag(
+      "--night-vision", o->nightVision,
+      "Show the PNG as the eye sees dim light: below about 5 cd/m^2 colour fades to the rods' grey, fully below 0.005 "
+      "(CIE 191 mesopic adaptation at each pixel), with the glare of an eye (--glare 1 unless given). The default for "
+      "a PNG of a night scene (the Sun below the camera's horizon); EXR output keeps the radiance");
+  render->add_flag("--no-night-vision", o->noNightVision,
+                   "Show the PNG in the camera's colours, also at night (and no glare unless --glare is given)")
+      ->excludes(nightOn);
   render->add_option("--limiting-magnitude", o->limitingMagnitude,
                      "The faintest stars drawn, V magnitude (default: the scene's, 6.5; the catalogue ends at 9)")
       ->check(CLI::Range(-30.0, 30.0));
   render->add_option("--glare", o->glare,
-                     "Glare strength in [0, 10] (default 0: none): halos of 0.03, 0.15, 0.75 deg around bright "
-                     "pixels holding 4, 2, 1 % of their light per unit; the frame's total radiance is kept")
+                     "Glare strength in [0, 10] (default 0: none; 1 with night vision): halos of 0.03, 0.15, 0.75 deg "
+                     "around bright pixels holding 4, 2, 1 % of their light per unit, so a source's halo follows its "
+                     "brightness (the Moon's with its phase and eclipse); the frame's total radiance is kept")
       ->check(CLI::Range(0.0, 10.0));
   render->add_option("--output,-o", o->output,
                      "Image to write: FILE.png or FILE.exr; for an animation a name with a frame number, "
@@ -202,6 +208,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
       std::vector<std::unique_ptr<render::TerrainRendering>> terrains;  // (drawn by the view)
       std::optional<ProgressLine> progress;
       std::size_t starCount = 0;
+      bool nightNoted = false;  // the note on night vision, at its first frame
       if (animation) progress.emplace("frames (" + std::to_string(frames.size()) + ")");
       for (std::size_t k = 0; k < frames.size(); ++k) {
         const Frame& f = frames[k];
@@ -250,8 +257,18 @@ void addRenderCommand(CLI::App& app, Action& action) {
           throw CommandError(o->scene + ": " + e.what());
         }
         view.SetExposureEV(s.exposureEv);
-        view.GetRenderPass()->SetNightVision(o->nightVision);
-        view.GetRenderPass()->SetGlareStrength(o->glare);
+        // Night vision: asked for, or a PNG of a night scene unless refused; it brings the
+        // eye's glare unless a strength is given. An EXR keeps the radiance.
+        const bool png = output::extensionOf(f.path) != ".exr";
+        const bool nightVision = png && (o->nightVision || (!o->noNightVision && scene::nightAtCamera(s)));
+        const double glare = o->glare ? *o->glare : nightVision ? 1.0 : 0.0;
+        if (nightVision && !o->nightVision && !nightNoted) {
+          std::cerr << "umbra: night vision on, glare " << glare << " (" << scene::describeSunElevation(*scene::sunElevationDeg(s))
+                    << "): the eye's view; --no-night-vision for the camera's colours\n";
+          nightNoted = true;
+        }
+        view.GetRenderPass()->SetNightVision(nightVision);
+        view.GetRenderPass()->SetGlareStrength(glare);
         view.Render();
         if (k == 0 && render::usingEglRenderWindows())
           std::cerr << "umbra: EGL: " << render::glRendererString(view.GetRenderWindow()) << "\n";  // GPU or llvmpipe
@@ -265,7 +282,7 @@ void addRenderCommand(CLI::App& app, Action& action) {
                           {"scene", o->scene},
                           {"time", scene::formatUtc(s.time)},
                           {"exposureEV", std::to_string(s.exposureEv)},
-                          {"glare", std::to_string(o->glare)}};
+                          {"glare", std::to_string(glare)}};
           tables::writeExr(f.path, t);
         } else {
           view.WritePng(f.path);

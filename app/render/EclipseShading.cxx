@@ -45,6 +45,7 @@ constexpr const char* kLutSamplerName = "umbraShadowLut";
 constexpr const char* kLutSamplerDecl = "uniform sampler2D umbraShadowLut;";
 constexpr const char* kAtmosphereLutSamplerName = "umbraAtmosphereShadowLut";
 constexpr const char* kAlbedoMapSamplerName = "umbraAlbedoMap";
+constexpr const char* kNormalMapSamplerName = "umbraNormalMap";
 
 vtkSmartPointer<vtkTexture> lutTexture();
 vtkSmartPointer<vtkImageData> rgbaTexels(vtkImageData* lut);
@@ -63,7 +64,7 @@ const char* checkedGlsl(const char* name, const char* src) {
 // image), its small dark marks and holes filled in (sky::darkSpots, sky::fillGaps), as 8-bit
 // texels, and the mean that sky::nearSideDiscMean gives of them (in the texture's 0..1).
 // The texels are read once per process (an animation's frames, the GUI's updates and every
-// view share them); each receiver makes its own texture of them (albedoMapTextureOf), as a
+// view share them); each receiver makes its own texture of them (mapTextureOf), as a
 // vtkTexture belongs to one render window.
 struct AlbedoMapTexels {
   vtkSmartPointer<vtkImageData> texels;
@@ -71,30 +72,39 @@ struct AlbedoMapTexels {
   int height = 2;  ///< texels
 };
 
+// Reads a map's image (`what`: "albedo map", "normal map"): 8- or 16-bit values,
+// `range` their largest. Throws std::invalid_argument naming the file.
+vtkSmartPointer<vtkImageData> readMapImage(const std::string& path, const std::string& what, double& range) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw std::invalid_argument(what + " '" + path + "': no such file");
+  vtkSmartPointer<vtkImageReader2> reader;
+  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(path.c_str()));
+  if (!reader) throw std::invalid_argument(what + " '" + path + "': not an image VTK reads (JPEG, PNG, TIFF)");
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkSmartPointer<vtkImageData> image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (reader->GetErrorCode() != 0 || !scalars || dims[0] < 2 || dims[1] < 2 || dims[2] != 1)
+    throw std::invalid_argument(what + " '" + path + "': cannot read a 2D image from it");
+  range = scalars->GetDataType() == VTK_UNSIGNED_CHAR ? 255.0 : scalars->GetDataType() == VTK_UNSIGNED_SHORT ? 65535.0 : 0.0;
+  if (range == 0.0) throw std::invalid_argument(what + " '" + path + "': needs 8- or 16-bit values");
+  return image;
+}
+
 // Reads the map at `path` once per process. Throws std::invalid_argument naming the file.
 std::shared_ptr<const AlbedoMapTexels> albedoMapTexels(const std::string& path) {
   static std::mutex mutex;
   static std::map<std::string, std::shared_ptr<const AlbedoMapTexels>> loaded;
   const std::lock_guard<std::mutex> lock(mutex);
   if (auto it = loaded.find(path); it != loaded.end()) return it->second;
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw std::invalid_argument("albedo map '" + path + "': no such file");
-  vtkSmartPointer<vtkImageReader2> reader;
-  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(path.c_str()));
-  if (!reader) throw std::invalid_argument("albedo map '" + path + "': not an image VTK reads (JPEG, PNG, TIFF)");
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkImageData* image = reader->GetOutput();
+  double range = 0.0;
+  vtkSmartPointer<vtkImageData> image = readMapImage(path, "albedo map", range);
   int dims[3];
   image->GetDimensions(dims);
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  if (reader->GetErrorCode() != 0 || !scalars || dims[0] < 2 || dims[1] < 2 || dims[2] != 1)
-    throw std::invalid_argument("albedo map '" + path + "': cannot read a 2D image from it");
   const int comps = scalars->GetNumberOfComponents();
-  const double range = scalars->GetDataType() == VTK_UNSIGNED_CHAR ? 255.0
-                       : scalars->GetDataType() == VTK_UNSIGNED_SHORT ? 65535.0 : 0.0;
-  if (range == 0.0) throw std::invalid_argument("albedo map '" + path + "': needs 8- or 16-bit values");
   sky::AlbedoMap map;
   map.width = dims[0];
   map.height = dims[1];
@@ -128,10 +138,45 @@ std::shared_ptr<const AlbedoMapTexels> albedoMapTexels(const std::string& path) 
   return out;
 }
 
+// A normal map as the receivers sample it (sky/NormalMap.hpp): its RGB as 8-bit texels,
+// read once per process like the albedo maps.
+struct NormalMapTexels {
+  vtkSmartPointer<vtkImageData> texels;
+  int height = 2;
+};
+
+std::shared_ptr<const NormalMapTexels> normalMapTexels(const std::string& path) {
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const NormalMapTexels>> loaded;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (auto it = loaded.find(path); it != loaded.end()) return it->second;
+  double range = 0.0;
+  vtkSmartPointer<vtkImageData> image = readMapImage(path, "normal map", range);
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (scalars->GetNumberOfComponents() < 3)
+    throw std::invalid_argument("normal map '" + path + "': needs RGB (east, south, up), got " +
+                                std::to_string(scalars->GetNumberOfComponents()) + " channel(s)");
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(scalars->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+    for (int c = 0; c < 3; ++c)
+      rgb->SetTypedComponent(i, c, static_cast<unsigned char>(std::lround(scalars->GetComponent(i, c) / range * 255.0)));
+  auto out = std::make_shared<NormalMapTexels>();
+  out->texels = vtkSmartPointer<vtkImageData>::New();
+  out->texels->SetDimensions(dims[0], dims[1], 1);
+  out->texels->GetPointData()->SetScalars(rgb);
+  out->height = dims[1];
+  loaded[path] = out;
+  return out;
+}
+
 // A texture of the map's texels: values as they are, repeated (the seam at 180 deg),
 // trilinear with mipmaps, no anisotropic filtering (Mesa's llvmpipe blurs magnified texels
 // with VTK's default of 4).
-vtkSmartPointer<vtkTexture> albedoMapTextureOf(const AlbedoMapTexels& map) {
+vtkSmartPointer<vtkTexture> mapTextureOf(vtkImageData* texels) {
   auto texture = vtkSmartPointer<vtkTexture>::New();
   texture->SetColorModeToDirectScalars();
   texture->InterpolateOn();
@@ -139,7 +184,7 @@ vtkSmartPointer<vtkTexture> albedoMapTextureOf(const AlbedoMapTexels& map) {
   texture->SetMaximumAnisotropicFiltering(1.0f);
   texture->SetWrap(vtkTexture::Repeat);
   texture->UseSRGBColorSpaceOff();
-  texture->SetInputData(map.texels);
+  texture->SetInputData(texels);
   return texture;
 }
 
@@ -186,6 +231,8 @@ void validateBody(const SphereBody& b) {
   if (!std::isfinite(glm::determinant(b.bodyFixedToInertial)) ||
         std::abs(glm::determinant(b.bodyFixedToInertial) - 1.0) > 1e-6)
       throw std::invalid_argument(who + " needs a rotation as its body-fixed frame");
+  if (!(std::isfinite(b.reliefStrength) && b.reliefStrength >= 0.0 && b.reliefStrength <= 4.0))
+    throw std::invalid_argument(who + " needs a relief strength in [0, 4]");
   if (!finite(b.earthshineWm2) || b.earthshineWm2.r < 0 || b.earthshineWm2.g < 0 || b.earthshineWm2.b < 0 ||
       !finite(b.earthCentreM))
     throw std::invalid_argument(who + " needs a finite earthshine >= 0 from a finite Earth position");
@@ -197,6 +244,8 @@ struct Receiver {
   SphereBody body;
   std::shared_ptr<const AlbedoMapTexels> albedoMap;  // body.albedoMapPath's; null without one
   vtkSmartPointer<vtkTexture> albedoTexture;          // of albedoMap's texels, for this actor's window
+  std::shared_ptr<const NormalMapTexels> normalMap;  // body.normalMapPath's; null without one
+  vtkSmartPointer<vtkTexture> normalTexture;
   unsigned long observerTag = 0;
   std::string fragmentDecl;  // the fragment code its shader was given (fragmentDeclFor)
 };
@@ -294,7 +343,9 @@ struct EclipseShading::Impl {
            std::to_string(atmosphereIndexOf(receiver)) + "\n#define UMBRA_EXACT_SHADOW " +
            std::to_string(exactShadowsOf(receiver)) + "\n#define UMBRA_PHOTOMETRY " + (hapke ? "1" : "0") +
            "\n#define UMBRA_ALBEDO_MAP " + (receiver.albedoMapPath.empty() ? "0" : "1") +
-           "\n#define UMBRA_EARTHSHINE " + (earthshine ? "1" : "0") + "\n" + eclipseGlslWithoutSampler() + "\n" +
+           "\n#define UMBRA_EARTHSHINE " + (earthshine ? "1" : "0") +
+           "\n#define UMBRA_NORMAL_MAP " + (receiver.normalMapPath.empty() ? "0" : "1") + "\n" +
+           eclipseGlslWithoutSampler() + "\n" +
            checkedGlsl("sky/glsl/Photometry.glsl", sky::kPhotometryGlsl) + "\n" +
            checkedGlsl("ReceiverFragment.glsl", glsl::kReceiverFragment) + "\n" + kFsDec.tag;
   }
@@ -326,6 +377,10 @@ struct EclipseShading::Impl {
       for (int row = 0; row < 3; ++row) toBody[3 * col + row] = float(inertialToBody[col][row]);
     program.SetUniformMatrix3x3("umbraInertialToBodyFixed", toBody);
     if (r.albedoMap) program.SetUniformf("umbraAlbedoMapHalfTexel", float(0.5 / r.albedoMap->height));
+    if (r.normalMap) {
+      program.SetUniformf("umbraNormalMapHalfTexel", float(0.5 / r.normalMap->height));
+      program.SetUniformf("umbraReliefStrength", float(b.reliefStrength));
+    }
     const glm::dvec3 earthRel = b.earthCentreM - b.centreM;
     const float earthPos[3] = {float(earthRel.x), float(earthRel.y), float(earthRel.z)};
     const float earthshine[3] = {float(b.earthshineWm2.r), float(b.earthshineWm2.g), float(b.earthshineWm2.b)};
@@ -389,6 +444,7 @@ struct EclipseShading::Impl {
     r.actor->GetProperty()->RemoveTexture(kLutSamplerName);
     r.actor->GetProperty()->RemoveTexture(kAtmosphereLutSamplerName);
     r.actor->GetProperty()->RemoveTexture(kAlbedoMapSamplerName);
+    r.actor->GetProperty()->RemoveTexture(kNormalMapSamplerName);
   }
 };
 
@@ -587,6 +643,8 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   const std::string vsDec = checkedGlsl("ReceiverVertex.glsl", glsl::kReceiverVertex);
   std::shared_ptr<const AlbedoMapTexels> albedoMap;
   if (!body.albedoMapPath.empty()) albedoMap = albedoMapTexels(body.albedoMapPath);  // throws before changing anything
+  std::shared_ptr<const NormalMapTexels> normalMap;
+  if (!body.normalMapPath.empty()) normalMap = normalMapTexels(body.normalMapPath);
 
   Receiver* receiver = nullptr;
   for (auto& r : impl_->receivers) {
@@ -607,8 +665,10 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   }
   receiver->mapper = mapper;
   receiver->body = body;
-  if (albedoMap != receiver->albedoMap) receiver->albedoTexture = albedoMap ? albedoMapTextureOf(*albedoMap) : nullptr;
+  if (albedoMap != receiver->albedoMap) receiver->albedoTexture = albedoMap ? mapTextureOf(albedoMap->texels) : nullptr;
   receiver->albedoMap = albedoMap;
+  if (normalMap != receiver->normalMap) receiver->normalTexture = normalMap ? mapTextureOf(normalMap->texels) : nullptr;
+  receiver->normalMap = normalMap;
 
   // The actor only translates: model coordinates stay body-centred with world axes.
   actor->SetOrientation(0.0, 0.0, 0.0);
@@ -626,6 +686,8 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   prop->SetTexture(kAtmosphereLutSamplerName, impl_->atmosphereTexture);
   if (albedoMap) prop->SetTexture(kAlbedoMapSamplerName, receiver->albedoTexture);
   else prop->RemoveTexture(kAlbedoMapSamplerName);
+  if (normalMap) prop->SetTexture(kNormalMapSamplerName, receiver->normalTexture);
+  else prop->RemoveTexture(kNormalMapSamplerName);
 
   if (fresh) {
     vtkShaderProperty* sp = actor->GetShaderProperty();

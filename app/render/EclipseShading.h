@@ -62,6 +62,10 @@ struct SphereBody {
   /// An equirectangular albedo map (any image VTK reads: JPEG, PNG, TIFF; sky/AlbedoMap.hpp
   /// says how it lies) in the body-fixed frame below; "" for a uniform albedo.
   std::string albedoMapPath{};
+  /// An equirectangular normal map of its relief (sky/NormalMap.hpp says how it lies), in
+  /// the same frame; "" for the sphere's normals. reliefStrength scales its slopes (0..4).
+  std::string normalMapPath{};
+  double reliefStrength = 1.0;
   glm::dmat3 bodyFixedToInertial{1.0};
   /// Earthshine (sky/Earthshine.hpp): the irradiance the Earth at earthCentreM sends to
   /// this body, W m^-2 per channel; zero for none.

@@ -167,6 +167,8 @@ SceneInputs sceneInputs(const scene::Scene& s) {
     SphereBody body{b.name, b.positionM, b.radiusM, bodyAlbedo(b) * bodyTint(b)};
     body.photometry = b.photometry;
     body.albedoMapPath = b.albedoMapPath;
+    body.normalMapPath = b.normalMapPath;
+    body.reliefStrength = b.reliefStrength;
     if (!b.preset.empty() && scene::hasRotationModel(b.preset) && s.hasTime)
       body.bodyFixedToInertial = scene::bodyFixedToInertial(b.preset, s.time);
     if (earth && earth != &b && b.photometry.law == sky::Photometry::Law::Hapke) {

@@ -25,17 +25,17 @@ const sky::Photometry kLambert{};
 const sky::Photometry kHapke{sky::Photometry::Law::Hapke, sky::moonParameters()};
 const std::array<BodyPreset, 6> kPresets = {{
     {"Sun", eclipse::kSunRadiusM, eclipse::kSunRadiusM, eclipse::kSunRadiusM, "", 0.0, false, 0.0,
-     {1.0, 1.0, 1.0}, kLambert, ""},
+     {1.0, 1.0, 1.0}, kLambert, "", ""},
     {"Earth", 6378.1366 * kKm, 6356.7519 * kKm, 6371.0084 * kKm, "Sun", kAuM, true,
-     0.367, {0.30, 0.45, 0.70}, kLambert, ""},
+     0.367, {0.30, 0.45, 0.70}, kLambert, "", ""},
     {"Moon", 1737.4 * kKm, 1737.4 * kKm, 1737.4 * kKm, "Earth", 384400 * kKm, false, 0.12,
-     {0.92, 0.79, 0.64}, kHapke, "clementine"},
+     {0.92, 0.79, 0.64}, kHapke, "clementine", "stellarium"},
     {"Mars", 3396.19 * kKm, 3376.20 * kKm, 3389.50 * kKm, "Sun", 227939200 * kKm, true,
-     0.170, {0.80, 0.47, 0.32}, kLambert, ""},
+     0.170, {0.80, 0.47, 0.32}, kLambert, "", ""},
     {"Phobos", 11.08 * kKm, 11.08 * kKm, 11.08 * kKm, "Mars", 9376 * kKm, false, 0.071,
-     {0.45, 0.42, 0.40}, kHapke, ""},
+     {0.45, 0.42, 0.40}, kHapke, "", ""},
     {"Deimos", 6.2 * kKm, 6.2 * kKm, 6.2 * kKm, "Mars", 23463.2 * kKm, false, 0.068,
-     {0.50, 0.47, 0.44}, kHapke, ""},
+     {0.50, 0.47, 0.44}, kHapke, "", ""},
 }};
 
 bool equalsIgnoreCase(std::string_view a, std::string_view b) {
@@ -60,6 +60,15 @@ std::optional<NamedAlbedoMap> findNamedAlbedoMap(std::string_view name) {
 }
 
 std::string namedAlbedoMapList() { return "clementine"; }
+
+std::optional<NamedAlbedoMap> findNamedNormalMap(std::string_view name) {
+  if (!equalsIgnoreCase(name, "stellarium")) return std::nullopt;
+  const char* dir = std::getenv("UMBRA_STELLARIUM_DATA_DIR");
+  const std::string root = dir && *dir ? dir : "/usr/share/stellarium";
+  return NamedAlbedoMap{"stellarium", "stellarium-data", root + "/textures/moon_normals.png"};
+}
+
+std::string namedNormalMapList() { return "stellarium"; }
 
 const BodyPreset* findPreset(std::string_view name) {
   for (const BodyPreset& preset : kPresets)

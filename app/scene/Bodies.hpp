@@ -22,10 +22,11 @@ struct BodyPreset {
   double geometricAlbedo;
   std::array<double, 3> color;    ///< relative reflectance at 680, 550, 440 nm (the Moon's: its reddish hue)
   sky::Photometry photometry;     ///< Lambert's law, or Hapke's for the dusty airless bodies
-  std::string albedoMap;          ///< a named map (namedAlbedoMapFile) used when installed; "" for none
+  std::string albedoMap;          ///< a named map (findNamedAlbedoMap) used when installed; "" for none
+  std::string normalMap;          ///< a named normal map (findNamedNormalMap) used when installed; "" for none
 };
 
-/// A named albedo map and the Debian package that installs it.
+/// A named map (albedo or normals) and the Debian package that installs it.
 struct NamedAlbedoMap {
   std::string name;     ///< "clementine"
   std::string package;  ///< "marble-qt-data"
@@ -37,6 +38,12 @@ struct NamedAlbedoMap {
 std::optional<NamedAlbedoMap> findNamedAlbedoMap(std::string_view name);
 /// "clementine" for messages.
 std::string namedAlbedoMapList();
+/// The normal maps a scene can name: "stellarium", the Moon's relief that stellarium-data
+/// installs ($UMBRA_STELLARIUM_DATA_DIR, default /usr/share/stellarium, then
+/// textures/moon_normals.png; sky/NormalMap.hpp says how it lies). Nothing for another name.
+std::optional<NamedAlbedoMap> findNamedNormalMap(std::string_view name);
+/// "stellarium" for messages.
+std::string namedNormalMapList();
 
 /// The preset with this name (case-insensitive), or nullptr.
 const BodyPreset* findPreset(std::string_view name);

@@ -144,6 +144,11 @@ std::optional<double> sunElevationDeg(const Scene& scene) {
   return std::asin(std::clamp(glm::dot(up, toSun), -1.0, 1.0)) / kDeg;
 }
 
+bool nightAtCamera(const Scene& scene) {
+  const std::optional<double> e = sunElevationDeg(scene);
+  return e && *e < 0.0;
+}
+
 std::string describeSunElevation(double elevationDeg) {
   char text[64];
   std::snprintf(text, sizeof text, "Sun %.1f deg %s the horizon", std::abs(elevationDeg),

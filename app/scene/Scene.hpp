@@ -53,6 +53,11 @@ struct Body {
   /// An equirectangular albedo map (sky/AlbedoMap.hpp): an absolute path, "" for a uniform
   /// albedo. The Moon's preset takes the Clementine mosaic when it is installed.
   std::string albedoMapPath;
+  /// An equirectangular normal map of the relief (sky/NormalMap.hpp): an absolute path, ""
+  /// for the sphere's normals. The Moon's preset takes stellarium-data's when installed.
+  std::string normalMapPath;
+  /// How much of the normal map's slopes the shading takes: 0 the sphere, 1 as the map has them.
+  double reliefStrength = 1.0;
   std::optional<Terrain> terrain;
   /// Cloud layers over its atmosphere ("clouds"; at most sky::kMaxCloudLayers), drawn with
   /// it; their wind moves them from the scene file's time (Scene::fileTime).
@@ -145,6 +150,10 @@ glm::dvec3 observerPositionM(const Body& body, const Observer& observer, UtcTime
 /// The Sun's centre above the geodetic horizon of the camera's observer, degrees (geometric:
 /// no refraction; negative below it); nothing without an observer.
 std::optional<double> sunElevationDeg(const Scene& scene);
+/// Whether the camera's observer has the Sun's centre below the geometric horizon: a night
+/// scene, which `umbra render` shows as the eye sees it in a PNG (night vision and glare).
+/// False without an observer.
+bool nightAtCamera(const Scene& scene);
 /// "Sun 10.7 deg below the horizon" (one decimal; "above" from 0 up), as the CLI and the
 /// GUI show sunElevationDeg.
 std::string describeSunElevation(double elevationDeg);

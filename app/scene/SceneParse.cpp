@@ -198,24 +198,35 @@ Terrain parseTerrain(const Reader& in, const json& value, const std::string& fie
   return t;
 }
 
-/// A body's "albedoMap": a named map ("clementine": namedAlbedoMapFile), "none", or an
-/// image file (relative to the scene). A named map that is not installed is an error naming
-/// its package.
-std::string parseAlbedoMap(const Reader& in, const json& value, const std::string& field, const std::string& sceneFile) {
+/// A body's "albedoMap" or "normalMap": a named map (`find`), "none", or an image file
+/// (relative to the scene). A named map that is not installed is an error naming its package.
+std::string parseMap(const Reader& in, const json& value, const std::string& field, const std::string& sceneFile,
+                     std::optional<NamedAlbedoMap> (*find)(std::string_view), const std::string& namedList,
+                     const char* noneMeans) {
   const std::string text = in.string(value, field);
   if (text == "none") return "";
-  if (const auto named = findNamedAlbedoMap(text)) {
+  if (const auto named = find(text)) {
     if (!std::filesystem::is_regular_file(named->file))
       in.fail(field, "the '" + named->name + "' map is not installed (" + named->file + "): install the Debian package " +
-                         named->package + ", or give \"none\" for a uniform albedo");
+                         named->package + ", or give \"none\" for " + noneMeans);
     return named->file;
   }
   std::filesystem::path p(text);
   if (p.is_relative()) p = std::filesystem::path(sceneFile).parent_path() / p;
   const std::string path = p.lexically_normal().string();
   if (!std::filesystem::is_regular_file(path))
-    in.fail(field, "no such file: " + path + " (or a named map: " + namedAlbedoMapList() + ", or \"none\")");
+    in.fail(field, "no such file: " + path + " (or a named map: " + namedList + ", or \"none\")");
   return path;
+}
+
+/// A preset's named map when it is installed; when not, a note and "".
+std::string presetMap(const std::optional<NamedAlbedoMap>& named, const std::string& body, const char* without,
+                      std::vector<std::string>& notes) {
+  if (!named) return "";
+  if (std::filesystem::is_regular_file(named->file)) return named->file;
+  notes.push_back(body + ": " + without + " (the " + named->name + " map is not installed: Debian package " +
+                  named->package + ")");
+  return "";
 }
 
 /// "stars": true (the packaged catalogue to V 6.5), false, or an object with "catalogue"
@@ -301,7 +312,8 @@ Body parseBody(const Reader& in, const json& value, const std::string& field, co
                std::vector<std::string>& notes) {
   in.object(value, field,
             {"preset", "name", "radius", "equatorialRadius", "polarRadius", "position",
-             "atmosphere", "albedo", "color", "photometry", "albedoMap", "terrain", "clouds"});
+             "atmosphere", "albedo", "color", "photometry", "albedoMap", "normalMap", "relief", "terrain",
+              "clouds"});
   Body body;
   const BodyPreset* preset = nullptr;
   if (value.contains("preset")) {
@@ -367,15 +379,18 @@ Body parseBody(const Reader& in, const json& value, const std::string& field, co
     else if (law == "hapke") body.photometry = {sky::Photometry::Law::Hapke, sky::moonParameters()};
     else in.fail(field + ".photometry", "expected \"lambert\" or \"hapke\", got \"" + law + "\"");
   }
-  if (value.contains("albedoMap")) {
-    body.albedoMapPath = parseAlbedoMap(in, value["albedoMap"], field + ".albedoMap", sceneFile);
-  } else if (preset != nullptr && !preset->albedoMap.empty()) {
-    const auto named = findNamedAlbedoMap(preset->albedoMap);
-    if (named && std::filesystem::is_regular_file(named->file)) body.albedoMapPath = named->file;
-    else if (named)
-      notes.push_back(body.name + ": uniform albedo (the " + named->name + " map is not installed: Debian package " +
-                      named->package + ")");
-  }
+  if (value.contains("albedoMap"))
+    body.albedoMapPath = parseMap(in, value["albedoMap"], field + ".albedoMap", sceneFile, findNamedAlbedoMap,
+                                  namedAlbedoMapList(), "a uniform albedo");
+  else if (preset != nullptr && !preset->albedoMap.empty())
+    body.albedoMapPath = presetMap(findNamedAlbedoMap(preset->albedoMap), body.name, "uniform albedo", notes);
+  if (value.contains("normalMap"))
+    body.normalMapPath = parseMap(in, value["normalMap"], field + ".normalMap", sceneFile, findNamedNormalMap,
+                                  namedNormalMapList(), "the sphere's normals");
+  else if (preset != nullptr && !preset->normalMap.empty())
+    body.normalMapPath = presetMap(findNamedNormalMap(preset->normalMap), body.name, "no relief", notes);
+  if (value.contains("relief"))
+    body.reliefStrength = in.number(value["relief"], field + ".relief", 0.0, 4.0, "a number in [0, 4]");
   if (value.contains("terrain")) {
     if (preset == nullptr || !hasRotationModel(preset->name))
       in.fail(field + ".terrain", "needs a body with a rotation model (a preset: Earth, Moon, Mars)");

@@ -36,3 +36,15 @@ float umbraHapkeReflectanceOf(vec3 n, vec3 toLight, vec3 toEye, vec3 hapke) {
   return umbraHapkeReflectance(dot(n, toLight), dot(n, toEye), length(cross(toLight, toEye)), dot(toLight, toEye),
                                hapke);
 }
+
+// The relief's unit normal (sky/NormalMap.hpp, reliefNormal): the sphere's unit normal nb
+// (body-fixed) tilted by the tangent-space texel t (RGB: east, south, up), its slopes times
+// strength.
+vec3 umbraReliefNormal(vec3 nb, vec3 t, float strength) {
+  vec3 east = vec3(-nb.y, nb.x, 0.0);
+  float l = length(east);
+  east = l > 1.0e-6 ? east / l : vec3(0.0, 1.0, 0.0);
+  vec3 north = cross(nb, east);
+  vec3 d = 2.0 * t - vec3(1.0);
+  return normalize(strength * (d.x * east - d.y * north) + max(d.z, 0.05) * nb);
+}

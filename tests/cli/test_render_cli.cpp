@@ -8,6 +8,12 @@
 #include "scene/Scene.hpp"
 #include "umbra/tables/Exr.h"
 
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+#include <vtkPointData.h>
+
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
@@ -25,6 +31,20 @@ using namespace umbra::test;
 
 namespace {
 const std::string kScene = UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28.json";
+
+// The mean over a PNG's pixels of max(R, G, B) - min(R, G, B), 0..255: how coloured it is.
+double meanChroma(const std::filesystem::path& png) {
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(png.c_str());
+  reader->Update();
+  vtkDataArray* px = reader->GetOutput()->GetPointData()->GetScalars();
+  double sum = 0.0;
+  for (vtkIdType i = 0; i < px->GetNumberOfTuples(); ++i) {
+    const double r = px->GetComponent(i, 0), g = px->GetComponent(i, 1), b = px->GetComponent(i, 2);
+    sum += std::max({r, g, b}) - std::min({r, g, b});
+  }
+  return sum / px->GetNumberOfTuples();
+}
 }
 
 TEST(RenderCli, ExampleSceneShowsTheMoonDarkerOnItsUmbralSide) {
@@ -459,4 +479,37 @@ TEST(RenderCli, LimitingMagnitudeCountsTheStars) {
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.err.find("--limiting-magnitude: the scene draws no stars"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.path / "none.png"));
+}
+
+// A PNG of a night scene shows as the eye sees it (night vision and its glare), with a note
+// saying so; --no-night-vision gives the camera's colours without the note; an EXR keeps the
+// radiance (no glare). The moonlit sky (about 1e-3 cd m^-2) is blue for the camera and grey
+// for the eye.
+TEST(RenderCli, NightScenesShowAsTheEyeSeesThem) {
+  TempDir dir;
+  const std::string scene = UMBRA_SOURCE_DIR "/examples/scenes/moonlit-night-2026-10-26.json";
+  auto render = [&](const std::string& out, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"render", scene, "--size", "48x27", "--atmosphere-tables", "small", "--output",
+                                     dir / out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult r = run(UMBRA_EXE, args, {"UMBRA_CACHE_DIR=" + dir / "cache"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return r;
+  };
+  const RunResult eye = render("eye.png", {});
+  EXPECT_NE(eye.err.find("umbra: night vision on, glare 1 (Sun "), std::string::npos) << eye.err;
+  EXPECT_NE(eye.err.find("deg below the horizon): the eye's view; --no-night-vision for the camera's colours"),
+            std::string::npos) << eye.err;
+  const RunResult camera = render("camera.png", {"--no-night-vision"});
+  EXPECT_EQ(camera.err.find("night vision"), std::string::npos) << camera.err;
+  const RunResult exr = render("radiance.exr", {});
+  EXPECT_EQ(exr.err.find("night vision"), std::string::npos) << exr.err;
+  EXPECT_EQ(tables::readExr(dir / "radiance.exr").parameters.at("glare"), "0.000000");
+  const double grey = meanChroma(dir / "eye.png"), blue = meanChroma(dir / "camera.png");
+  std::printf("  mean chroma (0..255): the eye's %.2f, the camera's %.2f\n", grey, blue);
+  EXPECT_GT(blue, 10.0);
+  EXPECT_LT(grey, 0.2 * blue);
+  EXPECT_NE(run(UMBRA_EXE, {"render", scene, "--night-vision", "--no-night-vision", "--output", dir / "x.png"})
+                .exitCode,
+            0);
 }

@@ -4,11 +4,13 @@
 // photometry; the albedo map's place in the body-fixed frame; and the extremes.
 #include "RenderTestSupport.hpp"
 #include "SceneInputs.h"
+#include "vtkUmbraRenderPass.h"
 #include "scene/Scene.hpp"
 
 #include "AlbedoMap.hpp"
 #include "Earthshine.hpp"
 #include "MoonGeometry.hpp"
+#include "NormalMap.hpp"
 #include "Photometry.hpp"
 #include "Spectrum.hpp"
 #include "StarLight.hpp"
@@ -127,16 +129,39 @@ std::filesystem::path tempDir() {
   return dir;
 }
 
-// Writes an 8-bit grey equirectangular PNG (row 0 of `map` southernmost, as sky::AlbedoMap;
-// values in 0..1) and returns its path.
-std::string writeMapPng(const sky::AlbedoMap& map, const std::string& name) {
+
+// Calls visit(i, j, hit, n) at every 5th pixel of the frame whose ray meets the body's
+// sphere seen at more than 0.3 of its normal (the limb, where the facets differ from the
+// sphere, left out): the point hit and the sphere's normal there.
+template <class Visit>
+void forDiscSamples(const Frame& f, const ViewCamera& cam, const SphereBody& body, Visit visit) {
+  for (int j = 2; j < f.h; j += 5)
+    for (int i = 2; i < f.w; i += 5) {
+      const Ray ray = pixelRay(cam, f.w, f.h, i, j);
+      const auto hit = hitSphere(ray, body.centreM, body.radiusM);
+      if (!hit) continue;
+      const glm::dvec3 n = glm::normalize(*hit - body.centreM);
+      if (-glm::dot(n, ray.dir) < 0.3) continue;
+      visit(i, j, *hit, n);
+    }
+}
+
+// Writes an 8-bit RGB equirectangular PNG of width x height texels (row 0 southernmost),
+// texel(i, j) giving each one's RGB in 0..1, and returns its path.
+template <class Texel>
+std::string writeRgbPng(int width, int height, Texel texel, const std::string& name) {
   vtkNew<vtkImageData> image;
-  image->SetDimensions(map.width, map.height, 1);
+  image->SetDimensions(width, height, 1);
   vtkNew<vtkUnsignedCharArray> px;
-  px->SetNumberOfComponents(1);
-  px->SetNumberOfTuples(static_cast<vtkIdType>(map.values.size()));
-  for (std::size_t k = 0; k < map.values.size(); ++k)
-    px->SetValue(static_cast<vtkIdType>(k), static_cast<unsigned char>(std::lround(map.values[k] * 255.0)));
+  px->SetNumberOfComponents(3);
+  px->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      const glm::dvec3 c = texel(i, j);
+      for (int k = 0; k < 3; ++k)
+        px->SetTypedComponent(static_cast<vtkIdType>(j) * width + i, k,
+                              static_cast<unsigned char>(std::lround(std::clamp(c[k], 0.0, 1.0) * 255.0)));
+    }
   image->GetPointData()->SetScalars(px);
   const std::string path = (tempDir() / name).string();
   vtkNew<vtkPNGWriter> writer;
@@ -146,7 +171,140 @@ std::string writeMapPng(const sky::AlbedoMap& map, const std::string& name) {
   return path;
 }
 
+// Writes an 8-bit grey equirectangular PNG (row 0 of `map` southernmost, as sky::AlbedoMap;
+// values in 0..1; as RGB of equal channels, whose luminance the reader takes) and returns
+// its path.
+std::string writeMapPng(const sky::AlbedoMap& map, const std::string& name) {
+  return writeRgbPng(
+      map.width, map.height,
+      [&](int i, int j) { return glm::dvec3(map.values[static_cast<std::size_t>(j) * map.width + i]); }, name);
+}
+
+// A relief of egg-box bumps 15 deg apart: the slopes of h = sin(24 lon) sin(24 lat) / 24
+// times `slope`, as tangent-space normals (sky/NormalMap.hpp: east, south, up).
+std::string writeBumpsPng(double slope) {
+  return writeRgbPng(
+      256, 128,
+      [slope](int i, int j) {
+        const double lon = ((i + 0.5) / 256.0 * 2.0 - 1.0) * kPi, lat = ((j + 0.5) / 128.0 - 0.5) * kPi;
+        const double east = slope * std::cos(24.0 * lon) * std::sin(24.0 * lat);
+        const double north = slope * std::sin(24.0 * lon) * std::cos(24.0 * lat);
+        const glm::dvec3 n = glm::normalize(glm::dvec3(-east, -north, 1.0));
+        return 0.5 * (glm::dvec3(n.x, -n.y, n.z) + glm::dvec3(1.0));
+      },
+      "bumps.png");
+}
+
+// The mean difference of neighbouring pixels' luminance over the mean luminance, in the
+// band along the terminator where the sphere's cosine of incidence is in (0.02, 0.25) and
+// the disc is seen at more than 0.3 of its normal: the relief's local contrast.
+double terminatorContrast(const Frame& f, const ViewCamera& cam, const SphereBody& moon, const SunLight& sun) {
+  double diff = 0.0, level = 0.0;
+  for (int j = 0; j < f.h; ++j)
+    for (int i = 0; i + 1 < f.w; ++i) {
+      const Ray ray = pixelRay(cam, f.w, f.h, i, j);
+      const auto hit = hitSphere(ray, moon.centreM, moon.radiusM);
+      if (!hit) continue;
+      const glm::dvec3 n = glm::normalize(*hit);
+      const double cosSun = glm::dot(n, glm::normalize(sun.positionM - *hit));
+      if (cosSun <= 0.02 || cosSun >= 0.25 || -glm::dot(n, ray.dir) < 0.3) continue;
+      const double a = eclipse::luminance(f.at(i, j)), b = eclipse::luminance(f.at(i + 1, j));
+      diff += std::abs(b - a);
+      level += a;
+    }
+  return level > 0.0 ? diff / level : 0.0;
+}
+
 }  // namespace
+
+// The relief of a normal map: a map of one tilted texel everywhere, GPU against the CPU's
+// reliefNormal and Hapke reflectance at every 5th pixel of a gibbous Moon (within 2e-3
+// relative; a texel spans about a pixel), the sphere's terminator still bounding the light
+// (no pixel lit past it); magnified until a texel spans 30 pixels, the smooth sphere's
+// light (reliefFade).
+TEST(MoonRender, ReliefCpuGlslAgreement) {
+  const glm::dvec3 texel = glm::dvec3(166.0, 107.0, 240.0) / 255.0;
+  const std::string path = writeRgbPng(256, 128, [&](int, int) { return texel; }, "tilt.png");
+  SphereBody moon = hapkeMoon();
+  moon.normalMapPath = path;
+  moon.reliefStrength = 0.8;
+  moon.bodyFixedToInertial = glm::dmat3(glm::rotate(glm::dmat4(1.0), 20.0 * kDeg, glm::dvec3(0, 0, 1)));
+  const SunLight sun = sunTowards({1.0, 0.6, 0.1});
+  const ViewCamera cam = cameraAt({0.3, 1.0, 0.2}, 3.84e8);
+  const Frame f = renderFrame(sun, {moon}, cam, 160);
+  int lit = 0, dark = 0;
+  double worst = 0.0;
+  forDiscSamples(f, cam, moon, [&](int i, int j, const glm::dvec3& hit, const glm::dvec3& n) {
+      const glm::dvec3 l = glm::normalize(sun.positionM - hit), e = glm::normalize(cam.positionM - hit);
+      const double cosSun = glm::dot(n, l);
+      if (std::abs(cosSun) < 0.05) return;
+      const glm::dvec3 ns = moon.bodyFixedToInertial *
+                            sky::reliefNormal(glm::transpose(moon.bodyFixedToInertial) * n, texel, moon.reliefStrength);
+      const double eSun = sun.irradianceAt1AuWm2 * std::pow(kAu / glm::length(sun.positionM - hit), 2);
+      const double cpu = cosSun > 0.0 ? 0.18 * eSun *
+                                            sky::hapkeReflectance(glm::dot(ns, l), glm::dot(ns, e),
+                                                                  sky::angleBetween(l, e), moon.photometry.hapke)
+                                      : 0.0;
+      const double gpu = f.at(i, j).g;
+      if (cpu == 0.0) {
+        EXPECT_EQ(gpu, 0.0) << "pixel (" << i << ", " << j << ") lit past the terminator";
+        ++dark;
+        return;
+      }
+      const double rel = std::abs(gpu - cpu) / cpu;
+      worst = std::max(worst, rel);
+      EXPECT_LT(rel, 2e-3) << "pixel (" << i << ", " << j << "): GPU " << gpu << ", CPU " << cpu;
+      ++lit;
+  });
+  std::printf("  %d lit and %d dark pixels, max |GPU - CPU| / CPU = %.2g\n", lit, dark, worst);
+  EXPECT_GE(lit, 100);
+  EXPECT_GE(dark, 30);
+
+  // A texel (1.4 deg of the Moon, 0.0064 deg from here) over 30 pixels: 0.034 deg for 160.
+  ViewCamera close = cam;
+  close.fovDeg = 160.0 / 30.0 * (2.0 * kPi * kMoonRadius / 256.0) / glm::length(cam.positionM) / kDeg;
+  SphereBody smooth = moon;
+  smooth.normalMapPath.clear();
+  const Frame near = renderFrame(sun, {moon}, close, 160), plain = renderFrame(sun, {smooth}, close, 160);
+  EXPECT_NEAR(sky::reliefFade(30.0), 0.0, 0.0);
+  double off = 0.0;
+  for (int j = 0; j < near.h; ++j)
+    for (int i = 0; i < near.w; ++i) off = std::max(off, std::abs(near.at(i, j).g / plain.at(i, j).g - 1.0));
+  std::printf("  magnified 30 px a texel: max |relief / sphere - 1| = %.2g\n", off);
+  EXPECT_LT(off, 1e-4);
+}
+
+// A first-quarter Moon with a normal map: the local contrast along the terminator rises
+// well above the sphere's, while the light of the whole disc (its V) changes by less than
+// 0.05 mag, at quarter and at full phase. With egg-box bumps always; with stellarium-data's
+// Moon when it is installed.
+TEST(MoonRender, ReliefShowsAtTheTerminatorAndKeepsTheMagnitude) {
+  std::vector<std::pair<std::string, std::string>> maps = {{"egg-box bumps", writeBumpsPng(0.5)}};
+  const char* stellarium = "/usr/share/stellarium/textures/moon_normals.png";
+  if (std::filesystem::is_regular_file(stellarium)) maps.emplace_back("stellarium-data's Moon", stellarium);
+  else std::printf("  (stellarium-data not installed: its Moon's relief left out)\n");
+  const double distanceM = 3.844e8;
+  const glm::dvec3 eyeDir(1.0, 0.0, 0.0);
+  const ViewCamera cam = cameraAt(eyeDir, distanceM, 0.85);
+  for (const auto& [what, path] : maps) {
+    for (const double phaseDeg : {90.0, 0.0}) {
+      const SunLight sun = sunTowards({std::cos(phaseDeg * kDeg), std::sin(phaseDeg * kDeg), 0.0});
+      SphereBody sphere = hapkeMoon(), relief = hapkeMoon();
+      relief.normalMapPath = path;
+      const Frame a = renderFrame(sun, {sphere}, cam, 384), b = renderFrame(sun, {relief}, cam, 384);
+      const double dv = sky::magnitudeOfIrradiance(frameIrradiance(b, cam)) -
+                        sky::magnitudeOfIrradiance(frameIrradiance(a, cam));
+      std::printf("  %s, phase %2.0f deg: V relief - sphere %+.4f mag", what.c_str(), phaseDeg, dv);
+      EXPECT_LT(std::abs(dv), 0.05) << what << ", phase " << phaseDeg;
+      if (phaseDeg > 0.0) {
+        const double ca = terminatorContrast(a, cam, sphere, sun), cb = terminatorContrast(b, cam, relief, sun);
+        std::printf("; contrast along the terminator %.4f (sphere) -> %.4f", ca, cb);
+        EXPECT_GT(cb, 2.0 * ca) << what;
+      }
+      std::printf("\n");
+    }
+  }
+}
 
 // The Hapke reflectance of the Sun's light and the earthshine, GPU against CPU at every
 // 5th pixel of a gibbous Moon whose night side the Earth lights: within 1e-3 relative
@@ -162,24 +320,18 @@ TEST(MoonRender, HapkeAndEarthshineCpuGlslAgreement) {
   const Frame f = renderFrame(sun, {moon}, cam, 160);
   int day = 0, night = 0;
   double worst = 0.0;
-  for (int j = 2; j < f.h; j += 5)
-    for (int i = 2; i < f.w; i += 5) {
-      const Ray ray = pixelRay(cam, f.w, f.h, i, j);
-      const auto hit = hitSphere(ray, moon.centreM, moon.radiusM);
-      if (!hit) continue;
-      const glm::dvec3 n = glm::normalize(*hit);
-      if (-glm::dot(n, ray.dir) < 0.3) continue;
-      const double cosSun = glm::dot(n, glm::normalize(sun.positionM - *hit));
-      const double cosEarth = glm::dot(n, glm::normalize(moon.earthCentreM - *hit));
-      if (std::abs(cosSun) < 0.05 || std::abs(cosEarth) < 0.05) continue;
-      const glm::dvec3 cpu = cpuRadiance(moon, sun, *hit, cam.positionM), gpu = f.at(i, j);
+  forDiscSamples(f, cam, moon, [&](int i, int j, const glm::dvec3& hit, const glm::dvec3& n) {
+      const double cosSun = glm::dot(n, glm::normalize(sun.positionM - hit));
+      const double cosEarth = glm::dot(n, glm::normalize(moon.earthCentreM - hit));
+      if (std::abs(cosSun) < 0.05 || std::abs(cosEarth) < 0.05) return;
+      const glm::dvec3 cpu = cpuRadiance(moon, sun, hit, cam.positionM), gpu = f.at(i, j);
       for (int c = 0; c < 3; ++c) {
         const double rel = std::abs(gpu[c] - cpu[c]) / cpu[c];
         worst = std::max(worst, rel);
         EXPECT_LT(rel, 1e-3) << "pixel (" << i << ", " << j << ") channel " << c << ": GPU " << gpu[c] << ", CPU " << cpu[c];
       }
       (cosSun > 0.0 ? day : night) += 1;
-    }
+  });
   std::printf("  %d day and %d night-side pixels, max |GPU - CPU| / CPU = %.2g\n", day, night, worst);
   EXPECT_GE(day, 100);
   EXPECT_GE(night, 30);
@@ -329,4 +481,54 @@ TEST(MoonRender, FullMoonColourIsItsReflectanceSpectrum) {
       for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(b.albedoRgb[c] / b.albedoRgb.g, sky::reflectanceTint(reflectance)[c] / sky::reflectanceTint(reflectance).g,
                     1e-12);
+}
+
+// The glare around the Moon follows its light: the mean radiance on a ring 1.5 deg from
+// its centre (the glare's wide veil) over the disc's light at the camera is the same, within
+// 3 %, for a nearly full Moon, a quarter Moon and a Moon deep in an occluder's shadow (the
+// glare stage is a convolution: its halo is the source's light times a fixed spread).
+TEST(MoonRender, GlareFollowsTheMoonsBrightness) {
+  const double distanceM = 3.844e8;
+  struct Case {
+    const char* what;
+    glm::dvec3 eye;
+    bool eclipsed;
+  };
+  const Case cases[] = {{"full", {0.95, 0.0, 0.31}, false}, {"quarter", {0.0, 0.95, 0.31}, false},
+                        {"eclipsed", {0.95, 0.0, 0.31}, true}};
+  double ratios[3], lights[3];
+  for (int c = 0; c < 3; ++c) {
+    std::vector<SphereBody> bodies = {hapkeMoon()};
+    if (cases[c].eclipsed) bodies.push_back(SphereBody{"Earth", {distanceM, 5.0e6, 0.0}, 6.371e6, glm::dvec3(0.3)});
+    ViewCamera cam = cameraAt(cases[c].eye, distanceM);
+    cam.fovDeg = 10.0;
+    BodyView view(256, 256, true);
+    useSharedDisplay(view.GetRenderWindow());
+    view.SetBodies(sunTowards({1.0, 0.0, 0.0}), bodies, testLutImage());
+    view.SetCamera(cam);
+    view.SetExposureEV(0.0);
+    view.GetRenderPass()->SetGlareStrength(1.0);
+    view.Render();
+    Frame f;
+    view.ReadHdr(f.hdr, f.w, f.h);
+    double ring = 0.0;
+    int n = 0;
+    const glm::dvec3 toMoon = glm::normalize(-cam.positionM);
+    for (int j = 0; j < f.h; ++j)
+      for (int i = 0; i < f.w; ++i) {
+        const double a = sky::angleBetween(pixelRay(cam, f.w, f.h, i, j).dir, toMoon) / kDeg;
+        if (a < 1.4 || a > 1.6) continue;
+        ring += eclipse::luminance(f.at(i, j));
+        ++n;
+      }
+    lights[c] = frameIrradiance(f, cam);
+    ratios[c] = ring / n / lights[c];
+    std::printf("  %-8s Moon: light %.3e W m^-2, ring 1.5 deg %.3e W m^-2 sr^-1, ratio %.4f sr^-1\n", cases[c].what,
+                lights[c], ring / n, ratios[c]);
+  }
+  EXPECT_LT(lights[1], 0.6 * lights[0]);
+  EXPECT_LT(lights[2], 0.5 * lights[0]);
+  EXPECT_GT(lights[2], 0.0);
+  EXPECT_NEAR(ratios[1] / ratios[0], 1.0, 0.03);
+  EXPECT_NEAR(ratios[2] / ratios[0], 1.0, 0.03);
 }

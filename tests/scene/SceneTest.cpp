@@ -148,7 +148,8 @@ TEST(SceneValidation, MoreMessagesNameTheField) {
             "with unit m, km or au");
   EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, {"preset": "Moon", "albdo": 0.1})")),
             "examples/x.json: bodies[1].albdo: unknown key (expected one of: preset, name, "
-            "radius, equatorialRadius, polarRadius, position, atmosphere, albedo, color, photometry, albedoMap, terrain, clouds)");
+            "radius, equatorialRadius, polarRadius, position, atmosphere, albedo, color, photometry, albedoMap, normalMap, "
+            "relief, terrain, clouds)");
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "image": {"width": 8})")),
             "examples/x.json: image.width: expected an integer in [16, 16384], got 8");
   EXPECT_EQ(errorFor(fixedScene(kSunAndRock, R"(, "shadow": {"lutSize": 256.5})")),
@@ -450,6 +451,10 @@ struct MarbleDataDir {
   explicit MarbleDataDir(const std::string& dir) { ::setenv("UMBRA_MARBLE_DATA_DIR", dir.c_str(), 1); }
   ~MarbleDataDir() { ::unsetenv("UMBRA_MARBLE_DATA_DIR"); }
 };
+struct StellariumDataDir {
+  explicit StellariumDataDir(const std::string& dir) { ::setenv("UMBRA_STELLARIUM_DATA_DIR", dir.c_str(), 1); }
+  ~StellariumDataDir() { ::unsetenv("UMBRA_STELLARIUM_DATA_DIR"); }
+};
 
 std::filesystem::path freshDir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() / ("umbra-scene-test-" + std::to_string(::getpid())) / name;
@@ -480,6 +485,7 @@ TEST(ScenePhotometry, PresetsAndOverride) {
 // (then an error naming the package); "none" and a file of one's own; a missing file.
 TEST(ScenePhotometry, AlbedoMapOrItsFallback) {
   const auto without = freshDir("no-marble"), with = freshDir("marble");
+  const StellariumDataDir relief(freshDir("no-stellarium").string());  // its note left out below
   std::filesystem::create_directories(with / "maps/moon/clementine");
   std::ofstream(with / "maps/moon/clementine/clementine.jpg") << "x";
   const std::string moonScene = fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + "}");
@@ -487,7 +493,8 @@ TEST(ScenePhotometry, AlbedoMapOrItsFallback) {
     const MarbleDataDir d(with.string());
     const Scene s = parseScene(moonScene, kFile);
     EXPECT_EQ(s.find("Moon")->albedoMapPath, (with / "maps/moon/clementine/clementine.jpg").string());
-    EXPECT_TRUE(s.notes.empty());
+    ASSERT_EQ(s.notes.size(), 1u);
+    EXPECT_EQ(s.notes[0].find("Moon: no relief"), 0u) << s.notes[0];
     const Scene none = parseScene(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "albedoMap": "none"})"), kFile);
     EXPECT_EQ(none.find("Moon")->albedoMapPath, "");
   }
@@ -495,7 +502,7 @@ TEST(ScenePhotometry, AlbedoMapOrItsFallback) {
     const MarbleDataDir d(without.string());
     const Scene s = parseScene(moonScene, kFile);
     EXPECT_EQ(s.find("Moon")->albedoMapPath, "");
-    ASSERT_EQ(s.notes.size(), 1u);
+    ASSERT_EQ(s.notes.size(), 2u);
     EXPECT_NE(s.notes[0].find("Moon: uniform albedo"), std::string::npos) << s.notes[0];
     EXPECT_NE(s.notes[0].find("marble-qt-data"), std::string::npos) << s.notes[0];
     const std::string e =
@@ -508,6 +515,41 @@ TEST(ScenePhotometry, AlbedoMapOrItsFallback) {
                      "clementine, or \"none\")");
   EXPECT_NE(errorFor(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "albedoMap": 3})")).find("bodies[1].albedoMap"),
             std::string::npos);
+}
+
+// The Moon takes stellarium-data's relief when it is installed; without it no relief and a
+// note naming the package, unless the scene names the map (then an error naming the
+// package); "none", a file of one's own and its strength ("relief"); bad values.
+TEST(ScenePhotometry, NormalMapOrItsFallback) {
+  const auto without = freshDir("no-stellarium-2"), with = freshDir("stellarium");
+  std::filesystem::create_directories(with / "textures");
+  std::ofstream(with / "textures/moon_normals.png") << "x";
+  const MarbleDataDir albedo(freshDir("no-marble-2").string());
+  const std::string moonScene = fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + "}");
+  {
+    const StellariumDataDir d(with.string());
+    const Scene s = parseScene(moonScene, kFile);
+    EXPECT_EQ(s.find("Moon")->normalMapPath, (with / "textures/moon_normals.png").string());
+    EXPECT_EQ(s.find("Moon")->reliefStrength, 1.0);
+    const Scene none = parseScene(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "normalMap": "none"})"), kFile);
+    EXPECT_EQ(none.find("Moon")->normalMapPath, "");
+    const Scene half = parseScene(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "relief": 0.5})"), kFile);
+    EXPECT_EQ(half.find("Moon")->reliefStrength, 0.5);
+  }
+  {
+    const StellariumDataDir d(without.string());
+    const Scene s = parseScene(moonScene, kFile);
+    EXPECT_EQ(s.find("Moon")->normalMapPath, "");
+    ASSERT_EQ(s.notes.size(), 2u);  // the albedo map's and this one's
+    EXPECT_EQ(s.notes[1], "Moon: no relief (the stellarium map is not installed: Debian package stellarium-data)");
+    const std::string e = errorFor(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "normalMap": "stellarium"})"));
+    EXPECT_EQ(e.rfind("examples/x.json: bodies[1].normalMap: the 'stellarium' map is not installed", 0), 0u) << e;
+    EXPECT_NE(e.find("install the Debian package stellarium-data"), std::string::npos) << e;
+  }
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "normalMap": "n.png"})")),
+            "examples/x.json: bodies[1].normalMap: no such file: examples/n.png (or a named map: stellarium, or \"none\")");
+  EXPECT_EQ(errorFor(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "relief": 5})")),
+            "examples/x.json: bodies[1].relief: expected a number in [0, 4], got 5");
 }
 
 // ---- hostile files: nesting and duplicate keys ----------------------------------------

@@ -8,6 +8,8 @@
 //   UMBRA_ALBEDO_MAP   1: the albedo times umbraAlbedoMap (declared by VTK) at the point's
 //                      body-fixed longitude and latitude (sky/AlbedoMap.hpp)
 //   UMBRA_EARTHSHINE   1: the Earth's light too (Hapke only), umbraEarthshine from umbraEarthPos
+//   UMBRA_NORMAL_MAP   1: the relief of umbraNormalMap (declared by VTK) tilts the normal that
+//                      the light's and the eye's angles take (sky/NormalMap.hpp)
 //
 // All positions are relative to the receiver's centre (computed in double on the CPU,
 // handed over as floats), so the angles keep float precision at any distance.
@@ -62,21 +64,42 @@ vec3 umbraSphereHit(vec3 facet, vec3 dir, float r) {
   return facet + (-b - sqrt(disc)) * dir;
 }
 
-#if UMBRA_ALBEDO_MAP
-uniform float umbraAlbedoMapHalfTexel;  // half a texel of the map's height, in texture coordinates
-// The map at the body-fixed direction nb: texture coordinates (east longitude + 180 deg,
-// latitude + 90 deg) over (360, 180) deg, the rows of the poles held off the other pole
-// (the texture repeats, for the seam at 180 deg). The longitude is counted from the eye's
-// (umbraEyeLon) within +-180 deg: its one jump lies on the meridian behind the body, never
-// seen, so that the derivatives of the coordinates (the mip level) are smooth wherever the
-// body is drawn.
-float umbraAlbedoAt(vec3 nb) {
+#if UMBRA_ALBEDO_MAP || UMBRA_NORMAL_MAP
+// A map's texture coordinates at the body-fixed direction nb: (east longitude + 180 deg,
+// latitude + 90 deg) over (360, 180) deg, the rows of the poles held half a texel
+// (halfTexel, in texture coordinates) off the other pole (the texture repeats, for the
+// seam at 180 deg). The longitude is counted from the eye's (umbraEyeLon) within +-180 deg:
+// its one jump lies on the meridian behind the body, never seen, so that the derivatives
+// of the coordinates (the mip level) are smooth wherever the body is drawn.
+vec2 umbraMapCoord(vec3 nb, float halfTexel) {
   vec3 c = umbraEyeLon;
   float fromEye = atan(c.x * nb.y - c.y * nb.x, c.x * nb.x + c.y * nb.y);
   float u = (fromEye + c.z) / (2.0 * umbraSkyPi) + 0.5;
-  float v = clamp(asin(clamp(nb.z, -1.0, 1.0)) / umbraSkyPi + 0.5, umbraAlbedoMapHalfTexel,
-                  1.0 - umbraAlbedoMapHalfTexel);
-  return texture(umbraAlbedoMap, vec2(u, v)).r;
+  float v = clamp(asin(clamp(nb.z, -1.0, 1.0)) / umbraSkyPi + 0.5, halfTexel, 1.0 - halfTexel);
+  return vec2(u, v);
+}
+#endif
+
+#if UMBRA_ALBEDO_MAP
+uniform float umbraAlbedoMapHalfTexel;  // half a texel of the map's height, in texture coordinates
+float umbraAlbedoAt(vec3 nb) { return texture(umbraAlbedoMap, umbraMapCoord(nb, umbraAlbedoMapHalfTexel)).r; }
+#endif
+
+#if UMBRA_NORMAL_MAP
+uniform float umbraNormalMapHalfTexel;
+uniform float umbraReliefStrength;      // 0: the sphere; 1: the map's slopes
+// The relief where the map resolves it on screen (sky/NormalMap.hpp, reliefFade): full
+// strength while a texel spans at most 4 pixels across the footprint's short side, none
+// from 16 on.
+vec3 umbraReliefAt(vec3 nb) {
+  vec2 uv = umbraMapCoord(nb, umbraNormalMapHalfTexel);
+  // Texels counted at their size on the sphere: a row's shrink towards the poles.
+  vec2 size = vec2(textureSize(umbraNormalMap, 0)) * vec2(length(nb.xy), 1.0);
+  vec2 dx = dFdx(uv) * size, dy = dFdy(uv) * size;
+  // The footprint's short side: a grazing view stretches the other one along the ray.
+  float texelsPerPixel = sqrt(min(dot(dx, dx), dot(dy, dy)));
+  float fade = clamp(0.5 * (log2(max(texelsPerPixel, 1.0e-6)) + 4.0), 0.0, 1.0);
+  return umbraReliefNormal(nb, texture(umbraNormalMap, uv).rgb, umbraReliefStrength * fade);
 }
 #endif
 
@@ -113,14 +136,25 @@ void umbraReceiverShade() {
     shadow *= uv.y >= 1.0 ? vec3(1.0) : lut;
   }
 #endif
+  // The normal the light's and the eye's angles take: the relief's (the sphere's own
+  // terminator still bounds the light), else the sphere's.
+#if UMBRA_NORMAL_MAP
+  vec3 ns = transpose(umbraInertialToBodyFixed) * umbraReliefAt(umbraInertialToBodyFixed * n);
+  float lit = cosi > 0.0 ? 1.0 : 0.0;
+#else
+  vec3 ns = n;
+  float lit = 1.0;
+#endif
 #if UMBRA_PHOTOMETRY == 1
   vec3 toEye = umbraParallel == 1 ? -umbraViewDirMC : normalize(umbraEyeMC - p);
-  vec3 radiance = albedo * (eSun * umbraHapkeReflectanceOf(n, toSun / dSun, toEye, umbraHapke)) * shadow;
+  vec3 radiance = albedo * (eSun * lit * umbraHapkeReflectanceOf(ns, toSun / dSun, toEye, umbraHapke)) * shadow;
 #if UMBRA_EARTHSHINE
-  radiance += albedo * umbraEarthshine * umbraHapkeReflectanceOf(n, normalize(umbraEarthPos - p), toEye, umbraHapke);
+  float litByEarth = dot(n, umbraEarthPos - p) > 0.0 ? 1.0 : 0.0;
+  radiance += albedo * umbraEarthshine * litByEarth *
+              umbraHapkeReflectanceOf(ns, normalize(umbraEarthPos - p), toEye, umbraHapke);
 #endif
 #else
-  vec3 radiance = albedo * (umbraInvPi * eSun * cosi) * shadow;
+  vec3 radiance = albedo * (umbraInvPi * eSun * lit * max(dot(ns, toSun / dSun), 0.0)) * shadow;
 #endif
   fragOutput0 = vec4(radiance, 1.0);
 
