@@ -5,6 +5,7 @@
 #include "AtmosphereGlsl.hpp"
 #include "CloudsGlsl.hpp"
 #include "FieldParameters.h"
+#include "MapTexels.h"
 #include "RenderGlsl.hpp"
 #include "ShadowLutData.h"
 #include "ShadowMapping.hpp"
@@ -29,6 +30,7 @@
 #include <vtk_glew.h>
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -180,6 +182,11 @@ struct AtmosphereRendering::Impl {
   double nightGlowWm2Sr = 0.0, glowLayerAltitudeM = 90.0e3;
   std::vector<CloudLayerView> clouds;
   glm::dvec3 cloudSunFactor{1.0};
+  // The ground's reflectance map (SetGroundAlbedoMap): texels, frame, texture (a 1x1 white
+  // one without a map keeps the sampler valid).
+  std::shared_ptr<const MapTexels> groundMap;
+  glm::dmat3 groundToBodyFixed{1.0};
+  vtkSmartPointer<vtkTextureObject> groundTexture;
   bool texturesStale = true;
 
   vtkSmartPointer<vtkTextureObject> transmittance, scattering, irradiance, refraction;
@@ -218,6 +225,9 @@ struct AtmosphereRendering::Impl {
                               on ? refractionValues : none, 2);
     limb = limbValues.empty() ? nullptr
                               : floatTexture(window, limbSize[0], limbSize[1], limbSize[2], limbValues);
+    groundTexture = groundMap ? mapTextureObjectOf(window, *groundMap)
+                              : floatTexture(window, 1, 1, 1, std::vector<float>{1.0f, 1.0f, 1.0f}, 3);
+    if (!groundTexture) throw std::runtime_error("cannot create the ground's albedo map texture");
     texturesStale = false;
   }
 };
@@ -356,6 +366,17 @@ void AtmosphereRendering::SetNightGlow(double zenithRadianceWm2Sr, double layerA
   impl_->nightGlowWm2Sr = zenithRadianceWm2Sr;
   impl_->glowLayerAltitudeM = layerAltitudeM;
 }
+void AtmosphereRendering::SetGroundAlbedoMap(const std::string& path, const glm::dmat3& bodyFixedToWorld) {
+  Impl& m = *impl_;
+  if (!std::isfinite(glm::determinant(bodyFixedToWorld)) || std::abs(glm::determinant(bodyFixedToWorld) - 1.0) > 1e-6)
+    throw std::invalid_argument("the ground's body-fixed frame must be a rotation");
+  std::shared_ptr<const MapTexels> map = path.empty() ? nullptr : mapTexels(path, MapKind::Reflectance);
+  m.groundToBodyFixed = glm::transpose(bodyFixedToWorld);
+  if (map == m.groundMap) return;
+  m.groundMap = std::move(map);
+  m.texturesStale = true;
+}
+
 void AtmosphereRendering::SetClouds(const std::vector<CloudLayerView>& layers, const glm::dvec3& sunFactor) {
   if (layers.size() > static_cast<std::size_t>(kMaxCloudLayers))
     throw std::invalid_argument("clouds: at most " + std::to_string(kMaxCloudLayers) + " layers are drawn");
@@ -482,6 +503,14 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
       for (int row = 0; row < 3; ++row) mat[3 * col + row] = static_cast<float>(m.colour[col][row]);
     p->SetUniformMatrix3x3("umbraAtmToDisplay", mat);
     setVec3(p, "umbraGroundAlbedo", m.albedo);
+    p->SetUniformi("umbraGroundMapOn", m.groundMap ? 1 : 0);
+    p->SetUniformi("umbraGroundAlbedoMap", m.groundTexture->GetTextureUnit());
+    float toBody[9];
+    for (int col = 0; col < 3; ++col)
+      for (int row = 0; row < 3; ++row) toBody[3 * col + row] = static_cast<float>(m.groundToBodyFixed[col][row]);
+    p->SetUniformMatrix3x3("umbraGroundToBodyFixed", toBody);
+    p->SetUniformf("umbraGroundMapTexelM",
+                   static_cast<float>(2.0 * kPi * t.bottomRadiusM / (m.groundMap ? m.groundMap->width : 1)));
 
     // The tables.
     p->SetUniformf("umbraAtmBottom", static_cast<float>(t.bottomRadiusM));
@@ -551,6 +580,7 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   m.scattering->Activate();
   m.irradiance->Activate();
   m.refraction->Activate();
+  m.groundTexture->Activate();
   if (m.lastUsedLimb) m.limb->Activate();
   // Every ray outside the atmosphere's rectangle on screen misses it and sees the
   // background: a cheap program draws that, the composite only the rectangle (a SIMD
@@ -587,6 +617,7 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     composite->Render();
   }
   if (m.lastUsedLimb) m.limb->Deactivate();
+  m.groundTexture->Deactivate();
   m.refraction->Deactivate();
   m.irradiance->Deactivate();
   m.scattering->Deactivate();
@@ -604,7 +635,7 @@ void AtmosphereRendering::ReleaseGraphicsResources(vtkOpenGLRenderWindow* window
       q->reset();
     }
   }
-  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.refraction, &m.limb}) {
+  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.refraction, &m.limb, &m.groundTexture}) {
     if (*t && window) (*t)->ReleaseGraphicsResources(window);
     *t = nullptr;
   }

@@ -1,6 +1,6 @@
 #include "EclipseShading.h"
 
-#include "AlbedoMap.hpp"
+#include "MapTexels.h"
 #include "EclipseShadowGlsl.hpp"
 #include "PhotometryGlsl.hpp"
 #include "FieldParameters.h"
@@ -60,134 +60,6 @@ const char* checkedGlsl(const char* name, const char* src) {
   return src;
 }
 
-// An albedo map as the receivers sample it: its grey values (the luminance of a colour
-// image), its small dark marks and holes filled in (sky::darkSpots, sky::fillGaps), as 8-bit
-// texels, and the mean that sky::nearSideDiscMean gives of them (in the texture's 0..1).
-// The texels are read once per process (an animation's frames, the GUI's updates and every
-// view share them); each receiver makes its own texture of them (mapTextureOf), as a
-// vtkTexture belongs to one render window.
-struct AlbedoMapTexels {
-  vtkSmartPointer<vtkImageData> texels;
-  double discMean = 1.0;
-  int height = 2;  ///< texels
-};
-
-// Reads a map's image (`what`: "albedo map", "normal map"): 8- or 16-bit values,
-// `range` their largest. Throws std::invalid_argument naming the file.
-vtkSmartPointer<vtkImageData> readMapImage(const std::string& path, const std::string& what, double& range) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw std::invalid_argument(what + " '" + path + "': no such file");
-  vtkSmartPointer<vtkImageReader2> reader;
-  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(path.c_str()));
-  if (!reader) throw std::invalid_argument(what + " '" + path + "': not an image VTK reads (JPEG, PNG, TIFF)");
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkSmartPointer<vtkImageData> image = reader->GetOutput();
-  int dims[3];
-  image->GetDimensions(dims);
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  if (reader->GetErrorCode() != 0 || !scalars || dims[0] < 2 || dims[1] < 2 || dims[2] != 1)
-    throw std::invalid_argument(what + " '" + path + "': cannot read a 2D image from it");
-  range = scalars->GetDataType() == VTK_UNSIGNED_CHAR ? 255.0 : scalars->GetDataType() == VTK_UNSIGNED_SHORT ? 65535.0 : 0.0;
-  if (range == 0.0) throw std::invalid_argument(what + " '" + path + "': needs 8- or 16-bit values");
-  return image;
-}
-
-// Reads the map at `path` once per process. Throws std::invalid_argument naming the file.
-std::shared_ptr<const AlbedoMapTexels> albedoMapTexels(const std::string& path) {
-  static std::mutex mutex;
-  static std::map<std::string, std::shared_ptr<const AlbedoMapTexels>> loaded;
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (auto it = loaded.find(path); it != loaded.end()) return it->second;
-  double range = 0.0;
-  vtkSmartPointer<vtkImageData> image = readMapImage(path, "albedo map", range);
-  int dims[3];
-  image->GetDimensions(dims);
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  const int comps = scalars->GetNumberOfComponents();
-  sky::AlbedoMap map;
-  map.width = dims[0];
-  map.height = dims[1];
-  map.values.resize(static_cast<std::size_t>(dims[0]) * dims[1]);
-  for (vtkIdType i = 0; i < static_cast<vtkIdType>(map.values.size()); ++i) {
-    const double y = comps >= 3 ? eclipse::luminance({scalars->GetComponent(i, 0), scalars->GetComponent(i, 1),
-                                                      scalars->GetComponent(i, 2)})
-                                : scalars->GetComponent(i, 0);
-    map.values[i] = static_cast<float>(std::round(y / range * 255.0) / 255.0);
-  }
-  sky::fillGaps(map, sky::darkSpots(map));
-  vtkNew<vtkUnsignedCharArray> grey;
-  grey->SetNumberOfComponents(1);
-  grey->SetNumberOfTuples(static_cast<vtkIdType>(map.values.size()));
-  for (vtkIdType i = 0; i < static_cast<vtkIdType>(map.values.size()); ++i) {
-    const auto byte = static_cast<unsigned char>(std::clamp(std::lround(map.values[i] * 255.0), 0L, 255L));
-    map.values[i] = byte / 255.0f;  // what the texture holds
-    grey->SetValue(i, byte);
-  }
-  sky::validate(map, ("albedo map '" + path + "'").c_str());
-  auto out = std::make_shared<AlbedoMapTexels>();
-  out->discMean = sky::nearSideDiscMean(map);
-  out->height = map.height;
-  if (!(out->discMean > 0.0))
-    throw std::invalid_argument("albedo map '" + path + "': black over the disc seen from longitude 0, latitude 0");
-  auto texels = vtkSmartPointer<vtkImageData>::New();
-  texels->SetDimensions(dims[0], dims[1], 1);
-  texels->GetPointData()->SetScalars(grey);
-  out->texels = texels;
-  loaded[path] = out;
-  return out;
-}
-
-// A normal map as the receivers sample it (sky/NormalMap.hpp): its RGB as 8-bit texels,
-// read once per process like the albedo maps.
-struct NormalMapTexels {
-  vtkSmartPointer<vtkImageData> texels;
-  int height = 2;
-};
-
-std::shared_ptr<const NormalMapTexels> normalMapTexels(const std::string& path) {
-  static std::mutex mutex;
-  static std::map<std::string, std::shared_ptr<const NormalMapTexels>> loaded;
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (auto it = loaded.find(path); it != loaded.end()) return it->second;
-  double range = 0.0;
-  vtkSmartPointer<vtkImageData> image = readMapImage(path, "normal map", range);
-  int dims[3];
-  image->GetDimensions(dims);
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  if (scalars->GetNumberOfComponents() < 3)
-    throw std::invalid_argument("normal map '" + path + "': needs RGB (east, south, up), got " +
-                                std::to_string(scalars->GetNumberOfComponents()) + " channel(s)");
-  vtkNew<vtkUnsignedCharArray> rgb;
-  rgb->SetNumberOfComponents(3);
-  rgb->SetNumberOfTuples(scalars->GetNumberOfTuples());
-  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
-    for (int c = 0; c < 3; ++c)
-      rgb->SetTypedComponent(i, c, static_cast<unsigned char>(std::lround(scalars->GetComponent(i, c) / range * 255.0)));
-  auto out = std::make_shared<NormalMapTexels>();
-  out->texels = vtkSmartPointer<vtkImageData>::New();
-  out->texels->SetDimensions(dims[0], dims[1], 1);
-  out->texels->GetPointData()->SetScalars(rgb);
-  out->height = dims[1];
-  loaded[path] = out;
-  return out;
-}
-
-// A texture of the map's texels: values as they are, repeated (the seam at 180 deg),
-// trilinear with mipmaps, no anisotropic filtering (Mesa's llvmpipe blurs magnified texels
-// with VTK's default of 4).
-vtkSmartPointer<vtkTexture> mapTextureOf(vtkImageData* texels) {
-  auto texture = vtkSmartPointer<vtkTexture>::New();
-  texture->SetColorModeToDirectScalars();
-  texture->InterpolateOn();
-  texture->MipmapOn();
-  texture->SetMaximumAnisotropicFiltering(1.0f);
-  texture->SetWrap(vtkTexture::Repeat);
-  texture->UseSRGBColorSpaceOff();
-  texture->SetInputData(texels);
-  return texture;
-}
-
 // eclipse/glsl/EclipseShadow.glsl declares the LuT sampler; VTK declares the samplers of
 // a property's textures itself, so the receiver's shader takes the file without it.
 std::string eclipseGlslWithoutSampler() {
@@ -242,9 +114,9 @@ struct Receiver {
   vtkSmartPointer<vtkActor> actor;
   vtkSmartPointer<vtkOpenGLPolyDataMapper> mapper;
   SphereBody body;
-  std::shared_ptr<const AlbedoMapTexels> albedoMap;  // body.albedoMapPath's; null without one
+  std::shared_ptr<const MapTexels> albedoMap;  // body.albedoMapPath's; null without one
   vtkSmartPointer<vtkTexture> albedoTexture;          // of albedoMap's texels, for this actor's window
-  std::shared_ptr<const NormalMapTexels> normalMap;  // body.normalMapPath's; null without one
+  std::shared_ptr<const MapTexels> normalMap;  // body.normalMapPath's; null without one
   vtkSmartPointer<vtkTexture> normalTexture;
   unsigned long observerTag = 0;
   std::string fragmentDecl;  // the fragment code its shader was given (fragmentDeclFor)
@@ -342,7 +214,7 @@ struct EclipseShading::Impl {
     return "#define UMBRA_OCCLUDER_COUNT " + std::to_string(n) + "\n#define UMBRA_ATMOSPHERE_OCCLUDER " +
            std::to_string(atmosphereIndexOf(receiver)) + "\n#define UMBRA_EXACT_SHADOW " +
            std::to_string(exactShadowsOf(receiver)) + "\n#define UMBRA_PHOTOMETRY " + (hapke ? "1" : "0") +
-           "\n#define UMBRA_ALBEDO_MAP " + (receiver.albedoMapPath.empty() ? "0" : "1") +
+           "\n#define UMBRA_ALBEDO_MAP " + (receiver.albedoMapPath.empty() ? "0" : receiver.albedoMapReflectance ? "2" : "1") +
            "\n#define UMBRA_EARTHSHINE " + (earthshine ? "1" : "0") +
            "\n#define UMBRA_NORMAL_MAP " + (receiver.normalMapPath.empty() ? "0" : "1") + "\n" +
            eclipseGlslWithoutSampler() + "\n" +
@@ -641,10 +513,11 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   }
   impl_->checkOccluderCount(body, impl_->occludersOf(body).size());
   const std::string vsDec = checkedGlsl("ReceiverVertex.glsl", glsl::kReceiverVertex);
-  std::shared_ptr<const AlbedoMapTexels> albedoMap;
-  if (!body.albedoMapPath.empty()) albedoMap = albedoMapTexels(body.albedoMapPath);  // throws before changing anything
-  std::shared_ptr<const NormalMapTexels> normalMap;
-  if (!body.normalMapPath.empty()) normalMap = normalMapTexels(body.normalMapPath);
+  std::shared_ptr<const MapTexels> albedoMap;  // read before changing anything (they throw)
+  if (!body.albedoMapPath.empty())
+    albedoMap = mapTexels(body.albedoMapPath, body.albedoMapReflectance ? MapKind::Reflectance : MapKind::RelativeAlbedo);
+  std::shared_ptr<const MapTexels> normalMap;
+  if (!body.normalMapPath.empty()) normalMap = mapTexels(body.normalMapPath, MapKind::Normals);
 
   Receiver* receiver = nullptr;
   for (auto& r : impl_->receivers) {
@@ -665,9 +538,9 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   }
   receiver->mapper = mapper;
   receiver->body = body;
-  if (albedoMap != receiver->albedoMap) receiver->albedoTexture = albedoMap ? mapTextureOf(albedoMap->texels) : nullptr;
+  if (albedoMap != receiver->albedoMap) receiver->albedoTexture = albedoMap ? mapTextureOf(*albedoMap) : nullptr;
   receiver->albedoMap = albedoMap;
-  if (normalMap != receiver->normalMap) receiver->normalTexture = normalMap ? mapTextureOf(normalMap->texels) : nullptr;
+  if (normalMap != receiver->normalMap) receiver->normalTexture = normalMap ? mapTextureOf(*normalMap) : nullptr;
   receiver->normalMap = normalMap;
 
   // The actor only translates: model coordinates stay body-centred with world axes.

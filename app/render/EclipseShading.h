@@ -62,6 +62,9 @@ struct SphereBody {
   /// An equirectangular albedo map (any image VTK reads: JPEG, PNG, TIFF; sky/AlbedoMap.hpp
   /// says how it lies) in the body-fixed frame below; "" for a uniform albedo.
   std::string albedoMapPath{};
+  /// The map's colour is the surface's reflectance (sRGB; albedoRgb multiplies it), not a
+  /// grey albedo relative to the geometric albedo.
+  bool albedoMapReflectance = false;
   /// An equirectangular normal map of its relief (sky/NormalMap.hpp says how it lies), in
   /// the same frame; "" for the sphere's normals. reliefStrength scales its slopes (0..4).
   std::string normalMapPath{};

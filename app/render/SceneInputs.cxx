@@ -164,9 +164,11 @@ SceneInputs sceneInputs(const scene::Scene& s) {
     if (b.preset == "Earth") earth = &b;
   for (const scene::Body& b : s.bodies) {
     if (b.isSun()) continue;
-    SphereBody body{b.name, b.positionM, b.radiusM, bodyAlbedo(b) * bodyTint(b)};
+    SphereBody body{b.name, b.positionM, b.radiusM,
+                    b.albedoMapReflectance ? glm::dvec3(1.0) : bodyAlbedo(b) * bodyTint(b)};
     body.photometry = b.photometry;
     body.albedoMapPath = b.albedoMapPath;
+    body.albedoMapReflectance = b.albedoMapReflectance;
     body.normalMapPath = b.normalMapPath;
     body.reliefStrength = b.reliefStrength;
     if (!b.preset.empty() && scene::hasRotationModel(b.preset) && s.hasTime)
@@ -185,6 +187,14 @@ SceneInputs sceneInputs(const scene::Scene& s) {
     in.atmosphere = SceneAtmosphere{b.name, b.atmosphereModel, model.bottomRadiusM, model.topRadiusM};
     in.atmosphere->zenithOpticalDepth550 = model.verticalOpticalDepth(0.0, model.thicknessM())[1];  // 680, 550, 440 nm
     in.bodies.back().radiusM = model.bottomRadiusM;
+    // A reflectance map is the ground's albedo in the composite, which draws the ground
+    // anew; the receiver under it has a uniform albedo, so that the frame gives back the
+    // eclipse alone (the same map sampled twice would not agree to the pixel).
+    if (b.albedoMapReflectance) {
+      in.atmosphere->groundAlbedoMapPath = b.albedoMapPath;
+      in.bodies.back().albedoMapPath.clear();
+      in.bodies.back().albedoMapReflectance = false;
+    }
   }
   in.camera.positionM = s.camera.positionM;
   in.camera.targetM = s.camera.targetM;
@@ -275,6 +285,8 @@ void showSceneAtmosphereTables(BodyView& view, const SceneInputs& in, vtkAtmosph
   const atmosphere::Atmosphere model = atmosphere::loadAtmosphere(a.model, atmosphere::WavelengthSet::rgb().nm);
   view.GetAtmosphere().SetAtmosphere(model, filters::tablesFromBlocks(source->GetOutput(), model), body.centreM,
                                      body.albedoRgb);
+  // A reflectance map (the Earth's colour) is the ground's albedo under the air.
+  view.GetAtmosphere().SetGroundAlbedoMap(a.groundAlbedoMapPath, body.bodyFixedToInertial);
   view.GetAtmosphere().SetRefraction(refraction ? refractionBlock(source->GetOutput()) : nullptr);
   view.GetAtmosphere().SetTerrainMeanElevation(eclipse::defaultTerrain(a.body).meanElevationM);
 }

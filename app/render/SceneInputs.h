@@ -37,6 +37,9 @@ struct SceneAtmosphere {
   /// bodies' shadow), which dims the direct sunlight on them.
   std::vector<AtmosphereRendering::CloudLayerView> clouds{};
   glm::dvec3 cloudSunFactor{1.0};
+  /// The body's reflectance map ("bluemarble"), drawn as the ground's albedo by the
+  /// composite (AtmosphereRendering::SetGroundAlbedoMap; its receiver is then white); "" for none.
+  std::string groundAlbedoMapPath{};
 };
 
 struct SceneInputs {

@@ -55,11 +55,15 @@ std::string marbleDataDir() {
 } // namespace
 
 std::optional<NamedAlbedoMap> findNamedAlbedoMap(std::string_view name) {
-  if (!equalsIgnoreCase(name, "clementine")) return std::nullopt;
-  return NamedAlbedoMap{"clementine", "marble-qt-data", marbleDataDir() + "/maps/moon/clementine/clementine.jpg"};
+  if (equalsIgnoreCase(name, "clementine"))
+    return NamedAlbedoMap{"clementine", "marble-qt-data", marbleDataDir() + "/maps/moon/clementine/clementine.jpg"};
+  if (equalsIgnoreCase(name, "bluemarble"))
+    return NamedAlbedoMap{"bluemarble", "marble-qt-data", marbleDataDir() + "/maps/earth/bluemarble/bluemarble.jpg",
+                          true};
+  return std::nullopt;
 }
 
-std::string namedAlbedoMapList() { return "clementine"; }
+std::string namedAlbedoMapList() { return "clementine, bluemarble"; }
 
 std::optional<NamedAlbedoMap> findNamedNormalMap(std::string_view name) {
   if (!equalsIgnoreCase(name, "stellarium")) return std::nullopt;

@@ -31,12 +31,15 @@ struct NamedAlbedoMap {
   std::string name;     ///< "clementine"
   std::string package;  ///< "marble-qt-data"
   std::string file;     ///< where the package puts it
+  bool reflectance = false;  ///< an albedo map whose sRGB colour is the surface's reflectance
 };
 /// The maps a scene can name: "clementine", the Clementine UVVIS mosaic of the Moon
 /// (2700x1350, in marble-qt-data: $UMBRA_MARBLE_DATA_DIR, default /usr/share/marble/data,
-/// then maps/moon/clementine/clementine.jpg). Nothing for another name.
+/// then maps/moon/clementine/clementine.jpg); "bluemarble", NASA's Blue Marble colour map of
+/// the Earth (2700x1350, maps/earth/bluemarble/bluemarble.jpg there), a reflectance map.
+/// Nothing for another name.
 std::optional<NamedAlbedoMap> findNamedAlbedoMap(std::string_view name);
-/// "clementine" for messages.
+/// "clementine, bluemarble" for messages.
 std::string namedAlbedoMapList();
 /// The normal maps a scene can name: "stellarium", the Moon's relief that stellarium-data
 /// installs ($UMBRA_STELLARIUM_DATA_DIR, default /usr/share/stellarium, then

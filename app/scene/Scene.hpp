@@ -53,6 +53,9 @@ struct Body {
   /// An equirectangular albedo map (sky/AlbedoMap.hpp): an absolute path, "" for a uniform
   /// albedo. The Moon's preset takes the Clementine mosaic when it is installed.
   std::string albedoMapPath;
+  /// The albedo map's sRGB colour is the surface's reflectance ("bluemarble"), taken as it
+  /// is: the body's albedo and colour do not scale it.
+  bool albedoMapReflectance = false;
   /// An equirectangular normal map of the relief (sky/NormalMap.hpp): an absolute path, ""
   /// for the sphere's normals. The Moon's preset takes stellarium-data's when installed.
   std::string normalMapPath;

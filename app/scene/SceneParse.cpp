@@ -379,9 +379,13 @@ Body parseBody(const Reader& in, const json& value, const std::string& field, co
     else if (law == "hapke") body.photometry = {sky::Photometry::Law::Hapke, sky::moonParameters()};
     else in.fail(field + ".photometry", "expected \"lambert\" or \"hapke\", got \"" + law + "\"");
   }
-  if (value.contains("albedoMap"))
+  if (value.contains("albedoMap")) {
     body.albedoMapPath = parseMap(in, value["albedoMap"], field + ".albedoMap", sceneFile, findNamedAlbedoMap,
                                   namedAlbedoMapList(), "a uniform albedo");
+    const auto named = value["albedoMap"].is_string() ? findNamedAlbedoMap(value["albedoMap"].get<std::string>())
+                                                      : std::nullopt;
+    body.albedoMapReflectance = named && named->reflectance && !body.albedoMapPath.empty();
+  }
   else if (preset != nullptr && !preset->albedoMap.empty())
     body.albedoMapPath = presetMap(findNamedAlbedoMap(preset->albedoMap), body.name, "uniform albedo", notes);
   if (value.contains("normalMap"))

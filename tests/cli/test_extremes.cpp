@@ -396,7 +396,7 @@ TEST(Extremes, SceneFields) {
     "name": "extremes", "time": "2015-09-28T02:47:00Z",
     "bodies": [{"preset": "Sun"}, {"preset": "Earth"},
                {"preset": "Moon", "radius": "1737.4km", "albedo": 0.12, "color": [0.92, 0.79, 0.64],
-                "photometry": "hapke", "albedoMap": "none",
+                "photometry": "hapke", "albedoMap": "none", "relief": 1.0,
                 "terrain": {"seed": 1, "size": 16, "spacing": "30m", "latDeg": -10, "lonDeg": 10}}],
     "camera": {"observer": {"body": "Earth", "latDeg": 1.33, "lonDeg": -29.02, "altM": 10},
                "target": "Moon", "fovDeg": 0.71},

@@ -2,15 +2,24 @@
 
 #include "EglRenderWindow.h"
 
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkPointData.h>
+#include <vtkUnsignedCharArray.h>
+
 #include <gtest/gtest.h>
 #include <X11/Xlib.h>  // after gtest: its macros (None, ...) clash with gtest's names
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 #include <thread>
+
+#include <unistd.h>
 
 namespace umbra::render::test {
 
@@ -48,6 +57,31 @@ void useSharedDisplay(vtkRenderWindow* window) {
   }();
   if (!display) throw std::runtime_error("cannot open the X display (run under xvfb-run)");
   window->SetDisplayId(display);
+}
+
+std::string writeRgbPng(int width, int height, const std::function<glm::dvec3(int, int)>& texel,
+                        const std::string& name) {
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(width, height, 1);
+  vtkNew<vtkUnsignedCharArray> px;
+  px->SetNumberOfComponents(3);
+  px->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      const glm::dvec3 c = texel(i, j);
+      for (int k = 0; k < 3; ++k)
+        px->SetTypedComponent(static_cast<vtkIdType>(j) * width + i, k,
+                              static_cast<unsigned char>(std::lround(std::clamp(c[k], 0.0, 1.0) * 255.0)));
+    }
+  image->GetPointData()->SetScalars(px);
+  const auto dir = std::filesystem::temp_directory_path() / ("umbra-render-test-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / name).string();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(image);
+  writer->Write();
+  return path;
 }
 
 } // namespace umbra::render::test

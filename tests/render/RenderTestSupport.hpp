@@ -12,7 +12,9 @@
 #include <vtkSmartPointer.h>
 
 #include <cmath>
+#include <functional>
 #include <optional>
+#include <string>
 
 namespace umbra::render::test {
 
@@ -26,6 +28,12 @@ constexpr double kMoonDistance = 3.844e8;
 /// jobs start and stop X servers too, a later connection to the same display can fail
 /// ("bad X server connection") while an open one keeps working. (RenderTestSupport.cpp)
 void useSharedDisplay(vtkRenderWindow* window);
+
+/// Writes an 8-bit RGB equirectangular PNG of width x height texels (row 0 southernmost, as
+/// the maps lie: sky/AlbedoMap.hpp) into a temporary folder of the process, texel(i, j)
+/// giving each one's RGB in 0..1 (clamped), and returns its path.
+std::string writeRgbPng(int width, int height, const std::function<glm::dvec3(int, int)>& texel,
+                        const std::string& name);
 
 /// The 64x64 airless LuT of the tests (built once).
 inline const eclipse::ShadowLut& testLut() {

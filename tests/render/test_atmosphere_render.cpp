@@ -10,6 +10,8 @@
 
 #include "vtkUmbraRenderPass.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <gtest/gtest.h>
 #include <vtk_glew.h>
 
@@ -318,12 +320,13 @@ TEST(AtmosphereRender, EclipseShadowOnTheGroundThroughTheAtmosphere) {
   cam.targetM = {0.0, 0.0, 0.0};
   cam.up = {0.0, 0.0, 1.0};
   cam.fovDeg = 8.0;
-  auto frameWith = [&](bool moon) {
+  auto frameWith = [&](bool moon, const std::string& groundMap = "") {
     AtmosphereScene scene(96, cam, directionFromAngles(0.0, 0.0));
     std::vector<SphereBody> bodies{scene.earth};
     if (moon) bodies.push_back({"Moon", {kMoonDistance, 0.0, 0.0}, 1.7374e6, {0.1, 0.1, 0.1}});
     scene.view.SetBodies(scene.sun, bodies, testLutImage());
     scene.view.GetAtmosphere().SetAtmosphere(f.model, f.tables, glm::dvec3(0.0), scene.earth.albedoRgb);
+    scene.view.GetAtmosphere().SetGroundAlbedoMap(groundMap);
     scene.view.SetCamera(cam);
     scene.view.Render();
     Frame out;
@@ -349,6 +352,13 @@ TEST(AtmosphereRender, EclipseShadowOnTheGroundThroughTheAtmosphere) {
   std::printf("  eclipsed / clear: %.3f at the sub-solar point, %.4f 40 degrees north\n", inShadow, far);
   EXPECT_LT(inShadow, 0.5);
   EXPECT_NEAR(far, 1.0, 1e-3);
+  // The same under a ground of a reflectance map of the receiver's albedo (sRGB 89: 0.0999),
+  // the receiver keeping its uniform one.
+  const std::string map = writeRgbPng(64, 32, [](int, int) { return glm::dvec3(89.0 / 255.0); }, "eclipse-ground.png");
+  const Frame eclipsedMap = frameWith(true, map), clearMap = frameWith(false, map);
+  const double inShadowMap = luminance(eclipsedMap.at(i0, j0)) / luminance(clearMap.at(i0, j0));
+  std::printf("  with a ground map: %.3f at the sub-solar point\n", inShadowMap);
+  EXPECT_NEAR(inShadowMap, inShadow, 0.01);
 }
 
 // From the Moon's distance, the Sun exactly behind Earth (a total lunar eclipse seen from
@@ -398,4 +408,72 @@ TEST(AtmosphereRender, SetCentreMovesTheAtmosphereLikeSetAtmosphere) {
   EXPECT_EQ(a.rgb, b.rgb);
   EXPECT_NE(a.rgb, still.rgb);
   EXPECT_THROW(AtmosphereRendering().SetCentre(glm::dvec3(NAN, 0.0, 0.0)), std::invalid_argument);
+}
+
+// The ground's albedo from a reflectance map: a map of one sRGB value renders the ground as
+// the uniform albedo of its decoded value does (within 1 %); a map bright east of the
+// body-fixed prime meridian and dark west of it, in a frame turned 30 deg about the pole,
+// renders the ground 10 deg east of the meridian with the bright albedo and 10 deg west of it
+// with the dark one (each within 5 %: the ground's light over the uniform map's, the air's
+// own light taken out).
+TEST(AtmosphereRender, GroundAlbedoMapLiesInTheBodyFixedFrame) {
+  const AtmosphereFixture& f = atmosphereFixture();
+  const double R = f.tables.bottomRadiusM;
+  ViewCamera cam;
+  cam.positionM = {4.0 * R, 0.0, 0.0};
+  cam.targetM = {0.0, 0.0, 0.0};
+  cam.up = {0.0, 0.0, 1.0};
+  cam.fovDeg = 32.0;
+  const glm::dvec3 sunDir(1.0, 0.0, 0.0);
+  auto decode = [](double byte) { return std::pow((byte / 255.0 + 0.055) / 1.055, 2.4); };
+  const glm::dmat3 turn = glm::dmat3(glm::rotate(glm::dmat4(1.0), 30.0 * kPi / 180.0, glm::dvec3(0, 0, 1)));
+  // The ground of a map, or of a uniform albedo (the receiver's then; with a map the
+  // receiver keeps the scene's 0.1).
+  auto render = [&](const std::string& map, const glm::dvec3& albedo) {
+    AtmosphereScene scene(128, cam, sunDir);
+    if (map.empty()) {
+      scene.earth.albedoRgb = albedo;
+      scene.view.SetBodies(scene.sun, {scene.earth}, testLutImage());
+    }
+    scene.view.GetAtmosphere().SetAtmosphere(f.model, f.tables, glm::dvec3(0.0), scene.earth.albedoRgb);
+    scene.view.GetAtmosphere().SetGroundAlbedoMap(map, turn);
+    scene.view.Render();
+    Frame out;
+    scene.view.ReadHdr(out.rgb, out.w, out.h);
+    return out;
+  };
+  const std::string uniformMap =
+      writeRgbPng(64, 32, [](int, int) { return glm::dvec3(160.0 / 255.0); }, "ground-uniform.png");
+  const Frame mapped = render(uniformMap, glm::dvec3(0.0)), uniform = render("", glm::dvec3(decode(160.0)));
+  const Frame black = render("", glm::dvec3(0.0));
+  double worst = 0.0;
+  for (int j = 0; j < mapped.h; ++j)
+    for (int i = 0; i < mapped.w; ++i) {
+      const Ray ray = pixelRay(cam, mapped.w, mapped.h, i, j);
+      const auto hit = hitSphere(ray, glm::dvec3(0.0), R);
+      if (!hit || glm::dot(glm::normalize(*hit), sunDir) < 0.2 || -glm::dot(glm::normalize(*hit), ray.dir) < 0.3) continue;
+      worst = std::max(worst, std::abs(luminance(mapped.at(i, j)) / luminance(uniform.at(i, j)) - 1.0));
+    }
+  std::printf("  a uniform map against its albedo %.4f: within %.2g\n", decode(160.0), worst);
+  EXPECT_LT(worst, 0.01);
+
+  // Bright (byte 200) east of the body-fixed prime meridian, dark (byte 40) west of it.
+  const std::string halves = writeRgbPng(
+      64, 32, [](int i, int) { return glm::dvec3(i >= 32 ? 200.0 / 255.0 : 40.0 / 255.0); }, "ground-halves.png");
+  const Frame split = render(halves, glm::dvec3(0.0));
+  const glm::dvec3 fwd(-1.0, 0.0, 0.0), right = glm::normalize(glm::cross(fwd, cam.up)), up = glm::cross(right, fwd);
+  auto albedoAtLon = [&](double lonDeg) {  // on the equator, body-fixed east longitude
+    const double l = lonDeg * kPi / 180.0;
+    const glm::dvec3 d = glm::normalize(turn * glm::dvec3(R * std::cos(l), R * std::sin(l), 0.0) - cam.positionM);
+    const double t = std::tan(0.5 * cam.fovDeg * kPi / 180.0);
+    const int i = static_cast<int>((glm::dot(d, right) / glm::dot(d, fwd) / t + 1.0) * 0.5 * split.w);
+    const int j = static_cast<int>((1.0 - glm::dot(d, up) / glm::dot(d, fwd) / t) * 0.5 * split.h);
+    const double air = luminance(black.at(i, j));
+    return decode(160.0) * (luminance(split.at(i, j)) - air) / (luminance(uniform.at(i, j)) - air);
+  };
+  const double east = albedoAtLon(10.0), west = albedoAtLon(-10.0);
+  std::printf("  albedo 10 deg east / west of the turned meridian: %.4f / %.4f (map %.4f / %.4f)\n", east, west,
+              decode(200.0), decode(40.0));
+  EXPECT_NEAR(east / decode(200.0), 1.0, 0.05);
+  EXPECT_NEAR(west / decode(40.0), 1.0, 0.05);
 }

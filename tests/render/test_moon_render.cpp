@@ -123,11 +123,6 @@ double frameIrradiance(const Frame& f, const ViewCamera& c) {
   return sum;
 }
 
-std::filesystem::path tempDir() {
-  auto dir = std::filesystem::temp_directory_path() / ("umbra-moon-test-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
-}
 
 
 // Calls visit(i, j, hit, n) at every 5th pixel of the frame whose ray meets the body's
@@ -146,30 +141,6 @@ void forDiscSamples(const Frame& f, const ViewCamera& cam, const SphereBody& bod
     }
 }
 
-// Writes an 8-bit RGB equirectangular PNG of width x height texels (row 0 southernmost),
-// texel(i, j) giving each one's RGB in 0..1, and returns its path.
-template <class Texel>
-std::string writeRgbPng(int width, int height, Texel texel, const std::string& name) {
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(width, height, 1);
-  vtkNew<vtkUnsignedCharArray> px;
-  px->SetNumberOfComponents(3);
-  px->SetNumberOfTuples(static_cast<vtkIdType>(width) * height);
-  for (int j = 0; j < height; ++j)
-    for (int i = 0; i < width; ++i) {
-      const glm::dvec3 c = texel(i, j);
-      for (int k = 0; k < 3; ++k)
-        px->SetTypedComponent(static_cast<vtkIdType>(j) * width + i, k,
-                              static_cast<unsigned char>(std::lround(std::clamp(c[k], 0.0, 1.0) * 255.0)));
-    }
-  image->GetPointData()->SetScalars(px);
-  const std::string path = (tempDir() / name).string();
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(path.c_str());
-  writer->SetInputData(image);
-  writer->Write();
-  return path;
-}
 
 // Writes an 8-bit grey equirectangular PNG (row 0 of `map` southernmost, as sky::AlbedoMap;
 // values in 0..1; as RGB of equal channels, whose luminance the reader takes) and returns

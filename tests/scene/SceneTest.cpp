@@ -512,9 +512,31 @@ TEST(ScenePhotometry, AlbedoMapOrItsFallback) {
   }
   const std::string missing = errorFor(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "albedoMap": "maps/m.png"})"));
   EXPECT_EQ(missing, "examples/x.json: bodies[1].albedoMap: no such file: examples/maps/m.png (or a named map: "
-                     "clementine, or \"none\")");
+                     "clementine, bluemarble, or \"none\")");
   EXPECT_NE(errorFor(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "albedoMap": 3})")).find("bodies[1].albedoMap"),
             std::string::npos);
+}
+
+// "bluemarble" names the Earth's colour map, a reflectance map (its colour taken as it is);
+// the Moon's Clementine map is not one; without marble-qt-data, an error naming it.
+TEST(ScenePhotometry, BlueMarbleIsAReflectanceMap) {
+  const auto with = freshDir("marble-earth"), without = freshDir("no-marble-earth");
+  std::filesystem::create_directories(with / "maps/earth/bluemarble");
+  std::ofstream(with / "maps/earth/bluemarble/bluemarble.jpg") << "x";
+  const std::string earth = fixedScene(R"({"preset": "Sun"}, {"preset": "Earth", "position": [1e11, 0, 0], )"
+                                       R"("albedoMap": "bluemarble"})");
+  {
+    const MarbleDataDir d(with.string());
+    const Scene s = parseScene(earth, kFile);
+    EXPECT_EQ(s.find("Earth")->albedoMapPath, (with / "maps/earth/bluemarble/bluemarble.jpg").string());
+    EXPECT_TRUE(s.find("Earth")->albedoMapReflectance);
+  }
+  const MarbleDataDir d(without.string());
+  const std::string e = errorFor(earth);
+  EXPECT_EQ(e.rfind("examples/x.json: bodies[1].albedoMap: the 'bluemarble' map is not installed", 0), 0u) << e;
+  EXPECT_NE(e.find("install the Debian package marble-qt-data"), std::string::npos) << e;
+  const Scene none = parseScene(fixedScene(R"({"preset": "Sun"}, )" + kMoonAt + R"(, "albedoMap": "none"})"), kFile);
+  EXPECT_FALSE(none.find("Moon")->albedoMapReflectance);
 }
 
 // The Moon takes stellarium-data's relief when it is installed; without it no relief and a

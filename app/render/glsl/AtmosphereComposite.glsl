@@ -21,7 +21,11 @@ uniform float umbraSunAngularRadius;  // rad
 uniform float umbraSolarIrradiance;   // W m^-2 at the planet
 uniform float umbraLimbDarkening;
 uniform mat3 umbraAtmToDisplay;       // table channels -> frame colour
-uniform vec3 umbraGroundAlbedo;
+uniform vec3 umbraGroundAlbedo;       // per table channel: the planet's receiver's (the frame's ground)
+uniform int umbraGroundMapOn;         // 1: the ground's albedo from umbraGroundAlbedoMap
+uniform sampler2D umbraGroundAlbedoMap;  // reflectance map (MapTexels), sRGB decoded
+uniform mat3 umbraGroundToBodyFixed;  // planet axes -> the map's body-fixed frame
+uniform float umbraGroundMapTexelM;   // a texel's width at the equator, m
 uniform int umbraRefraction;          // 1: bend the rays that leave the atmosphere
 uniform sampler2D umbraRefractionTable;  // deviation (rad), contact altitude (m) over (x_mu, x_r)
 uniform float umbraTerrainMeanElevation;  // m (eclipse::TerrainModel): rough land at the contact
@@ -296,6 +300,17 @@ vec3 umbraCloudsOver(vec3 seen, vec3 x, float r, float mu, vec3 dir, float dLimi
 }
 #endif
 
+// The ground's albedo at the ground point y (planet-centred), d from the camera: the
+// uniform one, or the reflectance map there, at the mip level of a pixel's width on the
+// ground across the line of sight (explicit: derivatives are undefined in this branch).
+vec3 umbraGroundAlbedoAt(vec3 y, float d) {
+  if (umbraGroundMapOn == 0) return umbraGroundAlbedo;
+  vec3 nb = umbraGroundToBodyFixed * normalize(y);
+  vec2 at = vec2(atan(nb.y, nb.x) / (2.0 * 3.14159265) + 0.5, asin(clamp(nb.z, -1.0, 1.0)) / 3.14159265 + 0.5);
+  float lod = log2(max(umbraPixelAngle * d / umbraGroundMapTexelM, 1.0));
+  return textureLod(umbraGroundAlbedoMap, at, lod).rgb;
+}
+
 vec3 umbraAtmosphereComposite(vec2 uv) {
   vec2 ndc = 2.0 * uv - vec2(1.0);
   vec3 dir = umbraRayDirection(ndc);
@@ -377,7 +392,9 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
     float muSg = dot(normalize(y), umbraSunDirection);
     float rg = umbraAtmBottom;
     // The eclipse shadow of other bodies on the ground (EclipseShading lit the planet's
-    // pixel as albedo / pi E_sun cos i times that factor): it dims the direct sunlight.
+    // pixel as its uniform albedo / pi E_sun cos i times that factor): it dims the direct
+    // sunlight. The ground's own albedo is that one, or its map's.
+    vec3 albedo = umbraGroundAlbedoAt(y, t0 + dEnd);
     vec3 eclipse = vec3(1.0);
     vec3 unshadowed = umbraGroundAlbedo * (0.31830988618 * umbraSolarIrradiance * muSg);
     if (dFrame < umbraFarAway && muSg > 0.05 && all(greaterThan(unshadowed, vec3(0.0))))
@@ -388,7 +405,7 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
     vec2 clouds = vec2(1.0);
 #endif
     vec3 E = clouds.x * eclipse * umbraAtmDirectIrradiance(rg, muSg) + clouds.y * umbraAtmIndirectIrradiance(rg, muSg);
-    vec3 raw = T * umbraGroundAlbedo * 0.31830988618 * E + S;
+    vec3 raw = T * albedo * 0.31830988618 * E + S;
     vec3 moonRaw = moonS;
 #ifdef UMBRA_MOON_LIGHT
     float muMg = dot(normalize(y), umbraMoonDirection);
@@ -398,7 +415,7 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
     vec2 cloudsM = vec2(1.0);
 #endif
     vec3 Em = cloudsM.x * umbraAtmDirectIrradiance(rg, muMg) + cloudsM.y * umbraAtmIndirectIrradiance(rg, muMg);
-    moonRaw += T * umbraGroundAlbedo * 0.31830988618 * Em * umbraMoonIrradiance;
+    moonRaw += T * albedo * 0.31830988618 * Em * umbraMoonIrradiance;
 #endif
     // A pixel on the limb seen from outside: the part of it past the ground sees the Sun
     // through the atmosphere (the ring seen from the shadow, a few pixels wide).

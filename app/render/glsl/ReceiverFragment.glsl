@@ -6,7 +6,8 @@
 // EclipseShading #defines the receiver's photometry before this file:
 //   UMBRA_PHOTOMETRY   0: Lambert's law; 1: the Hapke–Lommel–Seeliger reflectance (umbraHapke)
 //   UMBRA_ALBEDO_MAP   1: the albedo times umbraAlbedoMap (declared by VTK) at the point's
-//                      body-fixed longitude and latitude (sky/AlbedoMap.hpp)
+//                      body-fixed longitude and latitude (sky/AlbedoMap.hpp), its grey value;
+//                      2: the same, its colour (a reflectance map, decoded from sRGB by the GPU)
 //   UMBRA_EARTHSHINE   1: the Earth's light too (Hapke only), umbraEarthshine from umbraEarthPos
 //   UMBRA_NORMAL_MAP   1: the relief of umbraNormalMap (declared by VTK) tilts the normal that
 //                      the light's and the eye's angles take (sky/NormalMap.hpp)
@@ -82,7 +83,14 @@ vec2 umbraMapCoord(vec3 nb, float halfTexel) {
 
 #if UMBRA_ALBEDO_MAP
 uniform float umbraAlbedoMapHalfTexel;  // half a texel of the map's height, in texture coordinates
-float umbraAlbedoAt(vec3 nb) { return texture(umbraAlbedoMap, umbraMapCoord(nb, umbraAlbedoMapHalfTexel)).r; }
+vec3 umbraAlbedoAt(vec3 nb) {
+  vec3 t = texture(umbraAlbedoMap, umbraMapCoord(nb, umbraAlbedoMapHalfTexel)).rgb;
+#if UMBRA_ALBEDO_MAP == 2
+  return t;
+#else
+  return t.rrr;
+#endif
+}
 #endif
 
 #if UMBRA_NORMAL_MAP

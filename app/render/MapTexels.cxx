@@ -1,0 +1,162 @@
+#include "MapTexels.h"
+
+#include "AlbedoMap.hpp"
+#include "ShadowLut.hpp"  // luminance
+
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkImageReader2.h>
+#include <vtkImageReader2Factory.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkPointData.h>
+#include <vtkTexture.h>
+#include <vtkTextureObject.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <utility>
+
+namespace umbra::render {
+namespace {
+
+// Reads a map's image (`what`: "albedo map", "normal map"): 8- or 16-bit values,
+// `range` their largest. Throws std::invalid_argument naming the file.
+vtkSmartPointer<vtkImageData> readMapImage(const std::string& path, const std::string& what, double& range) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw std::invalid_argument(what + " '" + path + "': no such file");
+  vtkSmartPointer<vtkImageReader2> reader;
+  reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(path.c_str()));
+  if (!reader) throw std::invalid_argument(what + " '" + path + "': not an image VTK reads (JPEG, PNG, TIFF)");
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkSmartPointer<vtkImageData> image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (reader->GetErrorCode() != 0 || !scalars || dims[0] < 2 || dims[1] < 2 || dims[2] != 1)
+    throw std::invalid_argument(what + " '" + path + "': cannot read a 2D image from it");
+  range = scalars->GetDataType() == VTK_UNSIGNED_CHAR ? 255.0 : scalars->GetDataType() == VTK_UNSIGNED_SHORT ? 65535.0 : 0.0;
+  if (range == 0.0) throw std::invalid_argument(what + " '" + path + "': needs 8- or 16-bit values");
+  return image;
+}
+
+// A grey albedo map: its grey values (the luminance of a colour image), its small dark
+// marks and holes filled in (sky::darkSpots, sky::fillGaps), and the mean that
+// sky::nearSideDiscMean gives of them.
+std::shared_ptr<MapTexels> relativeAlbedoTexels(const std::string& path, vtkImageData* image, double range) {
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  const int comps = scalars->GetNumberOfComponents();
+  sky::AlbedoMap map;
+  map.width = dims[0];
+  map.height = dims[1];
+  map.values.resize(static_cast<std::size_t>(dims[0]) * dims[1]);
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(map.values.size()); ++i) {
+    const double y = comps >= 3 ? eclipse::luminance({scalars->GetComponent(i, 0), scalars->GetComponent(i, 1),
+                                                      scalars->GetComponent(i, 2)})
+                                : scalars->GetComponent(i, 0);
+    map.values[i] = static_cast<float>(std::round(y / range * 255.0) / 255.0);
+  }
+  sky::fillGaps(map, sky::darkSpots(map));
+  auto grey = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  grey->SetNumberOfComponents(1);
+  grey->SetNumberOfTuples(static_cast<vtkIdType>(map.values.size()));
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(map.values.size()); ++i) {
+    const auto byte = static_cast<unsigned char>(std::clamp(std::lround(map.values[i] * 255.0), 0L, 255L));
+    map.values[i] = byte / 255.0f;  // what the texture holds
+    grey->SetValue(i, byte);
+  }
+  sky::validate(map, ("albedo map '" + path + "'").c_str());
+  auto out = std::make_shared<MapTexels>();
+  out->discMean = sky::nearSideDiscMean(map);
+  out->width = map.width;
+  out->height = map.height;
+  if (!(out->discMean > 0.0))
+    throw std::invalid_argument("albedo map '" + path + "': black over the disc seen from longitude 0, latitude 0");
+  auto texels = vtkSmartPointer<vtkImageData>::New();
+  texels->SetDimensions(dims[0], dims[1], 1);
+  texels->GetPointData()->SetScalars(grey);
+  out->texels = texels;
+  return out;
+}
+
+// RGB texels as they are (8-bit).
+std::shared_ptr<MapTexels> rgbTexels(const std::string& path, const char* what, const char* channels,
+                                     vtkImageData* image, double range) {
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (scalars->GetNumberOfComponents() < 3)
+    throw std::invalid_argument(std::string(what) + " '" + path + "': needs RGB (" + channels + "), got " +
+                                std::to_string(scalars->GetNumberOfComponents()) + " channel(s)");
+  auto rgb = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(scalars->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+    for (int c = 0; c < 3; ++c)
+      rgb->SetTypedComponent(i, c, static_cast<unsigned char>(std::lround(scalars->GetComponent(i, c) / range * 255.0)));
+  auto out = std::make_shared<MapTexels>();
+  out->texels = vtkSmartPointer<vtkImageData>::New();
+  out->texels->SetDimensions(dims[0], dims[1], 1);
+  out->texels->GetPointData()->SetScalars(rgb);
+  out->width = dims[0];
+  out->height = dims[1];
+  return out;
+}
+
+}  // namespace
+
+std::shared_ptr<const MapTexels> mapTexels(const std::string& path, MapKind kind) {
+  static std::mutex mutex;
+  static std::map<std::pair<std::string, MapKind>, std::shared_ptr<const MapTexels>> loaded;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (auto it = loaded.find({path, kind}); it != loaded.end()) return it->second;
+  const char* what = kind == MapKind::Normals ? "normal map" : "albedo map";
+  double range = 0.0;
+  vtkSmartPointer<vtkImageData> image = readMapImage(path, what, range);
+  std::shared_ptr<MapTexels> out;
+  if (kind == MapKind::RelativeAlbedo) {
+    out = relativeAlbedoTexels(path, image, range);
+  } else {
+    out = rgbTexels(path, what, kind == MapKind::Normals ? "east, south, up" : "a colour", image, range);
+    out->srgb = kind == MapKind::Reflectance;
+  }
+  loaded[{path, kind}] = out;
+  return out;
+}
+
+vtkSmartPointer<vtkTexture> mapTextureOf(const MapTexels& map) {
+  auto texture = vtkSmartPointer<vtkTexture>::New();
+  texture->SetColorModeToDirectScalars();
+  texture->InterpolateOn();
+  texture->MipmapOn();
+  texture->SetMaximumAnisotropicFiltering(1.0f);
+  texture->SetWrap(vtkTexture::Repeat);
+  texture->SetUseSRGBColorSpace(map.srgb);
+  texture->SetInputData(map.texels);
+  return texture;
+}
+
+vtkSmartPointer<vtkTextureObject> mapTextureObjectOf(vtkOpenGLRenderWindow* window, const MapTexels& map) {
+  auto t = vtkSmartPointer<vtkTextureObject>::New();
+  t->SetContext(window);
+  t->SetUseSRGBColorSpace(map.srgb);
+  t->SetGenerateMipmap(true);
+  t->SetWrapS(vtkTextureObject::Repeat);
+  t->SetWrapT(vtkTextureObject::ClampToEdge);
+  t->SetMinificationFilter(vtkTextureObject::LinearMipmapLinear);
+  t->SetMagnificationFilter(vtkTextureObject::Linear);
+  const int comps = map.texels->GetPointData()->GetScalars()->GetNumberOfComponents();
+  if (!t->Create2DFromRaw(static_cast<unsigned>(map.width), static_cast<unsigned>(map.height), comps,
+                          VTK_UNSIGNED_CHAR, map.texels->GetScalarPointer()))
+    return nullptr;
+  return t;
+}
+
+}  // namespace umbra::render

@@ -1,0 +1,48 @@
+#pragma once
+// A body's maps as the render pass samples them: the texels of an albedo map (grey, relative
+// to the geometric albedo: sky/AlbedoMap.hpp), of a reflectance map (sRGB colour taken as
+// the surface's reflectance), or of a normal map (sky/NormalMap.hpp), read once per process
+// for each file and kind (an animation's frames, the GUI's updates and every view share
+// them). Each user makes its own GPU texture of them, as a texture belongs to one window:
+// a receiver a vtkTexture (mapTextureOf), the atmosphere's composite a vtkTextureObject
+// (mapTextureObjectOf). Both repeat in longitude (the seam at 180 deg), filter trilinearly
+// with mipmaps and decode sRGB texels to linear values.
+#include <vtkSmartPointer.h>
+
+#include <memory>
+#include <string>
+
+class vtkImageData;
+class vtkOpenGLRenderWindow;
+class vtkTexture;
+class vtkTextureObject;
+
+namespace umbra::render {
+
+enum class MapKind {
+  RelativeAlbedo,  ///< grey (the luminance of a colour image), scaled to the geometric albedo; marks filled
+  Reflectance,     ///< sRGB colour, the surface's reflectance as it is (an Earth colour map)
+  Normals,         ///< RGB tangent-space normals, as they are
+};
+
+struct MapTexels {
+  vtkSmartPointer<vtkImageData> texels;  ///< 8-bit: 1 channel (RelativeAlbedo) or 3
+  double discMean = 1.0;  ///< RelativeAlbedo: sky::nearSideDiscMean of the texels (0..1); 1 otherwise
+  int width = 2, height = 2;
+  bool srgb = false;      ///< the texels are sRGB-encoded (Reflectance)
+};
+
+/// The texels of the map at `path` of that kind. Throws std::invalid_argument naming the file
+/// (missing, not an image VTK reads, not 8- or 16-bit, a normal or reflectance map without
+/// RGB, an albedo map that is black where it is seen).
+std::shared_ptr<const MapTexels> mapTexels(const std::string& path, MapKind kind);
+
+/// A receiver's texture of the texels (no anisotropic filtering: Mesa's llvmpipe blurs
+/// magnified texels with VTK's default of 4).
+vtkSmartPointer<vtkTexture> mapTextureOf(const MapTexels& map);
+
+/// A texture object of the texels in `window`, for a full-screen program; nullptr when it
+/// cannot be made.
+vtkSmartPointer<vtkTextureObject> mapTextureObjectOf(vtkOpenGLRenderWindow* window, const MapTexels& map);
+
+}  // namespace umbra::render
