@@ -170,6 +170,8 @@ glm::dvec3 linearSrgbToXyz(const glm::dvec3& c) {
                     0.0193 * c.r + 0.1192 * c.g + 0.9505 * c.b);
 }
 
+double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
 double luminanceCdM2(const WavelengthSet& set, const std::vector<double>& radiance) {
   return spectralRadianceToXyz(set, radiance).y;
 }

@@ -105,6 +105,10 @@ glm::dvec3 xyzToLinearSrgb(const glm::dvec3& xyz);
 /// Its converse, the standard's own 4-decimal matrix (so the two round-trip to about 1e-4).
 glm::dvec3 linearSrgbToXyz(const glm::dvec3& linearSrgb);
 
+/// The sRGB transfer function undone (IEC 61966-2-1): an encoded component in [0, 1] to its
+/// linear value (c / 12.92 up to 0.04045, ((c + 0.055) / 1.055)^2.4 above).
+double srgbToLinear(double encoded);
+
 /// Luminance [cd m^-2] of the sampled spectrum: the Y of spectralRadianceToXyz.
 double luminanceCdM2(const WavelengthSet& set, const std::vector<double>& radianceWm2SrNm);
 

@@ -165,6 +165,13 @@ inline FrameTimes medianFrameTimes(const std::vector<render::BodyView*>& views, 
   return t;
 }
 
+// The same for views a bench owns.
+inline FrameTimes medianFrameTimes(const std::vector<std::unique_ptr<render::BodyView>>& views, int frames) {
+  std::vector<render::BodyView*> timed;
+  for (const auto& v : views) timed.push_back(v.get());
+  return medianFrameTimes(timed, frames);
+}
+
 // The wall-clock medians alone.
 inline std::vector<double> medianFrameWallMs(const std::vector<render::BodyView*>& views, int frames) {
   return medianFrameTimes(views, frames).wallMs;

@@ -70,9 +70,7 @@ int main(int argc, char** argv) {
     v.Render();  // warm up: shaders, textures
   }
   bench::printRenderer(*views.front());
-  std::vector<render::BodyView*> timed;
-  for (auto& v : views) timed.push_back(v.get());
-  const bench::FrameTimes times = bench::medianFrameTimes(timed, frames);
+  const bench::FrameTimes times = bench::medianFrameTimes(views, frames);
   std::printf("| %dx%d, %d frames, %s tables, median | GL timer [ms] | wall [ms] | GL time vs no atmosphere | "
               "atmosphere stage [ms] |\n",
               width, height, frames, tables.c_str());

@@ -114,9 +114,7 @@ int main(int argc, char** argv) {
     std::printf("ring width on screen: %.2f px (limb-luminance LuT used: %s)\n", limbView.GetLastRingWidthPixels(),
                 limbView.GetLastDrawUsedLimbLuminance() ? "yes" : "no");
   }
-  std::vector<render::BodyView*> timed;
-  for (auto& v : views) timed.push_back(v.get());
-  const bench::FrameTimes times = bench::medianFrameTimes(timed, frames);
+  const bench::FrameTimes times = bench::medianFrameTimes(views, frames);
   // The stage the paper times: the lunar surface (Table 1), the atmosphere (Table 2).
   std::printf("| %dx%d, %d frames, %s tables, median | GL timer [ms] | wall [ms] | CPU [ms] | GL time ratio | CPU time "
               "ratio | stage [ms] | stage ratio |\n",

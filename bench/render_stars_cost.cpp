@@ -94,9 +94,7 @@ int main(int argc, char** argv) {
   views.push_back(bench::sceneView(moonlit, lit, width, height, lut));
   views.push_back(bench::sceneView(moonlit, unlit, width, height, lut));
   bench::printRenderer(*views.front());
-  std::vector<render::BodyView*> timed;
-  for (auto& v : views) timed.push_back(v.get());
-  const bench::FrameTimes t = bench::medianFrameTimes(timed, frames);
+  const bench::FrameTimes t = bench::medianFrameTimes(views, frames);
   std::printf("| %dx%d, %d frames, median [ms] | frame (GL) | stars stage | atmosphere stage |\n", width, height,
               frames);
   std::printf("|---|---:|---:|---:|\n");

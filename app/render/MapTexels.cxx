@@ -2,6 +2,7 @@
 
 #include "AlbedoMap.hpp"
 #include "ShadowLut.hpp"  // luminance
+#include "Spectrum.hpp"   // srgbToLinear
 
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -12,6 +13,7 @@
 #include <vtkTexture.h>
 #include <vtkTextureObject.h>
 #include <vtkUnsignedCharArray.h>
+#include <vtkUnsignedShortArray.h>
 
 #include <algorithm>
 #include <cmath>
@@ -86,21 +88,26 @@ std::shared_ptr<MapTexels> relativeAlbedoTexels(const std::string& path, vtkImag
   return out;
 }
 
-// RGB texels as they are (8-bit).
+// RGB texels: as they are (8-bit), or their sRGB decoded to linear values (16-bit).
 std::shared_ptr<MapTexels> rgbTexels(const std::string& path, const char* what, const char* channels,
-                                     vtkImageData* image, double range) {
+                                     vtkImageData* image, double range, bool decodeSrgb) {
   int dims[3];
   image->GetDimensions(dims);
   vtkDataArray* scalars = image->GetPointData()->GetScalars();
   if (scalars->GetNumberOfComponents() < 3)
     throw std::invalid_argument(std::string(what) + " '" + path + "': needs RGB (" + channels + "), got " +
                                 std::to_string(scalars->GetNumberOfComponents()) + " channel(s)");
-  auto rgb = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  vtkSmartPointer<vtkDataArray> rgb;
+  if (decodeSrgb) rgb = vtkSmartPointer<vtkUnsignedShortArray>::New();
+  else rgb = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  const double top = decodeSrgb ? 65535.0 : 255.0;
   rgb->SetNumberOfComponents(3);
   rgb->SetNumberOfTuples(scalars->GetNumberOfTuples());
   for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
-    for (int c = 0; c < 3; ++c)
-      rgb->SetTypedComponent(i, c, static_cast<unsigned char>(std::lround(scalars->GetComponent(i, c) / range * 255.0)));
+    for (int c = 0; c < 3; ++c) {
+      const double v = scalars->GetComponent(i, c) / range;
+      rgb->SetComponent(i, c, std::round((decodeSrgb ? atmosphere::srgbToLinear(v) : v) * top));
+    }
   auto out = std::make_shared<MapTexels>();
   out->texels = vtkSmartPointer<vtkImageData>::New();
   out->texels->SetDimensions(dims[0], dims[1], 1);
@@ -124,8 +131,8 @@ std::shared_ptr<const MapTexels> mapTexels(const std::string& path, MapKind kind
   if (kind == MapKind::RelativeAlbedo) {
     out = relativeAlbedoTexels(path, image, range);
   } else {
-    out = rgbTexels(path, what, kind == MapKind::Normals ? "east, south, up" : "a colour", image, range);
-    out->srgb = kind == MapKind::Reflectance;
+    const bool reflectance = kind == MapKind::Reflectance;
+    out = rgbTexels(path, what, reflectance ? "a colour" : "east, south, up", image, range, reflectance);
   }
   loaded[{path, kind}] = out;
   return out;
@@ -138,7 +145,7 @@ vtkSmartPointer<vtkTexture> mapTextureOf(const MapTexels& map) {
   texture->MipmapOn();
   texture->SetMaximumAnisotropicFiltering(1.0f);
   texture->SetWrap(vtkTexture::Repeat);
-  texture->SetUseSRGBColorSpace(map.srgb);
+  texture->UseSRGBColorSpaceOff();
   texture->SetInputData(map.texels);
   return texture;
 }
@@ -146,15 +153,14 @@ vtkSmartPointer<vtkTexture> mapTextureOf(const MapTexels& map) {
 vtkSmartPointer<vtkTextureObject> mapTextureObjectOf(vtkOpenGLRenderWindow* window, const MapTexels& map) {
   auto t = vtkSmartPointer<vtkTextureObject>::New();
   t->SetContext(window);
-  t->SetUseSRGBColorSpace(map.srgb);
   t->SetGenerateMipmap(true);
   t->SetWrapS(vtkTextureObject::Repeat);
   t->SetWrapT(vtkTextureObject::ClampToEdge);
   t->SetMinificationFilter(vtkTextureObject::LinearMipmapLinear);
   t->SetMagnificationFilter(vtkTextureObject::Linear);
-  const int comps = map.texels->GetPointData()->GetScalars()->GetNumberOfComponents();
-  if (!t->Create2DFromRaw(static_cast<unsigned>(map.width), static_cast<unsigned>(map.height), comps,
-                          VTK_UNSIGNED_CHAR, map.texels->GetScalarPointer()))
+  vtkDataArray* scalars = map.texels->GetPointData()->GetScalars();
+  if (!t->Create2DFromRaw(static_cast<unsigned>(map.width), static_cast<unsigned>(map.height),
+                          scalars->GetNumberOfComponents(), scalars->GetDataType(), map.texels->GetScalarPointer()))
     return nullptr;
   return t;
 }

@@ -1,12 +1,13 @@
 #pragma once
 // A body's maps as the render pass samples them: the texels of an albedo map (grey, relative
 // to the geometric albedo: sky/AlbedoMap.hpp), of a reflectance map (sRGB colour taken as
-// the surface's reflectance), or of a normal map (sky/NormalMap.hpp), read once per process
+// the surface's reflectance, decoded on the CPU: atmosphere::srgbToLinear, kept as 16-bit
+// linear values), or of a normal map (sky/NormalMap.hpp), read once per process
 // for each file and kind (an animation's frames, the GUI's updates and every view share
 // them). Each user makes its own GPU texture of them, as a texture belongs to one window:
 // a receiver a vtkTexture (mapTextureOf), the atmosphere's composite a vtkTextureObject
-// (mapTextureObjectOf). Both repeat in longitude (the seam at 180 deg), filter trilinearly
-// with mipmaps and decode sRGB texels to linear values.
+// (mapTextureObjectOf). Both repeat in longitude (the seam at 180 deg) and filter
+// trilinearly with mipmaps.
 #include <vtkSmartPointer.h>
 
 #include <memory>
@@ -21,15 +22,15 @@ namespace umbra::render {
 
 enum class MapKind {
   RelativeAlbedo,  ///< grey (the luminance of a colour image), scaled to the geometric albedo; marks filled
-  Reflectance,     ///< sRGB colour, the surface's reflectance as it is (an Earth colour map)
+  Reflectance,     ///< sRGB colour decoded, the surface's reflectance as it is (an Earth colour map)
   Normals,         ///< RGB tangent-space normals, as they are
 };
 
 struct MapTexels {
-  vtkSmartPointer<vtkImageData> texels;  ///< 8-bit: 1 channel (RelativeAlbedo) or 3
+  /// 8-bit grey (RelativeAlbedo) or RGB (Normals); 16-bit linear RGB (Reflectance)
+  vtkSmartPointer<vtkImageData> texels;
   double discMean = 1.0;  ///< RelativeAlbedo: sky::nearSideDiscMean of the texels (0..1); 1 otherwise
   int width = 2, height = 2;
-  bool srgb = false;      ///< the texels are sRGB-encoded (Reflectance)
 };
 
 /// The texels of the map at `path` of that kind. Throws std::invalid_argument naming the file

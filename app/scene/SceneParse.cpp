@@ -198,25 +198,32 @@ Terrain parseTerrain(const Reader& in, const json& value, const std::string& fie
   return t;
 }
 
+/// What a body's "albedoMap" or "normalMap" names: the file ("" for "none") and whether it
+/// is a reflectance map (NamedAlbedoMap::reflectance; a file of one's own is not).
+struct MapChoice {
+  std::string path;
+  bool reflectance = false;
+};
+
 /// A body's "albedoMap" or "normalMap": a named map (`find`), "none", or an image file
 /// (relative to the scene). A named map that is not installed is an error naming its package.
-std::string parseMap(const Reader& in, const json& value, const std::string& field, const std::string& sceneFile,
+MapChoice parseMap(const Reader& in, const json& value, const std::string& field, const std::string& sceneFile,
                      std::optional<NamedAlbedoMap> (*find)(std::string_view), const std::string& namedList,
                      const char* noneMeans) {
   const std::string text = in.string(value, field);
-  if (text == "none") return "";
+  if (text == "none") return {};
   if (const auto named = find(text)) {
     if (!std::filesystem::is_regular_file(named->file))
       in.fail(field, "the '" + named->name + "' map is not installed (" + named->file + "): install the Debian package " +
                          named->package + ", or give \"none\" for " + noneMeans);
-    return named->file;
+    return {named->file, named->reflectance};
   }
   std::filesystem::path p(text);
   if (p.is_relative()) p = std::filesystem::path(sceneFile).parent_path() / p;
   const std::string path = p.lexically_normal().string();
   if (!std::filesystem::is_regular_file(path))
     in.fail(field, "no such file: " + path + " (or a named map: " + namedList + ", or \"none\")");
-  return path;
+  return {path, false};
 }
 
 /// A preset's named map when it is installed; when not, a note and "".
@@ -380,17 +387,15 @@ Body parseBody(const Reader& in, const json& value, const std::string& field, co
     else in.fail(field + ".photometry", "expected \"lambert\" or \"hapke\", got \"" + law + "\"");
   }
   if (value.contains("albedoMap")) {
-    body.albedoMapPath = parseMap(in, value["albedoMap"], field + ".albedoMap", sceneFile, findNamedAlbedoMap,
-                                  namedAlbedoMapList(), "a uniform albedo");
-    const auto named = value["albedoMap"].is_string() ? findNamedAlbedoMap(value["albedoMap"].get<std::string>())
-                                                      : std::nullopt;
-    body.albedoMapReflectance = named && named->reflectance && !body.albedoMapPath.empty();
-  }
-  else if (preset != nullptr && !preset->albedoMap.empty())
+    const MapChoice map = parseMap(in, value["albedoMap"], field + ".albedoMap", sceneFile, findNamedAlbedoMap,
+                                   namedAlbedoMapList(), "a uniform albedo");
+    body.albedoMapPath = map.path;
+    body.albedoMapReflectance = map.reflectance;
+  } else if (preset != nullptr && !preset->albedoMap.empty())
     body.albedoMapPath = presetMap(findNamedAlbedoMap(preset->albedoMap), body.name, "uniform albedo", notes);
   if (value.contains("normalMap"))
     body.normalMapPath = parseMap(in, value["normalMap"], field + ".normalMap", sceneFile, findNamedNormalMap,
-                                  namedNormalMapList(), "the sphere's normals");
+                                  namedNormalMapList(), "the sphere's normals").path;
   else if (preset != nullptr && !preset->normalMap.empty())
     body.normalMapPath = presetMap(findNamedNormalMap(preset->normalMap), body.name, "no relief", notes);
   if (value.contains("relief"))

@@ -378,6 +378,34 @@ TEST(MoonRender, AlbedoMapLiesInTheBodyFixedFrame) {
   EXPECT_LT(worst, 0.01);  // 8-bit texels and bilinear weights
 }
 
+// A reflectance map (an Earth colour map) is the albedo as it is, its sRGB decoded once on
+// the CPU (MapTexels, 16-bit linear texels): a map of one colour (sRGB 160, 100, 40) renders a Lambertian sphere as the uniform
+// albedo of that colour decoded on the CPU does, channel by channel, within 1e-3 relative.
+TEST(MoonRender, ReflectanceMapIsTheAlbedoAsItIs) {
+  const glm::dvec3 bytes(160.0, 100.0, 40.0);
+  const std::string path = writeRgbPng(64, 32, [&](int, int) { return bytes / 255.0; }, "reflectance.png");
+  auto decode = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
+  const glm::dvec3 albedo(decode(bytes.r / 255.0), decode(bytes.g / 255.0), decode(bytes.b / 255.0));
+  SphereBody mapped{"Earth", {0.0, 0.0, 0.0}, kMoonRadius, glm::dvec3(1.0)}, uniform = mapped;
+  mapped.albedoMapPath = path;
+  mapped.albedoMapReflectance = true;
+  uniform.albedoRgb = albedo;
+  const SunLight sun = sunTowards({1.0, 0.6, 0.1});
+  const ViewCamera cam = cameraAt({0.3, 1.0, 0.2}, 3.84e8);
+  const Frame a = renderFrame(sun, {mapped}, cam, 128), b = renderFrame(sun, {uniform}, cam, 128);
+  double worst = 0.0;
+  int lit = 0;
+  forDiscSamples(a, cam, mapped, [&](int i, int j, const glm::dvec3& hit, const glm::dvec3& n) {
+    if (glm::dot(n, glm::normalize(sun.positionM - hit)) < 0.05) return;
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(a.at(i, j)[c] / b.at(i, j)[c] - 1.0));
+    ++lit;
+  });
+  std::printf("  %d lit pixels: map against its decoded albedo (%.4f, %.4f, %.4f) within %.2g\n", lit, albedo.r,
+              albedo.g, albedo.b, worst);
+  EXPECT_GE(lit, 100);
+  EXPECT_LT(worst, 1e-3);
+}
+
 // Phase 0 and 180 deg exactly, an observer 2 m above the Moon's surface looking along
 // it, and the night side lit by the Earth alone: finite radiance everywhere (ReadHdr
 // throws on a NaN), black where neither light reaches.

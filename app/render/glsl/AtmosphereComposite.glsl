@@ -23,7 +23,7 @@ uniform float umbraLimbDarkening;
 uniform mat3 umbraAtmToDisplay;       // table channels -> frame colour
 uniform vec3 umbraGroundAlbedo;       // per table channel: the planet's receiver's (the frame's ground)
 uniform int umbraGroundMapOn;         // 1: the ground's albedo from umbraGroundAlbedoMap
-uniform sampler2D umbraGroundAlbedoMap;  // reflectance map (MapTexels), sRGB decoded
+uniform sampler2D umbraGroundAlbedoMap;  // reflectance map (MapTexels): linear values
 uniform mat3 umbraGroundToBodyFixed;  // planet axes -> the map's body-fixed frame
 uniform float umbraGroundMapTexelM;   // a texel's width at the equator, m
 uniform int umbraRefraction;          // 1: bend the rays that leave the atmosphere

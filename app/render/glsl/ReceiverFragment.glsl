@@ -7,7 +7,7 @@
 //   UMBRA_PHOTOMETRY   0: Lambert's law; 1: the Hapke–Lommel–Seeliger reflectance (umbraHapke)
 //   UMBRA_ALBEDO_MAP   1: the albedo times umbraAlbedoMap (declared by VTK) at the point's
 //                      body-fixed longitude and latitude (sky/AlbedoMap.hpp), its grey value;
-//                      2: the same, its colour (a reflectance map, decoded from sRGB by the GPU)
+//                      2: the same, its colour (a reflectance map: linear values, MapTexels)
 //   UMBRA_EARTHSHINE   1: the Earth's light too (Hapke only), umbraEarthshine from umbraEarthPos
 //   UMBRA_NORMAL_MAP   1: the relief of umbraNormalMap (declared by VTK) tilts the normal that
 //                      the light's and the eye's angles take (sky/NormalMap.hpp)
@@ -66,25 +66,24 @@ vec3 umbraSphereHit(vec3 facet, vec3 dir, float r) {
 }
 
 #if UMBRA_ALBEDO_MAP || UMBRA_NORMAL_MAP
-// A map's texture coordinates at the body-fixed direction nb: (east longitude + 180 deg,
-// latitude + 90 deg) over (360, 180) deg, the rows of the poles held half a texel
-// (halfTexel, in texture coordinates) off the other pole (the texture repeats, for the
-// seam at 180 deg). The longitude is counted from the eye's (umbraEyeLon) within +-180 deg:
-// its one jump lies on the meridian behind the body, never seen, so that the derivatives
-// of the coordinates (the mip level) are smooth wherever the body is drawn.
-vec2 umbraMapCoord(vec3 nb, float halfTexel) {
+// The maps' texture coordinates at the body-fixed direction nb (both maps lie alike, so
+// computed once): (east longitude + 180 deg, latitude + 90 deg) over (360, 180) deg. The
+// longitude is counted from the eye's (umbraEyeLon) within +-180 deg: its one jump lies on
+// the meridian behind the body, never seen, so that the derivatives of the coordinates (the
+// mip level) are smooth wherever the body is drawn (the texture repeats, for the seam).
+vec2 umbraMapCoord(vec3 nb) {
   vec3 c = umbraEyeLon;
   float fromEye = atan(c.x * nb.y - c.y * nb.x, c.x * nb.x + c.y * nb.y);
-  float u = (fromEye + c.z) / (2.0 * umbraSkyPi) + 0.5;
-  float v = clamp(asin(clamp(nb.z, -1.0, 1.0)) / umbraSkyPi + 0.5, halfTexel, 1.0 - halfTexel);
-  return vec2(u, v);
+  return vec2((fromEye + c.z) / (2.0 * umbraSkyPi) + 0.5, asin(clamp(nb.z, -1.0, 1.0)) / umbraSkyPi + 0.5);
 }
+// The rows of the poles held half a texel (halfTexel, in texture coordinates) off the other pole.
+vec2 umbraMapRowsHeld(vec2 uv, float halfTexel) { return vec2(uv.x, clamp(uv.y, halfTexel, 1.0 - halfTexel)); }
 #endif
 
 #if UMBRA_ALBEDO_MAP
 uniform float umbraAlbedoMapHalfTexel;  // half a texel of the map's height, in texture coordinates
-vec3 umbraAlbedoAt(vec3 nb) {
-  vec3 t = texture(umbraAlbedoMap, umbraMapCoord(nb, umbraAlbedoMapHalfTexel)).rgb;
+vec3 umbraAlbedoAt(vec2 uv) {
+  vec3 t = texture(umbraAlbedoMap, umbraMapRowsHeld(uv, umbraAlbedoMapHalfTexel)).rgb;
 #if UMBRA_ALBEDO_MAP == 2
   return t;
 #else
@@ -96,11 +95,11 @@ vec3 umbraAlbedoAt(vec3 nb) {
 #if UMBRA_NORMAL_MAP
 uniform float umbraNormalMapHalfTexel;
 uniform float umbraReliefStrength;      // 0: the sphere; 1: the map's slopes
-// The relief where the map resolves it on screen (sky/NormalMap.hpp, reliefFade): full
-// strength while a texel spans at most 4 pixels across the footprint's short side, none
-// from 16 on.
-vec3 umbraReliefAt(vec3 nb) {
-  vec2 uv = umbraMapCoord(nb, umbraNormalMapHalfTexel);
+// The relief at nb (its map coordinates uv) where the map resolves it on screen
+// (sky/NormalMap.hpp, reliefFade): full strength while a texel spans at most 4 pixels
+// across the footprint's short side, none from 16 on.
+vec3 umbraReliefAt(vec3 nb, vec2 uv) {
+  uv = umbraMapRowsHeld(uv, umbraNormalMapHalfTexel);
   // Texels counted at their size on the sphere: a row's shrink towards the poles.
   vec2 size = vec2(textureSize(umbraNormalMap, 0)) * vec2(length(nb.xy), 1.0);
   vec2 dx = dFdx(uv) * size, dy = dFdy(uv) * size;
@@ -120,8 +119,12 @@ void umbraReceiverShade() {
   float cosi = max(dot(n, toSun / dSun), 0.0);
   float dAu = dSun / umbraAuM;
   float eSun = umbraSunIrradiance / (dAu * dAu);
+#if UMBRA_ALBEDO_MAP || UMBRA_NORMAL_MAP
+  vec3 nb = umbraInertialToBodyFixed * n;
+  vec2 mapUv = umbraMapCoord(nb);
+#endif
 #if UMBRA_ALBEDO_MAP
-  vec3 albedo = umbraAlbedo * umbraAlbedoAt(umbraInertialToBodyFixed * n);
+  vec3 albedo = umbraAlbedo * umbraAlbedoAt(mapUv);
 #else
   vec3 albedo = umbraAlbedo;
 #endif
@@ -147,7 +150,7 @@ void umbraReceiverShade() {
   // The normal the light's and the eye's angles take: the relief's (the sphere's own
   // terminator still bounds the light), else the sphere's.
 #if UMBRA_NORMAL_MAP
-  vec3 ns = transpose(umbraInertialToBodyFixed) * umbraReliefAt(umbraInertialToBodyFixed * n);
+  vec3 ns = transpose(umbraInertialToBodyFixed) * umbraReliefAt(nb, mapUv);
   float lit = cosi > 0.0 ? 1.0 : 0.0;
 #else
   vec3 ns = n;
