@@ -2,8 +2,12 @@
 // beside the same frames without them (the atmosphere stage draws the clouds: GL_TIMESTAMP
 // around it), at the same size: partly-cloudy-afternoon (two layers, from the ground),
 // earth-clouds-from-space (one layer over the disc), lunar-eclipse-2015-09-28-clouds (one
-// layer lit by the Moon, the Moon's program). Tables through the cache (the first run
-// precomputes them). Needs an X display (xvfb-run -a) or --egl; on llvmpipe the fragment
+// layer lit by the Moon, the Moon's program). Then clouds and the Milky Way together:
+// milky-way-from-paranal with partly-cloudy-afternoon's two layers and the Milky Way
+// (drawn in the stars stage) beside it with neither and with the Milky Way only, as
+// differences of the frames (llvmpipe runs a stage's draws when a later one flushes them,
+// so the stars stage's own timestamps show nothing there; on a GPU they do). Tables through the cache (the first
+// run precomputes them). Needs an X display (xvfb-run -a) or --egl; on llvmpipe the fragment
 // work runs on the CPU.
 //
 //   xvfb-run -a build/bench/umbra-bench-render-clouds [--frames 20] [--width 1920 --height 1080]
@@ -49,6 +53,19 @@ int main(int argc, char** argv) {
     views.push_back(bench::sceneView(s, cloudy, width, height, lut));
     views.push_back(bench::sceneView(s, clear, width, height, lut));
   }
+  // Clouds and the Milky Way together, at night.
+  const scene::Scene night = scene::loadScene(bench::exampleScene("milky-way-from-paranal.json"));
+  render::SceneInputs both = render::sceneInputs(night);
+  both.atmosphere->clouds = render::sceneInputs(scene::loadScene(bench::exampleScene("partly-cloudy-afternoon.json")))
+                                .atmosphere->clouds;
+  render::SceneInputs milkyWayOnly = render::sceneInputs(night);
+  milkyWayOnly.atmosphere->clouds.clear();
+  render::SceneInputs neither = milkyWayOnly;
+  neither.milkyWay = nullptr;
+  neither.milkyWayRadianceScale = 0.0;
+  views.push_back(bench::sceneView(night, both, width, height, lut));
+  views.push_back(bench::sceneView(night, neither, width, height, lut));
+  views.push_back(bench::sceneView(night, milkyWayOnly, width, height, lut));
   bench::printRenderer(*views.front());
   const bench::FrameTimes t = bench::medianFrameTimes(views, frames);
   std::printf("| %dx%d, %d frames, median [ms] | frame (GL) | atmosphere stage | clouds (difference) | clouds / "
@@ -61,5 +78,15 @@ int main(int argc, char** argv) {
                 t.glMs[2 * k], t.atmosphereMs[2 * k], clouds, clouds / t.atmosphereMs[2 * k + 1]);
     std::printf("| %s, no clouds | %.2f | %.2f | | |\n", names[k].c_str(), t.glMs[2 * k + 1], t.atmosphereMs[2 * k + 1]);
   }
+  const std::size_t b = 2 * names.size(), n = b + 1, m = b + 2;
+  std::printf("\n| milky-way-from-paranal, median [ms] | frame (GL) | atmosphere stage | added (difference of the frames) "
+              "| added / atmosphere stage |\n");
+  std::printf("|---|---:|---:|---:|---:|\n");
+  std::printf("| 2 cloud layers and the Milky Way%s | %.2f | %.2f | %.2f | %.2f |\n",
+              both.milkyWay ? "" : " (not installed: clouds only)", t.glMs[b], t.atmosphereMs[b], t.glMs[b] - t.glMs[n],
+              (t.glMs[b] - t.glMs[n]) / t.atmosphereMs[n]);
+  std::printf("| the Milky Way only | %.2f | %.2f | %.2f | %.2f |\n", t.glMs[m], t.atmosphereMs[m], t.glMs[m] - t.glMs[n],
+              (t.glMs[m] - t.glMs[n]) / t.atmosphereMs[n]);
+  std::printf("| neither | %.2f | %.2f | | |\n", t.glMs[n], t.atmosphereMs[n]);
   return 0;
 }

@@ -303,6 +303,10 @@ EclipseShading& BodyView::GetShading() { return impl_->shading; }
 AtmosphereRendering& BodyView::GetAtmosphere() { return impl_->atmosphere; }
 void BodyView::SetStars(const std::vector<StarPoint>& stars) { impl_->stars.SetStars(stars); }
 
+void BodyView::SetMilkyWay(std::shared_ptr<const MapTexels> map, double radianceScale) {
+  impl_->stars.SetMilkyWay(std::move(map), radianceScale);
+}
+
 void BodyView::WritePng(const std::string& path) {
   namespace fs = std::filesystem;
   const fs::path target(path);

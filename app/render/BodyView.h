@@ -72,6 +72,8 @@ class BodyView {
   EclipseShading& GetShading();
   /// The stars drawn behind everything (StarRendering.h; none by default).
   void SetStars(const std::vector<StarPoint>& stars);
+  /// The Milky Way behind the stars (StarRendering::SetMilkyWay; none by default).
+  void SetMilkyWay(std::shared_ptr<const MapTexels> map, double radianceScale);
   /// The atmosphere drawn over the bodies (AtmosphereRendering::SetAtmosphere; none by
   /// default). Its Sun and origin follow SetBodies and SetCamera.
   AtmosphereRendering& GetAtmosphere();

@@ -1,6 +1,8 @@
 #include "MapTexels.h"
 
 #include "AlbedoMap.hpp"
+#include "MilkyWay.hpp"
+#include "StarCatalogueCache.h"
 #include "ShadowLut.hpp"  // luminance
 #include "Spectrum.hpp"   // srgbToLinear
 
@@ -21,6 +23,7 @@
 #include <map>
 #include <mutex>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 namespace umbra::render {
@@ -135,6 +138,52 @@ std::shared_ptr<const MapTexels> mapTexels(const std::string& path, MapKind kind
     out = rgbTexels(path, what, reflectance ? "a colour" : "east, south, up", image, range, reflectance);
   }
   loaded[{path, kind}] = out;
+  return out;
+}
+
+std::shared_ptr<const MilkyWayTexels> milkyWayTexels(const std::string& path, const std::string& cataloguePath,
+                                                     double removedToV) {
+  static std::mutex mutex;
+  static std::map<std::tuple<std::string, std::string, double>, std::shared_ptr<const MilkyWayTexels>> loaded;
+  const std::lock_guard<std::mutex> lock(mutex);
+  const auto key = std::make_tuple(path, cataloguePath, removedToV);
+  if (auto it = loaded.find(key); it != loaded.end()) return it->second;
+  double range = 0.0;
+  vtkSmartPointer<vtkImageData> image = readMapImage(path, "Milky Way map", range);
+  const std::shared_ptr<MapTexels> texels = rgbTexels(path, "Milky Way map", "a colour", image, range, true);
+  vtkDataArray* values = texels->texels->GetPointData()->GetScalars();
+  sky::MilkyWayMap map;
+  map.width = texels->width;
+  map.height = texels->height;
+  map.rgb.resize(static_cast<std::size_t>(map.width) * map.height * 3);
+  for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+    for (int c = 0; c < 3; ++c) map.rgb[3 * i + c] = static_cast<float>(values->GetComponent(i, c) / 65535.0);
+  if (!cataloguePath.empty()) {
+    std::vector<glm::dvec3> places;
+    std::vector<double> vMags;
+    for (const sky::CatalogueStar& star : *starCatalogue(cataloguePath)) {
+      if (!(star.vMag <= removedToV)) continue;
+      places.push_back({std::cos(star.decRad) * std::cos(star.raRad), std::cos(star.decRad) * std::sin(star.raRad),
+                        std::sin(star.decRad)});
+      vMags.push_back(star.vMag);
+    }
+    sky::removeStars(map, places, vMags);
+    for (vtkIdType i = 0; i < values->GetNumberOfTuples(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        const double q = std::round(std::clamp(static_cast<double>(map.rgb[3 * i + c]), 0.0, 1.0) * 65535.0);
+        values->SetComponent(i, c, q);
+        map.rgb[3 * i + c] = static_cast<float>(q / 65535.0);  // what the texture holds
+      }
+  }
+  auto out = std::make_shared<MilkyWayTexels>();
+  try {
+    out->radiancePerSunIrradiance = sky::milkyWayRadianceScale(map, 1.0);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("Milky Way map '" + path + "': " + e.what());
+  }
+  out->sphereMeanRadiancePerSunIrradiance = out->radiancePerSunIrradiance * sky::sphereMeanLuminance(map);
+  out->map = texels;
+  loaded[key] = out;
   return out;
 }
 

@@ -38,6 +38,22 @@ struct MapTexels {
 /// RGB, an albedo map that is black where it is seen).
 std::shared_ptr<const MapTexels> mapTexels(const std::string& path, MapKind kind);
 
+/// The Milky Way panorama as the stars' stage draws it (sky/MilkyWay.hpp): its sRGB decoded
+/// to linear values, the catalogue's stars that it shows and the scene draws taken out
+/// (sky::removeStars), kept as 16-bit linear RGB; with the factors that turn its texels into
+/// frame radiance and give its mean over the sphere, both per W m^-2 of the Sun at 1 au.
+struct MilkyWayTexels {
+  std::shared_ptr<const MapTexels> map;
+  double radiancePerSunIrradiance = 0.0;            ///< sky::milkyWayRadianceScale / E_sun
+  double sphereMeanRadiancePerSunIrradiance = 0.0;  ///< the same times sky::sphereMeanLuminance
+};
+
+/// The Milky Way map at `path` with the stars of the catalogue at `cataloguePath` ("" for
+/// none) to V `removedToV` taken out, read once per process for each of those. Throws
+/// std::invalid_argument naming the file (as mapTexels; a black map).
+std::shared_ptr<const MilkyWayTexels> milkyWayTexels(const std::string& path, const std::string& cataloguePath,
+                                                     double removedToV);
+
 /// A receiver's texture of the texels (no anisotropic filtering: Mesa's llvmpipe blurs
 /// magnified texels with VTK's default of 4).
 vtkSmartPointer<vtkTexture> mapTextureOf(const MapTexels& map);

@@ -15,6 +15,7 @@
 #include "scene/Ephemeris.hpp"
 #include "scene/Scene.hpp"
 #include "scene/Stars.hpp"
+#include "MilkyWay.hpp"
 #include "StarCatalogue.hpp"
 #include "StarCatalogueCache.h"
 #include "StarLight.hpp"
@@ -120,8 +121,12 @@ void nightLights(const scene::Scene& s, SceneInputs& in) {
     return 90.0 - sky::angleBetween(up, p - cam) * 180.0 / glm::pi<double>();
   };
   if (elevationDeg(in.sun.positionM) >= 0.0) return;
-  if (planet->preset == "Earth")
-    a.nightGlowWm2Sr = sky::nightGlowAboveAirWm2Sr(a.zenithOpticalDepth550, in.sun.irradianceAt1AuWm2);
+  if (planet->preset == "Earth") {
+    const double milkyWayMean =
+        in.milkyWay ? in.milkyWay->sphereMeanRadiancePerSunIrradiance * in.sun.irradianceAt1AuWm2 : 0.0;
+    a.nightGlowWm2Sr =
+        std::max(0.0, sky::nightGlowAboveAirWm2Sr(a.zenithOpticalDepth550, in.sun.irradianceAt1AuWm2) - milkyWayMean);
+  }
   for (const scene::Body& b : s.bodies) {
     if (b.preset != "Moon" || b.name == a.body || elevationDeg(b.positionM) < -5.0) continue;
     const sky::HapkeParameters hapke =
@@ -226,6 +231,11 @@ SceneInputs sceneInputs(const scene::Scene& s) {
     if (in.atmosphere)
       if (const scene::Body* planet = s.find(in.atmosphere->body)) air = {{planet->positionM, in.atmosphere->topRadiusM}};
     in.stars = sceneStars(s, in.camera.positionM, in.sun.irradianceAt1AuWm2, air);
+    if (!s.stars->milkyWayPath.empty()) {
+      in.milkyWay = milkyWayTexels(s.stars->milkyWayPath, s.stars->cataloguePath,
+                                   std::min(s.stars->limitingMagnitude, sky::kMilkyWayStarsShownToV));
+      in.milkyWayRadianceScale = in.milkyWay->radiancePerSunIrradiance * in.sun.irradianceAt1AuWm2;
+    }
   }
   if (in.atmosphere) {
     nightLights(s, in);
@@ -293,6 +303,7 @@ void showSceneAtmosphereTables(BodyView& view, const SceneInputs& in, vtkAtmosph
 
 void showSceneSky(BodyView& view, const SceneInputs& in) {
   view.SetStars(in.stars);
+  view.SetMilkyWay(in.milkyWay ? in.milkyWay->map : nullptr, in.milkyWayRadianceScale);
   const SceneAtmosphere none;
   const SceneAtmosphere& a = in.atmosphere ? *in.atmosphere : none;
   view.GetAtmosphere().SetMoonLight(a.moonPositionM, a.moonIrradianceWm2);

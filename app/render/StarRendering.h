@@ -16,7 +16,13 @@
 //     Omega = |(X x Y) . F| (2 / W)(2 / H) / |F + x X + y Y|^3.
 // Stars are added only where the frame holds nothing (depth 1): a body in front hides them.
 // Perspective views only; a parallel view draws none.
+//
+// Behind them the Milky Way (SetMilkyWay, sky/MilkyWay.hpp): a full-screen quad at depth 1
+// writes the map's radiance in each empty pixel's direction (world axes are ICRS's), from a
+// mipmap level whose texel spans about the pixel's footprint.
 #include <glm/vec3.hpp>
+
+#include "MapTexels.h"
 
 #include <memory>
 #include <vector>
@@ -25,6 +31,8 @@ class vtkOpenGLRenderWindow;
 class vtkRenderer;
 
 namespace umbra::render {
+
+struct CameraBasis;
 
 /// A star to draw: its apparent direction (unit, world axes) and its irradiance above any
 /// atmosphere (linear sRGB, W m^-2, white-balanced to the Sun).
@@ -45,12 +53,18 @@ class StarRendering {
   void SetStars(const std::vector<StarPoint>& stars);
   std::size_t GetNumberOfStars() const;
 
+  /// The Milky Way behind the stars: a map's texels (MapTexels.h: milkyWayTexels) and the
+  /// factor that turns them into frame radiance [W m^-2 sr^-1]; nullptr or a factor of 0
+  /// for none. Throws std::invalid_argument for a negative or non-finite factor.
+  void SetMilkyWay(std::shared_ptr<const MapTexels> map, double radianceScale);
+
   /// Adds the stars to the bound framebuffer (the HDR frame, its depth attached) for the
   /// renderer's camera; width x height its size. False when the program cannot be built.
   bool Draw(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, int width, int height);
   void ReleaseGraphicsResources(vtkOpenGLRenderWindow* window);
 
  private:
+  bool DrawMilkyWay(vtkOpenGLRenderWindow* window, const CameraBasis& basis, int width, int height);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -65,14 +65,26 @@ std::optional<NamedAlbedoMap> findNamedAlbedoMap(std::string_view name) {
 
 std::string namedAlbedoMapList() { return "clementine, bluemarble"; }
 
-std::optional<NamedAlbedoMap> findNamedNormalMap(std::string_view name) {
+namespace {
+
+std::optional<NamedAlbedoMap> stellariumTexture(std::string_view name, const char* file) {
   if (!equalsIgnoreCase(name, "stellarium")) return std::nullopt;
   const char* dir = std::getenv("UMBRA_STELLARIUM_DATA_DIR");
   const std::string root = dir && *dir ? dir : "/usr/share/stellarium";
-  return NamedAlbedoMap{"stellarium", "stellarium-data", root + "/textures/moon_normals.png"};
+  return NamedAlbedoMap{"stellarium", "stellarium-data", root + "/textures/" + file};
+}
+
+}  // namespace
+
+std::optional<NamedAlbedoMap> findNamedNormalMap(std::string_view name) {
+  return stellariumTexture(name, "moon_normals.png");
 }
 
 std::string namedNormalMapList() { return "stellarium"; }
+
+std::optional<NamedAlbedoMap> findNamedMilkyWayMap(std::string_view name) {
+  return stellariumTexture(name, "milkyway.png");
+}
 
 const BodyPreset* findPreset(std::string_view name) {
   for (const BodyPreset& preset : kPresets)

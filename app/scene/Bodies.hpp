@@ -45,8 +45,11 @@ std::string namedAlbedoMapList();
 /// installs ($UMBRA_STELLARIUM_DATA_DIR, default /usr/share/stellarium, then
 /// textures/moon_normals.png; sky/NormalMap.hpp says how it lies). Nothing for another name.
 std::optional<NamedAlbedoMap> findNamedNormalMap(std::string_view name);
-/// "stellarium" for messages.
+/// "stellarium" for messages (the normal maps' and the Milky Way maps' names).
 std::string namedNormalMapList();
+/// The Milky Way maps a scene can name: "stellarium", the panorama that stellarium-data
+/// installs (textures/milkyway.png there; sky/MilkyWay.hpp says how it lies).
+std::optional<NamedAlbedoMap> findNamedMilkyWayMap(std::string_view name);
 
 /// The preset with this name (case-insensitive), or nullptr.
 const BodyPreset* findPreset(std::string_view name);

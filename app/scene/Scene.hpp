@@ -111,6 +111,9 @@ struct StarSky {
   /// mixed in, so that an animation twinkles).
   double scintillation = 0.0;
   std::uint64_t seed = 1;
+  /// The Milky Way drawn behind the stars (sky/MilkyWay.hpp): a panorama's absolute path,
+  /// "" for none. stellarium-data's by default, when installed.
+  std::string milkyWayPath;
 };
 
 struct Scene {

@@ -248,7 +248,7 @@ std::optional<StarSky> parseStars(const Reader& in, const json& value, const std
   bool named = false;
   if (!value.is_boolean()) {
     if (!value.is_object()) in.fail("stars", "expected true, false or an object, " + got(value));
-    in.object(value, "stars", {"catalogue", "limitingMagnitude", "scintillation", "seed"});
+    in.object(value, "stars", {"catalogue", "limitingMagnitude", "scintillation", "seed", "milkyWay"});
     if (value.contains("catalogue")) {
       std::filesystem::path p(in.string(value["catalogue"], "stars.catalogue"));
       if (p.is_relative()) p = std::filesystem::path(sceneFile).parent_path() / p;
@@ -263,6 +263,11 @@ std::optional<StarSky> parseStars(const Reader& in, const json& value, const std
                                       "the spread of the log of a star's light at the zenith, in [0, 1]");
     if (value.contains("seed")) stars.seed = static_cast<std::uint64_t>(in.integer(value["seed"], "stars.seed", 0, 2147483647));
   }
+  if (!value.is_boolean() && value.contains("milkyWay"))
+    stars.milkyWayPath = parseMap(in, value["milkyWay"], "stars.milkyWay", sceneFile, findNamedMilkyWayMap,
+                                  namedNormalMapList(), "no Milky Way").path;
+  else
+    stars.milkyWayPath = presetMap(findNamedMilkyWayMap("stellarium"), "stars", "no Milky Way", notes);
   if (!std::filesystem::is_regular_file(stars.cataloguePath)) {
     if (named) in.fail("stars.catalogue", "no such file: " + stars.cataloguePath);
     if (std::filesystem::is_regular_file(sky::kXplanetCatalogue)) {

@@ -105,13 +105,16 @@ TEST(RenderBaselines, LunarEclipse2015EarthFromTheMoon) {
 
 // The night sky: Orion's stars on a moonless night, the moonlit sky and ground of a full
 // Moon, the 2015-09-28 eclipse in a 40 degree field at totality (the catalogue of
-// kstars-data: skipped without it).
+// kstars-data: skipped without it), and the Milky Way overhead at Paranal.
 TEST(RenderBaselines, NightSky) {
   if (!std::filesystem::exists("/usr/share/kstars/stars.dat")) GTEST_SKIP() << "kstars-data is not installed";
   TempDir cache;
   expectSceneMatches(cache, "orion-night-sky", "orion-night-sky");
   expectSceneMatches(cache, "moonlit-night-2026-10-26", "moonlit-night-2026-10-26");
   expectSceneMatches(cache, "lunar-eclipse-2015-09-28-sky", "lunar-eclipse-2015-09-28-sky");
+  // The Milky Way behind the stars (stellarium-data's panorama).
+  if (std::filesystem::exists("/usr/share/stellarium/textures/milkyway.png"))
+    expectSceneMatches(cache, "milky-way-from-paranal", "milky-way-from-paranal");
 }
 
 // The Moon as it is seen (Hapke's law, the Clementine map, libration, earthshine): the full

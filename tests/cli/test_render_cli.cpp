@@ -311,13 +311,17 @@ TEST(RenderCli, ExrKeepsHdrValuesAndGlareKeepsTheEnergy) {
   EXPECT_FALSE(std::filesystem::exists(dir.path / "x.exr"));
 }
 
-// Earth from 150 000 km: the disc is lit, space around it black.
+// Earth from 150 000 km: the disc is lit, space around it dark (no more than the Milky
+// Way's brightest light, 2.2e-6 W m^-2 sr^-1: docs/stars.md).
 TEST(RenderCli, EarthFrom150000kmExampleShowsALitDisc) {
   TempDir dir;
   const tables::Table img = renderExr(dir, UMBRA_SOURCE_DIR "/examples/scenes/earth-from-150000km.json", "160x120");
   const glm::dvec3 centre = pixel(img, img.width / 2, img.height / 2), corner = pixel(img, 0, 0);
   EXPECT_GT(centre.b, 1.0);
-  EXPECT_EQ(corner, glm::dvec3(0.0));
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_GE(corner[c], 0.0);
+    EXPECT_LT(corner[c], 3e-6);
+  }
 }
 
 TEST(RenderCli, UnknownAtmosphereNamesTheFileAndField) {

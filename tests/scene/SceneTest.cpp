@@ -574,6 +574,40 @@ TEST(ScenePhotometry, NormalMapOrItsFallback) {
             "examples/x.json: bodies[1].relief: expected a number in [0, 4], got 5");
 }
 
+// The Milky Way behind the stars: stellarium-data's panorama by default when installed,
+// a note when not; "none" for none, "stellarium" named without the package an error naming
+// it, a file of one's own relative to the scene; no stars, no Milky Way.
+TEST(SceneStars, MilkyWayOrItsFallback) {
+  const auto without = freshDir("no-stellarium-3"), with = freshDir("stellarium-3");
+  std::filesystem::create_directories(with / "textures");
+  std::ofstream(with / "textures/milkyway.png") << "x";
+  const std::string sky = R"({"time": "2024-01-15T21:30:00Z", "bodies": [{"preset": "Sun"}, {"preset": "Earth"}],
+    "camera": {"position": [1e9, 0, 0], "target": [0, 0, 0]})";
+  {
+    const StellariumDataDir d(with.string());
+    const Scene s = parseScene(sky + "}", kFile);
+    if (s.stars) EXPECT_EQ(s.stars->milkyWayPath, (with / "textures/milkyway.png").string());
+    const Scene none = parseScene(sky + R"(, "stars": {"milkyWay": "none"}})", kFile);
+    if (none.stars) EXPECT_EQ(none.stars->milkyWayPath, "");
+    EXPECT_FALSE(parseScene(sky + R"(, "stars": false})", kFile).stars.has_value());
+  }
+  {
+    const StellariumDataDir d(without.string());
+    const Scene s = parseScene(sky + "}", kFile);
+    if (s.stars) {
+      EXPECT_EQ(s.stars->milkyWayPath, "");
+      EXPECT_NE(std::find(s.notes.begin(), s.notes.end(),
+                          "stars: no Milky Way (the stellarium map is not installed: Debian package stellarium-data)"),
+                s.notes.end());
+    }
+    const std::string e = errorFor(sky + R"(, "stars": {"milkyWay": "stellarium"}})");
+    EXPECT_EQ(e.rfind("examples/x.json: stars.milkyWay: the 'stellarium' map is not installed", 0), 0u) << e;
+    EXPECT_NE(e.find("install the Debian package stellarium-data"), std::string::npos) << e;
+  }
+  EXPECT_EQ(errorFor(sky + R"(, "stars": {"milkyWay": "mw.png"}})"),
+            "examples/x.json: stars.milkyWay: no such file: examples/mw.png (or a named map: stellarium, or \"none\")");
+}
+
 // ---- hostile files: nesting and duplicate keys ----------------------------------------
 
 // A document nested 100 000 deep is refused while it is read (it used to overflow the

@@ -2,6 +2,8 @@
 // weighted bilinearly and divided by their solid angle. The vertex stage (UMBRA_STAR_VERTEX)
 // projects the star's direction with the perspective ray basis of AtmosphereComposite.glsl;
 // the fragment stage writes E w / Omega.
+// With UMBRA_MILKY_WAY (after sky/glsl/MilkyWay.glsl), the fragment stage of a full-screen
+// quad at depth 1 instead: the Milky Way map's radiance in each empty pixel's direction.
 
 uniform vec3 umbraRayForward;  // dir = F + x X + y Y at NDC (x, y)
 uniform vec3 umbraRayX;
@@ -26,8 +28,10 @@ void main() {
   umbraStarIrradianceOut = umbraStarIrradiance;
 }
 #else
+#ifndef UMBRA_MILKY_WAY
 flat in vec2 umbraStarPixel;
 flat in vec3 umbraStarIrradianceOut;
+#endif
 
 // The solid angle of the pixel whose centre is at window coordinates p.
 float umbraPixelSolidAngle(vec2 p) {
@@ -38,8 +42,23 @@ float umbraPixelSolidAngle(vec2 p) {
          (umbraViewportSize.x * umbraViewportSize.y * l * l * l);
 }
 
+#ifdef UMBRA_MILKY_WAY
+uniform sampler2D umbraMilkyWayMap;  // linear RGB, 16-bit
+uniform float umbraMilkyWayScale;    // texel value -> frame radiance [W m^-2 sr^-1]
+uniform float umbraMilkyWayRows;     // the map's height in texels
+
+// The map's radiance in the pixel's direction, its mipmap level chosen so that a texel
+// (pi / rows high) spans about the pixel's footprint (sqrt(Omega) across).
+vec4 umbraMilkyWay() {
+  vec2 ndc = 2.0 * gl_FragCoord.xy / umbraViewportSize - vec2(1.0);
+  vec3 d = normalize(umbraRayForward + ndc.x * umbraRayX + ndc.y * umbraRayY);
+  float lod = 0.5 * log2(umbraPixelSolidAngle(gl_FragCoord.xy)) - log2(3.14159265358979 / umbraMilkyWayRows);
+  return vec4(umbraMilkyWayScale * textureLod(umbraMilkyWayMap, umbraMilkyWayCoord(d), max(lod, 0.0)).rgb, 0.0);
+}
+#else
 vec4 umbraStarSplat() {
   vec2 w = max(vec2(1.0) - abs(gl_FragCoord.xy - umbraStarPixel), vec2(0.0));
   return vec4(umbraStarIrradianceOut * (w.x * w.y / umbraPixelSolidAngle(gl_FragCoord.xy)), 0.0);
 }
+#endif
 #endif
