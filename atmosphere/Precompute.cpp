@@ -3,6 +3,7 @@
 #include "Quadrature.hpp"
 
 #include "Refraction.hpp"
+#include "SightLines.hpp"  // refractiveMedium
 #include "TextureCoords.hpp"
 
 #include <algorithm>
@@ -658,40 +659,6 @@ struct Model {
   }
 };
 
-/// n - 1 at a wavelength as a medium for traceRay (with the exact derivative for the
-/// exponential profiles).
-RefractiveMedium mediumFor(const Atmosphere& atm, double wavelengthNm) {
-  RefractiveMedium m;
-  m.bottomRadiusM = atm.bottomRadiusM;
-  m.topRadiusM = atm.topRadiusM;
-  const double F = atm.seaLevelRefractivity *
-                   dispersionRatio(atm.dispersion, wavelengthNm, atm.refractivityReferenceWavelengthNm);
-  const Component* c = atm.refractivityFollows.empty() ? nullptr : atm.find(atm.refractivityFollows);
-  if (atm.refractivityFollows.empty()) {
-    m.refractivity = [F](double) { return F; };
-    m.refractivityDerivativePerM = [](double) { return 0.0; };
-    return m;
-  }
-  if (c == nullptr) {
-    m.refractivity = [](double) { return 0.0; };
-    m.refractivityDerivativePerM = [](double) { return 0.0; };
-    return m;
-  }
-  const DensityProfile prof = c->density;
-  m.refractivity = [F, prof](double h) { return F * prof.at(h); };
-  if (prof.kind == DensityProfile::Kind::Exponential) {
-    const double H = prof.scaleHeightM;
-    m.refractivityDerivativePerM = [F, H](double h) { return -F / H * std::exp(-h / H); };
-  } else if (prof.kind == DensityProfile::Kind::DoubleExponential) {
-    const double H = prof.scaleHeightM;
-    m.refractivityDerivativePerM = [F, H](double h) {
-      const double e = std::exp(h / H);
-      return -F / H * e * std::exp(1.0 - e);
-    };
-  }
-  return m;
-}
-
 // ---- progress and parallel loops -----------------------------------------------------------
 
 class Runner {
@@ -781,13 +748,13 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
       auto it = seen.find(key);
       if (it == seen.end()) {
         seen[key] = static_cast<int>(media.size());
-        media.push_back(mediumFor(atm, atm.wavelengthsNm[l]));
+        media.push_back(refractiveMedium(atm, atm.wavelengthsNm[l]));
         mediumUsers.push_back({l});
       } else {
         mediumUsers[it->second].push_back(l);
       }
     }
-    referenceMedium = mediumFor(atm, atm.refractivityReferenceWavelengthNm);
+    referenceMedium = refractiveMedium(atm, atm.refractivityReferenceWavelengthNm);
   }
 
   // ---- transmittance -----------------------------------------------------------------------

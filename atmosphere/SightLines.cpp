@@ -4,14 +4,37 @@
 
 namespace umbra::atmosphere {
 
-RefractiveMedium refractiveMedium(const Atmosphere& atmosphere, double wavelengthNm) {
-  RefractiveMedium medium;
-  medium.bottomRadiusM = atmosphere.bottomRadiusM;
-  medium.topRadiusM = atmosphere.topRadiusM;
-  medium.refractivity = [&atmosphere, wavelengthNm](double altitudeM) {
-    return atmosphere.refractivity(altitudeM, wavelengthNm);
-  };
-  return medium;
+RefractiveMedium refractiveMedium(const Atmosphere& atm, double wavelengthNm) {
+  RefractiveMedium m;
+  m.bottomRadiusM = atm.bottomRadiusM;
+  m.topRadiusM = atm.topRadiusM;
+  // Atmosphere::refractivity's n - 1, its numbers copied in (the medium may outlive atm).
+  const double F = atm.seaLevelRefractivity *
+                   dispersionRatio(atm.dispersion, wavelengthNm, atm.refractivityReferenceWavelengthNm);
+  if (atm.refractivityFollows.empty()) {
+    m.refractivity = [F](double) { return F; };
+    m.refractivityDerivativePerM = [](double) { return 0.0; };
+    return m;
+  }
+  const Component* c = atm.find(atm.refractivityFollows);
+  if (c == nullptr) {
+    m.refractivity = [](double) { return 0.0; };
+    m.refractivityDerivativePerM = [](double) { return 0.0; };
+    return m;
+  }
+  const DensityProfile prof = c->density;
+  m.refractivity = [F, prof](double h) { return F * prof.at(h); };
+  if (prof.kind == DensityProfile::Kind::Exponential) {
+    const double H = prof.scaleHeightM;
+    m.refractivityDerivativePerM = [F, H](double h) { return -F / H * std::exp(-h / H); };
+  } else if (prof.kind == DensityProfile::Kind::DoubleExponential) {
+    const double H = prof.scaleHeightM;
+    m.refractivityDerivativePerM = [F, H](double h) {
+      const double e = std::exp(h / H);
+      return -F / H * e * std::exp(1.0 - e);
+    };
+  }
+  return m;
 }
 
 SightLine traceSightLine(const Atmosphere& atmosphere, double altitudeM, double zenithRad,

@@ -9,7 +9,10 @@
 
 namespace umbra::atmosphere {
 
-/// The refractive medium of an atmosphere at one wavelength: n - 1 = atmosphere.refractivity.
+/// The refractive medium of an atmosphere at one wavelength: n - 1 = atmosphere.refractivity
+/// (its numbers copied: the medium may outlive the atmosphere), with the exact derivative
+/// for exponential and double-exponential profiles (numerical for the others). The one
+/// medium of the refraction table, the traced sight lines and the refracted scattering paths.
 RefractiveMedium refractiveMedium(const Atmosphere& atmosphere, double wavelengthNm);
 
 struct SightLine {

@@ -1,6 +1,11 @@
 // umbra atmosphere SUBCOMMAND: refraction, precompute, ...
 #include "AtmosphereCommon.hpp"
 
+#include "vtkAtmosphereTablesSource.h"
+#include "umbra/tables/TableCache.h"
+
+#include <iostream>
+
 namespace umbra::cli {
 
 void addAtmosphereOptions(CLI::App* command, std::string& preset, std::string& config) {
@@ -22,6 +27,24 @@ void addAtmosphereCommand(CLI::App& app, Action& action) {
   addAtmosphereRefractionCommand(*atmosphereCmd, action);
   addAtmospherePrecomputeCommand(*atmosphereCmd, action);
   addAtmosphereSkyCommand(*atmosphereCmd, action);
+}
+
+void updateTablesSource(vtkAtmosphereTablesSource* source, const CacheOptions& cache, const std::string& what) {
+  source->SetCacheDirectory(cache.directory.c_str());
+  source->SetUseCache(!cache.disabled);
+  {
+    ProgressLine progress(what, source);
+    const bool warnings = vtkObject::GetGlobalWarningDisplay() != 0;
+    vtkObject::GlobalWarningDisplayOff();  // the error comes back as one line below
+    source->Update();
+    vtkObject::SetGlobalWarningDisplay(warnings ? 1 : 0);
+  }
+  if (!source->GetLastError().empty()) throw CommandError(source->GetLastError());
+  if (source->GetLastCacheHits() > 0)
+    std::cerr << "cache hit: " << source->GetLastCacheHits() << " table(s) read from "
+              << (cache.directory.empty() ? tables::TableCache::defaultDirectory() : cache.directory) << "\n";
+  if (!source->GetLastCacheWarning().empty())
+    std::cerr << "umbra: warning: could not cache the tables: " << source->GetLastCacheWarning() << "\n";
 }
 
 } // namespace umbra::cli

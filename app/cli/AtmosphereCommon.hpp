@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+class vtkAtmosphereTablesSource;
+
 namespace umbra::cli {
 
 /// Adds --preset NAME and --config FILE (exactly one of them is needed).
@@ -16,6 +18,11 @@ void addAtmosphereOptions(CLI::App* command, std::string& preset, std::string& c
 /// unless exactly one of them was given (and AtmosphereError for a bad file).
 atmosphere::Atmosphere loadAtmosphereOption(const std::string& preset, const std::string& config,
                                             const std::vector<double>& wavelengthsNm);
+
+/// Updates `source` through the cache that `cache` names, with a progress line saying
+/// `what`: its error thrown as a CommandError (VTK's own messages kept quiet), a cache hit
+/// and a cache that could not be written said on stderr.
+void updateTablesSource(vtkAtmosphereTablesSource* source, const CacheOptions& cache, const std::string& what);
 
 // The subcommands of `umbra atmosphere`, one file each.
 void addAtmosphereRefractionCommand(CLI::App& atmosphereCmd, Action& action);

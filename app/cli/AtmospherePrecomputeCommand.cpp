@@ -159,18 +159,7 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       source->SetIrradianceSize(irradiance[0], irradiance[1]);
       source->SetRefractionWidth(refraction[0]);
       source->SetRefractionHeight(refraction[1]);
-      source->SetCacheDirectory(o->cache.directory.c_str());
-      source->SetUseCache(!o->cache.disabled);
-
-      ProgressLine progress("atmosphere tables (" + atm.name + ")", source);
-      const bool warnings = vtkObject::GetGlobalWarningDisplay() != 0;
-      vtkObject::GlobalWarningDisplayOff();  // the error comes back as one line below
-      source->Update();
-      vtkObject::SetGlobalWarningDisplay(warnings ? 1 : 0);
-      if (!source->GetLastError().empty()) throw CommandError(source->GetLastError());
-      if (source->GetLastCacheHits() > 0)
-        std::cerr << "cache hit: " << source->GetLastCacheHits() << " table(s) read from "
-                  << (o->cache.directory.empty() ? tables::TableCache::defaultDirectory() : o->cache.directory) << "\n";
+      updateTablesSource(source, o->cache, "atmosphere tables (" + atm.name + ")");
 
       // Every table goes into a sibling temporary directory first; then that directory
       // becomes DIR (a new one: one rename), or its files move into DIR (an existing one):

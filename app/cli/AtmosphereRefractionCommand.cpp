@@ -37,7 +37,8 @@ Range parseRange(const std::string& option, const std::string& text) {
 void addAtmosphereRefractionCommand(CLI::App& atmosphereCmd, Action& action) {
   CLI::App* refraction = atmosphereCmd.add_subcommand(
       "refraction", "Lines of sight from an observer to space: total deviation, lowest altitude and transmittance "
-                    "(R, G, B = 680, 550, 440 nm), over a range of geometric view-zenith angles");
+                    "(R, G, B = 680, 550, 440 nm), over a range of geometric view-zenith angles. Each line is traced "
+                    "on its own (RK4): the reference that the refraction table of the renders is checked against");
   struct Options {
     std::string preset, config, altitude = "0", zenith = "0:90:1", csv, step = "10km";
   };

@@ -11,9 +11,12 @@
 #include "Precompute.hpp"
 #include "Sky.hpp"
 #include "Spectrum.hpp"
+#include "AtmosphereTablesBlocks.h"
+#include "vtkAtmosphereTablesSource.h"
 
 #include <vtkImageData.h>
 #include <vtkNew.h>
+#include <vtkSmartPointer.h>
 #include <vtkPNGWriter.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkPointData.h>
@@ -109,6 +112,7 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
     std::string preset, config, altitude = "0", csv, plot;
     double sunZenithDeg = -1.0, zenithStep = 5.0, azimuthStep = 10.0, lowestSunZenithDeg = 102.0;
     int orders = 4, wavelengths = 15, plotSize = 256, densityDirections = 0;
+    CacheOptions cache;
   };
   auto o = std::make_shared<Options>();
   addAtmosphereOptions(sky, o->preset, o->config);
@@ -132,6 +136,7 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
   sky->add_option("--csv", o->csv, "CSV file to write (view_zenith_deg,view_azimuth_deg,luminance,r,g,b)")->required();
   sky->add_option("--plot", o->plot, "PNG file: a fisheye picture of the dome (zenith in the centre, Sun's azimuth up)");
   sky->add_option("--plot-size", o->plotSize, "Width and height of the picture in pixels (16-4096)")->capture_default_str();
+  o->cache.addTo(sky);
 
   sky->callback([&action, o, lowestSun, directions] {
     const bool lowestSunGiven = lowestSun->count() > 0, directionsGiven = directions->count() > 0;
@@ -167,25 +172,31 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
         throw CommandError("--observer-altitude: expected below half the atmosphere's thickness (" +
                            std::to_string(0.5 * atm.thicknessM()) + " m), got " + o->altitude);
 
-      atmosphere::AtmosphereTables tables;
-      atmosphere::PrecomputeOptions options;
-      {
-        ProgressLine progress("sky tables (" + atm.name + ")");
-        options = atmosphere::skyPrecomputeOptions(atm, o->orders, sunZenithRad);
-        if (lowestSunGiven) options.muSMin = std::cos(o->lowestSunZenithDeg * kDeg);
-        if (directionsGiven) options.sphereSamples = o->densityDirections;
-        // Fewer than a forward-peaked phase function asks for (docs/accuracy-vs-speed.md,
-        // "Density directions"): say so.
-        const int asked = atmosphere::densityDirectionsFor(atm);
-        if (asked > atmosphere::kMinDensityDirections && options.sphereSamples < asked && options.orders >= 2)
-          std::cerr << "note: " << atm.name << "'s forward-peaked phase functions ask for " << asked << " density directions, "
-                    << options.sphereSamples << " used (faster, the light scattered more than once less exact): "
-                    << "--density-directions " << asked << " for that\n";
-        tables = atmosphere::precompute(atm, options, [&progress](double f, const std::string&) {
-          progress.update(f);
-          return true;
-        });
-      }
+      atmosphere::PrecomputeOptions options = atmosphere::skyPrecomputeOptions(atm, o->orders, sunZenithRad);
+      if (lowestSunGiven) options.muSMin = std::cos(o->lowestSunZenithDeg * kDeg);
+      if (directionsGiven) options.sphereSamples = o->densityDirections;
+      // Fewer than a forward-peaked phase function asks for (docs/accuracy-vs-speed.md,
+      // "Density directions"): say so.
+      const int asked = atmosphere::densityDirectionsFor(atm);
+      if (asked > atmosphere::kMinDensityDirections && options.sphereSamples < asked && options.orders >= 2)
+        std::cerr << "note: " << atm.name << "'s forward-peaked phase functions ask for " << asked << " density directions, "
+                  << options.sphereSamples << " used (faster, the light scattered more than once less exact): "
+                  << "--density-directions " << asked << " for that\n";
+      // The tables through the filter (and so through the cache), at the sky's sizes.
+      auto source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
+      source->SetAtmosphere((o->preset.empty() ? o->config : o->preset).c_str());
+      source->SetTables(vtkAtmosphereTablesSource::Bruneton);
+      source->SetWavelengths(o->wavelengths);
+      source->SetOrders(options.orders);
+      source->SetTransmittanceSize(options.transmittanceWidth, options.transmittanceHeight);
+      source->SetScatteringSize(options.scatteringR, options.scatteringMu, options.scatteringMuS, options.scatteringNu);
+      source->SetIrradianceSize(options.irradianceWidth, options.irradianceHeight);
+      source->SetMuSMin(options.muSMin);
+      source->SetDensityDirections(options.sphereSamples);
+      source->SetQuadratureSamples(options.singleScatteringSamples, options.multipleScatteringSamples,
+                                   options.irradianceSamples);
+      updateTablesSource(source, o->cache, "sky tables (" + atm.name + ")");
+      const atmosphere::AtmosphereTables tables = filters::tablesFromBlocks(source->GetOutput(), atm);
       const atmosphere::SkyGrid grid = atmosphere::skyLuminance(tables, atm, wavelengths, sunZenithRad, altitudeM,
                                                                 o->zenithStep * kDeg, o->azimuthStep * kDeg);
       if (!o->plot.empty()) writeFisheye(o->plot, o->plotSize, tables, atm, wavelengths, sunZenithRad, altitudeM);

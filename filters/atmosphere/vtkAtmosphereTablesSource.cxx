@@ -7,7 +7,7 @@
 #include "FieldParameters.h"
 #include "Refraction.hpp"
 #include "SightLines.hpp"
-#include "umbra/tables/TableCache.h"
+#include "umbra/tables/CachedTables.h"
 
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
@@ -117,6 +117,7 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
   vtkMultiBlockDataSet* output = vtkMultiBlockDataSet::GetData(out);
   this->CacheHits = this->Computed = this->PrecomputeCalls = 0;
   this->Error.clear();
+  this->CacheWarning.clear();
   try {
     const std::vector<double> wavelengthsNm = this->Wavelengths == 3 ? atmosphere::WavelengthSet::rgb().nm
                                                                      : atmosphere::WavelengthSet::uniform(this->Wavelengths).nm;
@@ -139,6 +140,10 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
       po.muSMin = this->MuSMin;
       if (this->MinimumDensityDirections > 0)
         po.sphereSamples = std::max(this->MinimumDensityDirections, atmosphere::densityDirectionsFor(atm));
+      if (this->DensityDirections > 0) po.sphereSamples = this->DensityDirections;
+      po.singleScatteringSamples = this->QuadratureSamples[0];
+      po.multipleScatteringSamples = this->QuadratureSamples[1];
+      po.irradianceSamples = this->QuadratureSamples[2];
       po.refraction = this->RefractedPaths;
       po.refractionStepM = this->RefractionStepM;
       po.threads = this->Threads;
@@ -199,53 +204,60 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
         return std::make_pair(po.irradianceWidth, po.irradianceHeight);
       };
 
+      // Transmittance alone: no scattering worth the name (the smallest tables, one order),
+      // and only it stored; else every table of the run is stored, needed now or not.
       const int requested = this->Tables & Bruneton;
-      bool allHit = true;
+      const bool transmittanceOnly = requested == Transmittance;
+      std::vector<BrunetonTable*> made;
+      std::vector<tables::TableRequest> requests;
       for (auto& [bit, t] : all) {
-        if (!(requested & bit)) continue;
-        if (this->UseCache) t.table = cache.load("atmosphere-" + t.name, t.parameters);
-        if (t.table && (t.table->channels != channels || std::make_pair(t.table->width, t.table->height) != sizeOf(t)))
-          t.table.reset();
-        allHit = allHit && t.table.has_value();
+        if (transmittanceOnly && bit != Transmittance) continue;
+        const auto [w, h] = sizeOf(t);
+        made.push_back(&t);
+        requests.push_back({"atmosphere-" + t.name, t.parameters, w, h, channels, (requested & bit) != 0});
       }
-      if (allHit) {
-        for (const auto& [bit, t] : all) this->CacheHits += (requested & bit) ? 1 : 0;
-      } else {
-        // Transmittance alone: no scattering worth the name (the smallest tables, one order).
-        const bool transmittanceOnly = requested == Transmittance;
-        atmosphere::PrecomputeOptions run = po;
-        if (transmittanceOnly) {
-          run.scatteringR = run.scatteringMuS = run.scatteringNu = 2;
-          run.scatteringMu = 4;
-          run.irradianceWidth = run.irradianceHeight = 2;
-          run.orders = 1;
-        }
-        ++this->PrecomputeCalls;
-        const atmosphere::AtmosphereTables result = atmosphere::precompute(atm, run, [this](double f, const std::string&) {
-          this->UpdateProgress(0.95 * f);
-          return !this->GetAbortExecute();  // SetAbortExecute(1) from another thread cancels
-        });
-        const int nc = static_cast<int>(channels.size());
-        for (auto& [bit, t] : all) {
-          if (transmittanceOnly && bit != Transmittance) continue;
-          const auto [w, h] = sizeOf(t);
-          const std::vector<double>* values = nullptr;
-          if (t.name == "transmittance") values = &result.transmittance.values;
-          else if (t.name == "multiple-scattering") values = &result.multipleScattering.values;
-          else if (t.name == "direct-irradiance") values = &result.directIrradiance.values;
-          else if (t.name == "irradiance") values = &result.irradiance.values;
-          else {
-            const auto i = std::find(components.begin(), components.end(), t.parameters.at("component")) - components.begin();
-            values = &result.singleScattering.at(static_cast<std::size_t>(i)).values;
-          }
-          // Orders 1: no multiple scattering nor indirect irradiance (empty tables: zeros).
-          if (!values->empty() && values->size() != static_cast<std::size_t>(w) * h * nc)
-            throw std::logic_error("precompute: unexpected size of table " + t.name);
-          t.table = toTable(*values, w, h, nc, channels);
-          if (this->UseCache) cache.store("atmosphere-" + t.name, t.parameters, *t.table);
-          this->Computed += (requested & bit) ? 1 : 0;
-        }
-      }
+      tables::CacheOutcome outcome;
+      std::vector<tables::Table> values = tables::cachedOrComputed(
+          cache, this->UseCache != 0, requests,
+          [&] {
+            atmosphere::PrecomputeOptions run = po;
+            if (transmittanceOnly) {
+              run.scatteringR = run.scatteringMuS = run.scatteringNu = 2;
+              run.scatteringMu = 4;
+              run.irradianceWidth = run.irradianceHeight = 2;
+              run.orders = 1;
+            }
+            ++this->PrecomputeCalls;
+            const atmosphere::AtmosphereTables result = atmosphere::precompute(atm, run, [this](double f, const std::string&) {
+              this->UpdateProgress(0.95 * f);
+              return !this->GetAbortExecute();  // SetAbortExecute(1) from another thread cancels
+            });
+            const int nc = static_cast<int>(channels.size());
+            std::vector<tables::Table> out;
+            for (const BrunetonTable* t : made) {
+              const auto [w, h] = sizeOf(*t);
+              const std::vector<double>* v = nullptr;
+              if (t->name == "transmittance") v = &result.transmittance.values;
+              else if (t->name == "multiple-scattering") v = &result.multipleScattering.values;
+              else if (t->name == "direct-irradiance") v = &result.directIrradiance.values;
+              else if (t->name == "irradiance") v = &result.irradiance.values;
+              else {
+                const auto i = std::find(components.begin(), components.end(), t->parameters.at("component")) - components.begin();
+                v = &result.singleScattering.at(static_cast<std::size_t>(i)).values;
+              }
+              // Orders 1: no multiple scattering nor indirect irradiance (empty tables: zeros).
+              if (!v->empty() && v->size() != static_cast<std::size_t>(w) * h * nc)
+                throw std::logic_error("precompute: unexpected size of table " + t->name);
+              out.push_back(toTable(*v, w, h, nc, channels));
+            }
+            return out;
+          },
+          outcome);
+      this->CacheHits += outcome.hits;
+      this->Computed += outcome.computed;
+      if (this->CacheWarning.empty()) this->CacheWarning = outcome.warning;
+      for (std::size_t i = 0; i < made.size(); ++i)
+        if (requests[i].needed) made[i]->table = std::move(values[i]);
       for (auto& [bit, t] : all) {
         if (!(requested & bit)) continue;
         auto image = blockOf(*t.table, t.depth);
@@ -264,30 +276,34 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
       parameters["height"] = std::to_string(this->RefractionHeight);
       parameters["stepM"] = formatNumber(this->RefractionStepM);
       parameters["layout"] = "x = x_mu, y = x_r (Bruneton 2017 transmittance parametrisation, texel centres on the ends)";
-      std::optional<tables::Table> table = this->UseCache ? cache.load(kRefractionKind, parameters) : std::nullopt;
-      if (table && table->channels != std::vector<std::string>{"deviation_rad", "contact_altitude_m"}) table.reset();
-      if (table) {
-        ++this->CacheHits;
-      } else {
-        // After the Bruneton tables made now (0 to 0.95), the rest: progress never goes back.
-        const double from = this->GetProgress() < 1.0 ? this->GetProgress() : 0.0;
-        const atmosphere::RefractionTable r = atmosphere::buildRefractionTable(
-            atmosphere::refractiveMedium(atm, atm.refractivityReferenceWavelengthNm), this->RefractionWidth,
-            this->RefractionHeight, this->RefractionStepM,
-            [this, from](double f) { this->UpdateProgress(from + (1.0 - from) * f); });
-        table.emplace();
-        table->width = r.width;
-        table->height = r.height;
-        table->channels = {"deviation_rad", "contact_altitude_m"};
-        table->data.resize(2 * r.deviationRad.size());
-        for (std::size_t i = 0; i < r.deviationRad.size(); ++i) {
-          table->data[2 * i] = r.deviationRad[i];
-          table->data[2 * i + 1] = r.contactAltitudeM[i];
-        }
-        table->parameters = parameters;
-        ++this->Computed;
-        if (this->UseCache) cache.store(kRefractionKind, parameters, *table);
-      }
+      const std::vector<std::string> refractionChannels = {"deviation_rad", "contact_altitude_m"};
+      tables::CacheOutcome outcome;
+      std::vector<tables::Table> made = tables::cachedOrComputed(
+          cache, this->UseCache != 0,
+          {{kRefractionKind, parameters, this->RefractionWidth, this->RefractionHeight, refractionChannels}},
+          [&] {
+            // After the Bruneton tables made now (0 to 0.95), the rest: progress never goes back.
+            const double from = this->GetProgress() < 1.0 ? this->GetProgress() : 0.0;
+            const atmosphere::RefractionTable r = atmosphere::buildRefractionTable(
+                atmosphere::refractiveMedium(atm, atm.refractivityReferenceWavelengthNm), this->RefractionWidth,
+                this->RefractionHeight, this->RefractionStepM,
+                [this, from](double f) { this->UpdateProgress(from + (1.0 - from) * f); });
+            tables::Table t;
+            t.width = r.width;
+            t.height = r.height;
+            t.channels = refractionChannels;
+            t.data.resize(2 * r.deviationRad.size());
+            for (std::size_t i = 0; i < r.deviationRad.size(); ++i) {
+              t.data[2 * i] = r.deviationRad[i];
+              t.data[2 * i + 1] = r.contactAltitudeM[i];
+            }
+            return std::vector<tables::Table>{std::move(t)};
+          },
+          outcome);
+      this->CacheHits += outcome.hits;
+      this->Computed += outcome.computed;
+      if (this->CacheWarning.empty()) this->CacheWarning = outcome.warning;
+      const tables::Table* table = &made.front();
       auto image = unitRangeImage(table->width, table->height);
       std::vector<float> deviation(table->data.size() / 2), contact(table->data.size() / 2);
       for (std::size_t i = 0; i < deviation.size(); ++i) {

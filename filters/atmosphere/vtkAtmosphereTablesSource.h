@@ -99,6 +99,16 @@ public:
   /// phase functions need more (densityDirectionsFor); 0 (default): what they need.
   vtkSetClampMacro(MinimumDensityDirections, int, 0, 256);
   vtkGetMacro(MinimumDensityDirections, int);
+  /// Exactly this many polar directions in the scattering density's quadrature, fewer than
+  /// the phase functions need if so asked (a quick sky); 0 (default): as
+  /// MinimumDensityDirections says.
+  vtkSetClampMacro(DensityDirections, int, 0, 256);
+  vtkGetMacro(DensityDirections, int);
+  /// Intervals of the single- and multiple-scattering view rays and directions of the
+  /// indirect irradiance (PrecomputeOptions::singleScatteringSamples,
+  /// multipleScatteringSamples, irradianceSamples; default 50, 50, 32).
+  vtkSetVector3Macro(QuadratureSamples, int);
+  vtkGetVector3Macro(QuadratureSamples, int);
   /// Integrate along refracted rays (PrecomputeOptions::refraction, step RefractionStepM).
   vtkSetMacro(RefractedPaths, bool);
   vtkGetMacro(RefractedPaths, bool);
@@ -129,6 +139,9 @@ public:
   /// Number of precompute() calls made by the last update (0 or 1).
   int GetLastPrecomputeCalls() const { return this->PrecomputeCalls; }
   const std::string& GetLastError() const { return this->Error; }
+  /// Why the tables computed by the last update could not be stored (a read-only cache):
+  /// not an error, they are given all the same; empty when they were.
+  const std::string& GetLastCacheWarning() const { return this->CacheWarning; }
 
 protected:
   vtkAtmosphereTablesSource();
@@ -148,6 +161,10 @@ private:
   int IrradianceSize[2] = {64, 16};
   double MuSMin = umbra::atmosphere::PrecomputeOptions().muSMin;
   int MinimumDensityDirections = 0;
+  int DensityDirections = 0;
+  int QuadratureSamples[3] = {umbra::atmosphere::PrecomputeOptions().singleScatteringSamples,
+                              umbra::atmosphere::PrecomputeOptions().multipleScatteringSamples,
+                              umbra::atmosphere::PrecomputeOptions().irradianceSamples};
   bool RefractedPaths = false;
   int Threads = 0;
   int RefractionWidth = 512;
@@ -160,4 +177,5 @@ private:
   int Computed = 0;
   int PrecomputeCalls = 0;
   std::string Error;
+  std::string CacheWarning;
 };

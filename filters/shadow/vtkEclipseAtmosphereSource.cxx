@@ -7,7 +7,7 @@
 #include "FieldParameters.h"
 #include "Precompute.hpp"
 #include "Spectrum.hpp"
-#include "umbra/tables/TableCache.h"
+#include "umbra/tables/CachedTables.h"
 
 #include <vtkDataObject.h>
 #include <vtkInformation.h>
@@ -231,31 +231,26 @@ std::vector<float> vtkEclipseAtmosphereSource::CachedOrComputed(const char* kind
   const tables::TableCache cache(this->CacheDirectory.empty() ? tables::TableCache::defaultDirectory()
                                                               : this->CacheDirectory);
   this->CachePath = cache.pathFor(kind, parameters);
-  const std::vector<std::string> rgb = {"R", "G", "B"};
-  if (this->UseCache)
-    if (auto table = cache.load(kind, parameters))
-      if (table->width == width && table->height == height && table->channels == rgb) {
-        this->LastCacheHit = true;
-        return table->data;
-      }
-  if (!this->InputTables()) this->UpdateProgress(0.0);  // (with input: its tables were the first half)
-  eclipse::AtmosphericShadowModel model = this->PrepareAtmosphere(0.0, 0.5)->model;
-  model.limbDarkening = limbDarkening;
-  tables::Table t;
-  t.width = width, t.height = height, t.channels = rgb;
-  t.data = compute(model, [this](double f) {
-    this->UpdateProgress(0.5 + 0.5 * f);
-    return !this->GetAbortExecute();
-  });
-  if (t.data.empty()) throw umbra::atmosphere::PrecomputeCancelled();
-  if (this->UseCache) {
-    try {
-      cache.store(kind, parameters, t);
-    } catch (const std::exception& e) {
-      this->CacheWarning = e.what();
-    }
-  }
-  return t.data;
+  tables::CacheOutcome outcome;
+  std::vector<tables::Table> made = tables::cachedOrComputed(
+      cache, this->UseCache != 0, {{kind, parameters, width, height, {"R", "G", "B"}}},
+      [&] {
+        if (!this->InputTables()) this->UpdateProgress(0.0);  // (with input: its tables were the first half)
+        eclipse::AtmosphericShadowModel model = this->PrepareAtmosphere(0.0, 0.5)->model;
+        model.limbDarkening = limbDarkening;
+        tables::Table t;
+        t.width = width, t.height = height, t.channels = {"R", "G", "B"};
+        t.data = compute(model, [this](double f) {
+          this->UpdateProgress(0.5 + 0.5 * f);
+          return !this->GetAbortExecute();
+        });
+        if (t.data.empty()) throw umbra::atmosphere::PrecomputeCancelled();
+        return std::vector<tables::Table>{std::move(t)};
+      },
+      outcome);
+  this->LastCacheHit = outcome.hits > 0;
+  this->CacheWarning = outcome.warning;
+  return std::move(made.front().data);
 }
 
 int vtkEclipseAtmosphereSource::RequestFailed(const std::exception& e, vtkDataObject* output) {

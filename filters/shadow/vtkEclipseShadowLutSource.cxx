@@ -3,7 +3,7 @@
 #include "EclipseAtmosphere.hpp"
 #include "Precompute.hpp"
 #include "ShadowLutData.h"
-#include "umbra/tables/TableCache.h"
+#include "umbra/tables/CachedTables.h"
 
 #include <vtkImageData.h>
 #include <vtkInformation.h>
@@ -47,35 +47,30 @@ int vtkEclipseShadowLutSource::RequestData(vtkInformation*, vtkInformationVector
   const auto parameters = filters::airlessLutParameters(params);
   const tables::TableCache cache(this->CacheDirectory.empty() ? tables::TableCache::defaultDirectory()
                                                               : this->CacheDirectory);
+  this->CachePath = cache.pathFor(filters::kAirlessShadowLutKind, parameters);
   this->LastCacheHit = false;
   this->CacheWarning.clear();
-  this->CachePath = cache.pathFor(filters::kAirlessShadowLutKind, parameters);
-
   eclipse::ShadowLut lut;
-  if (this->UseCache) {
-    if (auto table = cache.load(filters::kAirlessShadowLutKind, parameters)) {
-      try {
-        lut = filters::fromTable(*table, this->CachePath);
-        this->LastCacheHit = true;
-      } catch (const std::exception&) {
-        // not a LuT after all: computed again below and overwritten
-      }
-    }
-  }
-  if (!this->LastCacheHit) {
-    this->UpdateProgress(0.0);
-    lut = eclipse::buildAirlessShadowLut(params, [this](double f) {
-      this->UpdateProgress(f);
-      return !this->GetAbortExecute();
-    });
-    if (lut.rgb.empty()) return this->RequestFailed(atmosphere::PrecomputeCancelled(), output);
-    if (this->UseCache) {
-      try {
-        cache.store(filters::kAirlessShadowLutKind, parameters, filters::toTable(lut, parameters));
-      } catch (const std::exception& e) {
-        this->CacheWarning = e.what();
-      }
-    }
+  try {
+    tables::CacheOutcome outcome;
+    const std::vector<tables::Table> made = tables::cachedOrComputed(
+        cache, this->UseCache != 0,
+        {{filters::kAirlessShadowLutKind, parameters, params.width, params.height, {"R", "G", "B"}}},
+        [&] {
+          this->UpdateProgress(0.0);
+          const eclipse::ShadowLut built = eclipse::buildAirlessShadowLut(params, [this](double f) {
+            this->UpdateProgress(f);
+            return !this->GetAbortExecute();
+          });
+          if (built.rgb.empty()) throw atmosphere::PrecomputeCancelled();
+          return std::vector<tables::Table>{filters::toTable(built, parameters)};
+        },
+        outcome);
+    this->LastCacheHit = outcome.hits > 0;
+    this->CacheWarning = outcome.warning;
+    lut = filters::fromTable(made.front(), this->CachePath);
+  } catch (const std::exception& e) {
+    return this->RequestFailed(e, output);
   }
 
   output->ShallowCopy(filters::toImageData(lut));

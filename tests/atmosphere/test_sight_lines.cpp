@@ -62,3 +62,28 @@ TEST(SightLines, RedAndBlueBendByLessThanTwoHundredthsOfADegreeMore) {
   EXPECT_GT(blue, red);  // normal dispersion: n - 1 grows towards the blue
   EXPECT_LT((blue - red) / kDeg, 0.02);
 }
+
+// The one refractive medium: its n - 1 is Atmosphere::refractivity at every wavelength, its
+// derivative that of n - 1 (against a central difference, 1 m apart), and it keeps its
+// numbers when the atmosphere it came from is gone.
+TEST(SightLines, OneMediumWithTheRefractivitysDerivative) {
+  for (const char* preset : {"earth", "mars"}) {
+    RefractiveMedium medium;
+    std::vector<double> expected, slopes;
+    const std::vector<double> heights{0.0, 3000.0, 11000.0, 40000.0};
+    {
+      const Atmosphere atm = loadAtmosphere(preset, kRgb);
+      medium = refractiveMedium(atm, 440.0);
+      for (double h : heights) {
+        expected.push_back(atm.refractivity(h, 440.0));
+        slopes.push_back((atm.refractivity(h + 1.0, 440.0) - atm.refractivity(h - 1.0, 440.0)) / 2.0);
+      }
+    }
+    ASSERT_TRUE(medium.refractivityDerivativePerM) << preset;
+    for (std::size_t i = 0; i < heights.size(); ++i) {
+      EXPECT_NEAR(medium.refractivity(heights[i]), expected[i], 1e-15 * expected[i] + 1e-30) << preset << " " << heights[i];
+      EXPECT_NEAR(medium.refractivityDerivativePerM(heights[i]), slopes[i], 1e-6 * std::abs(slopes[i]) + 1e-30)
+          << preset << " " << heights[i];
+    }
+  }
+}

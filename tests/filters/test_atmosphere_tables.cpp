@@ -7,6 +7,8 @@
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkMultiBlockDataSet.h>
+
+#include <fstream>
 #include <vtkNew.h>
 #include <vtkInformation.h>
 #include <vtkPointData.h>
@@ -372,4 +374,26 @@ TEST(AtmosphereTablesSource, AbortExecuteCancelsThePrecomputation) {
   source->Update();
   EXPECT_TRUE(source->GetLastError().empty()) << source->GetLastError();
   EXPECT_EQ(blockNames(source).size(), 6u);
+}
+
+// A cache that cannot be written (its directory is a file) costs the tables' storage, not
+// the tables: they are given, computed each time, with a warning (GetLastCacheWarning).
+TEST(AtmosphereTablesSource, AnUnwritableCacheStillGivesTheTables) {
+  CacheDir cache;
+  fs::create_directories(cache.path);
+  std::ofstream(cache.path / "file") << "x";
+  CacheDir blocked;
+  blocked.path = cache.path / "file" / "cache";
+  vtkNew<vtkAtmosphereTablesSource> source;
+  configure(source, blocked, "earth", vtkAtmosphereTablesSource::Bruneton | vtkAtmosphereTablesSource::Refraction);
+  source->Update();
+  EXPECT_TRUE(source->GetLastError().empty()) << source->GetLastError();
+  EXPECT_FALSE(source->GetLastCacheWarning().empty());
+  EXPECT_NE(block(source, "transmittance"), nullptr);
+  EXPECT_NE(refractionBlock(source), nullptr);
+  source->Modified();
+  source->Update();
+  EXPECT_EQ(source->GetLastCacheHits(), 0);
+  EXPECT_GT(source->GetLastComputed(), 0);
+  blocked.path = cache.path;  // removed once
 }
