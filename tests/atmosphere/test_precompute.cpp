@@ -15,7 +15,7 @@
 
 namespace umbra::atmosphere {
 namespace detail {
-// Precompute.cpp's density lobe kernel: the plain loop and the one chosen at run time
+// The density's lobe kernel (atmosphere/precompute/Kernels.cpp): the plain loop and the one chosen at run time
 // (the AVX-512 reciprocal square root where the CPU has it).
 void lobeValuesBaseline(double A, double B, double g, const double* c, double* p, int n);
 void lobeValuesDispatched(double A, double B, double g, const double* c, double* p, int n);

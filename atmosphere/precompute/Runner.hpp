@@ -1,0 +1,63 @@
+#pragma once
+// The precomputation's parallel loops (OpenMP, dynamic schedule), their progress reports
+// and cancellation, and the time each stage took.
+#include "ParallelErrors.hpp"
+#include "Precompute.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <string>
+#include <vector>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace umbra::atmosphere::stages {
+
+
+class Runner {
+public:
+  Runner(const PrecomputeProgress& progress, int threads, double begin, double end)
+      : progress_(progress), threads_(threads), begin_(begin), end_(end) {}
+
+  void setStages(double totalWeight) { total_ = totalWeight; }
+
+  /// f(i) for i in [0, n), OpenMP dynamic schedule, reported in chunks.
+  template <class F>
+  void run(const std::string& stage, double weight, int n, F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int chunks = std::max(1, std::min(n, 16));
+    for (int k = 0; k < chunks; ++k) {
+      const int lo = static_cast<int>(static_cast<long long>(n) * k / chunks);
+      const int hi = static_cast<int>(static_cast<long long>(n) * (k + 1) / chunks);
+      ParallelErrors errors;
+#ifdef _OPENMP
+      const int nt = threads_ > 0 ? threads_ : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
+#endif
+      for (int i = lo; i < hi; ++i) errors.run([&] { f(i); });
+      errors.rethrow();
+      report(stage, done_ + weight * (k + 1) / chunks);
+    }
+    done_ += weight;
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    timings[stage] += s;
+    if (std::find(order.begin(), order.end(), stage) == order.end()) order.push_back(stage);
+  }
+
+  std::map<std::string, double> timings;
+  std::vector<std::string> order;
+
+private:
+  void report(const std::string& stage, double done) {
+    if (!progress_) return;
+    const double f = begin_ + (end_ - begin_) * std::clamp(total_ > 0 ? done / total_ : 1.0, 0.0, 1.0);
+    if (!progress_(f, stage)) throw PrecomputeCancelled();
+  }
+  const PrecomputeProgress& progress_;
+  int threads_;
+  double begin_, end_, total_ = 1.0, done_ = 0.0;
+};
+
+}  // namespace umbra::atmosphere::stages

@@ -1,0 +1,180 @@
+// The precomputation's pieces one by one (atmosphere/precompute/), each against a closed
+// form or a brute-force sum: the paths, the 4D parametrisation and its lookups, the
+// model's column densities, the parallel runner and the kernels.
+#include "Atmosphere.hpp"
+#include "precompute/Kernels.hpp"
+#include "precompute/Model.hpp"
+#include "precompute/Parametrisation.hpp"
+#include "precompute/Paths.hpp"
+#include "precompute/Runner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <vector>
+
+using namespace umbra::atmosphere;
+using namespace umbra::atmosphere::stages;
+
+namespace {
+const ShellRadii kEarth{6360e3, 6420e3};
+}  // namespace
+
+// A straight path: position (sin z s, r + mu s) and a constant tangent; a path traced through
+// a medium without refractivity is the same line (to a micrometre over 300 km).
+TEST(PrecomputeStages, PathsStraightAndTracedWithoutRefraction) {
+  const double r = 6361e3, mu = 0.3, sz = std::sqrt(1.0 - mu * mu);
+  const Path straight = straightPath(r, mu, 300e3);
+  RefractiveMedium vacuum;
+  vacuum.bottomRadiusM = kEarth.bottomRadiusM;
+  vacuum.topRadiusM = kEarth.topRadiusM;
+  vacuum.refractivity = [](double) { return 0.0; };
+  vacuum.refractivityDerivativePerM = [](double) { return 0.0; };
+  const Path traced = tracedPath(vacuum, r, mu, 10e3, false);
+  std::size_t a = 0, b = 0;
+  for (double s = 0.0; s <= std::min(straight.length, traced.length); s += 7e3) {
+    double x, y, tx, ty, x2, y2, tx2, ty2;
+    straight.eval(s, a, x, y, tx, ty);
+    traced.eval(s, b, x2, y2, tx2, ty2);
+    EXPECT_NEAR(x, sz * s, 1e-6);
+    EXPECT_NEAR(y, r + mu * s, 1e-6);
+    EXPECT_NEAR(tx, sz, 1e-12);
+    EXPECT_NEAR(ty, mu, 1e-12);
+    EXPECT_NEAR(x2, x, 1e-6) << s;
+    EXPECT_NEAR(y2, y, 1e-6) << s;
+  }
+}
+
+// The 4D parametrisation: each coordinate's inverse gives the value back, on both halves of
+// mu (rays to the ground and to the sky; on the ground itself the downward rays share one
+// row); a texel's point lies inside the shell with a nu
+// that the geometry allows.
+TEST(PrecomputeStages, ParametrisationRoundTrips) {
+  const ScatterGeometry g(kEarth, {32, 128, 32, 8}, std::cos(102.0 * kPi / 180.0));
+  for (double r : {6360e3, 6361e3, 6380e3, 6419e3}) {
+    EXPECT_NEAR(g.rFromU(g.uR(r)), r, 1e-6 * r);
+    const double horizon = -std::sqrt(1.0 - std::pow(kEarth.bottomRadiusM / r, 2));
+    for (double mu : {-0.9, horizon - 0.01, horizon + 0.01, 0.0, 0.5, 1.0}) {
+      const bool ground = mu < horizon;
+      if (ground && r == kEarth.bottomRadiusM) continue;  // on the ground every downward ray is one texel row
+      bool back = false;
+      EXPECT_NEAR(g.muFromU(r, g.uMu(r, mu, ground), back), mu, 1e-9) << r << " " << mu;
+      EXPECT_EQ(back, ground);
+    }
+  }
+  for (double muS : {-0.2, 0.0, 0.4, 1.0}) EXPECT_NEAR(g.muSFromU(g.uMuS(muS)), muS, 1e-9) << muS;
+  for (int z = 0; z < 32; z += 7)
+    for (int y = 0; y < 128; y += 13)
+      for (int x = 0; x < 8 * 32; x += 29) {
+        const ScatteringPoint p = g.texel(x, y, z);
+        EXPECT_GE(p.r, kEarth.bottomRadiusM);
+        EXPECT_LE(p.r, kEarth.topRadiusM);
+        const double s = std::sqrt((1 - p.mu * p.mu) * (1 - p.muS * p.muS));
+        EXPECT_GE(p.nu, p.mu * p.muS - s - 1e-12);
+        EXPECT_LE(p.nu, p.mu * p.muS + s + 1e-12);
+      }
+}
+
+// A bilinear lookup reproduces a bilinear function exactly, and a 4D cell's weights sum to 1.
+TEST(PrecomputeStages, LookupsReproduceLinearFunctions) {
+  Table2D t;
+  t.resize(9, 5, 2);
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 9; ++x) {
+      t.at(x, y)[0] = 2.0 * x / 8.0 + 3.0 * y / 4.0;
+      t.at(x, y)[1] = (x / 8.0) * (y / 4.0);
+    }
+  for (double xu : {0.0, 0.13, 0.5, 0.87, 1.0})
+    for (double yu : {0.0, 0.31, 1.0}) {
+      double out[2];
+      bilinearUnit(t, xu, yu, out);
+      EXPECT_NEAR(out[0], 2.0 * xu + 3.0 * yu, 1e-12);
+      EXPECT_NEAR(out[1], xu * yu, 1e-12);
+    }
+  const ScatterGeometry g(kEarth, {8, 32, 8, 4}, -0.2);
+  const SNuCell c = sNuCell(g, 0.37, -0.21);
+  EXPECT_NEAR(c.w00 + c.w01 + c.w10 + c.w11, 1.0, 1e-15);
+}
+
+// Column densities along the vertical from the ground to the top: each component's against
+// its closed form (exponential: H (1 - exp(-L / H)); tent: its half width, when it lies in
+// the shell) or a brute-force midpoint sum (10^6 steps); the optical depth is the columns
+// times the extinctions.
+TEST(PrecomputeStages, ModelColumnsAgainstClosedForms) {
+  for (const char* preset : {"earth", "mars"}) {
+    const Atmosphere atm = loadAtmosphere(preset, {680.0, 550.0, 440.0});
+    const PrecomputeOptions o;
+    const Model m(atm, o);
+    const double L = atm.topRadiusM - atm.bottomRadiusM;
+    const Path up = straightPath(atm.bottomRadiusM, 1.0, L);
+    std::vector<double> col(m.nc, 0.0);
+    std::size_t seg = 0;
+    m.columns(up, 0.0, L, 2000, seg, col.data());
+    for (int c = 0; c < m.nc; ++c) {
+      const DensityProfile& p = atm.components[c].density;
+      double expected = 0.0;
+      if (p.kind == DensityProfile::Kind::Exponential) {
+        expected = p.scaleHeightM * (1.0 - std::exp(-L / p.scaleHeightM));
+      } else if (p.kind == DensityProfile::Kind::Tent && p.centreM - p.halfWidthM >= 0.0 &&
+                 p.centreM + p.halfWidthM <= L) {
+        expected = p.halfWidthM;
+      } else {
+        const int n = 1000000;
+        for (int i = 0; i < n; ++i) expected += p.at((i + 0.5) * L / n) * L / n;
+      }
+      EXPECT_NEAR(col[c], expected, 1e-7 * expected) << preset << " " << atm.components[c].name;
+    }
+    std::vector<double> tau(m.nl);
+    m.opticalDepth(col.data(), tau.data());
+    for (int l = 0; l < m.nl; ++l) {
+      double sum = 0.0;
+      for (int c = 0; c < m.nc; ++c) sum += atm.components[c].extinctionPerM(l) * col[c];
+      EXPECT_DOUBLE_EQ(tau[l], sum);
+    }
+  }
+}
+
+// The runner calls each index once, reports progress from begin to end without going back,
+// and a progress callback that says stop cancels it.
+TEST(PrecomputeStages, RunnerCoversEveryIndexAndCancels) {
+  std::vector<double> reported;
+  const PrecomputeProgress progress = [&](double f, const std::string&) {
+    reported.push_back(f);
+    return true;
+  };
+  Runner run(progress, 2, 0.2, 0.8);
+  run.setStages(2.0);
+  std::vector<std::atomic<int>> calls(1000);
+  run.run("a", 1.0, 1000, [&](int i) { ++calls[i]; });
+  run.run("b", 1.0, 10, [](int) {});
+  for (const auto& c : calls) EXPECT_EQ(c.load(), 1);
+  ASSERT_FALSE(reported.empty());
+  for (std::size_t i = 1; i < reported.size(); ++i) EXPECT_GE(reported[i], reported[i - 1]);
+  EXPECT_NEAR(reported.back(), 0.8, 1e-12);
+  const PrecomputeProgress stop = [](double, const std::string&) { return false; };
+  Runner cancelled(stop, 1, 0.0, 1.0);
+  EXPECT_THROW(cancelled.run("c", 1.0, 10, [](int) {}), PrecomputeCancelled);
+}
+
+// The kernels against plain sums: dot; a constant 4D table blends to its constant; the
+// lobes' values against the formula A (1 + B c^2) / (1 + g^2 - 2 g c)^(3/2).
+TEST(PrecomputeStages, KernelsAgainstPlainSums) {
+  std::vector<double> a(37), b(37);
+  double sum = 0.0;
+  for (int i = 0; i < 37; ++i) a[i] = 0.1 * i, b[i] = 1.0 - 0.02 * i, sum += a[i] * b[i];
+  EXPECT_NEAR(dot(a.data(), b.data(), 37), sum, 1e-12);
+  Table3D t;
+  t.resize(6, 4, 3, 2);
+  std::fill(t.values.begin(), t.values.end(), 0.75);
+  std::vector<double> out(6 * 2);
+  blendRows(t, RMuCell{1, 2, 0.3, 0.6}, out.data());
+  for (double v : out) EXPECT_DOUBLE_EQ(v, 0.75);
+  std::vector<double> c(21), p(21);
+  for (int i = 0; i < 21; ++i) c[i] = -1.0 + i / 10.0;
+  lobeValues(0.1, 0.5, 0.7, c.data(), p.data(), 21);
+  for (int i = 0; i < 21; ++i) {
+    const double d = 1.0 + 0.49 - 1.4 * c[i];
+    EXPECT_NEAR(p[i], 0.1 * (1.0 + 0.5 * c[i] * c[i]) / std::pow(d, 1.5), 1e-12 * p[i]);
+  }
+}
