@@ -54,8 +54,8 @@
 
 namespace umbra::atmosphere {
 
-/// How the density's sphere of directions is sampled (Precompute.cpp): part of the
-/// tables' cache keys, so that tables made with another rule are not read back.
+/// How the density's sphere of directions is sampled (precompute/ScatteringDensity.cpp):
+/// part of the tables' cache keys, so that tables made with another rule are not read back.
 inline constexpr const char* kDensityQuadrature =
     "mu Gauss-Legendre split at the ground's horizon, phi midpoint, lobes renormalised";
 

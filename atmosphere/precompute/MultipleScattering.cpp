@@ -1,0 +1,67 @@
+// L_k from J_k: along each view ray, the density (its four (r, mu) rows blended once per
+// sample, then read bilinearly in (mu_s, nu) per texel) times the transmittance from the
+// start, trapezoid rule; added into the multiple-scattering table, and kept as delta for
+// the next order.
+#include "precompute/Batch.hpp"
+#include "precompute/Kernels.hpp"
+#include "precompute/Paths.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace umbra::atmosphere::stages {
+
+void computeMultipleScattering(Batch& B) {
+  const ScatterGeometry g = B.g;  // a copy: the stores into the tables cannot alias it
+  const double b = B.b;
+  const int nl = B.nl, W = B.W, MU = B.MU, R = B.R, MUS = B.MUS, l0 = B.l0;
+  const std::vector<RaySamples>& mRays = B.multipleScatteringRays();
+  const Table3D& density = B.density;
+  Table3D& delta = B.delta;
+  Table3D& multiple = B.multiple;
+  B.run.run("multiple scattering", 1.0, R * MU, [&, g, b, nl, W, MU, MUS, l0](int i) {
+    const int y = i % MU, z = i / MU;
+    const RaySamples& s = mRays[i];
+    const int N = s.n;
+    std::vector<RMuCell> cells(N + 1);
+    for (int k = 0; k <= N; ++k)
+      cells[k] = rMuCell(g, s.r[k], s.mu[k], rayIntersectsGround(b, s.r[k], s.mu[k]));
+    // Samples outer, texels inner. J is linear in the (r, mu) weights, which depend on
+    // the sample only: the sample's four (r, mu) rows are blended once into one row of
+    // (mu_s, nu) texels, and each texel reads that row bilinearly (4 reads, not 16).
+    const std::size_t rowSize = static_cast<std::size_t>(W) * nl;
+    std::vector<double> sxA(W), muSA(W), wsA(W), wnA(W), acc(rowSize, 0.0), blend(rowSize);
+    std::vector<int> x00A(W);
+    for (int x = 0; x < W; ++x) {
+      const ScatteringPoint p = g.texel(x, y, z);
+      sxA[x] = sunX(p), muSA[x] = p.muS;
+    }
+    for (int k = 0; k <= N && s.ds > 0.0; ++k) {
+      const double w = s.ds * ((k == 0 || k == N) ? 0.5 : 1.0);
+      const double* T = &s.T[static_cast<std::size_t>(k) * nl];
+      blendRows(density, cells[k], blend.data());
+      const double xr = s.xr[k], yr = s.yr[k], tx = s.tx[k], ty = s.ty[k];
+      sNuTexels(g, xr, yr, tx, ty, sxA.data(), muSA.data(), W, x00A.data(), wsA.data(), wnA.data());
+      const std::size_t up = static_cast<std::size_t>(MUS) * nl;
+      for (int x = 0; x < W; ++x) {
+        const double* p00 = &blend[static_cast<std::size_t>(x00A[x]) * nl];
+        const double* p01 = p00 + nl;
+        const double* p10 = p00 + up;
+        const double* p11 = p10 + nl;
+        const double ws = wsA[x], wn = wnA[x];
+        const double w00 = w * (1 - wn) * (1 - ws), w01 = w * (1 - wn) * ws, w10 = w * wn * (1 - ws), w11 = w * wn * ws;
+        double* a = &acc[static_cast<std::size_t>(x) * nl];
+        for (int l = 0; l < nl; ++l) a[l] += T[l] * (w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l]);
+      }
+    }
+    for (int x = 0; x < W; ++x) {
+      const double* a = &acc[static_cast<std::size_t>(x) * nl];
+      std::copy_n(a, nl, delta.at(x, y, z));
+      double* sum = multiple.at(x, y, z) + l0;
+      for (int l = 0; l < nl; ++l) sum[l] += a[l];
+    }
+  });
+}
+
+}  // namespace umbra::atmosphere::stages
