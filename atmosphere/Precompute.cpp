@@ -64,7 +64,7 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
   computeTransmittance(batch);
   computeDirectIrradiance(batch);
   buildViewRays(batch, o.singleScatteringSamples, batch.singleRays);
-  if (o.multipleScatteringSamples != o.singleScatteringSamples && o.orders > 1)
+  if (batch.ownMultipleScatteringRays() && o.orders > 1)
     buildViewRays(batch, o.multipleScatteringSamples, batch.multipleRays);
   computeSingleScattering(batch);
   // The single-scattering weights are spent: free them before the working tables.

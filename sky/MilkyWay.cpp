@@ -1,5 +1,6 @@
 #include "MilkyWay.hpp"
 
+#include "ShadowLut.hpp"  // luminance
 #include "StarLight.hpp"
 
 #include <glm/geometric.hpp>
@@ -78,15 +79,15 @@ double capMean(const MilkyWayMap& map, const TexelAngles& a, const std::vector<d
   return weight > 0.0 ? sum / weight : 0.0;
 }
 
-glm::dvec3 fromRaDec(double raRad, double decRad) {
-  return {std::cos(decRad) * std::cos(raRad), std::cos(decRad) * std::sin(raRad), std::sin(decRad)};
-}
-
 }  // namespace
 
 glm::vec3 MilkyWayMap::at(int column, int row) const {
   const std::size_t k = 3 * (static_cast<std::size_t>(row) * width + column);
   return {rgb[k], rgb[k + 1], rgb[k + 2]};
+}
+
+glm::dvec3 icrsDirection(double raRad, double decRad) {
+  return {std::cos(decRad) * std::cos(raRad), std::cos(decRad) * std::sin(raRad), std::sin(decRad)};
 }
 
 glm::dvec2 milkyWayMapCoord(const glm::dvec3& icrsDirection) {
@@ -99,7 +100,7 @@ glm::dvec2 milkyWayMapCoord(const glm::dvec3& icrsDirection) {
 }
 
 glm::dvec3 milkyWayDirection(const glm::dvec2& uv) {
-  return fromRaDec((kMilkyWayMapLeftRaDeg - 360.0 * uv.x) * kDeg, (180.0 * uv.y - 90.0) * kDeg);
+  return icrsDirection((kMilkyWayMapLeftRaDeg - 360.0 * uv.x) * kDeg, (180.0 * uv.y - 90.0) * kDeg);
 }
 
 double s10ToVMagPerArcsec2(double s10) { return 10.0 + 5.0 * std::log10(3600.0) - 2.5 * std::log10(s10); }
@@ -110,17 +111,17 @@ void removeStars(MilkyWayMap& map, const std::vector<glm::dvec3>& icrsDirections
                                 std::to_string(vMags.size()) + " magnitudes");
   const TexelAngles a(map);
   const double texelRad = kPi / map.height;
-  std::vector<std::pair<std::size_t, bool>> texels;  // index, inside
+  std::vector<std::size_t> inside;  // the dot's texels
   std::vector<float> ring[3];
   for (std::size_t s = 0; s < vMags.size(); ++s) {
     if (!(vMags[s] <= kMilkyWayStarsShownToV)) continue;
     const double radius = (vMags[s] >= 3.0 ? 1.5 : vMags[s] >= 1.0 ? 2.5 : 3.5) * texelRad;
     const double cosInside = std::cos(radius), cosRingInside = std::cos(radius + texelRad);
-    texels.clear();
+    inside.clear();
     for (auto& r : ring) r.clear();
     forEachTexelNear(map, a, icrsDirections[s], radius + 2.0 * texelRad, [&](int i, int j, double cosAngle) {
       const std::size_t k = static_cast<std::size_t>(j) * map.width + i;
-      if (cosAngle >= cosInside) texels.push_back({k, true});
+      if (cosAngle >= cosInside) inside.push_back(k);
       else if (cosAngle <= cosRingInside)
         for (int c = 0; c < 3; ++c) ring[c].push_back(map.rgb[3 * k + c]);
     });
@@ -130,16 +131,12 @@ void removeStars(MilkyWayMap& map, const std::vector<glm::dvec3>& icrsDirections
       std::nth_element(ring[c].begin(), ring[c].begin() + ring[c].size() / 2, ring[c].end());
       median[c] = ring[c][ring[c].size() / 2];
     }
-    for (const auto& [k, inside] : texels)
-      if (inside)
-        for (int c = 0; c < 3; ++c) map.rgb[3 * k + c] = median[c];
+    for (std::size_t k : inside)
+      for (int c = 0; c < 3; ++c) map.rgb[3 * k + c] = median[c];
   }
 }
 
-double frameLuminance(const glm::dvec3& rgb) {
-  const glm::dvec3 sun = sunLinearSrgb();
-  return 0.2126 * sun.r * rgb.r + 0.7152 * sun.g * rgb.g + 0.0722 * sun.b * rgb.b;
-}
+double frameLuminance(const glm::dvec3& rgb) { return eclipse::luminance(rgb * sunLinearSrgb()); }
 
 BrightestCap brightestCap(const MilkyWayMap& map, double capRadiusRad) {
   const TexelAngles a(map);
@@ -150,7 +147,7 @@ BrightestCap brightestCap(const MilkyWayMap& map, double capRadiusRad) {
   for (double dec = -kPi / 2.0; dec <= kPi / 2.0 + 1e-12; dec += step) {
     const int n = std::max(1, static_cast<int>(std::ceil(2.0 * kPi * std::cos(dec) / step)));
     for (int k = 0; k < n; ++k) {
-      const glm::dvec3 d = fromRaDec(2.0 * kPi * k / n, dec);
+      const glm::dvec3 d = icrsDirection(2.0 * kPi * k / n, dec);
       coarse.push_back({d, capMean(map, a, y, d, capRadiusRad)});
     }
   }
@@ -160,7 +157,7 @@ BrightestCap brightestCap(const MilkyWayMap& map, double capRadiusRad) {
   BrightestCap best = coarse.front();
   for (std::size_t c = 0; c < keep; ++c)
     forEachTexelNear(map, a, coarse[c].direction, step, [&](int i, int j, double) {
-      const glm::dvec3 d = fromRaDec(std::atan2(a.sinRa[i], a.cosRa[i]), std::asin(a.sinDec[j]));
+      const glm::dvec3 d = icrsDirection(std::atan2(a.sinRa[i], a.cosRa[i]), std::asin(a.sinDec[j]));
       const double m = capMean(map, a, y, d, capRadiusRad);
       if (m > best.meanLuminance) best = {d, m};
     });

@@ -31,6 +31,10 @@ inline constexpr double kMilkyWayMapLeftRaDeg = 90.0;
 /// v = (90 deg + Dec) / 180 deg. The GLSL twin is umbraMilkyWayCoord (sky/glsl/MilkyWay.glsl).
 glm::dvec2 milkyWayMapCoord(const glm::dvec3& icrsDirection);
 
+/// The unit vector of right ascension and declination in ICRS axes (a catalogue star's J2000
+/// place, a map texel's centre).
+glm::dvec3 icrsDirection(double raRad, double decRad);
+
 /// The unit ICRS direction at map coordinates (u, v): the inverse of milkyWayMapCoord.
 glm::dvec3 milkyWayDirection(const glm::dvec2& uv);
 
@@ -62,9 +66,8 @@ struct MilkyWayMap {
 /// in length.
 void removeStars(MilkyWayMap& map, const std::vector<glm::dvec3>& icrsDirections, const std::vector<double>& vMags);
 
-/// The luminance of a texel's colour in the frames' units: its channels weighted by
-/// 0.2126, 0.7152, 0.0722 times the Sun's colour (sunLinearSrgb: the frames' white balance
-/// undone).
+/// The luminance of a texel's colour in the frames' units: eclipse::luminance of the colour
+/// with the frames' white balance undone (times sunLinearSrgb).
 double frameLuminance(const glm::dvec3& rgb);
 
 /// The cap of angular radius `capRadiusRad` whose mean texel luminance (frameLuminance,

@@ -106,9 +106,10 @@ double radianceOfSurfaceBrightnessWm2Sr(double vMagPerArcsec2, double sunIrradia
   return sunIrradianceAt1AuWm2 * irradianceRelativeToSun(vMagPerArcsec2) * kArcsecPerRad * kArcsecPerRad;
 }
 
-double nightGlowAboveAirWm2Sr(double zenithOpticalDepth, double sunIrradianceAt1AuWm2) {
-  return radianceOfSurfaceBrightnessWm2Sr(kDarkSkyZenithVMagPerArcsec2, sunIrradianceAt1AuWm2) *
-         std::exp(zenithOpticalDepth);
+double nightGlowAboveAirWm2Sr(double zenithOpticalDepth, double sunIrradianceAt1AuWm2, double milkyWayMeanWm2Sr) {
+  return std::max(0.0, radianceOfSurfaceBrightnessWm2Sr(kDarkSkyZenithVMagPerArcsec2, sunIrradianceAt1AuWm2) *
+                               std::exp(zenithOpticalDepth) -
+                           milkyWayMeanWm2Sr);
 }
 
 }  // namespace umbra::sky

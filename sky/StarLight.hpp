@@ -75,7 +75,10 @@ double radianceOfSurfaceBrightnessWm2Sr(double vMagPerArcsec2, double sunIrradia
 
 /// The night sky's glow above an atmosphere of zenith optical depth `zenithOpticalDepth`
 /// (at 550 nm), in the frames' units: the dark site's kDarkSkyZenithVMagPerArcsec2 at the
-/// ground's zenith divided by the zenith transmittance exp(-tau).
-double nightGlowAboveAirWm2Sr(double zenithOpticalDepth, double sunIrradianceAt1AuWm2);
+/// ground's zenith divided by the zenith transmittance exp(-tau), less `milkyWayMeanWm2Sr`,
+/// the mean over the sky of a Milky Way drawn with it (its unresolved stars are then the
+/// map's; sky/MilkyWay.hpp), and at least 0.
+double nightGlowAboveAirWm2Sr(double zenithOpticalDepth, double sunIrradianceAt1AuWm2,
+                              double milkyWayMeanWm2Sr = 0.0);
 
 }  // namespace umbra::sky

@@ -163,8 +163,7 @@ std::shared_ptr<const MilkyWayTexels> milkyWayTexels(const std::string& path, co
     std::vector<double> vMags;
     for (const sky::CatalogueStar& star : *starCatalogue(cataloguePath)) {
       if (!(star.vMag <= removedToV)) continue;
-      places.push_back({std::cos(star.decRad) * std::cos(star.raRad), std::cos(star.decRad) * std::sin(star.raRad),
-                        std::sin(star.decRad)});
+      places.push_back(sky::icrsDirection(star.raRad, star.decRad));
       vMags.push_back(star.vMag);
     }
     sky::removeStars(map, places, vMags);

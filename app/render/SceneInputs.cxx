@@ -124,8 +124,7 @@ void nightLights(const scene::Scene& s, SceneInputs& in) {
   if (planet->preset == "Earth") {
     const double milkyWayMean =
         in.milkyWay ? in.milkyWay->sphereMeanRadiancePerSunIrradiance * in.sun.irradianceAt1AuWm2 : 0.0;
-    a.nightGlowWm2Sr =
-        std::max(0.0, sky::nightGlowAboveAirWm2Sr(a.zenithOpticalDepth550, in.sun.irradianceAt1AuWm2) - milkyWayMean);
+    a.nightGlowWm2Sr = sky::nightGlowAboveAirWm2Sr(a.zenithOpticalDepth550, in.sun.irradianceAt1AuWm2, milkyWayMean);
   }
   for (const scene::Body& b : s.bodies) {
     if (b.preset != "Moon" || b.name == a.body || elevationDeg(b.positionM) < -5.0) continue;

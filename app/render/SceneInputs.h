@@ -30,9 +30,8 @@ struct SceneAtmosphere {
   /// factor at its centre, in its colour); zero by day or without a Moon above -5 deg.
   glm::dvec3 moonPositionM{0.0}, moonIrradianceWm2{0.0};
   /// The night sky's glow above an Earth atmosphere (AtmosphereRendering::SetNightGlow;
-  /// sky::nightGlowAboveAirWm2Sr for zenithOpticalDepth550, less the Milky Way map's mean
-  /// over the sphere when it is drawn: the glow's unresolved stars are then partly the
-  /// map's); 0 for other bodies.
+  /// sky::nightGlowAboveAirWm2Sr for zenithOpticalDepth550 and the Milky Way map's mean
+  /// over the sphere when it is drawn); 0 for other bodies.
   double nightGlowWm2Sr = 0.0;
   /// The body's cloud layers as drawn (scene::Body::clouds): the noise fixed to the body (its rotation model, with a time; else the world's axes) and
   /// turned by the wind since the file's time; and the eclipse at the camera (the other

@@ -88,10 +88,11 @@ struct Batch {
   Table2D deltaE, nextE;   // E_{k-2} (from order 3 on) and E_{k-1}
   DensityDirections directions;
 
-  /// The rays of the multiple-scattering integrals: the single-scattering ones when their
-  /// sample counts agree.
+  /// Whether the multiple-scattering integrals take rays of their own (their sample count
+  /// differs from the single scattering's), and the rays they take.
+  bool ownMultipleScatteringRays() const { return o.multipleScatteringSamples != o.singleScatteringSamples; }
   const std::vector<RaySamples>& multipleScatteringRays() const {
-    return o.multipleScatteringSamples == o.singleScatteringSamples ? singleRays : multipleRays;
+    return ownMultipleScatteringRays() ? multipleRays : singleRays;
   }
   /// The irradiance table's texel (x, y): its radius and the Sun's cosine.
   void irradianceTexel(int x, int y, double& r, double& muS) const {

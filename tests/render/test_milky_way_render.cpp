@@ -32,10 +32,7 @@ namespace {
 
 constexpr double kDeg = kPi / 180.0;
 
-glm::dvec3 raDec(double raDeg, double decDeg) {
-  return {std::cos(decDeg * kDeg) * std::cos(raDeg * kDeg), std::cos(decDeg * kDeg) * std::sin(raDeg * kDeg),
-          std::sin(decDeg * kDeg)};
-}
+glm::dvec3 raDec(double raDeg, double decDeg) { return sky::icrsDirection(raDeg * kDeg, decDeg * kDeg); }
 
 // The texels a view samples, as sky's functions take them.
 sky::MilkyWayMap cpuMap(const MapTexels& t) {

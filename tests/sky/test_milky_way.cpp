@@ -15,10 +15,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846, kDeg = kPi / 180.0;
 
-glm::dvec3 raDec(double raDeg, double decDeg) {
-  return {std::cos(decDeg * kDeg) * std::cos(raDeg * kDeg), std::cos(decDeg * kDeg) * std::sin(raDeg * kDeg),
-          std::sin(decDeg * kDeg)};
-}
+glm::dvec3 raDec(double raDeg, double decDeg) { return icrsDirection(raDeg * kDeg, decDeg * kDeg); }
 
 MilkyWayMap uniformMap(int width, int height, float value) {
   MilkyWayMap m;
@@ -108,6 +105,15 @@ TEST(MilkyWay, BrightestCapAndCalibration) {
                 radianceOfSurfaceBrightnessWm2Sr(s10ToVMagPerArcsec2(kMilkyWayBrightestS10), 1361.0), 1e-18);
   }
   EXPECT_THROW(milkyWayRadianceScale(uniformMap(64, 32, 0.0f), 1361.0), std::invalid_argument);
+}
+
+// The night glow with a Milky Way drawn: less the map's mean over the sky, never below 0.
+TEST(MilkyWay, NightGlowLessTheMapsMean) {
+  const double glow = nightGlowAboveAirWm2Sr(0.125, 1361.0);
+  EXPECT_DOUBLE_EQ(nightGlowAboveAirWm2Sr(0.125, 1361.0, 0.01 * glow), 0.99 * glow);
+  EXPECT_EQ(nightGlowAboveAirWm2Sr(0.125, 1361.0, 2.0 * glow), 0.0);
+  // The glow is the dark site's zenith above the air: 22.0 V mag per square arcsecond times e^tau.
+  EXPECT_NEAR(glow, radianceOfSurfaceBrightnessWm2Sr(kDarkSkyZenithVMagPerArcsec2, 1361.0) * std::exp(0.125), 1e-20);
 }
 
 // The frames' luminance of white is 1 (the Sun's colour at unit luminance undone; its
