@@ -216,8 +216,10 @@ LogNormalSizes logNormalFromEffective(double effectiveRadiusM, double effectiveV
   return {effectiveRadiusM * std::exp(-2.5 * s2), std::exp(std::sqrt(s2)), numberDensityPerM3};
 }
 
-MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNormalSizes& sizes, int phaseSamples,
-                        int extraLevels, double bulkTolerance, double phaseTolerance) {
+namespace {
+
+void checkLogNormalArguments(double wavelengthM, const LogNormalSizes& sizes, int phaseSamples, int extraLevels,
+                             double bulkTolerance, double phaseTolerance) {
   if (!(wavelengthM > 0.0) || !std::isfinite(wavelengthM))
     throw std::invalid_argument("mieLogNormal: wavelength must be positive");
   if (!(sizes.medianRadiusM > 0.0) || !std::isfinite(sizes.medianRadiusM))
@@ -230,28 +232,29 @@ MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNor
   if (extraLevels < 0 || extraLevels > 8) throw std::invalid_argument("mieLogNormal: extraLevels must be in [0, 8]");
   if (!(bulkTolerance > 0.0 && bulkTolerance < 1.0) || !(phaseTolerance > 0.0 && phaseTolerance < 1.0))
     throw std::invalid_argument("mieLogNormal: tolerances must be in (0, 1)");
-  checkSphere(2.0 * kPi * sizes.medianRadiusM / wavelengthM, m);
+}
 
-  const double k = 2.0 * kPi / wavelengthM;
-  const double s = std::log(sizes.geometricStdDev);
-  const double xm = k * sizes.medianRadiusM;
-  const int P = phaseSamples;
+/// The integral over a log-normal size distribution, in u = ln(r/r_m)/s, of the cross
+/// sections per particle times the normal density phi(u): C_ext, C_sca, g C_sca and
+/// dC_sca/dOmega = (|S1|^2 + |S2|^2) / (2 k^2) at each angle, as one vector
+/// [ext, sca, gsca, diff_0 .. diff_{P-1}].
+struct SizeIntegral {
+  double k, s, xm;  // wavenumber, ln(sigma_g), size parameter at the median radius
+  cplx m;
+  const std::vector<double>& cosTheta;
+  int P, Q;
 
-  MieAerosol out;
-  out.cosTheta.resize(P);
-  for (int j = 0; j < P; ++j) out.cosTheta[j] = std::cos(kPi * (1.0 - double(j) / (P - 1)));
-  out.cosTheta.front() = -1.0;
-  out.cosTheta.back() = 1.0;
+  SizeIntegral(double wavelengthM, cplx index, const LogNormalSizes& sizes, const std::vector<double>& cosines)
+      : k(2.0 * kPi / wavelengthM), s(std::log(sizes.geometricStdDev)), xm(k * sizes.medianRadiusM), m(index),
+        cosTheta(cosines), P(static_cast<int>(cosines.size())), Q(3 + P) {}
 
-  // The integrand at u = ln(r/r_m)/s, per particle and times the normal density phi(u):
-  // C_ext, C_sca, g C_sca and dC_sca/dOmega = (|S1|^2 + |S2|^2) / (2 k^2) at each angle,
-  // stored as one vector [ext, sca, gsca, diff_0 .. diff_{P-1}].
-  const int Q = 3 + P;
-  auto sizeAt = [&](double u) { return xm * std::exp(s * u); };
-  auto integrand = [&](double u, double weight, double* acc, std::vector<cplx>& s1, std::vector<cplx>& s2) {
+  double sizeAt(double u) const { return xm * std::exp(s * u); }
+
+  /// Adds `weight` times the integrand at u to acc[0..Q).
+  void add(double u, double weight, double* acc, std::vector<cplx>& s1, std::vector<cplx>& s2) const {
     const double x = sizeAt(u);
     const double r = x / k;
-    const MieEfficiencies q = mieSphere(x, m, out.cosTheta, s1, s2);
+    const MieEfficiencies q = mieSphere(x, m, cosTheta, s1, s2);
     const double w = weight * std::exp(-0.5 * u * u) / std::sqrt(2.0 * kPi);
     const double area = kPi * r * r;
     acc[0] += w * area * q.qExt;
@@ -259,22 +262,14 @@ MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNor
     acc[2] += w * area * q.qSca * q.g;
     const double toCross = w / (2.0 * k * k);
     for (int j = 0; j < P; ++j) acc[3 + j] += toCross * (std::norm(s1[j]) + std::norm(s2[j]));
-  };
+  }
 
-  std::vector<double> total(Q, 0.0);
-  if (s == 0.0) {
-    // All particles have radius r_m.
-    std::vector<cplx> s1, s2;
-    integrand(0.0, std::sqrt(2.0 * kPi), total.data(), s1, s2);  // cancels phi(0)
-    out.sizeNodes = 1;
-    out.minSizeParameter = out.maxSizeParameter = xm;
-    out.converged = true;
-  } else {
-    // 1. The window, on a coarse grid (efficiencies only): from the centre of the
-    //    cross-section-weighted distribution (u = 2s) outwards until two nodes in a row add
-    //    < 1e-10 of the running total to both C_ext and C_sca, and at least to |u| = 4.
-    //    (A Rayleigh-like C_sca ~ r^6 peaks at u = 6s; the march follows it there.)
-    constexpr double kCoarseStep = 0.25, kWindowTolerance = 1e-10;
+  /// The window [uLo, uHi] of the integral, on a coarse grid (efficiencies only): from the
+  /// centre of the cross-section-weighted distribution (u = 2s) outwards until two nodes in
+  /// a row add < 1e-10 of the running total to both C_ext and C_sca, and at least to
+  /// |u| = 4. (A Rayleigh-like C_sca ~ r^6 peaks at u = 6s; the march follows it there.)
+  std::pair<double, double> window() const {
+    constexpr double kWindowTolerance = 1e-10;
     constexpr int kMaxCoarseSteps = 400;
     const double uc = 2.0 * s;
     auto coarse = [&](double u, double& ext, double& sca) {
@@ -308,46 +303,50 @@ MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNor
     }
     if (uHi < 4.0 && sizeAt(4.0) <= kMaxSizeParameter) uHi = 4.0;
     uLo = std::min(uLo, -4.0);
-    const double width = uHi - uLo;
+    return {uLo, uHi};
+  }
 
-    // 2. Trapezoidal rule, halving the step until a halving changes every quantity by
-    //    less than its tolerance (each level reuses the nodes of the one before). The first
-    //    step resolves, at the Nyquist limit, the interference oscillations cos(omega x) at
-    //    the centre of the window, omega = 2 + 4|m|. Changes are relative to each quantity,
-    //    except g C_sca, whose change is measured against C_sca (g may be ~0).
-    constexpr long kMaxIntervals = 16384;
-    const double omega = 2.0 + 4.0 * std::abs(m);
-    const double hStart = std::min(kCoarseStep, kPi / (omega * s * sizeAt(uc)));
-    long intervals = std::clamp(static_cast<long>(std::ceil(width / hStart)), 8L, kMaxIntervals);
-
-    // Sums f(u_i) over the given nodes, in fixed blocks summed in order, so that the
-    // result does not depend on the number of threads.
-    auto sumNodes = [&](long first, long count, long stride, double h) {
-      constexpr long kBlock = 16;
-      const long blocks = (count + kBlock - 1) / kBlock;
-      std::vector<double> partial(static_cast<std::size_t>(blocks) * Q, 0.0);
-      const long lastIndex = intervals;  // end points carry half weight
-      ParallelErrors errors;
+  /// The sum of the integrand over nodes first, first + stride, ... (count of them) of a
+  /// grid of `intervals` steps of h from uLo (its end points at half weight), in fixed
+  /// blocks summed in order, so that the result does not depend on the number of threads.
+  std::vector<double> sumNodes(double uLo, long intervals, long first, long count, long stride, double h) const {
+    constexpr long kBlock = 16;
+    const long blocks = (count + kBlock - 1) / kBlock;
+    std::vector<double> partial(static_cast<std::size_t>(blocks) * Q, 0.0);
+    ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
-      for (long blk = 0; blk < blocks; ++blk) errors.run([&] {
-        std::vector<cplx> s1, s2;
-        double* acc = partial.data() + blk * Q;
-        for (long c = blk * kBlock; c < std::min(count, (blk + 1) * kBlock); ++c) {
-          const long i = first + c * stride;
-          const double endWeight = (i == 0 || i == lastIndex) ? 0.5 : 1.0;
-          integrand(uLo + i * h, endWeight, acc, s1, s2);
-        }
-      });
-      errors.rethrow();
-      std::vector<double> sum(Q, 0.0);
-      for (long blk = 0; blk < blocks; ++blk)
-        for (int q = 0; q < Q; ++q) sum[q] += partial[blk * Q + q];
-      return sum;
-    };
+    for (long blk = 0; blk < blocks; ++blk) errors.run([&] {
+      std::vector<cplx> s1, s2;
+      double* acc = partial.data() + blk * Q;
+      for (long c = blk * kBlock; c < std::min(count, (blk + 1) * kBlock); ++c) {
+        const long i = first + c * stride;
+        const double endWeight = (i == 0 || i == intervals) ? 0.5 : 1.0;
+        add(uLo + i * h, endWeight, acc, s1, s2);
+      }
+    });
+    errors.rethrow();
+    std::vector<double> sum(Q, 0.0);
+    for (long blk = 0; blk < blocks; ++blk)
+      for (int q = 0; q < Q; ++q) sum[q] += partial[blk * Q + q];
+    return sum;
+  }
 
+  /// The trapezoidal rule over the window, halving the step until a halving changes every
+  /// quantity by less than its tolerance (each level reuses the nodes of the one before),
+  /// then `extraLevels` more. The first step resolves, at the Nyquist limit, the
+  /// interference oscillations cos(omega x) at the centre of the window, omega = 2 + 4|m|.
+  /// Changes are relative to each quantity, except g C_sca, whose change is measured
+  /// against C_sca (g may be ~0). Sets the quadrature's figures in `out`.
+  std::vector<double> integrate(int extraLevels, double bulkTolerance, double phaseTolerance, MieAerosol& out) const {
+    constexpr long kMaxIntervals = 16384;
+    const auto [uLo, uHi] = window();
+    const double width = uHi - uLo;
+    const double omega = 2.0 + 4.0 * std::abs(m);
+    const double hStart = std::min(kCoarseStep, kPi / (omega * s * sizeAt(2.0 * s)));
+    long intervals = std::clamp(static_cast<long>(std::ceil(width / hStart)), 8L, kMaxIntervals);
     double h = width / intervals;
-    std::vector<double> nodeSum = sumNodes(0, intervals + 1, 1, h);
-    std::vector<double> previous(Q);
+    std::vector<double> nodeSum = sumNodes(uLo, intervals, 0, intervals + 1, 1, h);
+    std::vector<double> total(Q), previous(Q);
     for (int q = 0; q < Q; ++q) total[q] = h * nodeSum[q];
     int levelsLeft = -1;  // extra halvings still to do after convergence (-1: not converged yet)
     double change = 1.0;
@@ -356,7 +355,7 @@ MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNor
       if (levelsLeft == 0) break;
       intervals *= 2;
       h = width / intervals;
-      const std::vector<double> added = sumNodes(1, intervals / 2, 2, h);  // the new midpoints
+      const std::vector<double> added = sumNodes(uLo, intervals, 1, intervals / 2, 2, h);  // the new midpoints
       previous = total;
       for (int q = 0; q < Q; ++q) {
         nodeSum[q] += added[q];
@@ -381,6 +380,36 @@ MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNor
     out.sizeNodes = static_cast<int>(intervals + 1);
     out.minSizeParameter = sizeAt(uLo);
     out.maxSizeParameter = sizeAt(uHi);
+    return total;
+  }
+
+  static constexpr double kCoarseStep = 0.25;
+};
+
+} // namespace
+
+MieAerosol mieLogNormal(double wavelengthM, std::complex<double> m, const LogNormalSizes& sizes, int phaseSamples,
+                        int extraLevels, double bulkTolerance, double phaseTolerance) {
+  checkLogNormalArguments(wavelengthM, sizes, phaseSamples, extraLevels, bulkTolerance, phaseTolerance);
+  checkSphere(2.0 * kPi * sizes.medianRadiusM / wavelengthM, m);
+  const int P = phaseSamples;
+  MieAerosol out;
+  out.cosTheta.resize(P);
+  for (int j = 0; j < P; ++j) out.cosTheta[j] = std::cos(kPi * (1.0 - double(j) / (P - 1)));
+  out.cosTheta.front() = -1.0;
+  out.cosTheta.back() = 1.0;
+
+  const SizeIntegral integral(wavelengthM, m, sizes, out.cosTheta);
+  std::vector<double> total(integral.Q, 0.0);
+  if (integral.s == 0.0) {
+    // All particles have radius r_m.
+    std::vector<cplx> s1, s2;
+    integral.add(0.0, std::sqrt(2.0 * kPi), total.data(), s1, s2);  // cancels phi(0)
+    out.sizeNodes = 1;
+    out.minSizeParameter = out.maxSizeParameter = integral.xm;
+    out.converged = true;
+  } else {
+    total = integral.integrate(extraLevels, bulkTolerance, phaseTolerance, out);
   }
 
   const double n = sizes.numberDensityPerM3;

@@ -114,7 +114,7 @@ struct MieAerosol {
 ///   the window like everything else, i.e. at the 1e-10 level of C_sca, not of their own.
 ///
 /// bulkTolerance and phaseTolerance (in (0, 1)) replace the 1e-8 and 1e-6 above: a table
-/// for rendering needs far less (atmosphere presets use 1e-4 and 1e-3, ~10 times fewer
+/// for rendering needs far less (atmosphere presets use 1e-4 and 1e-2, ~10 times fewer
 /// nodes for Martian dust).
 /// phaseSamples (>= 2) table entries at theta_j = pi (1 - j/(phaseSamples - 1)).
 /// sigma_g = 1 gives the single sphere of radius r_m. Throws std::invalid_argument for

@@ -90,13 +90,13 @@ struct FrameTimes {
 
 /// A view of a scene's inputs as `umbra render` draws it (tables through the cache, the
 /// night sky, the camera, the exposure), rendered once to warm up (shaders, textures).
-inline std::unique_ptr<render::BodyView> sceneView(const scene::Scene& s, const render::SceneInputs& in, int width,
+inline std::unique_ptr<render::BodyView> sceneView(const scene::Scene& s, const pipeline::SceneInputs& in, int width,
                                                    int height, vtkImageData* lut) {
   auto v = std::make_unique<render::BodyView>(width, height, true);
   v->SetBodies(in.sun, in.bodies, lut);
   vtkNew<vtkAtmosphereTablesSource> source;
-  render::applySceneAtmosphere(*v, in, source);
-  render::showSceneSky(*v, in);
+  pipeline::applySceneAtmosphere(*v, in, source);
+  pipeline::showSceneSky(*v, in);
   v->SetCamera(in.camera);
   v->SetExposureEV(s.exposureEv);
   v->Render();

@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
   if (!bench::startWindows(egl)) return 1;
 
   const scene::Scene s = scene::loadScene(scenePath);
-  const render::SceneInputs in = render::sceneInputs(s);
+  const pipeline::SceneInputs in = pipeline::sceneInputs(s);
   if (!in.atmosphere) {
     std::fprintf(stderr, "%s: no body asks for an atmosphere\n", scenePath.c_str());
     return 1;
@@ -60,9 +60,9 @@ int main(int argc, char** argv) {
     v.SetBodies(in.sun, in.bodies, lut);
     if (k > 0) {
       vtkNew<vtkAtmosphereTablesSource> source;
-      render::applySceneAtmosphere(v, in, source, k == 2,
-                                   tables == "small" ? render::AtmosphereTableSizes::Small
-                                                     : render::AtmosphereTableSizes::Default);
+      pipeline::applySceneAtmosphere(v, in, source, k == 2,
+                                   tables == "small" ? pipeline::AtmosphereTableSizes::Small
+                                                     : pipeline::AtmosphereTableSizes::Default);
     }
     v.SetCamera(in.camera);
     v.SetExposureEV(s.exposureEv);

@@ -46,8 +46,8 @@ int main(int argc, char** argv) {
   std::vector<int> layers;
   for (const std::string& name : names) {
     const scene::Scene s = scene::loadScene(bench::exampleScene(name + ".json"));
-    const render::SceneInputs cloudy = render::sceneInputs(s);
-    render::SceneInputs clear = cloudy;
+    const pipeline::SceneInputs cloudy = pipeline::sceneInputs(s);
+    pipeline::SceneInputs clear = cloudy;
     clear.atmosphere->clouds.clear();
     layers.push_back(static_cast<int>(cloudy.atmosphere->clouds.size()));
     views.push_back(bench::sceneView(s, cloudy, width, height, lut));
@@ -55,12 +55,12 @@ int main(int argc, char** argv) {
   }
   // Clouds and the Milky Way together, at night.
   const scene::Scene night = scene::loadScene(bench::exampleScene("milky-way-from-paranal.json"));
-  render::SceneInputs both = render::sceneInputs(night);
-  both.atmosphere->clouds = render::sceneInputs(scene::loadScene(bench::exampleScene("partly-cloudy-afternoon.json")))
+  pipeline::SceneInputs both = pipeline::sceneInputs(night);
+  both.atmosphere->clouds = pipeline::sceneInputs(scene::loadScene(bench::exampleScene("partly-cloudy-afternoon.json")))
                                 .atmosphere->clouds;
-  render::SceneInputs milkyWayOnly = render::sceneInputs(night);
+  pipeline::SceneInputs milkyWayOnly = pipeline::sceneInputs(night);
   milkyWayOnly.atmosphere->clouds.clear();
-  render::SceneInputs neither = milkyWayOnly;
+  pipeline::SceneInputs neither = milkyWayOnly;
   neither.milkyWay = nullptr;
   neither.milkyWayRadianceScale = 0.0;
   views.push_back(bench::sceneView(night, both, width, height, lut));

@@ -58,28 +58,28 @@ int main(int argc, char** argv) {
   const scene::Scene moonScene = scene::loadScene(bench::exampleScene("lunar-eclipse-2015-09-28-moon.json"));
   const scene::Scene earthScene =
       scene::loadScene(bench::exampleScene("earth-from-lunar-north-pole-2015-09-28.json"));
-  const render::SceneInputs moon = render::sceneInputs(moonScene);
-  const render::SceneInputs earth = render::sceneInputs(earthScene);
+  const pipeline::SceneInputs moon = pipeline::sceneInputs(moonScene);
+  const pipeline::SceneInputs earth = pipeline::sceneInputs(earthScene);
   const auto airless = filters::toImageData(eclipse::buildAirlessShadowLut({256, 256}));
 
   struct Config {
     const char* name;
-    const render::SceneInputs* in;
+    const pipeline::SceneInputs* in;
     double exposureEv;
     std::function<void(render::BodyView&)> setUp;
   };
   auto atmosphereShadow = [&](render::BodyView& v) {
     vtkNew<vtkEclipseShadowLutSource> s;
-    if (small) render::useSmallEclipseShadowTables(s);
-    render::applySceneAtmosphereShadow(v.GetShading(), moon, s);
+    if (small) pipeline::useSmallEclipseShadowTables(s);
+    pipeline::applySceneAtmosphereShadow(v.GetShading(), moon, s);
   };
   auto sky = [&](render::BodyView& v, bool refraction, double thresholdPx) {
     vtkNew<vtkAtmosphereTablesSource> t;
-    render::applySceneAtmosphere(v, earth, t, refraction,
-                                 small ? render::AtmosphereTableSizes::Small : render::AtmosphereTableSizes::Default);
+    pipeline::applySceneAtmosphere(v, earth, t, refraction,
+                                 small ? pipeline::AtmosphereTableSizes::Small : pipeline::AtmosphereTableSizes::Default);
     vtkNew<vtkLimbLuminanceSource> limb;
-    if (small) render::useSmallLimbLuminanceTables(limb);
-    render::applySceneLimbLuminance(v.GetAtmosphere(), earth, limb);
+    if (small) pipeline::useSmallLimbLuminanceTables(limb);
+    pipeline::applySceneLimbLuminance(v.GetAtmosphere(), earth, limb);
     v.GetAtmosphere().SetLimbRingThresholdPixels(thresholdPx);
   };
   const std::vector<Config> configs = {

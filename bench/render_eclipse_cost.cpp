@@ -4,7 +4,7 @@
 // and once without any occluder, interleaved, and prints the median frame times.
 // Needs an X display (xvfb-run -a) or --egl (EGL, no X); on llvmpipe the fragment work runs on the CPU.
 //
-//   xvfb-run -a build/bench/umbra-bench-render-eclipse [--frames 40] [--size 1920x1080]
+//   xvfb-run -a build/bench/umbra-bench-render-eclipse [--frames 40] [--width 1920 --height 1080]
 #include "BodyView.h"
 #include "RenderBenchSupport.hpp"
 #include "SceneInputs.h"
@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
   const std::string& scenePath = o.scenePath;
 
   const scene::Scene s = scene::loadScene(scenePath);
-  const render::SceneInputs in = render::sceneInputs(s);
+  const pipeline::SceneInputs in = pipeline::sceneInputs(s);
   const auto lut = filters::toImageData(eclipse::buildAirlessShadowLut({256, 256}));
   std::vector<render::SphereBody> moonOnly;
   for (const auto& b : in.bodies)

@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   const std::string& scenePath = o.scenePath;
 
   const scene::Scene s = scene::loadScene(scenePath);
-  const render::SceneInputs in = render::sceneInputs(s);
+  const pipeline::SceneInputs in = pipeline::sceneInputs(s);
   const auto lut = filters::toImageData(eclipse::buildAirlessShadowLut({256, 256}));
   std::vector<render::SphereBody> lambert = in.bodies, uniform = in.bodies, mapOnly = in.bodies;
   std::string map, normals;

@@ -82,11 +82,11 @@ int main(int argc, char** argv) {
               all->size(), textMs, copyMs, memoMs, placesMs);
 
   const auto lut = filters::toImageData(eclipse::buildAirlessShadowLut({64, 64}));
-  const render::SceneInputs starry = render::sceneInputs(orion);
-  render::SceneInputs starless = starry;
+  const pipeline::SceneInputs starry = pipeline::sceneInputs(orion);
+  pipeline::SceneInputs starless = starry;
   starless.stars.clear();
   const scene::Scene moonlit = scene::loadScene(bench::exampleScene("moonlit-night-2026-10-26.json"));
-  render::SceneInputs lit = render::sceneInputs(moonlit), unlit = lit;
+  pipeline::SceneInputs lit = pipeline::sceneInputs(moonlit), unlit = lit;
   unlit.atmosphere->moonIrradianceWm2 = glm::dvec3(0.0);
   std::vector<std::unique_ptr<render::BodyView>> views;
   views.push_back(bench::sceneView(orion, starry, width, height, lut));

@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
   const std::string& scenePath = o.scenePath;
 
   const scene::Scene s = scene::loadScene(scenePath);
-  const render::SceneInputs in = render::sceneInputs(s);
+  const pipeline::SceneInputs in = pipeline::sceneInputs(s);
   const auto lut = filters::toImageData(eclipse::buildAirlessShadowLut({64, 64}));
   render::BodyView withTerrain(width, height, true), without(width, height, true);
   std::vector<std::unique_ptr<render::TerrainRendering>> terrains;
@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
     v->SetBodies(in.sun, in.bodies, lut);
     v->SetCamera(in.camera);
     v->SetExposureEV(s.exposureEv);
-    if (v == &withTerrain) terrains = render::addSceneTerrains(*v, s, in, {});
+    if (v == &withTerrain) terrains = pipeline::addSceneTerrains(*v, s, in, {});
     v->Render();  // warm up: shader compilation, textures
   }
   bench::printRenderer(withTerrain);

@@ -57,7 +57,13 @@ if [ ! -e "$source_dir/examples/scenes" ]; then
 fi
 
 echo "== the rendering tests on EGL (CPU against GLSL) =="
-UMBRA_TEST_EGL=1 UMBRA_CACHE_DIR=$kit/test-cache "$bin/test_render" 2>&1 | tee "$out/glsl-tests.txt.part"
+{
+  UMBRA_TEST_EGL=1 UMBRA_CACHE_DIR=$kit/test-cache "$bin/test_render" 2>&1
+  render_status=$?
+  UMBRA_TEST_EGL=1 UMBRA_CACHE_DIR=$kit/test-cache "$bin/test_pipeline" 2>&1
+  pipeline_status=$?
+  [ "$render_status" = 0 ] && [ "$pipeline_status" = 0 ]
+} | tee "$out/glsl-tests.txt.part"
 tests_status=${PIPESTATUS[0]}
 mv "$out/glsl-tests.txt.part" "$out/glsl-tests.txt"
 

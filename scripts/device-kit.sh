@@ -14,8 +14,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 benches=(umbra-bench-render-eclipse-atmosphere umbra-bench-render-atmosphere)
-programs=("${benches[@]}" test_render)
-paths=("$build/bench/${benches[0]}" "$build/bench/${benches[1]}" "$build/tests/render/test_render")
+programs=("${benches[@]}" test_render test_pipeline)
+paths=("$build/bench/${benches[0]}" "$build/bench/${benches[1]}" "$build/tests/render/test_render"
+       "$build/tests/pipeline/test_pipeline")
 
 [ -f "$build/build.ninja" ] || { echo "device-kit: no Ninja build in $build (configure it first)" >&2; exit 1; }
 ninja -C "$build" "${programs[@]}"

@@ -124,12 +124,12 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
                   "below a Sun lower than 82 (the light scattered into the shadowed air: second-order twilight)");
   CLI::Option* directions = sky->add_option("--density-directions", o->densityDirections,
                   "Polar directions of the multiple-scattering density (times twice as many azimuths; 4-64). Default: 12, "
-                  "24 for a Sun below the horizon, or what a forward-peaked phase function asks for (Mars' dust: 48, "
-                  "~90 s; 12: 5 s, the dome 17 % too dark; docs/accuracy-vs-speed.md, \"Density directions\")");
+                  "24 for a Sun below the horizon, or what a forward-peaked phase function asks for (Mars' dust: 56; "
+                  "docs/accuracy-vs-speed.md, \"Density directions\")");
   sky->add_option("--observer-altitude", o->altitude, "Observer altitude above the ground (units m, km)")
       ->capture_default_str();
   sky->add_option("--zenith-step", o->zenithStep, "View zenith step in degrees (0 to 90)")->capture_default_str();
-  sky->add_option("--azimuth-step", o->azimuthStep, "Azimuth step in degrees (0 to 180)")->capture_default_str();
+  sky->add_option("--azimuth-step", o->azimuthStep, "Azimuth step in degrees (0 to 90)")->capture_default_str();
   sky->add_option("--orders", o->orders, "Scattering orders (1-10)")->capture_default_str();
   sky->add_option("--wavelengths", o->wavelengths, "Wavelengths: 3 (680, 550, 440 nm) or 4-47 uniform in 360-830 nm")
       ->capture_default_str();

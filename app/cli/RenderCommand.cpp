@@ -82,232 +82,271 @@ std::string formatMagnitude(double v) {
   return t;
 }
 
-} // namespace
+struct RenderOptions {
+  std::string scene, time, size, output, from, to, step;
+  std::optional<double> exposure;
+  std::optional<double> limitingMagnitude;
+  std::optional<double> glare;
+  bool nightVision = false, noNightVision = false;
+  std::string atmosphereTables = "default";
+  bool refraction = false;
+  double limbRingThresholdPx = 5.0;
+  bool egl = false;
+  CacheOptions cache;
+  bool animation() const { return !from.empty() || !to.empty() || !step.empty(); }
+  bool smallTables() const { return atmosphereTables == "small"; }
+};
 
-void addRenderCommand(CLI::App& app, Action& action) {
-  CLI::App* render = app.add_subcommand(
-      "render", "Render a scene offscreen: PNG (tone-mapped) or EXR (linear radiance, W m^-2 sr^-1). On the X "
-                "display when DISPLAY is set, else (or with --egl) through EGL");
-  struct Options {
-    std::string scene, time, size, output, from, to, step;
-    std::optional<double> exposure;
-    std::optional<double> limitingMagnitude;
-    std::optional<double> glare;
-    bool nightVision = false, noNightVision = false;
-    std::string atmosphereTables = "default";
-    bool refraction = false;
-    double limbRingThresholdPx = 5.0;
-    bool egl = false;
-    CacheOptions cache;
-  };
-  auto o = std::make_shared<Options>();
-  render->add_option("SCENE", o->scene, "Scene file (JSON, see docs/scene-format.md)")->required();
-  render->add_option("--time", o->time, "UTC time, ISO 8601 (default: the scene's)");
-  render->add_option("--size", o->size, "Image size WIDTHxHEIGHT (default: the scene's)");
-  render->add_option("--exposure", o->exposure, "Exposure in EV (default: the scene's)")->check(CLI::Range(-60.0, 60.0));
+void addRenderOptions(CLI::App* render, RenderOptions& o) {
+  render->add_option("SCENE", o.scene, "Scene file (JSON, see docs/scene-format.md)")->required();
+  render->add_option("--time", o.time, "UTC time, ISO 8601 (default: the scene's)");
+  render->add_option("--size", o.size, "Image size WIDTHxHEIGHT (default: the scene's)");
+  render->add_option("--exposure", o.exposure, "Exposure in EV (default: the scene's)")->check(CLI::Range(-60.0, 60.0));
   CLI::Option* nightOn = render->add_flag(
-      "--night-vision", o->nightVision,
+      "--night-vision", o.nightVision,
       "Show the PNG as the eye sees dim light: below about 5 cd/m^2 colour fades to the rods' grey, fully below 0.005 "
       "(CIE 191 mesopic adaptation at each pixel), with the glare of an eye (--glare 1 unless given). The default for "
       "a PNG of a night scene (the Sun below the camera's horizon); EXR output keeps the radiance");
-  render->add_flag("--no-night-vision", o->noNightVision,
+  render->add_flag("--no-night-vision", o.noNightVision,
                    "Show the PNG in the camera's colours, also at night (and no glare unless --glare is given)")
       ->excludes(nightOn);
-  render->add_option("--limiting-magnitude", o->limitingMagnitude,
+  render->add_option("--limiting-magnitude", o.limitingMagnitude,
                      "The faintest stars drawn, V magnitude (default: the scene's, 6.5; the catalogue ends at 9)")
       ->check(CLI::Range(-30.0, 30.0));
-  render->add_option("--glare", o->glare,
+  render->add_option("--glare", o.glare,
                      "Glare strength in [0, 10] (default 0: none; 1 with night vision): halos of 0.03, 0.15, 0.75 deg "
                      "around bright pixels holding 4, 2, 1 % of their light per unit, so a source's halo follows its "
                      "brightness (the Moon's with its phase and eclipse); the frame's total radiance is kept")
       ->check(CLI::Range(0.0, 10.0));
-  render->add_option("--output,-o", o->output,
+  render->add_option("--output,-o", o.output,
                      "Image to write: FILE.png or FILE.exr; for an animation a name with a frame number, "
                      "e.g. frames/frame-%04d.png")
       ->required();
-  render->add_option("--from", o->from, "Animation: UTC time of the first frame, ISO 8601");
-  render->add_option("--to", o->to, "Animation: UTC time of the last frame at most, ISO 8601");
-  render->add_option("--step", o->step, "Animation: time between frames, e.g. 30min (units s, min, h, d)");
-  render->add_option("--atmosphere-tables", o->atmosphereTables,
+  render->add_option("--from", o.from, "Animation: UTC time of the first frame, ISO 8601");
+  render->add_option("--to", o.to, "Animation: UTC time of the last frame at most, ISO 8601");
+  render->add_option("--step", o.step, "Animation: time between frames, e.g. 30min (units s, min, h, d)");
+  render->add_option("--atmosphere-tables", o.atmosphereTables,
                      "Atmosphere table sizes: default (vtkAtmosphereTablesSource's: 256x64, 32,128,32,8, 64x16, "
                      "4 orders) or small (64x16, 8,32,8,4, 16x4, 3 orders: quick looks and tests). From the ground in "
                      "twilight (the Sun from 1 deg down to night: Earth 30, Mars 35 deg) the scattering and irradiance "
                      "tables have 4 times the mu_s cells (default: 16,128,128,8 and 256x16) and reach 20 deg below the "
                      "Sun (docs/accuracy-vs-speed.md, \"Twilight in the render pass\")")
       ->capture_default_str();
-  render->add_flag("--refraction", o->refraction,
+  render->add_flag("--refraction", o.refraction,
                    "Bend the rays through the atmosphere (eclipse paper, 4.2): a lifted, flattened Sun at the "
                    "horizon; the tables then follow refracted paths");
-  render->add_option("--limb-ring-threshold", o->limbRingThresholdPx,
+  render->add_option("--limb-ring-threshold", o.limbRingThresholdPx,
                      "Draw an atmosphere's ring from the limb-luminance LuT when it is thinner than this on screen "
                      "(pixels; eclipse paper, 5.4); 0: always ray march")
       ->check(CLI::Range(0.0, 1.0e6))
       ->capture_default_str();
-  render->add_flag("--egl", o->egl,
+  render->add_flag("--egl", o.egl,
                    "Render through EGL even when DISPLAY is set (without it, EGL is used anyway): a GPU machine's "
                    "EGL device (the first that is not Mesa's software one; UMBRA_EGL_DEVICE=N picks another), else "
                    "Mesa's llvmpipe");
-  o->cache.addTo(render);
+  o.cache.addTo(render);
+}
 
-  render->callback([&action, o] {
-    action = [o] {
-      const bool animation = !o->from.empty() || !o->to.empty() || !o->step.empty();
-      if (animation && !o->time.empty()) throw CommandError("--time: not with --from/--to/--step");
-      const std::vector<Frame> frames =
-          animation ? animationFrames(o->from, o->to, o->step, o->output) : std::vector<Frame>{{{}, o->output}};
-      for (const Frame& f : frames) output::checkWritable(f.path, {".png", ".exr"});
-      scene::Scene s = scene::loadScene(o->scene);
-      for (const std::string& note : s.notes) std::cerr << "umbra: " << note << "\n";
-      if (!o->time.empty()) {
-        try {
-          scene::setTime(s, scene::parseUtc(o->time));
-        } catch (const std::invalid_argument& e) {
-          throw CommandError(std::string("--time: ") + e.what());
-        }
-      }
-      if (animation)
-        noteTimesBeyondEphemeris({frames.front().time, frames.back().time});
-      else if (s.hasTime)
-        noteTimesBeyondEphemeris({s.time});
-      if (!o->size.empty()) parseSize(o->size, s.width, s.height);
-      if (o->exposure) s.exposureEv = *o->exposure;
-      if (o->limitingMagnitude) {
-        if (!s.stars) throw CommandError("--limiting-magnitude: the scene draws no stars (it has no time, or \"stars\": false)");
-        s.stars->limitingMagnitude = *o->limitingMagnitude;
-      }
-      if (o->atmosphereTables != "default" && o->atmosphereTables != "small")
-        throw CommandError("--atmosphere-tables: expected default or small, got '" + o->atmosphereTables + "'");
-      if (o->egl) {
-        std::string error;
-        if (!render::useEglRenderWindows(error)) throw CommandError("--egl: " + error);
-      } else if (render::useEglWithoutDisplay()) {
-        std::cerr << "umbra: no X display: rendering through EGL\n";
-      }
+/// The scene file with the options' changes (time, size, exposure, stars), its notes
+/// printed; the EGL choice made.
+scene::Scene renderedScene(const RenderOptions& o, const std::vector<Frame>& frames) {
+  scene::Scene s = scene::loadScene(o.scene);
+  for (const std::string& note : s.notes) std::cerr << "umbra: " << note << "\n";
+  if (!o.time.empty()) {
+    try {
+      scene::setTime(s, scene::parseUtc(o.time));
+    } catch (const std::invalid_argument& e) {
+      throw CommandError(std::string("--time: ") + e.what());
+    }
+  }
+  if (o.animation())
+    noteTimesBeyondEphemeris({frames.front().time, frames.back().time});
+  else if (s.hasTime)
+    noteTimesBeyondEphemeris({s.time});
+  if (!o.size.empty()) parseSize(o.size, s.width, s.height);
+  if (o.exposure) s.exposureEv = *o.exposure;
+  if (o.limitingMagnitude) {
+    if (!s.stars) throw CommandError("--limiting-magnitude: the scene draws no stars (it has no time, or \"stars\": false)");
+    s.stars->limitingMagnitude = *o.limitingMagnitude;
+  }
+  if (o.atmosphereTables != "default" && o.atmosphereTables != "small")
+    throw CommandError("--atmosphere-tables: expected default or small, got '" + o.atmosphereTables + "'");
+  if (o.egl) {
+    std::string error;
+    if (!render::useEglRenderWindows(error)) throw CommandError("--egl: " + error);
+  } else if (render::useEglWithoutDisplay()) {
+    std::cerr << "umbra: no X display: rendering through EGL\n";
+  }
+  return s;
+}
 
-      vtkSmartPointer<vtkEclipseShadowLutSource> lut;  // the airless LuT, per frame when its ranges change
-      std::optional<eclipse::LutRange> lutRange;
-      render::BodyView view(s.width, s.height, /*offscreen=*/true);
-      vtkNew<vtkAtmosphereTablesSource> tables;
-      tables->SetCacheDirectory(o->cache.directory.c_str());
-      tables->SetUseCache(!o->cache.disabled);
-      const auto tableSizes =
-          o->atmosphereTables == "small" ? render::AtmosphereTableSizes::Small : render::AtmosphereTableSizes::Default;
-      vtkNew<vtkEclipseShadowLutSource> shadow;
-      shadow->SetCacheDirectory(o->cache.directory.c_str());
-      shadow->SetUseCache(!o->cache.disabled);
-      if (o->atmosphereTables == "small") render::useSmallEclipseShadowTables(shadow);
-      vtkNew<vtkLimbLuminanceSource> limb;
-      limb->SetCacheDirectory(o->cache.directory.c_str());
-      limb->SetUseCache(!o->cache.disabled);
-      if (o->atmosphereTables == "small") render::useSmallLimbLuminanceTables(limb);
-      view.GetAtmosphere().SetLimbRingThresholdPixels(o->limbRingThresholdPx);
-      // Tables made on demand (none from the cache) can take minutes: their progress.
-      const ProgressLine tablesProgress("atmosphere tables", tables);
-      const ProgressLine shadowProgress("atmospheric shadow LuT", shadow);
-      const ProgressLine limbProgress("limb-luminance LuT", limb);
-      std::vector<std::unique_ptr<render::TerrainRendering>> terrains;  // (drawn by the view)
-      std::optional<ProgressLine> progress;
-      std::size_t starCount = 0;
-      bool nightNoted = false;  // the note on night vision, at its first frame
-      if (animation) progress.emplace("frames (" + std::to_string(frames.size()) + ")");
-      for (std::size_t k = 0; k < frames.size(); ++k) {
-        const Frame& f = frames[k];
-        if (animation) {
-          try {
-            scene::setTime(s, f.time);
-          } catch (const scene::SceneError& e) {
-            throw CommandError("--from/--to: at " + scene::formatUtc(f.time) + ": " + e.what());
-          }
-        }
-        const render::SceneInputs in = render::sceneInputs(s);
-        starCount = in.stars.size();
-        // Near an occluder (Phobos by Mars) a whole LuT is too coarse: one over the
-        // receivers' u and v ranges (render::sceneLutRange), as the atmospheric one's.
-        const auto range = render::sceneLutRange(in.sun, in.bodies, in.bodies, /*darkUmbra=*/true, s.shadowLutSize);
-        if (!lut || range != lutRange) {
-          lut = updateShadowLut(s.shadowLutSize, eclipse::kDefaultLimbDarkening, o->cache, nullptr, nullptr,
-                                range ? &*range : nullptr, range ? render::rangedLutWidth(*range, s.shadowLutSize) : 0);
-          lutRange = range;
-        }
-        view.SetBodies(in.sun, in.bodies, lut->GetOutput());
-        render::showSceneSky(view, in);
-        if (in.atmosphere) {
-          try {
-            render::applySceneAtmosphere(view, in, tables, o->refraction, tableSizes);
-            // The other bodies in its shadow: the atmospheric shadow LuT (their columns only);
-            // its ring, when thin on screen: the limb-luminance LuT (eclipse paper, 5.4).
-            render::applySceneAtmosphereShadow(view.GetShading(), in, shadow);
-            render::applySceneLimbLuminance(view.GetAtmosphere(), in, limb);  // (none at threshold 0)
-          } catch (const std::runtime_error& e) {
-            throw CommandError(e.what());
-          }
-          if (k == 0 && tables->GetLastCacheHits() > 0) std::cerr << "atmosphere tables: cache hit\n";
-        }
-        view.SetCamera(in.camera);
-        try {
-          // The patches (mesh, mipmap, textures; a DEM read once) are built for the first
-          // frame; later frames only move them with their bodies and the Sun.
-          if (k == 0)
-            terrains = render::addSceneTerrains(view, s, in, [](const std::string& path, double spacingM, double radiusM) {
-              return readDem(path, spacingM, radiusM).field;
-            });
-          else
-            render::placeSceneTerrains(terrains, view, s, in);
-        } catch (const std::invalid_argument& e) {
-          throw CommandError(o->scene + ": " + e.what());
-        }
-        view.SetExposureEV(s.exposureEv);
-        // Night vision: asked for, or a PNG of a night scene unless refused; it brings the
-        // eye's glare unless a strength is given. An EXR keeps the radiance.
-        const bool png = output::extensionOf(f.path) != ".exr";
-        const bool nightVision = png && (o->nightVision || (!o->noNightVision && scene::nightAtCamera(s)));
-        const double glare = o->glare ? *o->glare : nightVision ? 1.0 : 0.0;
-        if (nightVision && !o->nightVision && !nightNoted) {
-          std::cerr << "umbra: night vision on, glare " << glare << " (" << scene::describeSunElevation(*scene::sunElevationDeg(s))
-                    << "): the eye's view; --no-night-vision for the camera's colours\n";
-          nightNoted = true;
-        }
-        view.GetRenderPass()->SetNightVision(nightVision);
-        view.GetRenderPass()->SetGlareStrength(glare);
-        view.Render();
-        if (k == 0 && render::usingEglRenderWindows())
-          std::cerr << "umbra: EGL: " << render::glRendererString(view.GetRenderWindow()) << "\n";  // GPU or llvmpipe
+/// The view of the frames and its table sources (each from the cache, with its progress
+/// line), kept from frame to frame: a table is made again only when a frame needs another.
+class FrameRenderer {
+public:
+  FrameRenderer(const RenderOptions& o, const scene::Scene& s) : o(o), view(s.width, s.height, /*offscreen=*/true) {
+    tables->SetCacheDirectory(o.cache.directory.c_str());
+    tables->SetUseCache(!o.cache.disabled);
+    shadow->SetCacheDirectory(o.cache.directory.c_str());
+    shadow->SetUseCache(!o.cache.disabled);
+    limb->SetCacheDirectory(o.cache.directory.c_str());
+    limb->SetUseCache(!o.cache.disabled);
+    if (o.smallTables()) {
+      pipeline::useSmallEclipseShadowTables(shadow);
+      pipeline::useSmallLimbLuminanceTables(limb);
+    }
+    view.GetAtmosphere().SetLimbRingThresholdPixels(o.limbRingThresholdPx);
+  }
 
-        if (output::extensionOf(f.path) == ".exr") {
-          tables::Table t;
-          t.channels = {"R", "G", "B"};
-          view.ReadHdr(t.data, t.width, t.height);
-          t.parameters = {{"kind", "radiance-image"},
-                          {"units", "W m^-2 sr^-1 (linear, per channel)"},
-                          {"scene", o->scene},
-                          {"time", scene::formatUtc(s.time)},
-                          {"exposureEV", std::to_string(s.exposureEv)},
-                          {"glare", std::to_string(glare)}};
-          tables::writeExr(f.path, t);
-        } else {
-          view.WritePng(f.path);
-        }
-        if (progress) {
-          progress->update(static_cast<double>(k + 1) / frames.size());
-        } else {
-          const std::optional<double> sunDeg = scene::sunElevationDeg(s);
-          std::cout << "wrote " << f.path << " (" << s.width << "x" << s.height << ", " << s.name
-                    << (s.hasTime ? ", " + scene::formatUtc(s.time) : std::string())
-                    << (sunDeg ? ", " + scene::describeSunElevation(*sunDeg) : std::string())
-                    << (s.stars ? ", " + std::to_string(starCount) + " stars to V " + formatMagnitude(s.stars->limitingMagnitude)
-                                : std::string())
-                    << ")\n";
-        }
+  /// Sets the view up for `s` at its present time (frame k): the bodies with the airless
+  /// LuT, the sky, the atmosphere with its tables and eclipse LuTs, the camera, the terrains.
+  void show(const scene::Scene& s, std::size_t k) {
+    const pipeline::SceneInputs in = pipeline::sceneInputs(s);
+    starCount = in.stars.size();
+    // Near an occluder (Phobos by Mars) a whole LuT is too coarse: one over the
+    // receivers' u and v ranges (pipeline::sceneLutRange), as the atmospheric one's.
+    const auto range = pipeline::sceneLutRange(in.sun, in.bodies, in.bodies, /*darkUmbra=*/true, s.shadowLutSize);
+    if (!lut || range != lutRange) {
+      lut = updateShadowLut(s.shadowLutSize, eclipse::kDefaultLimbDarkening, o.cache, nullptr, nullptr,
+                            range ? &*range : nullptr, range ? pipeline::rangedLutWidth(*range, s.shadowLutSize) : 0);
+      lutRange = range;
+    }
+    view.SetBodies(in.sun, in.bodies, lut->GetOutput());
+    pipeline::showSceneSky(view, in);
+    if (in.atmosphere) {
+      try {
+        pipeline::applySceneAtmosphere(view, in, tables, o.refraction,
+                                       o.smallTables() ? pipeline::AtmosphereTableSizes::Small
+                                                       : pipeline::AtmosphereTableSizes::Default);
+        // The other bodies in its shadow: the atmospheric shadow LuT (their columns only);
+        // its ring, when thin on screen: the limb-luminance LuT (eclipse paper, 5.4).
+        pipeline::applySceneAtmosphereShadow(view.GetShading(), in, shadow);
+        pipeline::applySceneLimbLuminance(view.GetAtmosphere(), in, limb);  // (none at threshold 0)
+      } catch (const std::runtime_error& e) {
+        throw CommandError(e.what());
       }
-      if (progress) {
-        progress.reset();  // clears the progress line
-        std::cout << "wrote " << frames.size() << " frames " << frames.front().path << " .. " << frames.back().path
-                  << " (" << s.width << "x" << s.height << ", " << s.name << ", " << o->from << " .. "
-                  << scene::formatUtc(frames.back().time) << " every " << o->step << ")\n";
+      if (k == 0 && tables->GetLastCacheHits() > 0) std::cerr << "atmosphere tables: cache hit\n";
+    }
+    view.SetCamera(in.camera);
+    try {
+      // The patches (mesh, mipmap, textures; a DEM read once) are built for the first
+      // frame; later frames only move them with their bodies and the Sun.
+      if (k == 0)
+        terrains = pipeline::addSceneTerrains(view, s, in, [](const std::string& path, double spacingM, double radiusM) {
+          return readDem(path, spacingM, radiusM).field;
+        });
+      else
+        pipeline::placeSceneTerrains(terrains, view, s, in);
+    } catch (const std::invalid_argument& e) {
+      throw CommandError(o.scene + ": " + e.what());
+    }
+    view.SetExposureEV(s.exposureEv);
+  }
+
+  /// Renders the frame with night vision and glare as asked for (night vision: asked for,
+  /// or a PNG of a night scene unless refused; it brings the eye's glare unless a strength
+  /// is given; an EXR keeps the radiance) and writes it to `path`.
+  void renderTo(const scene::Scene& s, std::size_t k, const std::string& path) {
+    const bool png = output::extensionOf(path) != ".exr";
+    const bool nightVision = png && (o.nightVision || (!o.noNightVision && scene::nightAtCamera(s)));
+    const double glare = o.glare ? *o.glare : nightVision ? 1.0 : 0.0;
+    if (nightVision && !o.nightVision && !nightNoted) {
+      std::cerr << "umbra: night vision on, glare " << glare << " (" << scene::describeSunElevation(*scene::sunElevationDeg(s))
+                << "): the eye's view; --no-night-vision for the camera's colours\n";
+      nightNoted = true;
+    }
+    view.GetRenderPass()->SetNightVision(nightVision);
+    view.GetRenderPass()->SetGlareStrength(glare);
+    view.Render();
+    if (k == 0 && render::usingEglRenderWindows())
+      std::cerr << "umbra: EGL: " << render::glRendererString(view.GetRenderWindow()) << "\n";  // GPU or llvmpipe
+    if (png) {
+      view.WritePng(path);
+      return;
+    }
+    tables::Table t;
+    t.channels = {"R", "G", "B"};
+    view.ReadHdr(t.data, t.width, t.height);
+    t.parameters = {{"kind", "radiance-image"},
+                    {"units", "W m^-2 sr^-1 (linear, per channel)"},
+                    {"scene", o.scene},
+                    {"time", scene::formatUtc(s.time)},
+                    {"exposureEV", std::to_string(s.exposureEv)},
+                    {"glare", std::to_string(glare)}};
+    tables::writeExr(path, t);
+  }
+
+  std::size_t stars() const { return starCount; }
+
+private:
+  const RenderOptions& o;
+  render::BodyView view;
+  vtkNew<vtkAtmosphereTablesSource> tables;
+  vtkNew<vtkEclipseShadowLutSource> shadow;
+  vtkNew<vtkLimbLuminanceSource> limb;
+  // Tables made on demand (none from the cache) can take minutes: their progress.
+  const ProgressLine tablesProgress{"atmosphere tables", tables};
+  const ProgressLine shadowProgress{"atmospheric shadow LuT", shadow};
+  const ProgressLine limbProgress{"limb-luminance LuT", limb};
+  vtkSmartPointer<vtkEclipseShadowLutSource> lut;  // the airless LuT, per frame when its ranges change
+  std::optional<eclipse::LutRange> lutRange;
+  std::vector<std::unique_ptr<render::TerrainRendering>> terrains;  // (drawn by the view)
+  std::size_t starCount = 0;
+  bool nightNoted = false;  // the note on night vision, at its first frame
+};
+
+int runRender(const RenderOptions& o) {
+  const bool animation = o.animation();
+  if (animation && !o.time.empty()) throw CommandError("--time: not with --from/--to/--step");
+  const std::vector<Frame> frames =
+      animation ? animationFrames(o.from, o.to, o.step, o.output) : std::vector<Frame>{{{}, o.output}};
+  for (const Frame& f : frames) output::checkWritable(f.path, {".png", ".exr"});
+  scene::Scene s = renderedScene(o, frames);
+  FrameRenderer renderer(o, s);
+  std::optional<ProgressLine> progress;
+  if (animation) progress.emplace("frames (" + std::to_string(frames.size()) + ")");
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const Frame& f = frames[k];
+    if (animation) {
+      try {
+        scene::setTime(s, f.time);
+      } catch (const scene::SceneError& e) {
+        throw CommandError("--from/--to: at " + scene::formatUtc(f.time) + ": " + e.what());
       }
-      return 0;
-    };
-  });
+    }
+    renderer.show(s, k);
+    renderer.renderTo(s, k, f.path);
+    if (progress) {
+      progress->update(static_cast<double>(k + 1) / frames.size());
+    } else {
+      const std::optional<double> sunDeg = scene::sunElevationDeg(s);
+      std::cout << "wrote " << f.path << " (" << s.width << "x" << s.height << ", " << s.name
+                << (s.hasTime ? ", " + scene::formatUtc(s.time) : std::string())
+                << (sunDeg ? ", " + scene::describeSunElevation(*sunDeg) : std::string())
+                << (s.stars ? ", " + std::to_string(renderer.stars()) + " stars to V " +
+                                  formatMagnitude(s.stars->limitingMagnitude)
+                            : std::string())
+                << ")\n";
+    }
+  }
+  if (progress) {
+    progress.reset();  // clears the progress line
+    std::cout << "wrote " << frames.size() << " frames " << frames.front().path << " .. " << frames.back().path << " ("
+              << s.width << "x" << s.height << ", " << s.name << ", " << o.from << " .. "
+              << scene::formatUtc(frames.back().time) << " every " << o.step << ")\n";
+  }
+  return 0;
+}
+
+} // namespace
+
+void addRenderCommand(CLI::App& app, Action& action) {
+  CLI::App* render = app.add_subcommand(
+      "render", "Render a scene offscreen: PNG (tone-mapped) or EXR (linear radiance, W m^-2 sr^-1). On the X "
+                "display when DISPLAY is set, else (or with --egl) through EGL");
+  auto o = std::make_shared<RenderOptions>();
+  addRenderOptions(render, *o);
+  render->callback([&action, o] { action = [o] { return runRender(*o); }; });
 }
 
 } // namespace umbra::cli

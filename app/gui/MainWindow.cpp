@@ -6,8 +6,6 @@
 #include "SceneInputs.h"
 #include "SceneView.hpp"
 #include "AtmosphereShadow.h"
-#include "vtkEclipseShadowLutSource.h"
-#include "vtkLimbLuminanceSource.h"
 #include "scene/Moon.hpp"
 #include "scene/Time.hpp"
 #include "vtkAtmosphereTablesSource.h"
@@ -23,7 +21,6 @@
 #include <QComboBox>
 #include <QDir>
 #include <QDockWidget>
-#include <QMetaObject>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QDoubleSpinBox>
@@ -43,15 +40,10 @@
 #include <QStatusBar>
 #include <QVBoxLayout>
 #include <QVTKOpenGLNativeWidget.h>
-#include <vtkCallbackCommand.h>
-#include <vtkNew.h>
 #include <vtkSmartPointer.h>
 
 #include <algorithm>
-#include <atomic>
-#include <functional>
 #include <vector>
-#include <thread>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -76,69 +68,20 @@ void checkAtmosphere(const std::string& model) {
 
 } // namespace
 
-/// Tables being made in a worker thread: the atmosphere's (`source`, for the view's sky),
-/// or the eclipse LuTs of its body, one after the other: the atmospheric shadow LuT
-/// (`shadow`, for `request`: the other bodies' shading and the profile) and the
-/// limb-luminance LuT (`limb`, for `limbRequest`: the thin ring). The algorithms are only
-/// touched by the worker until it has finished (then by the GUI thread), except
-/// SetAbortExecute. The worker's progress callbacks set
-/// AbortExecute again from `cancelled`: VTK clears it when an execution starts, so a
-/// cancel that comes before that is not lost. Each observed algorithm's progress is
-/// mapped to its part [from, to] of the bar.
-struct MainWindow::AtmosphereJob {
-  vtkSmartPointer<vtkAtmosphereTablesSource> source;
-  render::AtmosphereTableChoice choice;  // the scene's, that `source` is configured for
-  vtkSmartPointer<vtkEclipseShadowLutSource> shadow;
-  std::optional<render::AtmosphereShadowRequest> request;
-  vtkSmartPointer<vtkLimbLuminanceSource> limb;
-  std::optional<render::LimbLuminanceRequest> limbRequest;
-  // Set by the worker: each LuT's error, and whether it was made.
-  std::string error, limbError;
-  bool shadowMade = false, limbMade = false;
-  struct Stage {
-    AtmosphereJob* job;
-    double from, to;
-    vtkSmartPointer<vtkAlgorithm> algorithm;
-    vtkNew<vtkCallbackCommand> onProgress;
-  };
-  std::vector<std::unique_ptr<Stage>> stages;
-  std::thread thread;
-  std::atomic<bool> cancelled{false};
-  std::atomic<int> shownPercent{0};
-  QProgressBar* bar = nullptr;
-
-  void observe(vtkAlgorithm* algorithm, double from, double to) {
-    if (!algorithm) return;
-    auto stage = std::make_unique<Stage>();
-    stage->job = this, stage->from = from, stage->to = to, stage->algorithm = algorithm;
-    stage->onProgress->SetClientData(stage.get());
-    stage->onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* data) {
-      const auto* st = static_cast<const Stage*>(client);
-      if (st->job->cancelled) static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
-      QProgressBar* progress = st->job->bar;
-      const double f = std::clamp(*static_cast<double*>(data), 0.0, 1.0);
-      // Never back within a job (a VTK pipeline restarts a source's progress at 0 after its
-      // input's tables, which were already its first half).
-      const int percent = std::max(static_cast<int>(100.0 * (st->from + (st->to - st->from) * f)),
-                                   st->job->shownPercent.load());
-      st->job->shownPercent = percent;
-      QMetaObject::invokeMethod(progress, [progress, percent] { progress->setValue(percent); }, Qt::QueuedConnection);
-    });
-    algorithm->AddObserver(vtkCommand::ProgressEvent, stage->onProgress);
-    this->stages.push_back(std::move(stage));
-  }
-  void cancel() {
-    this->cancelled = true;
-    for (const auto& st : this->stages) st->algorithm->SetAbortExecute(1);
-  }
-  void stopObserving() {
-    for (const auto& st : this->stages) st->algorithm->RemoveObserver(st->onProgress);
-  }
-};
-
 MainWindow::MainWindow() {
   this->setWindowTitle("umbra-gui");
+  this->buildMenu();
+  QSplitter* views = this->buildViews();
+  this->buildViewControls();
+  this->buildAtmosphereControls();
+  this->layOut(views);
+  this->statusLabel = new QLabel("Open a scene (File > Open scene...)");
+  this->statusBar()->addWidget(this->statusLabel, 1);
+  this->view->setOnFrame([this] { this->showGpuTimes(); });
+  this->resize(1200, 720);
+}
 
+void MainWindow::buildMenu() {
   // File menu
   QMenu* file = this->menuBar()->addMenu("&File");
   QAction* open = file->addAction("&Open scene...");
@@ -156,8 +99,10 @@ MainWindow::MainWindow() {
   QAction* quit = file->addAction("&Quit");
   quit->setShortcut(QKeySequence::Quit);
   connect(quit, &QAction::triggered, this, [this] { this->close(); });
+}
 
-  // The two views side by side
+// The two views side by side.
+QSplitter* MainWindow::buildViews() {
   auto* splitter = new QSplitter(Qt::Horizontal);
   this->viewWidget = new QVTKOpenGLNativeWidget;
   this->viewWidget->setMinimumSize(200, 200);
@@ -170,7 +115,10 @@ MainWindow::MainWindow() {
   splitter->setChildrenCollapsible(false);
   this->view = std::make_unique<SceneView>(this->viewWidget);
   this->plot = std::make_unique<ProfilePanel>(this->plotWidget);
+  return splitter;
+}
 
+void MainWindow::buildViewControls() {
   // Time and exposure
   this->slider = new QSlider(Qt::Horizontal);
   this->slider->setRange(-kSliderHalfRangeMin, kSliderHalfRangeMin);
@@ -216,7 +164,10 @@ MainWindow::MainWindow() {
   this->nightVisionBox->setToolTip("Show the view as the eye sees dim light: below about 5 cd/m^2 colour fades to the "
                                    "rods' grey, fully below 0.005 (CIE 191 mesopic adaptation at each pixel)");
   connect(this->nightVisionBox, &QCheckBox::toggled, this, [this](bool on) { this->setNightVision(on); });
+}
 
+// The atmosphere's choice, its tables' progress and Cancel, its editor, refraction.
+void MainWindow::buildAtmosphereControls() {
   this->atmosphereChoice = new QComboBox;
   this->atmosphereChoice->addItem("none", QString());
   for (const std::string& name : atmosphere::presetNames()) this->atmosphereChoice->addItem(qs(name), qs(name));
@@ -235,6 +186,8 @@ MainWindow::MainWindow() {
   this->atmosphereProgress->setVisible(false);
   this->atmosphereCancel = new QPushButton("Cancel");
   this->atmosphereCancel->setVisible(false);
+  this->jobs = std::make_unique<TableJobs>([this](int percent) { this->atmosphereProgress->setValue(percent); },
+                                           [this](TableJobs::Result& done) { this->tablesMade(done); });
   connect(this->atmosphereCancel, &QPushButton::clicked, this, [this] { this->cancelAtmosphereTables(); });
 
   // The atmosphere editor, in a dock (hidden until "Edit..."), with its Load/Save buttons.
@@ -265,7 +218,9 @@ MainWindow::MainWindow() {
   this->refractionBox->setToolTip("Bend the rays through the atmosphere: a lifted, flattened Sun at the horizon "
                                   "(the tables are made again with refracted paths)");
   connect(this->refractionBox, &QCheckBox::toggled, this, [this](bool on) { this->setRefraction(on); });
+}
 
+void MainWindow::layOut(QSplitter* views) {
   // Two rows: the time slider (as wide as the window), then exposure, glare and the
   // atmosphere's controls.
   auto* timeRow = new QHBoxLayout;
@@ -297,28 +252,25 @@ MainWindow::MainWindow() {
 
   auto* central = new QWidget;
   auto* layout = new QVBoxLayout(central);
-  layout->addWidget(splitter, 1);
+  layout->addWidget(views, 1);
   layout->addLayout(timeRow);
   layout->addLayout(controls);
   this->setCentralWidget(central);
+}
 
-  this->statusLabel = new QLabel("Open a scene (File > Open scene...)");
-  this->statusBar()->addWidget(this->statusLabel, 1);
-  this->view->setOnFrame([this] {
-    const auto t = this->view->lastStageTimes();
-    if (!t) return;
-    // 3 digits; a stage that drew nothing (two timestamps in a row) shows 0.
-    auto ms = [](double v) { return v < 1e-3 ? QString("0") : QString::number(v, 'g', 3); };
-    const double total = t->receiversMs + t->starsMs + t->atmosphereMs + t->glareMs + t->toneMapMs;
-    this->gpuLabel->setText(QString("GPU %1 ms: bodies %2, atmosphere %3, glare %4")
-                                .arg(ms(total), ms(t->receiversMs), ms(t->atmosphereMs), ms(t->glareMs)));
-    this->gpuLabel->setToolTip(QString("GPU time of the 3D view's last frame (GL timestamp queries): %1 ms in all; the "
-                                       "bodies with their eclipse shading %2 ms, the stars %6 ms, the atmosphere %3 ms, "
-                                       "the glare %4 ms, the tone map %5 ms")
-                                   .arg(ms(total), ms(t->receiversMs), ms(t->atmosphereMs), ms(t->glareMs),
-                                        ms(t->toneMapMs), ms(t->starsMs)));
-  });
-  this->resize(1200, 720);
+void MainWindow::showGpuTimes() {
+  const auto t = this->view->lastStageTimes();
+  if (!t) return;
+  // 3 digits; a stage that drew nothing (two timestamps in a row) shows 0.
+  auto ms = [](double v) { return v < 1e-3 ? QString("0") : QString::number(v, 'g', 3); };
+  const double total = t->receiversMs + t->starsMs + t->atmosphereMs + t->glareMs + t->toneMapMs;
+  this->gpuLabel->setText(QString("GPU %1 ms: bodies %2, atmosphere %3, glare %4")
+                              .arg(ms(total), ms(t->receiversMs), ms(t->atmosphereMs), ms(t->glareMs)));
+  this->gpuLabel->setToolTip(QString("GPU time of the 3D view's last frame (GL timestamp queries): %1 ms in all; the "
+                                     "bodies with their eclipse shading %2 ms, the stars %6 ms, the atmosphere %3 ms, "
+                                     "the glare %4 ms, the tone map %5 ms")
+                                 .arg(ms(total), ms(t->receiversMs), ms(t->atmosphereMs), ms(t->glareMs),
+                                      ms(t->toneMapMs), ms(t->starsMs)));
 }
 
 MainWindow::~MainWindow() { this->cancelAtmosphere(); }
@@ -368,9 +320,10 @@ void MainWindow::setRefraction(bool on) {
     this->refractionBox->setChecked(on);
   }
   // The tables drawn (or being made) again, with or without refraction.
-  const std::string model = this->job && this->job->source ? std::string(this->job->source->GetAtmosphere()) : this->drawnModel;
+  vtkAtmosphereTablesSource* making = this->jobs->tablesInProgress();
+  const std::string model = making ? std::string(making->GetAtmosphere()) : this->drawnModel;
   const bool drawnWith = this->view->atmosphereTables() && this->view->atmosphereTables()->GetRefractedPaths();
-  if (!this->current || model.empty() || (!(this->job && this->job->source) && drawnWith == on)) return;
+  if (!this->current || model.empty() || (!making && drawnWith == on)) return;
   this->startAtmosphere(model);
 }
 
@@ -381,13 +334,13 @@ void MainWindow::overrideAtmosphere(const std::string& model) {
   this->atmosphereOverride = model;
 }
 
-bool MainWindow::atmosphereBusy() const { return this->job != nullptr; }
+bool MainWindow::atmosphereBusy() const { return this->jobs->busy(); }
 
-bool MainWindow::atmosphereTablesBusy() const { return this->job && this->job->source; }
+bool MainWindow::atmosphereTablesBusy() const { return this->jobs->tablesBusy(); }
 
-bool MainWindow::atmosphereShadowBusy() const { return this->job && (this->job->shadow || this->job->limb); }
+bool MainWindow::atmosphereShadowBusy() const { return this->jobs->lutsBusy(); }
 
-bool MainWindow::limbLuminanceBusy() const { return this->job && this->job->limb; }
+bool MainWindow::limbLuminanceBusy() const { return this->jobs->limbLuminanceBusy(); }
 
 void MainWindow::setLimbRingThreshold(double px) {
   this->view->setLimbRingThresholdPixels(px);
@@ -396,18 +349,18 @@ void MainWindow::setLimbRingThreshold(double px) {
 
 double MainWindow::limbRingThreshold() const { return this->view->limbRingThresholdPixels(); }
 
-void MainWindow::cancelAtmosphereTables() {
-  if (this->job) this->job->cancel();
-}
+void MainWindow::cancelAtmosphereTables() { this->jobs->cancel(); }
 
 void MainWindow::cancelAtmosphere() {
-  if (!this->job) return;
-  this->job->cancel();
-  if (this->job->thread.joinable()) this->job->thread.join();
-  this->job.reset();
-  ++this->jobGeneration;  // a queued "finished" of that job is ignored
-  this->atmosphereProgress->setVisible(false);
-  this->atmosphereCancel->setVisible(false);
+  this->jobs->stop();
+  this->showJob(std::nullopt);
+}
+
+void MainWindow::showJob(const std::optional<std::string>& status) {
+  this->atmosphereProgress->setValue(0);
+  this->atmosphereProgress->setVisible(status.has_value());
+  this->atmosphereCancel->setVisible(status.has_value());
+  if (status) this->setStatus(qs(*status));
 }
 
 void MainWindow::setAtmosphere(const std::string& model) {
@@ -468,141 +421,55 @@ void MainWindow::startAtmosphere(const std::string& model) {
   }
 
   // The tables for the scene's sky at its time, configured as `umbra render` configures
-  // them (render::configureSceneAtmosphereTables), so that render::showSceneAtmosphereTables
+  // them (pipeline::configureSceneAtmosphereTables), so that pipeline::showSceneAtmosphereTables
   // (GUI thread) finds them up to date. The view keeps its tables meanwhile.
   scene::Scene withModel = *this->current;
   for (scene::Body& b : withModel.bodies) b.atmosphereModel = b.name == this->atmosphereBody ? model : std::string();
-  auto j = std::make_unique<AtmosphereJob>();
-  j->source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
+  auto source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
+  pipeline::AtmosphereTableChoice choice;
   try {
-    const render::SceneInputs in = render::sceneInputs(withModel);
-    j->choice = render::atmosphereTableChoice(in);
-    render::configureSceneAtmosphereTables(j->source, in, this->refraction(),
-                                           this->smallTables ? render::AtmosphereTableSizes::Small
-                                                             : render::AtmosphereTableSizes::Default);
+    const pipeline::SceneInputs in = pipeline::sceneInputs(withModel);
+    choice = pipeline::atmosphereTableChoice(in);
+    pipeline::configureSceneAtmosphereTables(source, in, this->refraction(),
+                                             this->smallTables ? pipeline::AtmosphereTableSizes::Small
+                                                               : pipeline::AtmosphereTableSizes::Default);
   } catch (const std::exception& e) {
-    if (const auto& missing = this->view->missingAtmosphereTables()) this->failedTables = *missing;  // no retry loop
+    if (const auto& missing = this->view->missingAtmosphereTables()) this->jobs->tablesFailed(*missing);  // no retry loop
     this->atmosphereFailed(e.what());
     return;
   }
-  j->observe(j->source, 0.0, 1.0);
-  vtkAtmosphereTablesSource* source = j->source;
-  const std::string status = "computing the " + this->atmosphereChoice->currentText().toStdString() +
-                             (j->choice.twilight ? " twilight" : "") + " atmosphere tables...";
-  this->runJob(std::move(j), status, [source] { source->Update(); });
+  this->jobs->startTables(source, choice);
+  this->showJob("computing the " + this->atmosphereChoice->currentText().toStdString() +
+                (choice.twilight ? " twilight" : "") + " atmosphere tables...");
 }
 
 void MainWindow::startEclipseLuts() {
-  if (this->job || !this->current) return;
-  auto wanted = [](const auto& missing, const auto& failed) { return missing && !(failed && *failed == *missing); };
-  const auto& shadow = this->view->missingAtmosphereShadow();
-  const auto& limb = this->view->missingLimbLuminance();
-  const bool makeShadow = wanted(shadow, this->failedShadow), makeLimb = wanted(limb, this->failedLimb);
-  if (!makeShadow && !makeLimb) return;
-  auto j = std::make_unique<AtmosphereJob>();
-  // Each LuT's part of the bar: the atmosphere's tables with refraction (from their
-  // cache) in its first half, the texels in its second; the LuT source reports both (its
-  // tables' progress is its first half), the tables are observed too, to be cancelled.
-  const double split = makeShadow && makeLimb ? 0.5 : makeShadow ? 1.0 : 0.0;
-  std::string occluder;
+  if (!this->current) return;
   try {
-    if (makeShadow) {
-      occluder = shadow->occluder;
-      j->shadow = this->view->newAtmosphereShadowSource();
-      j->request = *shadow;
-      j->observe(render::setUpAtmosphereShadow(j->shadow, *shadow), 0.0, 0.5 * split);
-      j->observe(j->shadow, 0.0, split);
-    }
-    if (makeLimb) {
-      occluder = limb->occluder;
-      j->limb = this->view->newLimbLuminanceSource();
-      j->limbRequest = *limb;
-      j->observe(render::setUpLimbLuminance(j->limb, *limb), split, 0.5 * (split + 1.0));
-      j->observe(j->limb, split, 1.0);
-    }
+    if (const std::optional<std::string> status = this->jobs->startEclipseLuts(*this->view)) this->showJob(status);
   } catch (const std::exception& e) {
-    if (makeShadow) this->failedShadow = *shadow;
-    if (makeLimb) this->failedLimb = *limb;
     this->setStatus(qs(std::string("atmosphere: ") + e.what()));
-    return;
   }
-  const std::string what = makeShadow && makeLimb ? "the shadow and the limb luminance"
-                           : makeShadow           ? "the shadow"
-                                                  : "the limb luminance";
-  AtmosphereJob* raw = j.get();
-  this->runJob(std::move(j), "computing " + what + " through the atmosphere of " + occluder + "...", [raw] {
-    try {
-      if (raw->shadow) render::updateAtmosphereShadow(raw->shadow, *raw->request);
-      raw->shadowMade = raw->shadow != nullptr;
-    } catch (const std::exception& e) {
-      raw->error = e.what();
-    }
-    if (!raw->limb || raw->cancelled) return;
-    try {
-      render::updateLimbLuminance(raw->limb, *raw->limbRequest);
-      raw->limbMade = true;
-    } catch (const std::exception& e) {
-      raw->limbError = e.what();
-    }
-  });
 }
 
-void MainWindow::runJob(std::unique_ptr<AtmosphereJob> j, const std::string& status, std::function<void()> work) {
-  this->job = std::move(j);
-  this->job->bar = this->atmosphereProgress;
-  this->atmosphereProgress->setValue(0);
-  this->atmosphereProgress->setVisible(true);
-  this->atmosphereCancel->setVisible(true);
-  this->setStatus(qs(status));
-  const int generation = ++this->jobGeneration;
-  this->job->thread = std::thread([this, generation, work = std::move(work)] {
-    work();
-    QMetaObject::invokeMethod(this, [this, generation] { this->atmosphereFinished(generation); }, Qt::QueuedConnection);
-  });
-}
-
-void MainWindow::atmosphereFinished(int generation) {
-  if (!this->job || generation != this->jobGeneration) return;
-  this->job->thread.join();
-  const std::unique_ptr<AtmosphereJob> done = std::move(this->job);
-  this->atmosphereProgress->setVisible(false);
-  this->atmosphereCancel->setVisible(false);
-  done->stopObserving();
-  if (done->shadow || done->limb) {
-    // The eclipse LuTs: a cancelled job (also one that ended meanwhile) or a failed LuT is
-    // not asked for again until the scene needs another or the time moves (showTime,
-    // sliderMoved); the view keeps the table it has.
-    std::string problem;
-    auto outcome = [&](bool asked, bool made, const std::string& name, const std::string& error) {
-      if (!asked || (made && !done->cancelled)) return true;
-      problem += (problem.empty() ? "" : "; ") + name + ": " + (done->cancelled ? std::string("cancelled") : error);
-      return false;
-    };
-    if (outcome(done->shadow != nullptr, done->shadowMade, "atmosphere shadow", done->error)) {
-      if (done->shadow) this->view->setAtmosphereShadow(done->shadow, *done->request);
-    } else {
-      this->failedShadow = done->request;
-    }
-    if (outcome(done->limb != nullptr, done->limbMade, "limb luminance", done->limbError)) {
-      if (done->limb) this->view->setLimbLuminance(done->limb, *done->limbRequest);
-    } else {
-      this->failedLimb = done->limbRequest;
-    }
+void MainWindow::tablesMade(TableJobs::Result& done) {
+  this->showJob(std::nullopt);
+  if (done.lutJob) {
+    // The view keeps the table it has for a LuT that was not made.
+    if (done.shadow) this->view->setAtmosphereShadow(done.shadow, *done.shadowRequest);
+    if (done.limb) this->view->setLimbLuminance(done.limb, *done.limbRequest);
     this->refresh();
-    if (!problem.empty()) this->setStatus(qs(problem));
+    if (!done.problem.empty()) this->setStatus(qs(done.problem));
     return;
   }
-  const std::string error = done->source->GetLastError();
-  if (!error.empty()) {
-    this->failedTables = done->choice;  // not asked for again until the time moves
-    this->atmosphereFailed(done->cancelled ? std::string("cancelled") : error);
+  if (!done.tablesError.empty()) {
+    this->atmosphereFailed(done.tablesError);
     return;
   }
-  const std::string model = done->source->GetAtmosphere();
+  const std::string model = done.tables->GetAtmosphere();
   for (scene::Body& b : this->current->bodies)
     b.atmosphereModel = b.name == this->atmosphereBody ? model : std::string();
-  this->failedTables.reset();
-  this->view->setAtmosphereTables(done->source, done->choice);
+  this->view->setAtmosphereTables(done.tables, done.choice);
   this->drawnModel = model;
   this->refresh();
 }
@@ -730,7 +597,7 @@ void MainWindow::showTime(scene::UtcTime time) {
   const bool onSlider = std::abs(minutes) <= kSliderHalfRangeMin && std::abs(minutes - std::round(minutes)) < 1e-6;
   if (!onSlider) this->sliderCentre = time;
   scene::setTime(*this->current, time);
-  this->failedShadow.reset(), this->failedLimb.reset(), this->failedTables.reset();  // another time: try again
+  this->jobs->forgetFailures();  // another time: try again
   {
     const QSignalBlocker block(this->slider);
     this->slider->setValue(onSlider ? static_cast<int>(std::lround(minutes)) : 0);
@@ -742,7 +609,7 @@ void MainWindow::sliderMoved(int minutes) {
   if (!this->current || !this->current->hasTime) return;
   try {
     scene::setTime(*this->current, scene::addSeconds(this->sliderCentre, 60.0 * minutes));
-    this->failedShadow.reset(), this->failedLimb.reset(), this->failedTables.reset();  // another time: try again
+    this->jobs->forgetFailures();  // another time: try again
     this->refresh();
   } catch (const std::exception& e) {
     this->setStatus(QString("error: ") + e.what());
@@ -760,8 +627,7 @@ void MainWindow::refresh() {
   // After sunset (or back in daylight) the sky's tables, then the atmospheric shadow and
   // limb-luminance LuTs the scene needs, in the worker.
   const auto& tables = this->view->missingAtmosphereTables();
-  if (tables && !this->job && !this->drawnModel.empty() && tables != this->failedTables)
-    this->startAtmosphere(this->drawnModel);
+  if (!this->drawnModel.empty() && this->jobs->wantsTables(tables)) this->startAtmosphere(this->drawnModel);
   this->startEclipseLuts();
 
   if (s.hasTime) {

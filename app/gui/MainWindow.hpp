@@ -3,7 +3,7 @@
 // the camera's target lies in (right), a time slider (+-6 h around the scene time, 1-minute
 // steps), exposure and glare controls, the atmosphere (none, a preset or a file, drawn on
 // the scene's body with an atmosphere, else the observer's or target body) with a progress
-// bar and a cancel button while its tables are computed in a worker thread (below), its
+// bar and a cancel button while its tables are computed in a worker thread (TableJobs), its
 // editor (a dock: every field of the model, AtmosphereEditor.hpp; an accepted edit
 // recomputes the tables the same way; Load/Save JSON), and a status bar with the
 // receiver's place in the shadow. While new tables are computed the view keeps the ones
@@ -16,6 +16,7 @@
 // refracted paths.
 #include "AtmosphereShadow.h"
 #include "SceneInputs.h"
+#include "TableJobs.hpp"
 #include "scene/ReceiverShadow.hpp"
 #include "scene/Scene.hpp"
 
@@ -37,6 +38,7 @@ class QLabel;
 class QProgressBar;
 class QPushButton;
 class QSlider;
+class QSplitter;
 class QVTKOpenGLNativeWidget;
 
 namespace umbra::gui {
@@ -96,7 +98,7 @@ public:
   /// Writes the edited atmosphere as JSON (atomically). Throws std::runtime_error naming the path.
   void saveAtmosphereJson(const std::string& path) const;
   /// Small tables (useSmallAtmosphereTables) for the next setAtmosphere: quick looks, tests.
-  /// The atmospheric shadow LuT follows (render::useSmallEclipseShadowTables).
+  /// The atmospheric shadow LuT follows (pipeline::useSmallEclipseShadowTables).
   void useSmallAtmosphereTables(bool small);
   /// Refraction (the "Refraction" check box; `umbra render --refraction`): the atmosphere's
   /// tables are made again in the worker with the refraction table and refracted paths,
@@ -136,19 +138,25 @@ public:
   QRect plotRect() const;
 
 private:
+  // The window's parts, built by the constructor.
+  void buildMenu();
+  QSplitter* buildViews();
+  void buildViewControls();  // time, exposure, glare, stars, night vision
+  void buildAtmosphereControls();
+  void layOut(QSplitter* views);
+  void showGpuTimes();  // after each frame of the 3D view
   void openSceneDialog();
   void saveScreenshotDialog();
   void sliderMoved(int minutes);
   void showCurrent(double exposureEv);  // a newly loaded scene: controls, then refresh
   void refresh();  // the current scene: 3D view, profile, labels, status
   void setStatus(const QString& text);
-  void cancelAtmosphere();  // stops and joins the worker, if any
-  void atmosphereFinished(int generation);
+  void cancelAtmosphere();  // stops and joins the job, if any
+  void showJob(const std::optional<std::string>& status);  // the progress bar and Cancel with the status; none: hidden
   void startAtmosphere(const std::string& model);  // the tables in the worker
   void startEclipseLuts();  // the view's missing atmospheric shadow / limb-luminance LuTs in the worker
-  struct AtmosphereJob;
+  void tablesMade(TableJobs::Result& done);  // a job's end: the view takes what it made
   void atmosphereFailed(const std::string& why);
-  void runJob(std::unique_ptr<AtmosphereJob> job, const std::string& status, std::function<void()> work);
   void atmosphereEdited();  // the editor's accepted document -> a file -> startAtmosphere
   void loadAtmosphereDialog();
   void saveAtmosphereDialog();
@@ -186,13 +194,7 @@ private:
   int editCount = 0;
   std::string editedFrom;  // the name the edits started from (the editor's name for them)
   bool smallTables = false;
-  std::unique_ptr<AtmosphereJob> job;
-  // Cancelled or failed: not asked for again until the user moves the time (the eclipse
-  // tables are the same through an eclipse: render::sunDistanceOnGrid) or the request changes.
-  std::optional<render::AtmosphereShadowRequest> failedShadow;
-  std::optional<render::LimbLuminanceRequest> failedLimb;
-  std::optional<render::AtmosphereTableChoice> failedTables;  // the scene's choice of tables (twilight)
-  int jobGeneration = 0;
+  std::unique_ptr<TableJobs> jobs;  // the tables the view is missing, in a worker thread
 };
 
 } // namespace umbra::gui

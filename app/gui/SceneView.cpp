@@ -83,16 +83,16 @@ struct SceneView::Impl {
   vtkSmartPointer<vtkRenderer> renderer;
   vtkSmartPointer<vtkAtmosphereTablesSource> tables;
   vtkAtmosphereTablesSource* applied = nullptr;  // the tables the view's atmosphere holds
-  render::AtmosphereTableChoice tablesChoice;    // what `tables` were configured for
-  std::optional<render::AtmosphereTableChoice> missingTables;
+  pipeline::AtmosphereTableChoice tablesChoice;    // what `tables` were configured for
+  std::optional<pipeline::AtmosphereTableChoice> missingTables;
   // Near an occluder (Phobos by Mars) the view's own LuT over the receivers' ranges
-  // (render::sceneLutRange), made again when they change; elsewhere the given one.
+  // (pipeline::sceneLutRange), made again when they change; elsewhere the given one.
   vtkSmartPointer<vtkEclipseShadowLutSource> ranged;
   std::optional<eclipse::LutRange> rangedFor;
   int rangedHeight = 0;
   // The atmospheric shadow LuT of the other bodies and the limb-luminance LuT of the ring.
-  HeldTable<vtkEclipseShadowLutSource, render::AtmosphereShadowRequest> shadow;
-  HeldTable<vtkLimbLuminanceSource, render::LimbLuminanceRequest> limb;
+  HeldTable<vtkEclipseShadowLutSource, pipeline::AtmosphereShadowRequest> shadow;
+  HeldTable<vtkLimbLuminanceSource, pipeline::LimbLuminanceRequest> limb;
   double ringThresholdPx = 5.0;
   std::function<void()> onFrame;
   vtkNew<vtkCallbackCommand> frameEnded;
@@ -126,15 +126,15 @@ SceneView::~SceneView() {
 vtkRenderer* SceneView::renderer() const { return impl->renderer; }
 
 void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
-  const render::SceneInputs in = render::sceneInputs(s);
+  const pipeline::SceneInputs in = pipeline::sceneInputs(s);
   impl->bodies->GetRenderWindow()->SetSize(std::max(1, impl->widget->width()), std::max(1, impl->widget->height()));
   int dims[3] = {0, 0, 0};
   if (shadowLut) shadowLut->GetDimensions(dims);
-  const auto range = shadowLut ? render::sceneLutRange(in.sun, in.bodies, in.bodies, /*darkUmbra=*/true, dims[1])
+  const auto range = shadowLut ? pipeline::sceneLutRange(in.sun, in.bodies, in.bodies, /*darkUmbra=*/true, dims[1])
                                : std::nullopt;
   if (range && (!impl->ranged || range != impl->rangedFor || dims[1] != impl->rangedHeight)) {
     auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
-    source->SetWidth(render::rangedLutWidth(*range, dims[0]));
+    source->SetWidth(pipeline::rangedLutWidth(*range, dims[0]));
     source->SetHeight(dims[1]);
     source->SetLutRange(*range);
     source->Update();
@@ -144,7 +144,7 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
     impl->rangedHeight = dims[1];
   }
   impl->bodies->SetBodies(in.sun, in.bodies, range ? impl->ranged->GetOutput() : shadowLut);
-  render::showSceneSky(*impl->bodies, in);
+  pipeline::showSceneSky(*impl->bodies, in);
   const bool drawn = impl->tables && in.atmosphere && impl->tables->GetAtmosphere() == in.atmosphere->model;
   render::AtmosphereRendering& atmosphere = impl->bodies->GetAtmosphere();
   const auto body = in.atmosphere ? std::find_if(in.bodies.begin(), in.bodies.end(),
@@ -153,42 +153,42 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
   if (drawn && impl->applied == impl->tables && atmosphere.HasAtmosphere() && body != in.bodies.end()) {
     atmosphere.SetCentre(body->centreM);  // the time moved: the same tables, no upload
   } else if (drawn) {
-    render::showSceneAtmosphereTables(*impl->bodies, in, impl->tables);
+    pipeline::showSceneAtmosphereTables(*impl->bodies, in, impl->tables);
     impl->applied = impl->tables;
   } else {
     atmosphere.ClearAtmosphere();
     impl->applied = nullptr;
   }
-  const render::AtmosphereTableChoice wanted = render::atmosphereTableChoice(in);
+  const pipeline::AtmosphereTableChoice wanted = pipeline::atmosphereTableChoice(in);
   impl->missingTables.reset();
   if (drawn && wanted != impl->tablesChoice) impl->missingTables = wanted;
   // The atmospheric shadow and the limb luminance: the tables the view has for this body
   // while the caller makes the ones the scene needs.
   const auto shadowSize = sizeOf(this->newAtmosphereShadowSource());
-  impl->shadow.follow(drawn ? render::sceneAtmosphereShadowRequest(in, shadowSize[0], shadowSize[1]) : std::nullopt,
+  impl->shadow.follow(drawn ? pipeline::sceneAtmosphereShadowRequest(in, shadowSize[0], shadowSize[1]) : std::nullopt,
                       [&](vtkImageData* lut) {
                         const std::string occluder = lut ? impl->shadow.madeFor->occluder : "";
                         impl->bodies->GetShading().SetAtmosphereShadowLut(occluder, lut);
                       });
   const auto limbSize = sizeOf(this->newLimbLuminanceSource());
   atmosphere.SetLimbRingThresholdPixels(impl->ringThresholdPx);
-  impl->limb.follow(drawn ? render::sceneLimbLuminanceRequest(in, limbSize[0], limbSize[1], impl->ringThresholdPx)
+  impl->limb.follow(drawn ? pipeline::sceneLimbLuminanceRequest(in, limbSize[0], limbSize[1], impl->ringThresholdPx)
                           : std::nullopt,
                     [&](vtkImageData* lut) { atmosphere.SetLimbLuminance(lut); });
   impl->bodies->SetCamera(in.camera);
 }
 
-const std::optional<render::AtmosphereShadowRequest>& SceneView::missingAtmosphereShadow() const {
+const std::optional<pipeline::AtmosphereShadowRequest>& SceneView::missingAtmosphereShadow() const {
   return impl->shadow.missing;
 }
 
 vtkSmartPointer<vtkEclipseShadowLutSource> SceneView::newAtmosphereShadowSource() const {
   auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
-  if (this->smallShadowTables) render::useSmallEclipseShadowTables(source);
+  if (this->smallShadowTables) pipeline::useSmallEclipseShadowTables(source);
   return source;
 }
 
-void SceneView::setAtmosphereShadow(vtkEclipseShadowLutSource* source, const render::AtmosphereShadowRequest& request) {
+void SceneView::setAtmosphereShadow(vtkEclipseShadowLutSource* source, const pipeline::AtmosphereShadowRequest& request) {
   impl->shadow.set(source, request);
 }
 
@@ -198,17 +198,17 @@ bool SceneView::atmosphereShadowFromCache() const { return impl->shadow.fromCach
 
 bool SceneView::atmosphereShadowCurrent() const { return impl->shadow.applied && impl->shadow.current; }
 
-const std::optional<render::LimbLuminanceRequest>& SceneView::missingLimbLuminance() const {
+const std::optional<pipeline::LimbLuminanceRequest>& SceneView::missingLimbLuminance() const {
   return impl->limb.missing;
 }
 
 vtkSmartPointer<vtkLimbLuminanceSource> SceneView::newLimbLuminanceSource() const {
   auto source = vtkSmartPointer<vtkLimbLuminanceSource>::New();
-  if (this->smallShadowTables) render::useSmallLimbLuminanceTables(source);
+  if (this->smallShadowTables) pipeline::useSmallLimbLuminanceTables(source);
   return source;
 }
 
-void SceneView::setLimbLuminance(vtkLimbLuminanceSource* source, const render::LimbLuminanceRequest& request) {
+void SceneView::setLimbLuminance(vtkLimbLuminanceSource* source, const pipeline::LimbLuminanceRequest& request) {
   impl->limb.set(source, request);
 }
 
@@ -234,7 +234,7 @@ double SceneView::lastRingWidthPixels() const { return impl->bodies->GetAtmosphe
 void SceneView::setGlareStrength(double strength) { impl->bodies->GetRenderPass()->SetGlareStrength(strength); }
 void SceneView::setNightVision(bool on) { impl->bodies->GetRenderPass()->SetNightVision(on); }
 
-void SceneView::setAtmosphereTables(vtkAtmosphereTablesSource* tables, const render::AtmosphereTableChoice& choice) {
+void SceneView::setAtmosphereTables(vtkAtmosphereTablesSource* tables, const pipeline::AtmosphereTableChoice& choice) {
   impl->tables = tables;
   impl->tablesChoice = choice;
   impl->missingTables.reset();
@@ -243,7 +243,7 @@ void SceneView::setAtmosphereTables(vtkAtmosphereTablesSource* tables, const ren
 
 vtkAtmosphereTablesSource* SceneView::atmosphereTables() const { return impl->tables; }
 
-const std::optional<render::AtmosphereTableChoice>& SceneView::missingAtmosphereTables() const {
+const std::optional<pipeline::AtmosphereTableChoice>& SceneView::missingAtmosphereTables() const {
   return impl->missingTables;
 }
 

@@ -168,6 +168,10 @@ void phaseLobes(const atmosphere::PhaseFunction& p, PhaseLobe& first, PhaseLobe&
   throw std::invalid_argument("the renderer has no GLSL form of the phase function " + p.describe());
 }
 
+namespace {
+struct FrameView;  // the camera and the body of a frame (below)
+} // namespace
+
 struct AtmosphereRendering::Impl {
   bool has = false;
   atmosphere::Atmosphere model;
@@ -208,6 +212,14 @@ struct AtmosphereRendering::Impl {
   int lastLimbSubsamples = 1;
   double lastRingWidthPx = 0.0;
   bool lastUsedLimb = false;
+
+  /// The composite's uniforms for a frame (the tables, the camera, the Sun, the Moon's
+  /// light, the ground, the ring from the LuT when lastUsedLimb); the clouds' apart.
+  void setUniforms(vtkShaderProgram* p, const FrameView& f, vtkTextureObject* frameColour,
+                   vtkTextureObject* frameDepth) const;
+  void setCloudUniforms(vtkShaderProgram* p) const;
+  /// Activates (or deactivates) the frame's textures and the tables'.
+  void activate(vtkTextureObject* colour, vtkTextureObject* depth, bool on);
 
   void upload(vtkOpenGLRenderWindow* window) {
     const atmosphere::AtmosphereTables& t = tables;
@@ -405,6 +417,177 @@ void AtmosphereRendering::SetTerrainMeanElevation(double meanElevationM) {
 }
 int AtmosphereRendering::GetLastLimbSubsamples() const { return impl_->lastLimbSubsamples; }
 
+namespace {
+
+/// The camera and the body of a frame as the composite sees them (double): the camera's
+/// basis and world position, the body's centre and the Sun from it, the angular radii of
+/// the ground and of the top of the atmosphere, the camera's (u, v) of Eq. 4 for the
+/// ground as occluder.
+struct FrameView {
+  CameraBasis basis;
+  bool parallel = false;
+  double pixelAngle = 0.0;
+  glm::dvec3 cameraWorld{0.0}, toCentre{0.0}, toSun{0.0};
+  double camRadius = 0.0, dSun = 0.0, nearFar[2] = {0.0, 0.0};
+  double phiOcc = 0.0, phiAtmo = 0.0;
+  eclipse::LutCoords limbUv;
+};
+
+FrameView frameView(vtkCamera* cam, int width, int height, const glm::dvec3& origin, const glm::dvec3& centre,
+                    const SunLight& sun, const atmosphere::AtmosphereTables& t) {
+  FrameView f;
+  f.basis = cameraBasis(cam, width, height);
+  f.parallel = cam->GetParallelProjection() != 0;
+  f.pixelAngle = 2.0 * std::tan(0.5 * cam->GetViewAngle() * kPi / 180.0) / height;
+  glm::dvec3 pos;
+  cam->GetPosition(&pos.x);
+  f.cameraWorld = origin + pos;
+  f.toCentre = centre - f.cameraWorld;
+  f.camRadius = glm::length(f.toCentre);
+  cam->GetClippingRange(f.nearFar);
+  f.toSun = sun.positionM - centre;
+  f.dSun = glm::length(f.toSun);
+  f.phiOcc = std::asin(std::min(1.0, t.bottomRadiusM / f.camRadius));
+  f.phiAtmo = std::asin(std::min(1.0, t.topRadiusM / f.camRadius));
+  // The LuT holds the ring as seen from the shadow (v < 1: umbra, penumbra, antumbra).
+  f.limbUv = eclipse::lutCoords(eclipse::shadowAngles(f.cameraWorld, sun.positionM, sun.radiusM, centre, t.bottomRadiusM));
+  return f;
+}
+
+/// A full-screen program running `function` (texCoord) of AtmosphereComposite.glsl (with
+/// LimbRing.glsl for the ring; the Moon's light and the clouds compiled in or not), bound;
+/// null when it does not compile.
+vtkShaderProgram* readyQuad(vtkOpenGLRenderWindow* window, std::unique_ptr<vtkOpenGLQuadHelper>& quad,
+                            const char* function, bool limbCode, bool moonCode = false, bool cloudCode = false) {
+  if (!quad) {
+    std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
+    std::string decl = std::string(moonCode ? "#define UMBRA_MOON_LIGHT\n" : "") +
+                       (cloudCode ? std::string("#define UMBRA_CLOUDS\n") + sky::kCloudsGlsl + "\n" : std::string()) +
+                       atmosphere::kAtmosphereGlsl + "\n" + glsl::kAtmosphereComposite + "\n";
+    if (limbCode) decl += std::string(glsl::kLimbRing) + "\n";
+    vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl", decl + "//VTK::FSQ::Decl");
+    vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
+                                 std::string("  gl_FragData[0] = vec4(") + function + "(texCoord), 1.0);\n//VTK::FSQ::Impl");
+    quad = std::make_unique<vtkOpenGLQuadHelper>(window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+                                                 fs.c_str(), "");
+  } else {
+    window->GetShaderCache()->ReadyShaderProgram(quad->Program);
+  }
+  vtkShaderProgram* p = quad->Program;
+  return p && p->GetCompiled() ? p : nullptr;
+}
+
+} // namespace
+
+void AtmosphereRendering::Impl::setUniforms(vtkShaderProgram* p, const FrameView& f, vtkTextureObject* frameColour,
+                                            vtkTextureObject* frameDepth) const {
+  const atmosphere::AtmosphereTables& t = tables;
+  setVec3(p, "umbraPlanetFromCamera", f.toCentre);
+  setVec3(p, "umbraCameraUp", f.camRadius > 0.0 ? -f.toCentre / f.camRadius : glm::dvec3(0.0, 0.0, 1.0));
+  p->SetUniformf("umbraCameraRadius", static_cast<float>(f.camRadius));
+  setVec3(p, "umbraRayForward", f.basis.forward);
+  p->SetUniformi("umbraParallel", f.parallel ? 1 : 0);
+  const glm::dvec3 x = f.basis.rayX(), y = f.basis.rayY();
+  setVec3(p, "umbraRayOriginX", f.parallel ? x : glm::dvec3(0.0));
+  setVec3(p, "umbraRayOriginY", f.parallel ? y : glm::dvec3(0.0));
+  setVec3(p, "umbraRayX", f.parallel ? glm::dvec3(0.0) : x);
+  setVec3(p, "umbraRayY", f.parallel ? glm::dvec3(0.0) : y);
+  p->SetUniformf("umbraNear", static_cast<float>(f.nearFar[0]));
+  p->SetUniformf("umbraFar", static_cast<float>(f.nearFar[1]));
+
+  setVec3(p, "umbraSunDirection", f.toSun / f.dSun);
+  p->SetUniformf("umbraSunAngularRadius", static_cast<float>(std::asin(std::min(1.0, sun.radiusM / f.dSun))));
+  p->SetUniformf("umbraSolarIrradiance", static_cast<float>(sun.irradianceAt1AuWm2 * (kAuM / f.dSun) * (kAuM / f.dSun)));
+  p->SetUniformf("umbraLimbDarkening", static_cast<float>(limbDarkening));
+  const glm::dvec3 toMoon = moonPositionM - centre;
+  setVec3(p, "umbraMoonDirection", glm::length(toMoon) > 0.0 ? glm::normalize(toMoon) : glm::dvec3(0.0, 0.0, 1.0));
+  setVec3(p, "umbraMoonIrradiance", moonIrradianceWm2);
+  p->SetUniformf("umbraNightGlow", static_cast<float>(nightGlowWm2Sr));
+  p->SetUniformf("umbraGlowLayerRatio",
+                 static_cast<float>(std::min(f.camRadius / (t.bottomRadiusM + glowLayerAltitudeM), 0.9999)));
+  float mat[9];
+  for (int col = 0; col < 3; ++col)
+    for (int row = 0; row < 3; ++row) mat[3 * col + row] = static_cast<float>(colour[col][row]);
+  p->SetUniformMatrix3x3("umbraAtmToDisplay", mat);
+  setVec3(p, "umbraGroundAlbedo", albedo);
+  p->SetUniformi("umbraGroundMapOn", groundMap ? 1 : 0);
+  p->SetUniformi("umbraGroundAlbedoMap", groundTexture->GetTextureUnit());
+  float toBody[9];
+  for (int col = 0; col < 3; ++col)
+    for (int row = 0; row < 3; ++row) toBody[3 * col + row] = static_cast<float>(groundToBodyFixed[col][row]);
+  p->SetUniformMatrix3x3("umbraGroundToBodyFixed", toBody);
+  p->SetUniformf("umbraGroundMapTexelM",
+                 static_cast<float>(2.0 * kPi * t.bottomRadiusM / (groundMap ? groundMap->width : 1)));
+
+  // The tables.
+  p->SetUniformf("umbraAtmBottom", static_cast<float>(t.bottomRadiusM));
+  p->SetUniformf("umbraAtmTop", static_cast<float>(t.topRadiusM));
+  p->SetUniformf("umbraAtmMuSMin", static_cast<float>(t.options.muSMin));
+  p->SetUniformf("umbraAtmSunAngularRadius", static_cast<float>(t.options.sunAngularRadiusRad));
+  const int size[4] = {t.options.scatteringR, t.options.scatteringMu, t.options.scatteringMuS, t.options.scatteringNu};
+  p->SetUniform1iv("umbraAtmScatteringSize", 4, size);
+  p->SetUniformi("umbraAtmComponents", static_cast<int>(t.singleScattering.size()));
+  p->SetUniformi("umbraRefraction", refractionValues.empty() ? 0 : 1);
+  p->SetUniformf("umbraTerrainMeanElevation", static_cast<float>(terrainMeanElevationM));
+  p->SetUniformf("umbraPixelAngle", static_cast<float>(f.pixelAngle));
+  p->SetUniformi("umbraLimbSubsamples", lastLimbSubsamples);
+  p->SetUniform3fv("umbraAtmPhase", 24, reinterpret_cast<const float(*)[3]>(phase.data()));
+  p->SetUniformi("umbraRefractionTable", refraction->GetTextureUnit());
+  p->SetUniformi("umbraFrameColour", frameColour->GetTextureUnit());
+  p->SetUniformi("umbraFrameDepth", frameDepth->GetTextureUnit());
+  p->SetUniformi("umbraAtmTransmittanceTable", transmittance->GetTextureUnit());
+  p->SetUniformi("umbraAtmScatteringTable", scattering->GetTextureUnit());
+  p->SetUniformi("umbraAtmIrradianceTable", irradiance->GetTextureUnit());
+  if (lastUsedLimb) {
+    // The camera's (u, v) of Eq. 4 for this occluder (its ground), in double.
+    // ... as the texture coordinate through the LuT's ranges (in double: a ranged LuT may
+    // span a u range of 1e-5).
+    const float uv[2] = {static_cast<float>(limbRange.textureU(f.limbUv.u)),
+                         static_cast<float>(limbRange.textureV(f.limbUv.v))};
+    p->SetUniform2f("umbraLimbUv", uv);
+    p->SetUniformf("umbraLimbOccluder", static_cast<float>(f.phiOcc));
+    p->SetUniformf("umbraLimbAtmosphere", static_cast<float>(f.phiAtmo));
+    p->SetUniformf("umbraLimbDistance",
+                   static_cast<float>(std::sqrt(std::max(f.camRadius * f.camRadius - t.topRadiusM * t.topRadiusM, 0.0))));
+    setVec3(p, "umbraSunFromCamera", glm::normalize(sun.positionM - f.cameraWorld));
+    p->SetUniformi("umbraLimbLuminance", limb->GetTextureUnit());
+  }
+}
+
+// The cloud layers (sorted by nothing: the shader orders the crossings of each ray).
+void AtmosphereRendering::Impl::setCloudUniforms(vtkShaderProgram* p) const {
+  const atmosphere::AtmosphereTables& t = tables;
+  const int n = static_cast<int>(clouds.size());
+  float radius[kMaxCloudLayers] = {}, tau[kMaxCloudLayers] = {}, cover[kMaxCloudLayers] = {}, scale[kMaxCloudLayers] = {};
+  int seed[kMaxCloudLayers] = {};
+  for (int k = 0; k < n; ++k) {
+    const sky::CloudLayer& l = clouds[k].layer;
+    const double rc = std::clamp(t.bottomRadiusM + l.altitudeM, t.bottomRadiusM + 1.0, t.topRadiusM - 1.0);
+    radius[k] = static_cast<float>(rc);
+    tau[k] = static_cast<float>(l.opticalDepth);
+    cover[k] = static_cast<float>(l.coverage);
+    scale[k] = static_cast<float>(rc / std::max(l.featureSizeM, sky::kMinCloudFeatureSizeM));
+    seed[k] = static_cast<int>(l.seed);  // its bits: the shader's uint() keeps them
+    float frame[9];
+    for (int col = 0; col < 3; ++col)
+      for (int row = 0; row < 3; ++row) frame[3 * col + row] = static_cast<float>(clouds[k].worldToNoise[col][row]);
+    p->SetUniformMatrix3x3(("umbraCloudFrame[" + std::to_string(k) + "]").c_str(), frame);
+  }
+  p->SetUniformi("umbraCloudCount", n);
+  p->SetUniform1fv("umbraCloudRadius", kMaxCloudLayers, radius);
+  p->SetUniform1fv("umbraCloudTau", kMaxCloudLayers, tau);
+  p->SetUniform1fv("umbraCloudCoverage", kMaxCloudLayers, cover);
+  p->SetUniform1fv("umbraCloudScale", kMaxCloudLayers, scale);
+  p->SetUniform1iv("umbraCloudSeed", kMaxCloudLayers, seed);
+  setVec3(p, "umbraCloudSunFactor", cloudSunFactor);
+}
+
+void AtmosphereRendering::Impl::activate(vtkTextureObject* colour, vtkTextureObject* depth, bool on) {
+  for (vtkTextureObject* texture : {colour, depth, transmittance.Get(), scattering.Get(), irradiance.Get(), refraction.Get(),
+                                    groundTexture.Get(), lastUsedLimb ? limb.Get() : nullptr})
+    if (texture) on ? texture->Activate() : texture->Deactivate();
+}
+
 bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, vtkTextureObject* colour,
                                vtkTextureObject* depth, int width, int height) {
   Impl& m = *impl_;
@@ -415,183 +598,33 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     m.texturesStale = true;
   }
   if (m.texturesStale) m.upload(window);
+  const atmosphere::AtmosphereTables& t = m.tables;
+  const FrameView f = frameView(renderer->GetActiveCamera(), width, height, m.origin, m.centre, m.sun, t);
 
   // The ring's width on screen: the limb-luminance LuT draws it when thin (5.4).
-  vtkCamera* cam = renderer->GetActiveCamera();
-  const bool parallel = cam->GetParallelProjection() != 0;
-  const double pixelAngle = 2.0 * std::tan(0.5 * cam->GetViewAngle() * kPi / 180.0) / height;
-  glm::dvec3 pos;
-  cam->GetPosition(&pos.x);
-  const double camDist = glm::length(m.centre - (m.origin + pos));
-  const double phiOcc = std::asin(std::min(1.0, m.tables.bottomRadiusM / camDist));
-  const double phiAtmo = std::asin(std::min(1.0, m.tables.topRadiusM / camDist));
-  m.lastRingWidthPx = parallel ? 0.0 : (phiAtmo - phiOcc) / pixelAngle;
-  // The LuT holds the ring as seen from the shadow (v < 1: umbra, penumbra, antumbra).
-  const eclipse::LutCoords limbUv = eclipse::lutCoords(
-      eclipse::shadowAngles(m.origin + pos, m.sun.positionM, m.sun.radiusM, m.centre, m.tables.bottomRadiusM));
-  m.lastUsedLimb = m.limb && !parallel && camDist > m.tables.topRadiusM && limbUv.v < 1.0 &&
-                   eclipse::occluderInFront(m.origin + pos, m.sun.positionM, m.centre) &&
+  m.lastRingWidthPx = f.parallel ? 0.0 : (f.phiAtmo - f.phiOcc) / f.pixelAngle;
+  m.lastUsedLimb = m.limb && !f.parallel && f.camRadius > t.topRadiusM && f.limbUv.v < 1.0 &&
+                   eclipse::occluderInFront(f.cameraWorld, m.sun.positionM, m.centre) &&
                    m.lastRingWidthPx < m.limbThresholdPx;
-
-  // A full-screen program running `function` (texCoord) of AtmosphereComposite.glsl (with
-  // LimbRing.glsl for the ring), bound.
-  auto ready = [&](std::unique_ptr<vtkOpenGLQuadHelper>& quad, const char* function, bool limbCode,
-                   bool moonCode = false, bool cloudCode = false) {
-    if (!quad) {
-      std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
-      std::string decl = std::string(moonCode ? "#define UMBRA_MOON_LIGHT\n" : "") +
-                         (cloudCode ? std::string("#define UMBRA_CLOUDS\n") + sky::kCloudsGlsl + "\n" : std::string()) +
-                         atmosphere::kAtmosphereGlsl + "\n" + glsl::kAtmosphereComposite + "\n";
-      if (limbCode) decl += std::string(glsl::kLimbRing) + "\n";
-      vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl", decl + "//VTK::FSQ::Decl");
-      vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
-                                   std::string("  gl_FragData[0] = vec4(") + function + "(texCoord), 1.0);\n//VTK::FSQ::Impl");
-      quad = std::make_unique<vtkOpenGLQuadHelper>(window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
-                                                   fs.c_str(), "");
-    } else {
-      window->GetShaderCache()->ReadyShaderProgram(quad->Program);
-    }
-    vtkShaderProgram* p = quad->Program;
-    return p && p->GetCompiled() ? p : nullptr;
-  };
-
-  // The camera (double): world position, basis, projection.
-  const CameraBasis basis = cameraBasis(cam, width, height);
-  const glm::dvec3 &fwd = basis.forward, &right = basis.right, &camUp = basis.up;
-  const glm::dvec3 cameraWorld = m.origin + pos;
-  const glm::dvec3 toCentre = m.centre - cameraWorld;
-  const double camRadius = glm::length(toCentre);
-  double nearFar[2];
-  cam->GetClippingRange(nearFar);
-  const glm::dvec3 toSun = m.sun.positionM - m.centre;
-  const double dSun = glm::length(toSun);
-  const atmosphere::AtmosphereTables& t = m.tables;
-
   // The pixel's extent at the limb (camera outside the atmosphere) in sub-rays.
-  const double limbExtentM = pixelAngle * std::sqrt(std::max(camRadius * camRadius - t.bottomRadiusM * t.bottomRadiusM, 0.0));
-  m.lastLimbSubsamples = parallel || camRadius <= t.topRadiusM || m.refractionValues.empty()
+  const double limbExtentM =
+      f.pixelAngle * std::sqrt(std::max(f.camRadius * f.camRadius - t.bottomRadiusM * t.bottomRadiusM, 0.0));
+  m.lastLimbSubsamples = f.parallel || f.camRadius <= t.topRadiusM || m.refractionValues.empty()
                              ? 1
                              : static_cast<int>(std::clamp(std::ceil(limbExtentM / kLimbSubsampleSpacingM), 1.0,
                                                            double(kMaxLimbSubsamples)));
 
-  auto setUniforms = [&](vtkShaderProgram* p) {
-    setVec3(p, "umbraPlanetFromCamera", toCentre);
-    setVec3(p, "umbraCameraUp", camRadius > 0.0 ? -toCentre / camRadius : glm::dvec3(0.0, 0.0, 1.0));
-    p->SetUniformf("umbraCameraRadius", static_cast<float>(camRadius));
-    setVec3(p, "umbraRayForward", fwd);
-    p->SetUniformi("umbraParallel", parallel ? 1 : 0);
-    const glm::dvec3 x = basis.rayX(), y = basis.rayY();
-    setVec3(p, "umbraRayOriginX", parallel ? x : glm::dvec3(0.0));
-    setVec3(p, "umbraRayOriginY", parallel ? y : glm::dvec3(0.0));
-    setVec3(p, "umbraRayX", parallel ? glm::dvec3(0.0) : x);
-    setVec3(p, "umbraRayY", parallel ? glm::dvec3(0.0) : y);
-    p->SetUniformf("umbraNear", static_cast<float>(nearFar[0]));
-    p->SetUniformf("umbraFar", static_cast<float>(nearFar[1]));
-
-    setVec3(p, "umbraSunDirection", toSun / dSun);
-    p->SetUniformf("umbraSunAngularRadius", static_cast<float>(std::asin(std::min(1.0, m.sun.radiusM / dSun))));
-    p->SetUniformf("umbraSolarIrradiance", static_cast<float>(m.sun.irradianceAt1AuWm2 * (kAuM / dSun) * (kAuM / dSun)));
-    p->SetUniformf("umbraLimbDarkening", static_cast<float>(m.limbDarkening));
-    const glm::dvec3 toMoon = m.moonPositionM - m.centre;
-    setVec3(p, "umbraMoonDirection", glm::length(toMoon) > 0.0 ? glm::normalize(toMoon) : glm::dvec3(0.0, 0.0, 1.0));
-    setVec3(p, "umbraMoonIrradiance", m.moonIrradianceWm2);
-    p->SetUniformf("umbraNightGlow", static_cast<float>(m.nightGlowWm2Sr));
-    p->SetUniformf("umbraGlowLayerRatio",
-                   static_cast<float>(std::min(camRadius / (t.bottomRadiusM + m.glowLayerAltitudeM), 0.9999)));
-    float mat[9];
-    for (int col = 0; col < 3; ++col)
-      for (int row = 0; row < 3; ++row) mat[3 * col + row] = static_cast<float>(m.colour[col][row]);
-    p->SetUniformMatrix3x3("umbraAtmToDisplay", mat);
-    setVec3(p, "umbraGroundAlbedo", m.albedo);
-    p->SetUniformi("umbraGroundMapOn", m.groundMap ? 1 : 0);
-    p->SetUniformi("umbraGroundAlbedoMap", m.groundTexture->GetTextureUnit());
-    float toBody[9];
-    for (int col = 0; col < 3; ++col)
-      for (int row = 0; row < 3; ++row) toBody[3 * col + row] = static_cast<float>(m.groundToBodyFixed[col][row]);
-    p->SetUniformMatrix3x3("umbraGroundToBodyFixed", toBody);
-    p->SetUniformf("umbraGroundMapTexelM",
-                   static_cast<float>(2.0 * kPi * t.bottomRadiusM / (m.groundMap ? m.groundMap->width : 1)));
-
-    // The tables.
-    p->SetUniformf("umbraAtmBottom", static_cast<float>(t.bottomRadiusM));
-    p->SetUniformf("umbraAtmTop", static_cast<float>(t.topRadiusM));
-    p->SetUniformf("umbraAtmMuSMin", static_cast<float>(t.options.muSMin));
-    p->SetUniformf("umbraAtmSunAngularRadius", static_cast<float>(t.options.sunAngularRadiusRad));
-    const int size[4] = {t.options.scatteringR, t.options.scatteringMu, t.options.scatteringMuS, t.options.scatteringNu};
-    p->SetUniform1iv("umbraAtmScatteringSize", 4, size);
-    p->SetUniformi("umbraAtmComponents", static_cast<int>(t.singleScattering.size()));
-    p->SetUniformi("umbraRefraction", m.refractionValues.empty() ? 0 : 1);
-    p->SetUniformf("umbraTerrainMeanElevation", static_cast<float>(m.terrainMeanElevationM));
-    p->SetUniformf("umbraPixelAngle", static_cast<float>(pixelAngle));
-    p->SetUniformi("umbraLimbSubsamples", m.lastLimbSubsamples);
-    p->SetUniform3fv("umbraAtmPhase", 24, reinterpret_cast<const float(*)[3]>(m.phase.data()));
-    p->SetUniformi("umbraRefractionTable", m.refraction->GetTextureUnit());
-    p->SetUniformi("umbraFrameColour", colour->GetTextureUnit());
-    p->SetUniformi("umbraFrameDepth", depth->GetTextureUnit());
-    p->SetUniformi("umbraAtmTransmittanceTable", m.transmittance->GetTextureUnit());
-    p->SetUniformi("umbraAtmScatteringTable", m.scattering->GetTextureUnit());
-    p->SetUniformi("umbraAtmIrradianceTable", m.irradiance->GetTextureUnit());
-    if (m.lastUsedLimb) {
-      // The camera's (u, v) of Eq. 4 for this occluder (its ground), in double.
-      // ... as the texture coordinate through the LuT's ranges (in double: a ranged LuT may
-      // span a u range of 1e-5).
-      const float uv[2] = {static_cast<float>(m.limbRange.textureU(limbUv.u)),
-                           static_cast<float>(m.limbRange.textureV(limbUv.v))};
-      p->SetUniform2f("umbraLimbUv", uv);
-      p->SetUniformf("umbraLimbOccluder", static_cast<float>(phiOcc));
-      p->SetUniformf("umbraLimbAtmosphere", static_cast<float>(phiAtmo));
-      p->SetUniformf("umbraLimbDistance",
-                     static_cast<float>(std::sqrt(std::max(camRadius * camRadius - t.topRadiusM * t.topRadiusM, 0.0))));
-      setVec3(p, "umbraSunFromCamera", glm::normalize(m.sun.positionM - cameraWorld));
-      p->SetUniformi("umbraLimbLuminance", m.limb->GetTextureUnit());
-    }
-  };
-
-  // The cloud layers (sorted by nothing: the shader orders the crossings of each ray).
-  auto setCloudUniforms = [&](vtkShaderProgram* p) {
-    const int n = static_cast<int>(m.clouds.size());
-    float radius[kMaxCloudLayers] = {}, tau[kMaxCloudLayers] = {}, cover[kMaxCloudLayers] = {}, scale[kMaxCloudLayers] = {};
-    int seed[kMaxCloudLayers] = {};
-    for (int k = 0; k < n; ++k) {
-      const sky::CloudLayer& l = m.clouds[k].layer;
-      const double rc = std::clamp(t.bottomRadiusM + l.altitudeM, t.bottomRadiusM + 1.0, t.topRadiusM - 1.0);
-      radius[k] = static_cast<float>(rc);
-      tau[k] = static_cast<float>(l.opticalDepth);
-      cover[k] = static_cast<float>(l.coverage);
-      scale[k] = static_cast<float>(rc / std::max(l.featureSizeM, sky::kMinCloudFeatureSizeM));
-      seed[k] = static_cast<int>(l.seed);  // its bits: the shader's uint() keeps them
-      float frame[9];
-      for (int col = 0; col < 3; ++col)
-        for (int row = 0; row < 3; ++row) frame[3 * col + row] = static_cast<float>(m.clouds[k].worldToNoise[col][row]);
-      p->SetUniformMatrix3x3(("umbraCloudFrame[" + std::to_string(k) + "]").c_str(), frame);
-    }
-    p->SetUniformi("umbraCloudCount", n);
-    p->SetUniform1fv("umbraCloudRadius", kMaxCloudLayers, radius);
-    p->SetUniform1fv("umbraCloudTau", kMaxCloudLayers, tau);
-    p->SetUniform1fv("umbraCloudCoverage", kMaxCloudLayers, cover);
-    p->SetUniform1fv("umbraCloudScale", kMaxCloudLayers, scale);
-    p->SetUniform1iv("umbraCloudSeed", kMaxCloudLayers, seed);
-    setVec3(p, "umbraCloudSunFactor", m.cloudSunFactor);
-  };
-
-  colour->Activate();
-  depth->Activate();
-  m.transmittance->Activate();
-  m.scattering->Activate();
-  m.irradiance->Activate();
-  m.refraction->Activate();
-  m.groundTexture->Activate();
-  if (m.lastUsedLimb) m.limb->Activate();
+  m.activate(colour, depth, true);
   // Every ray outside the atmosphere's rectangle on screen misses it and sees the
   // background: a cheap program draws that, the composite only the rectangle (a SIMD
   // rasteriser such as Mesa's llvmpipe pays the whole composite at every pixel it draws).
-  const PixelRect rect = sphereOnScreen(toCentre, t.topRadiusM, fwd, right, camUp, parallel, basis.halfWidth,
-                                        basis.halfHeight, width, height);
+  const PixelRect rect = sphereOnScreen(f.toCentre, t.topRadiusM, f.basis.forward, f.basis.right, f.basis.up, f.parallel,
+                                        f.basis.halfWidth, f.basis.halfHeight, width, height);
   bool ok = true;
   if (!rect.whole(width, height)) {
-    vtkShaderProgram* b = ready(m.backgroundQuad, "umbraAtmosphereBackground", false);
+    vtkShaderProgram* b = readyQuad(window, m.backgroundQuad, "umbraAtmosphereBackground", false);
     if (b) {
-      setUniforms(b);
+      m.setUniforms(b, f, colour, depth);
       m.backgroundQuad->Render();
     }
     ok = b != nullptr;
@@ -603,12 +636,12 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   const int variant = (moonLight ? 1 : 0) + (clouds ? 2 : 0);
   std::unique_ptr<vtkOpenGLQuadHelper>& composite =
       m.lastUsedLimb ? m.limbQuad : variant == 0 ? m.quad : m.variantQuads[variant - 1];
-  vtkShaderProgram* p = m.lastUsedLimb ? ready(m.limbQuad, "umbraLimbRing", true)
-                                       : ready(composite, "umbraAtmosphereComposite", false, moonLight, clouds);
+  vtkShaderProgram* p = m.lastUsedLimb ? readyQuad(window, m.limbQuad, "umbraLimbRing", true)
+                                       : readyQuad(window, composite, "umbraAtmosphereComposite", false, moonLight, clouds);
   ok = ok && p;
   if (ok && !rect.empty()) {
-    setUniforms(p);
-    if (clouds && !m.lastUsedLimb) setCloudUniforms(p);
+    m.setUniforms(p, f, colour, depth);
+    if (clouds && !m.lastUsedLimb) m.setCloudUniforms(p);
     vtkOpenGLState* state = window->GetState();
     vtkOpenGLState::ScopedglEnableDisable scissorSaver(state, GL_SCISSOR_TEST);
     vtkOpenGLState::ScopedglScissor scissorBoxSaver(state);
@@ -616,14 +649,7 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
     state->vtkglScissor(rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0);
     composite->Render();
   }
-  if (m.lastUsedLimb) m.limb->Deactivate();
-  m.groundTexture->Deactivate();
-  m.refraction->Deactivate();
-  m.irradiance->Deactivate();
-  m.scattering->Deactivate();
-  m.transmittance->Deactivate();
-  depth->Deactivate();
-  colour->Deactivate();
+  m.activate(colour, depth, false);
   return ok;
 }
 

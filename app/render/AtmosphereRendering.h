@@ -4,7 +4,7 @@
 // of Atmospheric Effects for Celestial Bodies", section 5): per pixel, the view ray is
 // intersected with the atmosphere's shell and compared with the depth buffer; the
 // transmittance and the in-scattered radiance come from the precomputed Bruneton tables
-// (atmosphere/glsl/Atmosphere.glsl, the GLSL twin of atmosphere/Precompute.cpp's lookups):
+// (atmosphere/glsl/Atmosphere.glsl, the GLSL twin of atmosphere/precompute/Parametrisation.hpp's lookups):
 //   ray misses the shell, or an object lies before it:  F = frame colour
 //   ray ends on the planet's ground:   F = M E_sun [T(x, y) albedo / pi (f E_0 + E_ind)(y) + S(x -> y)]
 //   ray ends on an object in the air:  F = T(x, y) frame + M E_sun S(x -> y)

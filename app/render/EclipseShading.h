@@ -103,7 +103,7 @@ class EclipseShading {
   /// origin and spacing place it in the whole (texel centres (u, v) in the table's u and v
   /// ranges, as the source writes them), and outside that part the edge texels are used.
   /// The ranges (field data, filters::lutRangeOf; [0, 1] when absent) are its own: the
-  /// umbraAtmosphereLutURange, VRange and VLowFraction uniforms. One occluder at a
+  /// umbraAtmosphereLutMap and MapLow uniforms. One occluder at a
   /// time; an empty name or a null image removes it. A copy is kept. Throws
   /// std::invalid_argument as SetShadowLut does.
   void SetAtmosphereShadowLut(const std::string& occluderName, vtkImageData* lut);

@@ -116,6 +116,26 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   }
   this->MarkStage(0);
 
+  vtkTextureObject* hdr = this->ColorTexture;
+  if (!this->DrawScene(s, renWin, w, h)) return;
+  if (!this->ComposeAtmosphere(r, renWin, w, h, hdr)) return;
+  this->MarkStage(3);
+  if (!this->ApplyGlare(r, renWin, w, h, hdr)) return;
+  this->MarkStage(4);
+  if (!this->ToneMap(renWin, hdr, x, y, w, h)) return;
+  this->MarkStage(5);
+  this->StageTimesPending = this->StageTiming;
+
+  this->LastWindow = renWin;
+  this->HdrWidth = w;
+  this->HdrHeight = h;
+  this->HdrValid = true;
+  vtkOpenGLCheckErrorMacro("failed after vtkUmbraRenderPass::Render");
+}
+
+bool vtkUmbraRenderPass::DrawScene(const vtkRenderState* s, vtkOpenGLRenderWindow* renWin, int w, int h) {
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkRenderer* r = s->GetRenderer();
   // 1. The delegate into the float framebuffer.
   ostate->PushFramebufferBindings();
   this->FrameBufferObject->Bind();
@@ -125,7 +145,7 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   if (!this->FrameBufferObject->StartNonOrtho(w, h)) {
     ostate->PopFramebufferBindings();
     vtkErrorMacro("the float framebuffer is incomplete.");
-    return;
+    return false;
   }
   ostate->vtkglViewport(0, 0, w, h);
   ostate->vtkglScissor(0, 0, w, h);
@@ -142,13 +162,17 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   if (this->Stars && !this->Stars->Draw(renWin, r, w, h)) {
     ostate->PopFramebufferBindings();
     vtkErrorMacro("cannot draw the stars.");
-    return;
+    return false;
   }
   ostate->PopFramebufferBindings();
   this->MarkStage(2);
+  return true;
+}
 
+bool vtkUmbraRenderPass::ComposeAtmosphere(vtkRenderer* r, vtkOpenGLRenderWindow* renWin, int w, int h,
+                                           vtkTextureObject*& hdr) {
+  vtkOpenGLState* ostate = renWin->GetState();
   // 1b. The atmosphere over it, into the composed buffer.
-  vtkTextureObject* hdr = this->ColorTexture;
   this->HdrComposed = false;
   if (this->Atmosphere && this->Atmosphere->HasAtmosphere()) {
     ostate->PushFramebufferBindings();
@@ -158,7 +182,7 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
     if (!this->ComposedFrameBuffer->Start(w, h)) {
       ostate->PopFramebufferBindings();
       vtkErrorMacro("the composed float framebuffer is incomplete.");
-      return;
+      return false;
     }
     ostate->vtkglViewport(0, 0, w, h);
     ostate->vtkglScissor(0, 0, w, h);
@@ -173,13 +197,15 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
     ostate->PopFramebufferBindings();
     if (!drawn) {
       vtkErrorMacro("cannot draw the atmosphere.");
-      return;
+      return false;
     }
     hdr = this->ComposedTexture;
     this->HdrComposed = true;
   }
-  this->MarkStage(3);
+  return true;
+}
 
+bool vtkUmbraRenderPass::ApplyGlare(vtkRenderer* r, vtkOpenGLRenderWindow* renWin, int w, int h, vtkTextureObject*& hdr) {
   // 1c. Glare.
   this->HdrGlared = false;
   if (this->GlareStrength > 0.0) {
@@ -188,13 +214,16 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
     const auto kernels = umbra::render::glareKernels(this->GlareStrength, h / fovDeg);
     if (!this->Glare->Apply(renWin, hdr, w, h, kernels)) {
       vtkErrorMacro("cannot apply the glare.");
-      return;
+      return false;
     }
     hdr = this->Glare->Output();
     this->HdrGlared = true;
   }
-  this->MarkStage(4);
+  return true;
+}
 
+bool vtkUmbraRenderPass::ToneMap(vtkOpenGLRenderWindow* renWin, vtkTextureObject* hdr, int x, int y, int w, int h) {
+  vtkOpenGLState* ostate = renWin->GetState();
   // 2. Tone-map onto the current framebuffer.
   if (!this->QuadHelper) {
     std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
@@ -211,7 +240,7 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   }
   if (!this->QuadHelper->Program || !this->QuadHelper->Program->GetCompiled()) {
     vtkErrorMacro("cannot build the tone-mapping shader program.");
-    return;
+    return false;
   }
 
   hdr->Activate();
@@ -235,14 +264,7 @@ void vtkUmbraRenderPass::Render(const vtkRenderState* s) {
   ostate->vtkglScissor(x, y, w, h);
   this->QuadHelper->Render();
   hdr->Deactivate();
-  this->MarkStage(5);
-  this->StageTimesPending = this->StageTiming;
-
-  this->LastWindow = renWin;
-  this->HdrWidth = w;
-  this->HdrHeight = h;
-  this->HdrValid = true;
-  vtkOpenGLCheckErrorMacro("failed after vtkUmbraRenderPass::Render");
+  return true;
 }
 
 bool vtkUmbraRenderPass::ReadHdrPixels(std::vector<float>& rgba, int& width, int& height) {

@@ -134,6 +134,14 @@ class vtkUmbraRenderPass : public vtkImageProcessingPass {
  private:
   bool PrepareBuffers(vtkOpenGLRenderWindow* renWin, int width, int height);
   void MarkStage(int stage);
+  // The stages of Render, each false (after an error message) when it fails: the delegate
+  // and the stars into the float framebuffer; the atmosphere over it into the composed
+  // buffer (`hdr` becomes that); the glare (`hdr` becomes its output); the tone map of
+  // `hdr` onto the current framebuffer at (x, y).
+  bool DrawScene(const vtkRenderState* s, vtkOpenGLRenderWindow* renWin, int w, int h);
+  bool ComposeAtmosphere(vtkRenderer* r, vtkOpenGLRenderWindow* renWin, int w, int h, vtkTextureObject*& hdr);
+  bool ApplyGlare(vtkRenderer* r, vtkOpenGLRenderWindow* renWin, int w, int h, vtkTextureObject*& hdr);
+  bool ToneMap(vtkOpenGLRenderWindow* renWin, vtkTextureObject* hdr, int x, int y, int w, int h);
   vtkUmbraRenderPass(const vtkUmbraRenderPass&) = delete;
   void operator=(const vtkUmbraRenderPass&) = delete;
 };

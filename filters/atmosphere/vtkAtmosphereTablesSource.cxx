@@ -100,6 +100,113 @@ vtkSmartPointer<vtkImageData> blockOf(const umbra::tables::Table& t, int depth) 
   return image;
 }
 
+
+/// Everything that changes the Bruneton tables' values (not threads nor wavelengthBatch).
+ParameterMap brunetonParameters(const umbra::atmosphere::Atmosphere& atm, const umbra::atmosphere::PrecomputeOptions& po) {
+  using namespace umbra;
+  ParameterMap base = atmosphere::atmosphereParameters(atm);
+  base["transmittanceSize"] = std::to_string(po.transmittanceWidth) + "x" + std::to_string(po.transmittanceHeight);
+  base["scatteringSize"] = std::to_string(po.scatteringR) + "," + std::to_string(po.scatteringMu) + "," +
+                           std::to_string(po.scatteringMuS) + "," + std::to_string(po.scatteringNu);
+  base["irradianceSize"] = std::to_string(po.irradianceWidth) + "x" + std::to_string(po.irradianceHeight);
+  base["orders"] = std::to_string(po.orders);
+  base["samples"] = std::to_string(po.transmittanceSamples) + " " + std::to_string(po.singleScatteringSamples) + " " +
+                    std::to_string(po.multipleScatteringSamples) + " " + std::to_string(po.opticalDepthSubsamples) +
+                    " " + std::to_string(po.sphereSamples) + " " + std::to_string(po.irradianceSamples);
+  base["densityQuadrature"] = atmosphere::kDensityQuadrature;
+  base["muSMin"] = formatNumber(po.muSMin);
+  base["sunAngularRadiusRad"] = formatNumber(po.sunAngularRadiusRad);
+  base["refractedPaths"] = po.refraction ? "1" : "0";
+  if (po.refraction) base["refractionStepM"] = formatNumber(po.refractionStepM);
+  base["units"] = "per unit solar irradiance; channels L<nm>nm, one per wavelength ('.' written 'p')";
+  return base;
+}
+
+/// The Bruneton tables of a run: each with the bit of vtkAtmosphereTablesSource::Tables
+/// that asks for it, its cache parameters and its size; their channels (one per wavelength).
+struct BrunetonSet {
+  umbra::atmosphere::PrecomputeOptions po;
+  std::vector<std::string> channels, components;  // components: those that scatter, in order
+  std::vector<std::pair<int, BrunetonTable>> all;
+
+  BrunetonSet(const umbra::atmosphere::Atmosphere& atm, const umbra::atmosphere::PrecomputeOptions& options) : po(options) {
+    using T = vtkAtmosphereTablesSource;
+    const ParameterMap base = brunetonParameters(atm, po);
+    for (double nm : atm.wavelengthsNm) this->channels.push_back(channelName(nm));
+    const std::string layout3 =
+        "x = nu index * MU_S + mu_s index, y = mu index + MU * r index (the MU rows of each R slice stacked; "
+        "the lower MU/2 rows of a slice: rays that hit the ground); Bruneton 2017 4D parametrisation";
+    auto add = [&](std::string name, int bit, std::string layout, int depth) -> BrunetonTable& {
+      BrunetonTable t;
+      t.name = std::move(name);
+      t.parameters = base;
+      t.parameters["layout"] = std::move(layout);
+      t.parameters["depth"] = std::to_string(depth);
+      t.depth = depth;
+      this->all.emplace_back(bit, std::move(t));
+      return this->all.back().second;
+    };
+    add("transmittance", T::Transmittance,
+        "x = x_mu, y = x_r (Bruneton 2017 transmittance parametrisation, texel centres on the ends)", 1);
+    for (const umbra::atmosphere::Component& c : atm.components)
+      if (c.scatters()) {
+        this->components.push_back(c.name);
+        add("single-scattering-" + kindPart(c.name), T::SingleScattering, layout3, po.scatteringR).parameters["component"] =
+            c.name;
+      }
+    add("multiple-scattering", T::MultipleScattering, layout3, po.scatteringR).parameters["groundSunlight"] =
+        umbra::atmosphere::kGroundSunlight;
+    const std::string layoutIrradiance =
+        "x = x_mu_s, y = x_r (Bruneton 2017 irradiance parametrisation, texel centres on the ends)";
+    add("direct-irradiance", T::Irradiance, layoutIrradiance, 1);
+    add("irradiance", T::Irradiance, layoutIrradiance, 1).parameters["groundSunlight"] = umbra::atmosphere::kGroundSunlight;
+  }
+
+  std::pair<int, int> sizeOf(const BrunetonTable& t) const {
+    if (t.name == "transmittance") return {po.transmittanceWidth, po.transmittanceHeight};
+    if (t.depth > 1) return {po.scatteringNu * po.scatteringMuS, po.scatteringMu * po.scatteringR};
+    return {po.irradianceWidth, po.irradianceHeight};
+  }
+
+  /// Table `t` of a precomputation's result.
+  umbra::tables::Table tableOf(const umbra::atmosphere::AtmosphereTables& result, const BrunetonTable& t) const {
+    const auto [w, h] = this->sizeOf(t);
+    const int nc = static_cast<int>(this->channels.size());
+    const std::vector<double>* v = nullptr;
+    if (t.name == "transmittance") v = &result.transmittance.values;
+    else if (t.name == "multiple-scattering") v = &result.multipleScattering.values;
+    else if (t.name == "direct-irradiance") v = &result.directIrradiance.values;
+    else if (t.name == "irradiance") v = &result.irradiance.values;
+    else {
+      const auto i = std::find(components.begin(), components.end(), t.parameters.at("component")) - components.begin();
+      v = &result.singleScattering.at(static_cast<std::size_t>(i)).values;
+    }
+    // Orders 1: no multiple scattering nor indirect irradiance (empty tables: zeros).
+    if (!v->empty() && v->size() != static_cast<std::size_t>(w) * h * nc)
+      throw std::logic_error("precompute: unexpected size of table " + t.name);
+    return toTable(*v, w, h, nc, this->channels);
+  }
+};
+
+/// The smallest run that makes `po`'s transmittance: no scattering worth the name.
+umbra::atmosphere::PrecomputeOptions transmittanceOnly(umbra::atmosphere::PrecomputeOptions po) {
+  po.scatteringR = po.scatteringMuS = po.scatteringNu = 2;
+  po.scatteringMu = 4;
+  po.irradianceWidth = po.irradianceHeight = 2;
+  po.orders = 1;
+  return po;
+}
+
+/// A block of `output` named `name`, with its cache parameters and kind.
+void setBlock(vtkMultiBlockDataSet* output, unsigned& block, vtkImageData* image, ParameterMap parameters,
+              const std::string& kind, const std::string& name) {
+  parameters["kind"] = kind;
+  umbra::filters::setFieldParameters(image, parameters);
+  output->SetBlock(block, image);
+  output->GetMetaData(block)->Set(vtkCompositeDataSet::NAME(), name.c_str());
+  ++block;
+}
+
 } // namespace
 
 vtkAtmosphereTablesSource::vtkAtmosphereTablesSource() { this->SetNumberOfInputPorts(0); }
@@ -125,200 +232,8 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
     const tables::TableCache cache(this->CacheDirectory.empty() ? tables::TableCache::defaultDirectory()
                                                                 : this->CacheDirectory);
     unsigned block = 0;
-
-    if (this->Tables & Bruneton) {
-      atmosphere::PrecomputeOptions po;
-      po.transmittanceWidth = this->TransmittanceSize[0];
-      po.transmittanceHeight = this->TransmittanceSize[1];
-      po.scatteringR = this->ScatteringSize[0];
-      po.scatteringMu = this->ScatteringSize[1];
-      po.scatteringMuS = this->ScatteringSize[2];
-      po.scatteringNu = this->ScatteringSize[3];
-      po.irradianceWidth = this->IrradianceSize[0];
-      po.irradianceHeight = this->IrradianceSize[1];
-      po.orders = this->Orders;
-      po.muSMin = this->MuSMin;
-      if (this->MinimumDensityDirections > 0)
-        po.sphereSamples = std::max(this->MinimumDensityDirections, atmosphere::densityDirectionsFor(atm));
-      if (this->DensityDirections > 0) po.sphereSamples = this->DensityDirections;
-      po.singleScatteringSamples = this->QuadratureSamples[0];
-      po.multipleScatteringSamples = this->QuadratureSamples[1];
-      po.irradianceSamples = this->QuadratureSamples[2];
-      po.refraction = this->RefractedPaths;
-      po.refractionStepM = this->RefractionStepM;
-      po.threads = this->Threads;
-      if (const std::string e = po.validate(); !e.empty()) throw std::invalid_argument("precompute options: " + e);
-
-      // Everything that changes the values (not threads nor wavelengthBatch).
-      ParameterMap base = atmosphere::atmosphereParameters(atm);
-      base["transmittanceSize"] = std::to_string(po.transmittanceWidth) + "x" + std::to_string(po.transmittanceHeight);
-      base["scatteringSize"] = std::to_string(po.scatteringR) + "," + std::to_string(po.scatteringMu) + "," +
-                               std::to_string(po.scatteringMuS) + "," + std::to_string(po.scatteringNu);
-      base["irradianceSize"] = std::to_string(po.irradianceWidth) + "x" + std::to_string(po.irradianceHeight);
-      base["orders"] = std::to_string(po.orders);
-      base["samples"] = std::to_string(po.transmittanceSamples) + " " + std::to_string(po.singleScatteringSamples) + " " +
-                        std::to_string(po.multipleScatteringSamples) + " " + std::to_string(po.opticalDepthSubsamples) +
-                        " " + std::to_string(po.sphereSamples) + " " + std::to_string(po.irradianceSamples);
-      base["densityQuadrature"] = atmosphere::kDensityQuadrature;
-      base["muSMin"] = formatNumber(po.muSMin);
-      base["sunAngularRadiusRad"] = formatNumber(po.sunAngularRadiusRad);
-      base["refractedPaths"] = po.refraction ? "1" : "0";
-      if (po.refraction) base["refractionStepM"] = formatNumber(po.refractionStepM);
-      base["units"] = "per unit solar irradiance; channels L<nm>nm, one per wavelength ('.' written 'p')";
-
-      std::vector<std::string> channels;
-      for (double nm : atm.wavelengthsNm) channels.push_back(channelName(nm));
-      const int scatterWidth = po.scatteringNu * po.scatteringMuS;
-      const std::string layout3 =
-          "x = nu index * MU_S + mu_s index, y = mu index + MU * r index (the MU rows of each R slice stacked; "
-          "the lower MU/2 rows of a slice: rays that hit the ground); Bruneton 2017 4D parametrisation";
-      auto entry = [&](std::string name, int bit, std::string layout, int depth) {
-        BrunetonTable t;
-        t.name = std::move(name);
-        t.parameters = base;
-        t.parameters["layout"] = std::move(layout);
-        t.parameters["depth"] = std::to_string(depth);
-        t.depth = depth;
-        return std::make_pair(bit, t);
-      };
-      std::vector<std::pair<int, BrunetonTable>> all;
-      all.push_back(entry("transmittance", Transmittance,
-                          "x = x_mu, y = x_r (Bruneton 2017 transmittance parametrisation, texel centres on the ends)", 1));
-      std::vector<std::string> components;
-      for (const atmosphere::Component& c : atm.components)
-        if (c.scatters()) {
-          components.push_back(c.name);
-          all.push_back(entry("single-scattering-" + kindPart(c.name), SingleScattering, layout3, po.scatteringR));
-          all.back().second.parameters["component"] = c.name;
-        }
-      all.push_back(entry("multiple-scattering", MultipleScattering, layout3, po.scatteringR));
-      all.back().second.parameters["groundSunlight"] = atmosphere::kGroundSunlight;
-      const std::string layoutIrradiance =
-          "x = x_mu_s, y = x_r (Bruneton 2017 irradiance parametrisation, texel centres on the ends)";
-      all.push_back(entry("direct-irradiance", Irradiance, layoutIrradiance, 1));
-      all.push_back(entry("irradiance", Irradiance, layoutIrradiance, 1));
-      all.back().second.parameters["groundSunlight"] = atmosphere::kGroundSunlight;
-      auto sizeOf = [&](const BrunetonTable& t) {
-        if (t.name == "transmittance") return std::make_pair(po.transmittanceWidth, po.transmittanceHeight);
-        if (t.depth > 1) return std::make_pair(scatterWidth, po.scatteringMu * po.scatteringR);
-        return std::make_pair(po.irradianceWidth, po.irradianceHeight);
-      };
-
-      // Transmittance alone: no scattering worth the name (the smallest tables, one order),
-      // and only it stored; else every table of the run is stored, needed now or not.
-      const int requested = this->Tables & Bruneton;
-      const bool transmittanceOnly = requested == Transmittance;
-      std::vector<BrunetonTable*> made;
-      std::vector<tables::TableRequest> requests;
-      for (auto& [bit, t] : all) {
-        if (transmittanceOnly && bit != Transmittance) continue;
-        const auto [w, h] = sizeOf(t);
-        made.push_back(&t);
-        requests.push_back({"atmosphere-" + t.name, t.parameters, w, h, channels, (requested & bit) != 0});
-      }
-      tables::CacheOutcome outcome;
-      std::vector<tables::Table> values = tables::cachedOrComputed(
-          cache, this->UseCache != 0, requests,
-          [&] {
-            atmosphere::PrecomputeOptions run = po;
-            if (transmittanceOnly) {
-              run.scatteringR = run.scatteringMuS = run.scatteringNu = 2;
-              run.scatteringMu = 4;
-              run.irradianceWidth = run.irradianceHeight = 2;
-              run.orders = 1;
-            }
-            ++this->PrecomputeCalls;
-            const atmosphere::AtmosphereTables result = atmosphere::precompute(atm, run, [this](double f, const std::string&) {
-              this->UpdateProgress(0.95 * f);
-              return !this->GetAbortExecute();  // SetAbortExecute(1) from another thread cancels
-            });
-            const int nc = static_cast<int>(channels.size());
-            std::vector<tables::Table> out;
-            for (const BrunetonTable* t : made) {
-              const auto [w, h] = sizeOf(*t);
-              const std::vector<double>* v = nullptr;
-              if (t->name == "transmittance") v = &result.transmittance.values;
-              else if (t->name == "multiple-scattering") v = &result.multipleScattering.values;
-              else if (t->name == "direct-irradiance") v = &result.directIrradiance.values;
-              else if (t->name == "irradiance") v = &result.irradiance.values;
-              else {
-                const auto i = std::find(components.begin(), components.end(), t->parameters.at("component")) - components.begin();
-                v = &result.singleScattering.at(static_cast<std::size_t>(i)).values;
-              }
-              // Orders 1: no multiple scattering nor indirect irradiance (empty tables: zeros).
-              if (!v->empty() && v->size() != static_cast<std::size_t>(w) * h * nc)
-                throw std::logic_error("precompute: unexpected size of table " + t->name);
-              out.push_back(toTable(*v, w, h, nc, channels));
-            }
-            return out;
-          },
-          outcome);
-      this->CacheHits += outcome.hits;
-      this->Computed += outcome.computed;
-      if (this->CacheWarning.empty()) this->CacheWarning = outcome.warning;
-      for (std::size_t i = 0; i < made.size(); ++i)
-        if (requests[i].needed) made[i]->table = std::move(values[i]);
-      for (auto& [bit, t] : all) {
-        if (!(requested & bit)) continue;
-        auto image = blockOf(*t.table, t.depth);
-        ParameterMap parameters = t.parameters;
-        parameters["kind"] = "atmosphere-" + t.name;
-        filters::setFieldParameters(image, parameters);
-        output->SetBlock(block, image);
-        output->GetMetaData(block)->Set(vtkCompositeDataSet::NAME(), t.name.c_str());
-        ++block;
-      }
-    }
-
-    if (this->Tables & Refraction) {
-      auto parameters = atmosphere::refractionParameters(atm, atm.refractivityReferenceWavelengthNm);
-      parameters["width"] = std::to_string(this->RefractionWidth);
-      parameters["height"] = std::to_string(this->RefractionHeight);
-      parameters["stepM"] = formatNumber(this->RefractionStepM);
-      parameters["layout"] = "x = x_mu, y = x_r (Bruneton 2017 transmittance parametrisation, texel centres on the ends)";
-      const std::vector<std::string> refractionChannels = {"deviation_rad", "contact_altitude_m"};
-      tables::CacheOutcome outcome;
-      std::vector<tables::Table> made = tables::cachedOrComputed(
-          cache, this->UseCache != 0,
-          {{kRefractionKind, parameters, this->RefractionWidth, this->RefractionHeight, refractionChannels}},
-          [&] {
-            // After the Bruneton tables made now (0 to 0.95), the rest: progress never goes back.
-            const double from = this->GetProgress() < 1.0 ? this->GetProgress() : 0.0;
-            const atmosphere::RefractionTable r = atmosphere::buildRefractionTable(
-                atmosphere::refractiveMedium(atm, atm.refractivityReferenceWavelengthNm), this->RefractionWidth,
-                this->RefractionHeight, this->RefractionStepM,
-                [this, from](double f) { this->UpdateProgress(from + (1.0 - from) * f); });
-            tables::Table t;
-            t.width = r.width;
-            t.height = r.height;
-            t.channels = refractionChannels;
-            t.data.resize(2 * r.deviationRad.size());
-            for (std::size_t i = 0; i < r.deviationRad.size(); ++i) {
-              t.data[2 * i] = r.deviationRad[i];
-              t.data[2 * i + 1] = r.contactAltitudeM[i];
-            }
-            return std::vector<tables::Table>{std::move(t)};
-          },
-          outcome);
-      this->CacheHits += outcome.hits;
-      this->Computed += outcome.computed;
-      if (this->CacheWarning.empty()) this->CacheWarning = outcome.warning;
-      const tables::Table* table = &made.front();
-      auto image = unitRangeImage(table->width, table->height);
-      std::vector<float> deviation(table->data.size() / 2), contact(table->data.size() / 2);
-      for (std::size_t i = 0; i < deviation.size(); ++i) {
-        deviation[i] = table->data[2 * i];
-        contact[i] = table->data[2 * i + 1];
-      }
-      addArray(image, "deviation_rad", deviation);
-      addArray(image, "contact_altitude_m", contact);
-      image->GetPointData()->SetActiveScalars("deviation_rad");
-      parameters["kind"] = kRefractionKind;
-      filters::setFieldParameters(image, parameters);
-      output->SetBlock(block, image);
-      output->GetMetaData(block)->Set(vtkCompositeDataSet::NAME(), "refraction");
-      ++block;
-    }
+    if (this->Tables & Bruneton) this->AddBrunetonBlocks(atm, cache, output, block);
+    if (this->Tables & Refraction) this->AddRefractionBlock(atm, cache, output, block);
   } catch (const atmosphere::PrecomputeCancelled& e) {
     // Asked for: no message, and success for the executive (which would print one);
     // the output is empty.
@@ -332,4 +247,121 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
   }
   this->UpdateProgress(1.0);
   return 1;
+}
+
+umbra::atmosphere::PrecomputeOptions vtkAtmosphereTablesSource::PrecomputeOptionsFor(
+    const umbra::atmosphere::Atmosphere& atm) const {
+  umbra::atmosphere::PrecomputeOptions po;
+  po.transmittanceWidth = this->TransmittanceSize[0];
+  po.transmittanceHeight = this->TransmittanceSize[1];
+  po.scatteringR = this->ScatteringSize[0];
+  po.scatteringMu = this->ScatteringSize[1];
+  po.scatteringMuS = this->ScatteringSize[2];
+  po.scatteringNu = this->ScatteringSize[3];
+  po.irradianceWidth = this->IrradianceSize[0];
+  po.irradianceHeight = this->IrradianceSize[1];
+  po.orders = this->Orders;
+  po.muSMin = this->MuSMin;
+  if (this->MinimumDensityDirections > 0)
+    po.sphereSamples = std::max(this->MinimumDensityDirections, umbra::atmosphere::densityDirectionsFor(atm));
+  if (this->DensityDirections > 0) po.sphereSamples = this->DensityDirections;
+  po.singleScatteringSamples = this->QuadratureSamples[0];
+  po.multipleScatteringSamples = this->QuadratureSamples[1];
+  po.irradianceSamples = this->QuadratureSamples[2];
+  po.refraction = this->RefractedPaths;
+  po.refractionStepM = this->RefractionStepM;
+  po.threads = this->Threads;
+  if (const std::string e = po.validate(); !e.empty()) throw std::invalid_argument("precompute options: " + e);
+  return po;
+}
+
+void vtkAtmosphereTablesSource::Count(const umbra::tables::CacheOutcome& outcome) {
+  this->CacheHits += outcome.hits;
+  this->Computed += outcome.computed;
+  if (this->CacheWarning.empty()) this->CacheWarning = outcome.warning;
+}
+
+void vtkAtmosphereTablesSource::AddBrunetonBlocks(const umbra::atmosphere::Atmosphere& atm,
+                                                  const umbra::tables::TableCache& cache, vtkMultiBlockDataSet* output,
+                                                  unsigned& block) {
+  using namespace umbra;
+  BrunetonSet set(atm, this->PrecomputeOptionsFor(atm));
+  // Transmittance alone: the smallest run, and only it stored; else every table of the
+  // run is stored, needed now or not.
+  const int requested = this->Tables & Bruneton;
+  const bool onlyTransmittance = requested == Transmittance;
+  std::vector<BrunetonTable*> made;
+  std::vector<tables::TableRequest> requests;
+  for (auto& [bit, t] : set.all) {
+    if (onlyTransmittance && bit != Transmittance) continue;
+    const auto [w, h] = set.sizeOf(t);
+    made.push_back(&t);
+    requests.push_back({"atmosphere-" + t.name, t.parameters, w, h, set.channels, (requested & bit) != 0});
+  }
+  tables::CacheOutcome outcome;
+  std::vector<tables::Table> values = tables::cachedOrComputed(
+      cache, this->UseCache != 0, requests,
+      [&] {
+        ++this->PrecomputeCalls;
+        const atmosphere::AtmosphereTables result = atmosphere::precompute(
+            atm, onlyTransmittance ? transmittanceOnly(set.po) : set.po, [this](double f, const std::string&) {
+              this->UpdateProgress(0.95 * f);
+              return !this->GetAbortExecute();  // SetAbortExecute(1) from another thread cancels
+            });
+        std::vector<tables::Table> out;
+        for (const BrunetonTable* t : made) out.push_back(set.tableOf(result, *t));
+        return out;
+      },
+      outcome);
+  this->Count(outcome);
+  for (std::size_t i = 0; i < made.size(); ++i)
+    if (requests[i].needed) made[i]->table = std::move(values[i]);
+  for (auto& [bit, t] : set.all)
+    if (requested & bit) setBlock(output, block, blockOf(*t.table, t.depth), t.parameters, "atmosphere-" + t.name, t.name);
+}
+
+void vtkAtmosphereTablesSource::AddRefractionBlock(const umbra::atmosphere::Atmosphere& atm,
+                                                   const umbra::tables::TableCache& cache, vtkMultiBlockDataSet* output,
+                                                   unsigned& block) {
+  using namespace umbra;
+  auto parameters = atmosphere::refractionParameters(atm, atm.refractivityReferenceWavelengthNm);
+  parameters["width"] = std::to_string(this->RefractionWidth);
+  parameters["height"] = std::to_string(this->RefractionHeight);
+  parameters["stepM"] = formatNumber(this->RefractionStepM);
+  parameters["layout"] = "x = x_mu, y = x_r (Bruneton 2017 transmittance parametrisation, texel centres on the ends)";
+  const std::vector<std::string> channels = {"deviation_rad", "contact_altitude_m"};
+  tables::CacheOutcome outcome;
+  std::vector<tables::Table> made = tables::cachedOrComputed(
+      cache, this->UseCache != 0, {{kRefractionKind, parameters, this->RefractionWidth, this->RefractionHeight, channels}},
+      [&] {
+        // After the Bruneton tables made now (0 to 0.95), the rest: progress never goes back.
+        const double from = this->GetProgress() < 1.0 ? this->GetProgress() : 0.0;
+        const atmosphere::RefractionTable r = atmosphere::buildRefractionTable(
+            atmosphere::refractiveMedium(atm, atm.refractivityReferenceWavelengthNm), this->RefractionWidth,
+            this->RefractionHeight, this->RefractionStepM,
+            [this, from](double f) { this->UpdateProgress(from + (1.0 - from) * f); });
+        tables::Table t;
+        t.width = r.width;
+        t.height = r.height;
+        t.channels = channels;
+        t.data.resize(2 * r.deviationRad.size());
+        for (std::size_t i = 0; i < r.deviationRad.size(); ++i) {
+          t.data[2 * i] = r.deviationRad[i];
+          t.data[2 * i + 1] = r.contactAltitudeM[i];
+        }
+        return std::vector<tables::Table>{std::move(t)};
+      },
+      outcome);
+  this->Count(outcome);
+  const tables::Table& table = made.front();
+  auto image = unitRangeImage(table.width, table.height);
+  std::vector<float> deviation(table.data.size() / 2), contact(table.data.size() / 2);
+  for (std::size_t i = 0; i < deviation.size(); ++i) {
+    deviation[i] = table.data[2 * i];
+    contact[i] = table.data[2 * i + 1];
+  }
+  addArray(image, "deviation_rad", deviation);
+  addArray(image, "contact_altitude_m", contact);
+  image->GetPointData()->SetActiveScalars("deviation_rad");
+  setBlock(output, block, image, parameters, kRefractionKind, "refraction");
 }

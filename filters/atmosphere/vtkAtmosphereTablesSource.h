@@ -53,6 +53,12 @@
 
 #include <string>
 
+class vtkMultiBlockDataSet;
+namespace umbra::tables {
+class TableCache;
+struct CacheOutcome;
+}
+
 class vtkAtmosphereTablesSource : public vtkMultiBlockDataSetAlgorithm {
 public:
   static vtkAtmosphereTablesSource* New();
@@ -91,7 +97,7 @@ public:
   vtkGetVector2Macro(IrradianceSize, int);
   /// The lowest Sun the scattering tables hold, as the cosine of its zenith angle
   /// (PrecomputeOptions::muSMin; default cos 102 deg, in [-1, 0]): air that sees the Sun
-  /// lower is dark in them. Lower for a twilight sky (render::configureAtmosphereTables).
+  /// lower is dark in them. Lower for a twilight sky (pipeline::configureAtmosphereTables).
   vtkSetClampMacro(MuSMin, double, -1.0, 0.0);
   vtkGetMacro(MuSMin, double);
   /// At least this many polar directions in the scattering density's quadrature
@@ -151,6 +157,18 @@ protected:
 private:
   vtkAtmosphereTablesSource(const vtkAtmosphereTablesSource&) = delete;
   void operator=(const vtkAtmosphereTablesSource&) = delete;
+
+  /// The precomputation's options from the knobs, for `atm` (its density directions),
+  /// validated (std::invalid_argument otherwise).
+  umbra::atmosphere::PrecomputeOptions PrecomputeOptionsFor(const umbra::atmosphere::Atmosphere& atm) const;
+  /// The Bruneton tables of Tables, from `cache` or computed together, as blocks of
+  /// `output` from `block` on.
+  void AddBrunetonBlocks(const umbra::atmosphere::Atmosphere& atm, const umbra::tables::TableCache& cache,
+                         vtkMultiBlockDataSet* output, unsigned& block);
+  /// The refraction table, the same way.
+  void AddRefractionBlock(const umbra::atmosphere::Atmosphere& atm, const umbra::tables::TableCache& cache,
+                          vtkMultiBlockDataSet* output, unsigned& block);
+  void Count(const umbra::tables::CacheOutcome& outcome);
 
   std::string Atmosphere = "earth";
   int Tables = Bruneton;

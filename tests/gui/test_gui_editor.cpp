@@ -300,7 +300,7 @@ TEST(GuiEditor, SaveThenLoadGivesTheSameModel) {
 
 // The time slider with an atmosphere: an hour after sunset (the Sun ~15 deg down) the view
 // first draws the day's tables, darker, while the worker makes the twilight ones the scene
-// asks for (render::atmosphereTableChoice: 4x the mu_s cells, the Sun down to 130 deg);
+// asks for (pipeline::atmosphereTableChoice: 4x the mu_s cells, the Sun down to 130 deg);
 // the plot panel and the status follow the time. Back at sunset: the day's tables again,
 // from the cache.
 TEST(GuiEditor, TimeSliderMakesTwilightTablesAndDarkensTheSky) {
@@ -513,7 +513,7 @@ TEST(GuiEditor, AtmosphereShadowLutInTheWorkerWithProgress) {
 // is not asked for again until the time moves (a cancelled or failed table is retried
 // then). With one, the view keeps shading with it (copper) after a cancelled
 // recomputation (here for another atmosphere of the same body). The tables of the scene
-// are the same through the eclipse (render::sunDistanceOnGrid, ranged u on a grid): a
+// are the same through the eclipse (pipeline::sunDistanceOnGrid, ranged u on a grid): a
 // time step needs none, and slider steps while a table is made wait for it. A cancel is
 // not an error: nothing on stderr (VTK printed the source's error and the executive's
 // failure, 12 lines).
@@ -654,10 +654,10 @@ Ring ringOf(const QImage& a, const QImage& b, int floor) {
 // for another atmosphere; from the table cache for one seen before), and the ring, 1.7 px
 // wide, is drawn from it as `umbra render` draws it: the view's pixels and the CLI's PNG
 // of the same scene, time, size and exposure (the same table cache) were measured equal
-// (0 pixels differ: one code path, render::applySceneLimbLuminance's request and update),
+// (0 pixels differ: one code path, pipeline::applySceneLimbLuminance's request and update),
 // so the ring's mean R, G, B (over the pixels above 8 in either) must agree within
 // kTolerance, which leaves room for a driver's rounding; the ray-marched ring (threshold
-// 0) is far from it (mean R 93 vs 226), so the comparison tells the two paths apart.
+// 0) is far from it (mean R 93 vs 218), so the comparison tells the two paths apart.
 TEST(GuiEditor, LimbRingFromTheLutAsTheCliDrawsIt) {
   constexpr double kTolerance = 0.02;
   umbra::test::TempDir dir;
@@ -732,8 +732,8 @@ TEST(GuiEditor, LimbRingFromTheLutAsTheCliDrawsIt) {
   EXPECT_TRUE(w.sceneView().lastDrawUsedLimbLuminance());
 
   // Another atmosphere (the preset without Calbuco's aerosols): its tables, then its LuTs
-  // in the worker; less extinction along the limb, a brighter ring (measured R 246 vs 226,
-  // G 168 vs 125).
+  // in the worker; less extinction along the limb, a brighter ring (measured R 243 vs 218,
+  // G 157 vs 117).
   w.setAtmosphere("earth");
   ASSERT_TRUE(untilShadowJob(w));
   EXPECT_TRUE(w.limbLuminanceBusy());

@@ -221,9 +221,8 @@ TEST(GuiScreenshot, AtmosphereOnOffAndPreset) {
   ASSERT_EQ(mars.run.exitCode, 0) << mars.run.err;
   const QRgb glow = mars.image.pixel(mars.view.center() - QPoint(0, mars.view.height() / 20));
   std::printf("  Mars glow %d %d %d\n", qRed(glow), qGreen(glow), qBlue(glow));
-  // 174 177 181 with Lorenz-Mie dust (tone-mapped close to white; B/R 1.17 in radiance,
-  // tests/cli/test_render_cli.cpp), whose blue forward peak is lower than the earlier
-  // Henyey-Greenstein dust's (atmosphere/presets/mars.json)
+  // 186 198 209 with Lorenz-Mie dust (atmosphere/presets/mars.json; tone-mapped close to
+  // white, B/R 1.80 in radiance: tests/cli/test_render_cli.cpp)
   EXPECT_GT(qBlue(glow), qRed(glow) + 3);
 
   const RunResult bad = umbra::test::run(UMBRA_GUI_EXE, {sunset, "--atmosphere", "venus", "--screenshot", dir / "x.png"},

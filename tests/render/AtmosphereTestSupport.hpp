@@ -32,7 +32,7 @@ inline const AtmosphereFixture& atmosphereFixture() {
   static const AtmosphereFixture f = [] {
     vtkNew<vtkAtmosphereTablesSource> source;
     source->SetAtmosphere("earth");
-    useSmallAtmosphereTables(source);
+    pipeline::useSmallAtmosphereTables(source);
     source->UseCacheOff();
     source->Update();
     if (!source->GetLastError().empty()) throw std::runtime_error(source->GetLastError());

@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cstdio>
 
+using namespace umbra::pipeline;  // the scene glue (app/pipeline)
+
 using namespace umbra;
 using namespace umbra::render;
 using namespace umbra::render::test;
@@ -141,7 +143,7 @@ TEST(AtmosphereGlsl, SkyRadianceWithTheSunBelowTheTablesLowest) {
   EXPECT_GE(a.samples, 250);  // 288 of 736 lit above the floor (the arch)
 }
 
-// The twilight tables a scene asks for after sunset (render::configureAtmosphereTables:
+// The twilight tables a scene asks for after sunset (pipeline::configureAtmosphereTables:
 // 4x the mu_s cells, the Sun down to 120 deg here): the Sun 8 and 14 deg below the
 // horizon, the whole sky in view, the zenith lit by the air in the Earth's shadow.
 TEST(AtmosphereGlsl, SkyRadianceOnTwilightTables) {

@@ -20,6 +20,8 @@
 #include <algorithm>
 #include <cstdio>
 
+using namespace umbra::pipeline;  // the scene glue (app/pipeline)
+
 using namespace umbra;
 using namespace umbra::render;
 using namespace umbra::render::test;

@@ -35,6 +35,8 @@
 #include <limits>
 #include <vector>
 
+using namespace umbra::pipeline;  // the scene glue (app/pipeline)
+
 using namespace umbra;
 using namespace umbra::render;
 using namespace umbra::render::test;

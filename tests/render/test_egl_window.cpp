@@ -35,7 +35,7 @@ struct Frame {
 // HDR, tone mapping).
 Frame renderMoon(bool useXDisplay) {
   const scene::Scene s = scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28.json");
-  const render::SceneInputs in = render::sceneInputs(s);
+  const pipeline::SceneInputs in = pipeline::sceneInputs(s);
   render::BodyView view(96, 54, true);
   if (useXDisplay) render::test::useSharedDisplay(view.GetRenderWindow());
   Frame f;

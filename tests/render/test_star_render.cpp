@@ -23,6 +23,8 @@
 #include <unistd.h>
 #include <vector>
 
+using namespace umbra::pipeline;  // the scene glue (app/pipeline)
+
 using namespace umbra;
 using namespace umbra::render;
 using namespace umbra::render::test;

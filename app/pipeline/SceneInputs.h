@@ -1,6 +1,7 @@
 #pragma once
-// What the renderer needs from a scene: the Sun as the light, the other bodies as
-// spheres (each a receiver, shadowed by the rest), and the camera.
+// The glue from a scene to the renderer (the CLI and the GUI share it): what the renderer
+// needs from a scene (the Sun as the light, the other bodies as spheres, each a receiver
+// shadowed by the rest, and the camera), and the table sources configured for it.
 #include "BodyView.h"
 #include "EclipseShading.h"
 
@@ -12,7 +13,17 @@ class vtkAtmosphereTablesSource;
 
 namespace umbra::scene { struct Scene; }
 
-namespace umbra::render {
+namespace umbra::pipeline {
+
+// The renderer's types that the glue fills.
+using render::AtmosphereRendering;
+using render::BodyView;
+using render::EclipseShading;
+using render::MilkyWayTexels;
+using render::SphereBody;
+using render::StarPoint;
+using render::SunLight;
+using render::ViewCamera;
 
 /// The atmosphere a scene asks to draw (scene::Body::atmosphereModel).
 struct SceneAtmosphere {
@@ -69,7 +80,7 @@ struct SceneInputs {
 /// A body whose sphere would enclose the camera (an observer near a pole, below the mean
 /// radius) is shrunk to just below the camera.
 ///
-/// A body with an atmosphere to draw (at most one per scene so far; std::invalid_argument
+/// A body with an atmosphere to draw (at most one per scene; std::invalid_argument
 /// otherwise) is a sphere of the atmosphere's bottom radius (the ground of its tables),
 /// and an observer standing on it is placed at that radius plus its altitude (at least
 /// 1 m), in the same direction from the centre; the target moves with it.
@@ -134,4 +145,4 @@ void showSceneSky(BodyView& view, const SceneInputs& in);
 /// configureAtmosphereTables(source, AtmosphereTableSizes::Small): the day's small tables.
 void useSmallAtmosphereTables(vtkAtmosphereTablesSource* source);
 
-} // namespace umbra::render
+} // namespace umbra::pipeline

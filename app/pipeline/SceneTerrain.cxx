@@ -8,7 +8,7 @@
 
 #include <stdexcept>
 
-namespace umbra::render {
+namespace umbra::pipeline {
 
 namespace {
 
@@ -79,4 +79,4 @@ std::vector<std::unique_ptr<TerrainRendering>> addSceneTerrains(BodyView& view, 
   return out;
 }
 
-} // namespace umbra::render
+} // namespace umbra::pipeline

@@ -6,6 +6,7 @@
 // extent; the source caches each extent it computes).
 #include "AtmosphereRendering.h"
 #include "EclipseShading.h"
+#include "SceneInputs.h"  // the renderer's types the glue fills
 
 #include "ShadowLut.hpp"
 
@@ -19,9 +20,7 @@ class vtkEclipseAtmosphereSource;
 class vtkEclipseShadowLutSource;
 class vtkLimbLuminanceSource;
 
-namespace umbra::render {
-
-struct SceneInputs;
+namespace umbra::pipeline {
 
 /// The u texel columns [first, last] of a `width`-wide shadow LuT that a bilinear lookup
 /// reads for any point of `receiver` in the shadow of `occluder` (Eq. 4: u grows with the
@@ -137,9 +136,9 @@ void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs&
 /// Small tables for quick looks and tests (about a second): Bruneton tables as
 /// useSmallAtmosphereTables with 2 orders, a 128x64 deviation table; the shadow LuT 64x32
 /// with limb views of 32 rows and 4x4 scattering cells; the limb-luminance LuT 8 (u) x 32
-/// (v) x 16 (beta) with views of 32 rows and 4x4 cells (8 v rows put the ring's flux off
-/// by up to x1.7 in G: docs/accuracy-vs-speed.md).
+/// (v) x 16 (beta) with views of 32 rows and 4x4 cells (fewer v rows put the ring's flux
+/// off: docs/accuracy-vs-speed.md, "The limb-luminance LuT in the GUI").
 void useSmallEclipseShadowTables(vtkEclipseShadowLutSource* source);
 void useSmallLimbLuminanceTables(vtkLimbLuminanceSource* source);
 
-} // namespace umbra::render
+} // namespace umbra::pipeline

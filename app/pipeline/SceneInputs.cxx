@@ -34,7 +34,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace umbra::render {
+namespace umbra::pipeline {
 
 namespace {
 vtkImageData* refractionBlock(vtkMultiBlockDataSet* blocks) {
@@ -85,7 +85,7 @@ glm::dvec3 earthshineOn(const scene::Body& body, const scene::Body& earth, const
 // when the camera is in an atmosphere (`air`: the planet's centre and top radius).
 std::vector<StarPoint> sceneStars(const scene::Scene& s, const glm::dvec3& cameraM, double sunIrradianceAt1AuWm2,
                                   const std::optional<std::pair<glm::dvec3, double>>& air) {
-  const auto all = starCatalogue(s.stars->cataloguePath);
+  const auto all = render::starCatalogue(s.stars->cataloguePath);
   std::vector<sky::CatalogueStar> bright;
   for (const sky::CatalogueStar& star : *all)
     if (star.vMag <= s.stars->limitingMagnitude) bright.push_back(star);
@@ -184,7 +184,7 @@ SceneInputs sceneInputs(const scene::Scene& s) {
     in.bodies.push_back(body);
     if (b.atmosphereModel.empty()) continue;
     if (in.atmosphere) {
-      throw std::invalid_argument("only one atmosphere per view is drawn so far ('" + in.atmosphere->body +
+      throw std::invalid_argument("only one atmosphere per view is drawn ('" + in.atmosphere->body +
                                   "' and '" + b.name + "' ask for one)");
     }
     const atmosphere::Atmosphere model = atmosphere::loadAtmosphere(b.atmosphereModel, atmosphere::WavelengthSet::rgb().nm);
@@ -231,7 +231,7 @@ SceneInputs sceneInputs(const scene::Scene& s) {
       if (const scene::Body* planet = s.find(in.atmosphere->body)) air = {{planet->positionM, in.atmosphere->topRadiusM}};
     in.stars = sceneStars(s, in.camera.positionM, in.sun.irradianceAt1AuWm2, air);
     if (!s.stars->milkyWayPath.empty()) {
-      in.milkyWay = milkyWayTexels(s.stars->milkyWayPath, s.stars->cataloguePath,
+      in.milkyWay = render::milkyWayTexels(s.stars->milkyWayPath, s.stars->cataloguePath,
                                    std::min(s.stars->limitingMagnitude, sky::kMilkyWayStarsShownToV));
       in.milkyWayRadianceScale = in.milkyWay->radiancePerSunIrradiance * in.sun.irradianceAt1AuWm2;
     }
@@ -324,4 +324,4 @@ void useSmallAtmosphereTables(vtkAtmosphereTablesSource* source) {
   configureAtmosphereTables(source, AtmosphereTableSizes::Small);
 }
 
-} // namespace umbra::render
+} // namespace umbra::pipeline

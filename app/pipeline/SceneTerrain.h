@@ -10,7 +10,10 @@
 #include <string>
 #include <vector>
 
-namespace umbra::render {
+namespace umbra::pipeline {
+
+using render::TerrainPatch;
+using render::TerrainRendering;
 
 /// Reads a DEM file (heights above the sphere of radius bodyRadiusM); throws with a
 /// message naming the file. (The CLI's is GDAL's: app/cli/TerrainDem.)
@@ -34,4 +37,4 @@ std::vector<std::unique_ptr<TerrainRendering>> addSceneTerrains(BodyView& view, 
 void placeSceneTerrains(const std::vector<std::unique_ptr<TerrainRendering>>& terrains, BodyView& view,
                         const scene::Scene& scene, const SceneInputs& in);
 
-} // namespace umbra::render
+} // namespace umbra::pipeline

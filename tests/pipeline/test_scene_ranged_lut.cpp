@@ -34,6 +34,8 @@
 #include <string>
 #include <vector>
 
+using namespace umbra::pipeline;  // the scene glue (app/pipeline)
+
 using namespace umbra;
 using namespace umbra::render;
 using namespace umbra::render::test;
@@ -317,8 +319,7 @@ TEST(SceneRangedLut, AnEclipseInMotionKeepsTheMoonsShadowLut) {
 // What the Sun distance's grid costs: the small limb-luminance LuT made for the grid's
 // distance and for the exact one (the example above at its time; were they equal, half a
 // step off, the most the grid moves it) differ by < 1e-3 of each texel above 1e-3 of the
-// largest. (Measured with the default sizes: the 25 frames of that eclipse, 01:00-05:00,
-// ring flux within 2.2e-4 of the exact distance's; docs/accuracy-vs-speed.md.)
+// largest (docs/accuracy-vs-speed.md, "Tables for a scene in motion").
 TEST(SceneRangedLut, LimbLuminanceLutOnTheSunDistanceGrid) {
   scene::Scene s = scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/earth-from-lunar-north-pole-2015-09-28.json");
   const SceneInputs in = sceneInputs(s);

@@ -15,7 +15,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace umbra::render {
+namespace umbra::pipeline {
 namespace {
 // Eq. 4's u for the given distances to the occluder and the Sun.
 double lutU(double sunRadiusM, double sunDistanceM, double occRadiusM, double occDistanceM) {
@@ -347,4 +347,4 @@ void useSmallLimbLuminanceTables(vtkLimbLuminanceSource* s) {
   s->SetScatteringCells(4);
 }
 
-} // namespace umbra::render
+} // namespace umbra::pipeline
