@@ -2,6 +2,7 @@
 // (format: docs/atmosphere-format.md).
 #include "JsonErrors.hpp"
 #include "Atmosphere.hpp"
+#include "Humidity.hpp"
 #include "Mie.hpp"
 
 #include <nlohmann/json.hpp>
@@ -193,6 +194,18 @@ public:
       : file_(std::move(file)), wavelengths_(wavelengthsNm) {}
 
   const std::vector<double>& wavelengths() const { return wavelengths_; }
+  /// The air's relative humidity (the document's "relativeHumidity"; 0 until it is read).
+  double relativeHumidity() const { return relativeHumidity_; }
+  Reader withHumidity(double relativeHumidity) const {
+    Reader r = *this;
+    r.relativeHumidity_ = relativeHumidity;
+    return r;
+  }
+  Reader withWavelengths(const std::vector<double>& wavelengthsNm) const {
+    Reader r = *this;
+    r.wavelengths_ = wavelengthsNm;
+    return r;
+  }
 
   [[noreturn]] void fail(const std::string& field, const std::string& message) const {
     throw AtmosphereError(file_ + ": " + (field.empty() ? "" : field + ": ") + message);
@@ -276,6 +289,7 @@ public:
 private:
   std::string file_;
   std::vector<double> wavelengths_;
+  double relativeHumidity_ = 0.0;
 };
 
 json parseJson(const std::string& text, const std::string& file) {
@@ -482,6 +496,58 @@ std::pair<std::vector<double>, double> parseRefractiveIndex(const Reader& in, co
   return {refractivity, atN};
 }
 
+/// The size distribution of a "mie" model: one radius (effectiveRadiusM: <r^3>/<r^2>, or
+/// medianRadiusM: the number distribution's median, OPAC's mode radius) and at most one
+/// width (effectiveVariance, or geometricStdDev sigma_g; none: one radius), cut to
+/// radiusRangeM [min, max] when given, N from numberDensityPerM3.
+LogNormalSizes parseMieSizes(const Reader& in, const json& value, const std::string& field) {
+  auto key = [&](const char* k) { return Reader::join(field, k); };
+  const bool byMedian = value.contains("medianRadiusM");
+  if (byMedian == value.contains("effectiveRadiusM"))
+    in.fail(field, "expected exactly one of 'effectiveRadiusM' and 'medianRadiusM'");
+  if (value.contains("effectiveVariance") && value.contains("geometricStdDev"))
+    in.fail(field, "expected at most one of 'effectiveVariance' and 'geometricStdDev'");
+  const char* radiusKey = byMedian ? "medianRadiusM" : "effectiveRadiusM";
+  const double r = in.number(value[radiusKey], key(radiusKey),
+                             byMedian ? "a median radius in (0, 2e-5] m" : "an effective radius in (0, 2e-5] m",
+                             [](double x) { return x > 0.0 && x <= 2e-5; });
+  double lnSigma2 = 0.0;  // ln^2 sigma_g
+  if (value.contains("effectiveVariance"))
+    lnSigma2 = std::log1p(in.number(value["effectiveVariance"], key("effectiveVariance"),
+                                    "an effective variance in [0, 2]", [](double x) { return x >= 0.0 && x <= 2.0; }));
+  if (value.contains("geometricStdDev"))
+    lnSigma2 = std::pow(std::log(in.number(value["geometricStdDev"], key("geometricStdDev"),
+                                           "a geometric standard deviation in [1, 5]",
+                                           [](double x) { return x >= 1.0 && x <= 5.0; })),
+                        2.0);
+  const double N = in.number(in.require(value, "numberDensityPerM3", field), key("numberDensityPerM3"),
+                             "a number density above 0, at most 1e35 in 1/m^3",
+                             [](double x) { return x > 0.0 && x <= 1e35; });
+  // r_eff = r_m exp(5/2 ln^2 sigma_g) (Hansen & Travis 1974; Mie.hpp).
+  LogNormalSizes sizes{byMedian ? r : r * std::exp(-2.5 * lnSigma2), std::exp(std::sqrt(lnSigma2)), N};
+  if (value.contains("radiusRangeM")) {
+    const std::vector<double> range = in.numbers(value["radiusRangeM"], key("radiusRangeM"));
+    if (range.size() != 2 || !(range[0] >= 0.0) || !(range[1] > range[0]) || !(range[1] <= 1e-3))
+      in.fail(key("radiusRangeM"), "expected [min, max] radii in m, 0 <= min < max <= 1e-3");
+    sizes.minRadiusM = range[0], sizes.maxRadiusM = range[1];
+  }
+  return sizes;
+}
+
+/// r_wet / r_dry of a "mie" model's "hygroscopicGrowth" rows at the air's relative humidity.
+double parseGrowth(const Reader& in, const json& value, const std::string& field) {
+  in.object(value, field, {"relativeHumidity", "radiusFactor"});
+  const std::vector<double> humidity = in.numbers(in.require(value, "relativeHumidity", field),
+                                                  Reader::join(field, "relativeHumidity"));
+  const std::vector<double> factor = in.numbers(in.require(value, "radiusFactor", field),
+                                                Reader::join(field, "radiusFactor"));
+  try {
+    return growthFactor(humidity, factor, in.relativeHumidity());
+  } catch (const std::invalid_argument& e) {
+    in.failWithKey(field, e.what());
+  }
+}
+
 Optics parseOptics(const Reader& in, const json& value, const std::string& field) {
   if (!value.is_object()) in.fail(field, "expected an object, " + got(value));
   const std::string model = in.string(in.require(value, "model", field), field + ".model");
@@ -572,24 +638,25 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
       }
     }
   } else if (model == "mie") {
-    in.object(value, field, {"model", "effectiveRadiusM", "effectiveVariance", "numberDensityPerM3",
-                             "refractiveIndexReal", "refractiveIndexImag"});
-    const double rEff = in.number(in.require(value, "effectiveRadiusM", field), key("effectiveRadiusM"),
-                                  "an effective radius in (0, 2e-5] m", [](double x) { return x > 0.0 && x <= 2e-5; });
-    const double vEff = value.contains("effectiveVariance")
-                            ? in.number(value["effectiveVariance"], key("effectiveVariance"),
-                                        "an effective variance in [0, 2]", [](double x) { return x >= 0.0 && x <= 2.0; })
-                            : 0.0;
-    const double N = density("numberDensityPerM3");
+    in.object(value, field, {"model", "effectiveRadiusM", "medianRadiusM", "effectiveVariance", "geometricStdDev",
+                             "radiusRangeM", "hygroscopicGrowth", "numberDensityPerM3", "refractiveIndexReal",
+                             "refractiveIndexImag"});
+    LogNormalSizes sizes = parseMieSizes(in, value, field);
     const std::vector<double> m = in.spectrum(in.require(value, "refractiveIndexReal", field), key("refractiveIndexReal"),
                                               "a real refractive index > 0", positive);
     const std::vector<double> k =
         in.spectrum(in.require(value, "refractiveIndexImag", field), key("refractiveIndexImag"),
                     "an imaginary refractive index >= 0", nonNegative);
-    const LogNormalSizes sizes = logNormalFromEffective(rEff, vEff, N);
+    // In humid air a hygroscopic particle grows and its index moves towards water's.
+    const double growth = value.contains("hygroscopicGrowth")
+                              ? parseGrowth(in, value["hygroscopicGrowth"], key("hygroscopicGrowth"))
+                              : 1.0;
+    sizes.medianRadiusM *= growth, sizes.minRadiusM *= growth, sizes.maxRadiusM *= growth;
     for (std::size_t i = 0; i < n; ++i) {
-      const MieAerosol a = mieLogNormal(lambdas[i] * 1e-9, {m[i], k[i]}, sizes, kMiePhaseSamples, 0,
-                                        kMieBulkTolerance, kMiePhaseTolerance);
+      const std::complex<double> index =
+          humidRefractiveIndex({m[i], k[i]}, waterRefractiveIndexReal(lambdas[i]), growth);
+      const MieAerosol a = mieLogNormal(lambdas[i] * 1e-9, index, sizes, kMiePhaseSamples, 0, kMieBulkTolerance,
+                                        kMiePhaseTolerance);
       o.scattering.push_back(a.scatteringPerM);
       o.absorption.push_back(a.absorptionPerM);
       o.defaultPhase.push_back(PhaseFunction::tabulated(a.cosTheta, a.phase));
@@ -602,7 +669,9 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
 }
 
 Component parseComponent(const Reader& in, const std::string& name, const json& value, const std::string& field) {
-  in.object(value, field, {"description", "density", "densityScale", "optics", "phase"});
+  in.object(value, field, {"description", "aerosol", "density", "densityScale", "optics", "phase"});
+  if (value.contains("aerosol") && !value["aerosol"].is_boolean())
+    in.fail(field + ".aerosol", "expected true or false, " + got(value["aerosol"]));
   Component c;
   c.name = name;
   c.density = parseProfile(in, in.require(value, "density", field), field + ".density");
@@ -628,9 +697,37 @@ Component parseComponent(const Reader& in, const std::string& name, const json& 
   return c;
 }
 
+/// "aerosolOpticalDepth550": the components marked "aerosol" scaled together (their ratios
+/// kept) so that their vertical extinction optical depth from the ground to the top at
+/// 550 nm is the document's (each computed at 550 nm as well, whatever the run's
+/// wavelengths).
+void scaleAerosols(const Reader& in, const json& doc, Atmosphere& a) {
+  const double target = in.number(doc["aerosolOpticalDepth550"], "aerosolOpticalDepth550",
+                                  "an optical depth in [0, 10]", [](double x) { return x >= 0.0 && x <= 10.0; });
+  const Reader at550 = in.withWavelengths({550.0});
+  Atmosphere probe;
+  probe.bottomRadiusM = a.bottomRadiusM, probe.topRadiusM = a.topRadiusM, probe.wavelengthsNm = {550.0};
+  double tau = 0.0;
+  std::vector<Component*> aerosols;
+  for (const auto& item : doc["components"].items()) {
+    if (!item.value().value("aerosol", false)) continue;
+    const Component c = parseComponent(at550, item.key(), item.value(), "components." + item.key());
+    tau += probe.verticalOpticalDepth(c, 0.0, probe.thicknessM()).front();
+    for (Component& mine : a.components)
+      if (mine.name == item.key()) aerosols.push_back(&mine);
+  }
+  if (aerosols.empty()) in.fail("aerosolOpticalDepth550", "no component has \"aerosol\": true to scale");
+  if (!(tau > 0.0)) in.fail("aerosolOpticalDepth550", "the \"aerosol\" components have no extinction at 550 nm");
+  const double f = target / tau;
+  for (Component* c : aerosols) {
+    for (double& b : c->scatteringPerM) b *= f;
+    for (double& b : c->absorptionPerM) b *= f;
+  }
+}
+
 Atmosphere build(const Reader& in, const json& doc, const std::string& defaultName) {
-  in.object(doc, "",
-            {"name", "description", "bottomRadiusM", "topRadiusM", "groundAlbedo", "refraction", "components"});
+  in.object(doc, "", {"name", "description", "bottomRadiusM", "topRadiusM", "groundAlbedo", "relativeHumidity",
+                      "aerosolOpticalDepth550", "refraction", "components"});
   Atmosphere a;
   a.wavelengthsNm = in.wavelengths();
   a.name = doc.contains("name") ? in.string(doc["name"], "name") : defaultName;
@@ -652,10 +749,16 @@ Atmosphere build(const Reader& in, const json& doc, const std::string& defaultNa
   const json& components = in.require(doc, "components", "");
   if (!components.is_object() || components.empty())
     in.fail("components", "expected a non-empty object of named components, " + got(components));
+  const Reader air = in.withHumidity(doc.contains("relativeHumidity")
+                                         ? in.number(doc["relativeHumidity"], "relativeHumidity",
+                                                     "a relative humidity in [0, 0.99]",
+                                                     [](double x) { return x >= 0.0 && x <= 0.99; })
+                                         : 0.0);
   for (const auto& item : components.items()) {
     if (item.key().empty()) in.fail("components", "expected non-empty component names");
-    a.components.push_back(parseComponent(in, item.key(), item.value(), "components." + item.key()));
+    a.components.push_back(parseComponent(air, item.key(), item.value(), "components." + item.key()));
   }
+  if (doc.contains("aerosolOpticalDepth550")) scaleAerosols(air, doc, a);
 
   a.refractivityFollows.clear();
   if (doc.contains("refraction")) {

@@ -15,7 +15,8 @@ namespace umbra::atmosphere {
 struct Field {
   /// The object the key lives in, with the component name as '*': "" (the top level),
   /// "refraction", "components.*", "components.*.density", "components.*.optics",
-  /// "components.*.optics.refractiveIndex", "components.*.optics.vanDeHulst", "components.*.phase".
+  /// "components.*.optics.refractiveIndex", "components.*.optics.vanDeHulst",
+  /// "components.*.optics.hygroscopicGrowth", "components.*.phase".
   const char* where;
   /// The value of the object's selector ("type" or "model") the key belongs to; "" for
   /// every object at `where`. A line whose key is the selector itself declares a type.

@@ -229,6 +229,9 @@ void checkLogNormalArguments(double wavelengthM, const LogNormalSizes& sizes, in
   if (!(sizes.numberDensityPerM3 >= 0.0) || !std::isfinite(sizes.numberDensityPerM3))
     throw std::invalid_argument("mieLogNormal: number density must be >= 0");
   if (phaseSamples < 2) throw std::invalid_argument("mieLogNormal: phaseSamples must be >= 2");
+  if (!(sizes.minRadiusM >= 0.0) || !(sizes.maxRadiusM >= 0.0) ||
+      (sizes.maxRadiusM > 0.0 && !(sizes.maxRadiusM > sizes.minRadiusM)))
+    throw std::invalid_argument("mieLogNormal: the radius cut must be 0 or 0 <= min < max");
   if (extraLevels < 0 || extraLevels > 8) throw std::invalid_argument("mieLogNormal: extraLevels must be in [0, 8]");
   if (!(bulkTolerance > 0.0 && bulkTolerance < 1.0) || !(phaseTolerance > 0.0 && phaseTolerance < 1.0))
     throw std::invalid_argument("mieLogNormal: tolerances must be in (0, 1)");
@@ -240,12 +243,14 @@ void checkLogNormalArguments(double wavelengthM, const LogNormalSizes& sizes, in
 /// [ext, sca, gsca, diff_0 .. diff_{P-1}].
 struct SizeIntegral {
   double k, s, xm;  // wavenumber, ln(sigma_g), size parameter at the median radius
+  double minRadiusM, maxRadiusM;  // the cut (0: none)
   cplx m;
   const std::vector<double>& cosTheta;
   int P, Q;
 
   SizeIntegral(double wavelengthM, cplx index, const LogNormalSizes& sizes, const std::vector<double>& cosines)
-      : k(2.0 * kPi / wavelengthM), s(std::log(sizes.geometricStdDev)), xm(k * sizes.medianRadiusM), m(index),
+      : k(2.0 * kPi / wavelengthM), s(std::log(sizes.geometricStdDev)), xm(k * sizes.medianRadiusM),
+        minRadiusM(sizes.minRadiusM), maxRadiusM(sizes.maxRadiusM), m(index),
         cosTheta(cosines), P(static_cast<int>(cosines.size())), Q(3 + P) {}
 
   double sizeAt(double u) const { return xm * std::exp(s * u); }
@@ -339,7 +344,14 @@ struct SizeIntegral {
   /// against C_sca (g may be ~0). Sets the quadrature's figures in `out`.
   std::vector<double> integrate(int extraLevels, double bulkTolerance, double phaseTolerance, MieAerosol& out) const {
     constexpr long kMaxIntervals = 16384;
-    const auto [uLo, uHi] = window();
+    auto [uLo, uHi] = window();
+    if (minRadiusM > 0.0) uLo = std::max(uLo, std::log(k * minRadiusM / xm) / s);
+    if (maxRadiusM > 0.0) uHi = std::min(uHi, std::log(k * maxRadiusM / xm) / s);
+    if (!(uHi > uLo)) {  // the cut holds none of the distribution's window
+      out.converged = true;
+      out.minSizeParameter = out.maxSizeParameter = xm;
+      return std::vector<double>(Q, 0.0);
+    }
     const double width = uHi - uLo;
     const double omega = 2.0 + 4.0 * std::abs(m);
     const double hStart = std::min(kCoarseStep, kPi / (omega * s * sizeAt(2.0 * s)));

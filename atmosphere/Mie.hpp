@@ -65,6 +65,9 @@ struct LogNormalSizes {
   double medianRadiusM;       ///< r_m [m]
   double geometricStdDev;     ///< sigma_g >= 1 (1: all particles have radius r_m)
   double numberDensityPerM3;  ///< N [1/m^3]
+  /// The distribution cut to [minRadiusM, maxRadiusM] (0: not cut), N that of the whole
+  /// distribution: OPAC's components are tabulated so (Hess et al. 1998, Table 1).
+  double minRadiusM = 0.0, maxRadiusM = 0.0;
 };
 
 /// The log-normal distribution with a given effective radius and effective variance

@@ -96,10 +96,14 @@ struct PrecomputeOptions {
 
 /// The density directions an atmosphere's phase functions need (sphereSamples 0): the
 /// polar spacing pi / n no wider than 1.5 times the half width of the narrowest forward peak
-/// (the angle at which a phase function falls to half its forward value), n a multiple of
+/// (the angle at which a phase function falls to half its forward value) of the components
+/// that hold at least kMinDensityShare of the scattering optical depth, n a multiple of
 /// 8 in [16, 64]. Rayleigh and Earth's haze: 16; Mars' dust, whose Lorenz-Mie diffraction
 /// peak is a few degrees wide: more (docs/accuracy-vs-speed.md, "Density directions").
 int densityDirectionsFor(const Atmosphere& atmosphere);
+/// The share of a wavelength's scattering optical depth below which a component's forward
+/// peak does not set densityDirectionsFor.
+constexpr double kMinDensityShare = 0.1;
 /// The fewest densityDirectionsFor gives (Bruneton's count): more means a forward peak.
 inline constexpr int kMinDensityDirections = 16;
 

@@ -103,6 +103,12 @@ struct CieSkyParameters {
 /// Type 12, "CIE standard clear sky, low luminance turbidity": gradation group V
 /// (a = -1, b = -0.32), indicatrix group 4 (c = 10, d = -3, e = 0.45).
 inline constexpr CieSkyParameters kCieClearSkyType12{-1.0, -0.32, 10.0, -3.0, 0.45};
+/// Type 11, "white-blue sky with distinct solar corona": gradation group V with b = -0.55
+/// (a = -1), indicatrix group 4 (c = 10, d = -3, e = 0.45).
+inline constexpr CieSkyParameters kCieSkyType11{-1.0, -0.55, 10.0, -3.0, 0.45};
+/// Type 13, "CIE standard clear sky, polluted atmosphere": gradation group V (a = -1,
+/// b = -0.32), indicatrix group 5 (c = 16, d = -3, e = 0.30).
+inline constexpr CieSkyParameters kCieSkyType13{-1.0, -0.32, 16.0, -3.0, 0.30};
 
 /// phi(Z) = 1 + a exp(b / cos Z); phi(pi/2) = 1 (the limit, taken for Z >= pi/2).
 double cieGradation(const CieSkyParameters& p, double zenithRad);

@@ -78,9 +78,11 @@ OccluderChoice chooseOccluder(const std::string& name, const std::string& radius
 }
 
 void EclipseAtmosphereChoice::addTo(CLI::App* command) {
+  std::string presets;
+  for (const auto& p : atmosphere::presetNames()) presets += (presets.empty() ? "" : ", ") + p;
   command->add_option("--atmosphere", atmosphere,
-                      "The occluder's atmosphere: a preset (earth, earth-2015-calbuco, mars) or a JSON file; "
-                      "refracted and scattered light then reach into the shadow");
+                      "The occluder's atmosphere: a preset (" + presets +
+                          ") or a JSON file; refracted and scattered light then reach into the shadow");
   command->add_option("--limb-size", limbSize, "Rows and columns of the limb view rendered per shadow-LuT texel")
       ->capture_default_str()->check(CLI::Range(4, 4096));
   command->add_option("--scattering-cells", scatteringCells,

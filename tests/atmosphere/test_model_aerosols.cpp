@@ -154,3 +154,70 @@ TEST(ModelAerosols, TabulatedComponentIsTheMieHook) {
   EXPECT_THROW(tabulatedComponent("mie", DensityProfile::exponential(1200.0), {1e-5}, {0.0}, phases),
                std::invalid_argument);
 }
+
+// An OPAC component as an atmosphere file writes it (a "mie" model by mode radius, sigma
+// and radius range, hygroscopicGrowth from OPAC's wet mode radii): at 80 % relative
+// humidity the particle grows by 1.4434 and its index mixes with water's, and the
+// coefficients at 550 nm for 1 particle per cm^3 are OPAC's "waso80" row (extinction
+// 9.584e-3, scattering 9.434e-3 per 1000 km; Hess, Koepke & Schult 1998) within 0.5 %; dry,
+// its "waso00" row (3.905e-3, 3.755e-3).
+TEST(ModelAerosols, OpacWaterSolubleGrowsWithHumidity) {
+  auto document = [](double humidity) {
+    return std::string(R"({"bottomRadiusM": 6371000, "topRadiusM": 6471000, "relativeHumidity": )") +
+           std::to_string(humidity) + R"(,
+      "components": {"waso": {"density": {"type": "exponential", "scaleHeightM": 2000},
+        "optics": {"model": "mie", "medianRadiusM": 0.0212e-6, "geometricStdDev": 2.24,
+                   "radiusRangeM": [0.005e-6, 20e-6], "numberDensityPerM3": 1e6,
+                   "refractiveIndexReal": 1.53, "refractiveIndexImag": 0.006,
+                   "hygroscopicGrowth": {"relativeHumidity": [0, 0.5, 0.7, 0.8, 0.9],
+                                         "radiusFactor": [1, 1.2358, 1.3443, 1.4434, 1.6415]}}}}})";
+  };
+  struct Case {
+    double humidity, extPer1000Km, scaPer1000Km;
+  };
+  for (const Case c : {Case{0.0, 3.905e-3, 3.755e-3}, Case{0.8, 9.584e-3, 9.434e-3}}) {
+    const Atmosphere a = parseAtmosphere(document(c.humidity), "waso.json", {550.0});
+    const Component& w = a.component("waso");
+    EXPECT_NEAR(w.extinctionPerM(0) * 1e6 / c.extPer1000Km, 1.0, 5e-3) << c.humidity;
+    EXPECT_NEAR(w.scatteringPerM[0] * 1e6 / c.scaPer1000Km, 1.0, 5e-3) << c.humidity;
+  }
+  EXPECT_THROW(parseAtmosphere(document(1.0), "waso.json", {550.0}), AtmosphereError);
+}
+
+// "aerosolOpticalDepth550" scales the components marked "aerosol" together (their ratios
+// kept), at whatever wavelengths the run has: their vertical optical depth at 550 nm is the
+// requested one, the others' are untouched, and a second wavelength set gives the same.
+TEST(ModelAerosols, AerosolOpticalDepthScalesTheMarkedComponents) {
+  const Atmosphere rgb = loadAtmosphere("earth-continental", umbra::test::threeWavelengthsNm());  // 680, 550, 440
+  double tau = 0.0;
+  for (const char* name : {"water-soluble", "insoluble", "soot"})
+    tau += rgb.verticalOpticalDepth(rgb.component(name), 0.0, rgb.thicknessM())[1];
+  EXPECT_NEAR(tau, 0.1, 1e-12);
+  const Atmosphere bruneton = loadAtmosphere("earth-bruneton", umbra::test::threeWavelengthsNm());
+  EXPECT_EQ(rgb.component("molecules").scatteringPerM, bruneton.component("molecules").scatteringPerM);
+  EXPECT_EQ(rgb.find("aerosols"), nullptr);
+  // The turbid sky: three times the particles, the same mixture.
+  const Atmosphere turbid = loadAtmosphere("earth-turbid", umbra::test::threeWavelengthsNm());
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_NEAR(turbid.component("soot").absorptionPerM[i] / rgb.component("soot").absorptionPerM[i], 3.0, 1e-9);
+  // Without 550 nm among the wavelengths: 545 and 555 nm bracket it.
+  const Atmosphere pair = loadAtmosphere("earth-continental", {545.0, 555.0});
+  double tau545 = 0.0, tau555 = 0.0;
+  for (const char* name : {"water-soluble", "insoluble", "soot"}) {
+    tau545 += pair.verticalOpticalDepth(pair.component(name), 0.0, pair.thicknessM())[0];
+    tau555 += pair.verticalOpticalDepth(pair.component(name), 0.0, pair.thicknessM())[1];
+  }
+  EXPECT_GT(tau545, 0.1);
+  EXPECT_LT(tau555, 0.1);
+  const std::string noAerosol = R"({"bottomRadiusM": 6371000, "topRadiusM": 6471000, "aerosolOpticalDepth550": 0.1,
+    "components": {"air": {"density": {"type": "exponential", "scaleHeightM": 8000},
+      "optics": {"model": "coefficients", "scatteringPerM": 1e-5}, "phase": {"type": "isotropic"}}}})";
+  try {
+    parseAtmosphere(noAerosol, "t.json", {550.0});
+    ADD_FAILURE() << "no error";
+  } catch (const AtmosphereError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.json: aerosolOpticalDepth550: no component has \"aerosol\": true"),
+              std::string::npos)
+        << e.what();
+  }
+}

@@ -76,7 +76,7 @@ TEST(ModelValidation, UnknownKey) {
             "scatteringPerM, absorptionPerM)");
   EXPECT_EQ(errorOf(document("\"name\": \"test\"", "\"nmae\": \"test\"")),
             "bad.json: nmae: unknown key (expected one of: name, description, bottomRadiusM, topRadiusM, "
-            "groundAlbedo, refraction, components)");
+            "groundAlbedo, relativeHumidity, aerosolOpticalDepth550, refraction, components)");
 }
 
 TEST(ModelValidation, NegativeOrMissingCoefficient) {

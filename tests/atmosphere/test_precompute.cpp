@@ -799,5 +799,25 @@ TEST(Precompute, DISABLED_TimingDefaultSizes) {
   }
 }
 
+
+// The precomputed transmittance at the zenith, from the ground, gives back the optical depth
+// the model holds at 550 nm (molecules, ozone, O2 and the aerosols that
+// "aerosolOpticalDepth550" scaled to 0.1) within 1 %, and so the requested aerosol part.
+TEST(PrecomputeAerosols, ZenithTransmittanceGivesBackTheRequestedOpticalDepth) {
+  const Atmosphere atm = loadAtmosphere("earth-continental", {680.0, 550.0, 440.0});
+  PrecomputeOptions o = umbra::test::smallPrecomputeOptions();
+  o.orders = 1;
+  const AtmosphereTables t = precompute(atm, o);
+  const double tauTables = -std::log(t.transmittance.values[t.transmittance.offset(0, 0) + 1]);  // x_mu 0, x_r 0
+  const double tauModel = atm.verticalOpticalDepth(0.0, atm.thicknessM())[1];
+  double tauAerosols = 0.0;
+  for (const char* name : {"water-soluble", "insoluble", "soot"})
+    tauAerosols += atm.verticalOpticalDepth(atm.component(name), 0.0, atm.thicknessM())[1];
+  std::printf("  zenith optical depth at 550 nm: tables %.5f, model %.5f (aerosols %.5f)\n", tauTables, tauModel,
+              tauAerosols);
+  EXPECT_NEAR(tauTables / tauModel, 1.0, 0.01);
+  EXPECT_NEAR((tauTables - (tauModel - tauAerosols)) / 0.1, 1.0, 0.01);
+}
+
 }  // namespace
 }  // namespace umbra::atmosphere
