@@ -467,7 +467,10 @@ vtkShaderProgram* readyQuad(vtkOpenGLRenderWindow* window, std::unique_ptr<vtkOp
     if (limbCode) decl += std::string(glsl::kLimbRing) + "\n";
     vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl", decl + "//VTK::FSQ::Decl");
     vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
-                                 std::string("  gl_FragData[0] = vec4(") + function + "(texCoord), 1.0);\n//VTK::FSQ::Impl");
+                                 // Light outside the display's gamut (a deep red ring's blue through the
+                                 // colour matrix) has a negative channel: 0, as the sky command writes it.
+                                 std::string("  gl_FragData[0] = vec4(max(") + function +
+                                     "(texCoord), vec3(0.0)), 1.0);\n//VTK::FSQ::Impl");
     quad = std::make_unique<vtkOpenGLQuadHelper>(window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
                                                  fs.c_str(), "");
   } else {

@@ -366,6 +366,9 @@ RingFrame renderRing(const glm::dvec3& camera, const glm::dvec3& target, double 
   view.Render();
   RingFrame out;
   view.ReadHdr(out.rgb, out.w, out.h);
+  // No channel below 0: light outside the display's gamut (the deep red ring's blue through
+  // the colour matrix) is clipped to 0, as the sky command writes it.
+  EXPECT_EQ(std::count_if(out.rgb.begin(), out.rgb.end(), [](float v) { return v < 0.0f; }), 0);
   out.ringWidthPx = atmo.GetLastRingWidthPixels();
   out.usedLut = atmo.GetLastDrawUsedLimbLuminance();
   out.subsamples = atmo.GetLastLimbSubsamples();
