@@ -113,6 +113,8 @@ void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action) {
       limb->SetLimbRows(o->atmosphere.limbSize);
       // The same distances: the limb-luminance LuT over their u and v ranges too.
       if (!o->distanceRange.empty()) limb->SetLutRange(distanceRangeOption(o->distanceRange, occ, false, o->limbLutSize));
+      // The same atmosphere tables, made once for both LuTs (also without the cache).
+      if (shadow->GetNumberOfInputConnections(0) > 0) limb->SetInputConnection(shadow->GetInputConnection(0, 0));
       updateEclipseSource(limb, std::string("limb-luminance LuT") + (o->distanceRange.empty() ? "" : " (ranged)"), o->cache);
 
       const bool created = !fs::exists(dir, ec);
