@@ -511,20 +511,22 @@ LogNormalSizes parseMieSizes(const Reader& in, const json& value, const std::str
   const double r = in.number(value[radiusKey], key(radiusKey),
                              byMedian ? "a median radius in (0, 2e-5] m" : "an effective radius in (0, 2e-5] m",
                              [](double x) { return x > 0.0 && x <= 2e-5; });
-  double lnSigma2 = 0.0;  // ln^2 sigma_g
-  if (value.contains("effectiveVariance"))
-    lnSigma2 = std::log1p(in.number(value["effectiveVariance"], key("effectiveVariance"),
-                                    "an effective variance in [0, 2]", [](double x) { return x >= 0.0 && x <= 2.0; }));
-  if (value.contains("geometricStdDev"))
-    lnSigma2 = std::pow(std::log(in.number(value["geometricStdDev"], key("geometricStdDev"),
-                                           "a geometric standard deviation in [1, 5]",
-                                           [](double x) { return x >= 1.0 && x <= 5.0; })),
-                        2.0);
+  // The width as given: v_eff, or sigma_g (v_eff = exp(ln^2 sigma_g) - 1; Mie.hpp).
+  double vEff = 0.0, sigma = 1.0;
+  if (value.contains("effectiveVariance")) {
+    vEff = in.number(value["effectiveVariance"], key("effectiveVariance"), "an effective variance in [0, 2]",
+                     [](double x) { return x >= 0.0 && x <= 2.0; });
+    sigma = std::exp(std::sqrt(std::log1p(vEff)));
+  }
+  if (value.contains("geometricStdDev")) {
+    sigma = in.number(value["geometricStdDev"], key("geometricStdDev"), "a geometric standard deviation in [1, 5]",
+                      [](double x) { return x >= 1.0 && x <= 5.0; });
+    vEff = std::expm1(std::log(sigma) * std::log(sigma));
+  }
   const double N = in.number(in.require(value, "numberDensityPerM3", field), key("numberDensityPerM3"),
                              "a number density above 0, at most 1e35 in 1/m^3",
                              [](double x) { return x > 0.0 && x <= 1e35; });
-  // r_eff = r_m exp(5/2 ln^2 sigma_g) (Hansen & Travis 1974; Mie.hpp).
-  LogNormalSizes sizes{byMedian ? r : r * std::exp(-2.5 * lnSigma2), std::exp(std::sqrt(lnSigma2)), N};
+  LogNormalSizes sizes = byMedian ? LogNormalSizes{r, sigma, N} : logNormalFromEffective(r, vEff, N);
   if (value.contains("radiusRangeM")) {
     const std::vector<double> range = in.numbers(value["radiusRangeM"], key("radiusRangeM"));
     if (range.size() != 2 || !(range[0] >= 0.0) || !(range[1] > range[0]) || !(range[1] <= 1e-3))
@@ -704,6 +706,9 @@ Component parseComponent(const Reader& in, const std::string& name, const json& 
 void scaleAerosols(const Reader& in, const json& doc, Atmosphere& a) {
   const double target = in.number(doc["aerosolOpticalDepth550"], "aerosolOpticalDepth550",
                                   "an optical depth in [0, 10]", [](double x) { return x >= 0.0 && x <= 10.0; });
+  // At 550 nm: the load's own coefficients when it has that wavelength, else the component
+  // read once more there.
+  const auto own = std::find(a.wavelengthsNm.begin(), a.wavelengthsNm.end(), 550.0);
   const Reader at550 = in.withWavelengths({550.0});
   Atmosphere probe;
   probe.bottomRadiusM = a.bottomRadiusM, probe.topRadiusM = a.topRadiusM, probe.wavelengthsNm = {550.0};
@@ -711,10 +716,14 @@ void scaleAerosols(const Reader& in, const json& doc, Atmosphere& a) {
   std::vector<Component*> aerosols;
   for (const auto& item : doc["components"].items()) {
     if (!item.value().value("aerosol", false)) continue;
-    const Component c = parseComponent(at550, item.key(), item.value(), "components." + item.key());
-    tau += probe.verticalOpticalDepth(c, 0.0, probe.thicknessM()).front();
     for (Component& mine : a.components)
       if (mine.name == item.key()) aerosols.push_back(&mine);
+    if (own != a.wavelengthsNm.end()) {
+      tau += a.verticalOpticalDepth(*aerosols.back(), 0.0, a.thicknessM())[own - a.wavelengthsNm.begin()];
+      continue;
+    }
+    const Component c = parseComponent(at550, item.key(), item.value(), "components." + item.key());
+    tau += probe.verticalOpticalDepth(c, 0.0, probe.thicknessM()).front();
   }
   if (aerosols.empty()) in.fail("aerosolOpticalDepth550", "no component has \"aerosol\": true to scale");
   if (!(tau > 0.0)) in.fail("aerosolOpticalDepth550", "the \"aerosol\" components have no extinction at 550 nm");

@@ -145,14 +145,16 @@ int densityDirectionsFor(const Atmosphere& atmosphere) {
   // Each component's share of the scattering optical depth per wavelength: one below
   // kMinDensityShare (the coarse sea salt of a maritime aerosol, the insoluble dust of a
   // continental one) adds at most that share of the light its peak would need resolving.
-  std::vector<double> total(nl, 0.0);
-  for (const Component& c : atmosphere.components)
-    for (std::size_t l = 0; l < nl; ++l)
-      total[l] += c.density.integral(0.0, atmosphere.thicknessM()) * c.scatteringPerM[l];
+  std::vector<double> column, total(nl, 0.0);
   for (const Component& c : atmosphere.components) {
+    column.push_back(c.density.integral(0.0, atmosphere.thicknessM()));
+    for (std::size_t l = 0; l < nl; ++l) total[l] += column.back() * c.scatteringPerM[l];
+  }
+  for (std::size_t i = 0; i < atmosphere.components.size(); ++i) {
+    const Component& c = atmosphere.components[i];
     if (!c.scatters()) continue;
     for (std::size_t l = 0; l < nl; ++l) {
-      if (c.density.integral(0.0, atmosphere.thicknessM()) * c.scatteringPerM[l] < kMinDensityShare * total[l]) continue;
+      if (column[i] * c.scatteringPerM[l] < kMinDensityShare * total[l]) continue;
       const PhaseFunction& p = c.phase(l);
       const double forward = p(1.0);
       for (double deg = 0.05; deg < halfWidthRad * 180.0 / kPi; deg += 0.05)

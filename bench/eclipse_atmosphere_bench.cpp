@@ -127,8 +127,7 @@ struct Context {
 
 /// The complete set at the default sizes, stage by stage.
 void runSet(const Options& o, Context& c) {
-  [[maybe_unused]] const atmosphere::Atmosphere& atm = c.atm;
-  [[maybe_unused]] const std::string& preset = o.preset;
+  const std::string& preset = o.preset;
   const AtmosphericShadowModel& m = c.set->model;
   eclipse::AtmosphericShadowLutParams sp;  // 256^2, limb 256^2, 32^2 scattering cells
   const double shadowS = timed([&] { c.lut256 = eclipse::buildAtmosphericShadowLut(m, sp); });
@@ -142,9 +141,7 @@ void runSet(const Options& o, Context& c) {
 }
 
 /// The time of each table against its size knobs.
-void runScaling(const Options& o, Context& c) {
-  [[maybe_unused]] const atmosphere::Atmosphere& atm = c.atm;
-  [[maybe_unused]] const std::string& preset = o.preset;
+void runScaling(Context& c) {
   const AtmosphericShadowModel& m = c.set->model;
   std::printf("## scaling\n\n| table | size | seconds |\n|---|---|---|\n");
   for (int n : {32, 64, 128}) {
@@ -173,9 +170,7 @@ void runScaling(const Options& o, Context& c) {
 }
 
 /// A whole shadow LuT against the columns the Moon can be in.
-void runExtent(const Options& o, Context& c) {
-  [[maybe_unused]] const atmosphere::Atmosphere& atm = c.atm;
-  [[maybe_unused]] const std::string& preset = o.preset;
+void runExtent(Context& c) {
   const AtmosphericShadowModel& m = c.set->model;
   // The Moon between perigee and apogee: the u texels its centre can be at (v from 0 to 1
   // moves u a little: take the range over v as well).
@@ -200,8 +195,7 @@ void runExtent(const Options& o, Context& c) {
 
 /// Single columns of the limb-luminance LuT against rows and sub-rows.
 void runColumns(const Options& o, Context& c) {
-  [[maybe_unused]] const atmosphere::Atmosphere& atm = c.atm;
-  [[maybe_unused]] const std::string& preset = o.preset;
+  const std::string& preset = o.preset;
   const AtmosphericShadowModel& m = c.set->model;
   // Single beta columns of the limb-luminance LuT (one layer: the column averaged over the
   // rows, as the LuT stores it) at o.points of the umbra, against --column-reference rows.
@@ -280,8 +274,8 @@ void runColumns(const Options& o, Context& c) {
 
 /// The tables' error against a brute-force reference, per knob.
 void runError(const Options& o, Context& c) {
-  [[maybe_unused]] const atmosphere::Atmosphere& atm = c.atm;
-  [[maybe_unused]] const std::string& preset = o.preset;
+  const atmosphere::Atmosphere& atm = c.atm;
+  const std::string& preset = o.preset;
   const AtmosphericShadowModel& m = c.set->model;
   // The reference: a fine deviation table and fine limb views, evaluated at each point.
   atmosphere::RefractionTable fine;
@@ -372,8 +366,8 @@ int main(int argc, char** argv) {
   const eclipse::EclipseAtmosphereOptions options;  // defaults: 4 orders, refraction 512 x 256, 10 km
   c.tablesS = timed([&] { c.set = eclipse::prepareEclipseAtmosphere(c.atm, o.preset, o.sunDistanceM, options); });
   if (run.count("set")) runSet(o, c);
-  if (run.count("scaling")) runScaling(o, c);
-  if (run.count("extent")) runExtent(o, c);
+  if (run.count("scaling")) runScaling(c);
+  if (run.count("extent")) runExtent(c);
   if (run.count("columns")) runColumns(o, c);
   if (run.count("error")) runError(o, c);
   return 0;

@@ -454,7 +454,7 @@ void MainWindow::startEclipseLuts() {
 
 void MainWindow::tablesMade(TableJobs::Result& done) {
   this->showJob(std::nullopt);
-  if (done.lutJob) {
+  if (done.lutJob()) {
     // The view keeps the table it has for a LuT that was not made.
     if (done.shadow) this->view->setAtmosphereShadow(done.shadow, *done.shadowRequest);
     if (done.limb) this->view->setLimbLuminance(done.limb, *done.limbRequest);

@@ -75,7 +75,7 @@ TableJobs::~TableJobs() { this->stop(); }
 
 bool TableJobs::tablesBusy() const { return this->job && this->job->result.tables; }
 
-bool TableJobs::lutsBusy() const { return this->job && this->job->result.lutJob; }
+bool TableJobs::lutsBusy() const { return this->job && this->job->result.lutJob(); }
 
 bool TableJobs::limbLuminanceBusy() const { return this->job && this->job->result.limbRequest; }
 
@@ -105,7 +105,6 @@ std::optional<std::string> TableJobs::startEclipseLuts(const SceneView& view) {
   const bool makeShadow = wanted(shadow, this->failedShadow), makeLimb = wanted(limb, this->failedLimb);
   if (!makeShadow && !makeLimb) return std::nullopt;
   auto j = std::make_unique<Job>();
-  j->result.lutJob = true;
   // Each LuT's part of the progress: the atmosphere's tables with refraction (from their
   // cache) in its first half, the texels in its second; the LuT source reports both (its
   // tables' progress is its first half), the tables are observed too, to be cancelled.
@@ -169,7 +168,7 @@ void TableJobs::jobEnded(int g) {
   const std::unique_ptr<Job> done = std::move(this->job);
   done->stopObserving();
   Result& r = done->result;
-  if (r.lutJob) {
+  if (r.lutJob()) {
     // A cancelled job (also one that ended meanwhile) or a failed LuT is remembered.
     auto outcome = [&](bool asked, bool made, const std::string& name, const std::string& error) {
       if (!asked || (made && !done->cancelled)) return true;

@@ -33,10 +33,11 @@ class TableJobs : public QObject {
 public:
   /// What a finished job made. A tables job: `tables` (its configured source) and `choice`,
   /// with `tablesError` ("cancelled" when it was) empty when they were made. A LuT job
-  /// (`lutJob`): `shadow` and `limb` with their requests, each set only when made and not
-  /// cancelled, and `problem` naming each that was not ("atmosphere shadow: cancelled").
+  /// (`lutJob()`: no `tables`): `shadow` and `limb` with their requests, each set only when
+  /// made and not cancelled, and `problem` naming each that was not ("atmosphere shadow:
+  /// cancelled").
   struct Result {
-    bool lutJob = false;
+    bool lutJob() const { return !tables; }
     vtkSmartPointer<vtkAtmosphereTablesSource> tables;
     pipeline::AtmosphereTableChoice choice;
     std::string tablesError;
