@@ -206,6 +206,13 @@ public:
     r.wavelengths_ = wavelengthsNm;
     return r;
   }
+  /// The top of the boundary (mixing) layer, the document's "boundaryLayerHeightM".
+  double boundaryLayerHeightM() const { return boundaryLayerHeightM_; }
+  Reader withBoundaryLayer(double heightM) const {
+    Reader r = *this;
+    r.boundaryLayerHeightM_ = heightM;
+    return r;
+  }
 
   [[noreturn]] void fail(const std::string& field, const std::string& message) const {
     throw AtmosphereError(file_ + ": " + (field.empty() ? "" : field + ": ") + message);
@@ -290,6 +297,7 @@ private:
   std::string file_;
   std::vector<double> wavelengths_;
   double relativeHumidity_ = 0.0;
+  double boundaryLayerHeightM_ = kDefaultBoundaryLayerHeightM;
 };
 
 json parseJson(const std::string& text, const std::string& file) {
@@ -349,6 +357,27 @@ DensityProfile parseProfile(const Reader& in, const json& value, const std::stri
     p.kind = DensityProfile::Kind::Tent;
     p.centreM = finite("centreM");
     p.halfWidthM = finite("halfWidthM");
+  } else if (type == "boundary-layer") {
+    // OPAC's tropospheric layers: the mixing layer up to the document's boundaryLayerHeightM,
+    // then (when given) the free troposphere above it.
+    in.object(value, field, {"type", "scaleHeightM", "transitionM", "freeTroposphere"});
+    p.kind = DensityProfile::Kind::BoundaryLayer;
+    p.scaleHeightM = finite("scaleHeightM");
+    if (value.contains("transitionM")) p.transitionM = finite("transitionM");
+    p.boundaryLayerTopM = in.boundaryLayerHeightM();
+    p.freeTroposphereTopM = p.boundaryLayerTopM;
+    if (value.contains("freeTroposphere")) {
+      const std::string f = field + ".freeTroposphere";
+      const json& ft = value["freeTroposphere"];
+      if (!ft.is_object()) in.fail(f, "expected an object, " + got(ft));
+      in.object(ft, f, {"relativeDensity", "scaleHeightM", "topM"});
+      p.freeTroposphereDensity = in.number(in.require(ft, "relativeDensity", f), f + ".relativeDensity",
+                                           "a relative density >= 0", [](double x) { return x >= 0.0; });
+      p.freeTroposphereScaleHeightM = in.number(in.require(ft, "scaleHeightM", f), f + ".scaleHeightM",
+                                                "a finite number in metres", [](double) { return true; });
+      p.freeTroposphereTopM = in.number(in.require(ft, "topM", f), f + ".topM", "a finite number in metres",
+                                        [](double) { return true; });
+    }
   } else if (type == "tabulated") {
     in.object(value, field, {"type", "altitudesM", "values"});
     p.kind = DensityProfile::Kind::Tabulated;
@@ -356,7 +385,8 @@ DensityProfile parseProfile(const Reader& in, const json& value, const std::stri
     p.values = in.numbers(in.require(value, "values", field), field + ".values");
   } else {
     in.fail(field + ".type",
-            "expected one of: exponential, double-exponential, tent, tabulated, " + got(value["type"]));
+            "expected one of: exponential, double-exponential, tent, boundary-layer, tabulated, " +
+                got(value["type"]));
   }
   const std::string problem = p.validate();
   if (!problem.empty()) in.failWithKey(field, problem);
@@ -423,14 +453,13 @@ std::vector<PhaseFunction> parsePhase(const Reader& in, const json& value, const
       for (double lambda : in.wavelengths()) {
         WavelengthTable weight;
         weight.wavelengthsNm = lambdas;
-        std::vector<double> mixed(tables.front().values().size(), 0.0);
+        std::vector<double> w;
         for (std::size_t j = 0; j < tables.size(); ++j) {
           weight.values.assign(lambdas.size(), 0.0);
           weight.values[j] = 1.0;
-          const double w = weight.at(lambda);
-          for (std::size_t k = 0; k < mixed.size(); ++k) mixed[k] += w * tables[j].values()[k];
+          w.push_back(weight.at(lambda));
         }
-        phases.push_back(PhaseFunction::tabulated(tables.front().cosThetaSamples(), mixed));
+        phases.push_back(PhaseFunction::mixture(tables, w));
       }
     }
   } else {
@@ -552,6 +581,12 @@ double parseGrowth(const Reader& in, const json& value, const std::string& field
 
 Optics parseOptics(const Reader& in, const json& value, const std::string& field) {
   if (!value.is_object()) in.fail(field, "expected an object, " + got(value));
+  if (value.contains("description")) {  // free text, as a component's
+    in.string(value["description"], field + ".description");
+    json rest = value;
+    rest.erase("description");
+    return parseOptics(in, rest, field);
+  }
   const std::string model = in.string(in.require(value, "model", field), field + ".model");
   const std::vector<double>& lambdas = in.wavelengths();
   const std::size_t n = lambdas.size();
@@ -663,9 +698,37 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
       o.absorption.push_back(a.absorptionPerM);
       o.defaultPhase.push_back(PhaseFunction::tabulated(a.cosTheta, a.phase));
     }
+  } else if (model == "mixture") {
+    // Populations sharing one density profile (an OPAC aerosol type): their coefficients
+    // add, their phase functions mix weighted by their scattering.
+    in.object(value, field, {"model", "of"});
+    const json& of = in.require(value, "of", field);
+    if (!of.is_object() || of.empty()) in.fail(key("of"), "expected a non-empty object of named optics, " + got(of));
+    std::vector<Optics> parts;
+    for (const auto& item : of.items()) {
+      const std::string f = key("of") + "." + item.key();
+      parts.push_back(parseOptics(in, item.value(), f));
+      const Optics& part = parts.back();
+      if (part.defaultPhase.empty() && std::any_of(part.scattering.begin(), part.scattering.end(), positive))
+        in.fail(f, "expected a model with its own phase function in a mixture (rayleigh, mie), got '" +
+                       in.string(item.value()["model"], f + ".model") + "'");
+    }
+    o.scattering.assign(n, 0.0), o.absorption.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::vector<PhaseFunction> phases;
+      std::vector<double> weights;
+      for (const Optics& part : parts) {
+        o.scattering[i] += part.scattering[i], o.absorption[i] += part.absorption[i];
+        if (part.defaultPhase.empty()) continue;
+        phases.push_back(part.defaultPhase[i]);
+        weights.push_back(part.scattering[i]);
+      }
+      o.defaultPhase.push_back(o.scattering[i] > 0.0 ? PhaseFunction::mixture(phases, weights)
+                                                     : PhaseFunction::isotropic());
+    }
   } else {
-    in.fail(key("model"), "expected one of: rayleigh, absorber, coefficients, van-de-hulst, anomalous-diffraction, mie, " +
-                              got(value["model"]));
+    in.fail(key("model"), "expected one of: rayleigh, absorber, coefficients, van-de-hulst, anomalous-diffraction, mie, "
+                          "mixture, " + got(value["model"]));
   }
   return o;
 }
@@ -736,7 +799,7 @@ void scaleAerosols(const Reader& in, const json& doc, Atmosphere& a) {
 
 Atmosphere build(const Reader& in, const json& doc, const std::string& defaultName) {
   in.object(doc, "", {"name", "description", "bottomRadiusM", "topRadiusM", "groundAlbedo", "relativeHumidity",
-                      "aerosolOpticalDepth550", "refraction", "components"});
+                      "boundaryLayerHeightM", "aerosolOpticalDepth550", "refraction", "components"});
   Atmosphere a;
   a.wavelengthsNm = in.wavelengths();
   a.name = doc.contains("name") ? in.string(doc["name"], "name") : defaultName;
@@ -762,7 +825,12 @@ Atmosphere build(const Reader& in, const json& doc, const std::string& defaultNa
                                          ? in.number(doc["relativeHumidity"], "relativeHumidity",
                                                      "a relative humidity in [0, 0.99]",
                                                      [](double x) { return x >= 0.0 && x <= 0.99; })
-                                         : 0.0);
+                                         : 0.0)
+                        .withBoundaryLayer(doc.contains("boundaryLayerHeightM")
+                                               ? in.number(doc["boundaryLayerHeightM"], "boundaryLayerHeightM",
+                                                           "a height in (0, 100000] m",
+                                                           [](double x) { return x > 0.0 && x <= 1e5; })
+                                               : kDefaultBoundaryLayerHeightM);
   for (const auto& item : components.items()) {
     if (item.key().empty()) in.fail("components", "expected non-empty component names");
     a.components.push_back(parseComponent(air, item.key(), item.value(), "components." + item.key()));

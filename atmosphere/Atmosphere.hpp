@@ -21,6 +21,9 @@ namespace umbra::atmosphere {
 /// coordinates overflow or lose every digit.
 inline constexpr double kMinRadiusM = 1.0;
 inline constexpr double kMaxRadiusM = 1.0e12;
+/// The top of a "boundary-layer" density when the file names no boundaryLayerHeightM:
+/// OPAC's mixing layer (Hess, Koepke & Schult 1998) for continental and maritime air.
+inline constexpr double kDefaultBoundaryLayerHeightM = 2000.0;
 
 class AtmosphereError : public std::runtime_error {
 public:

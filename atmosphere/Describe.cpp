@@ -18,6 +18,10 @@ std::string describe(const DensityProfile& p) {
     case DensityProfile::Kind::Tent:
       return "tent centre=" + formatNumber(p.centreM) + " halfWidth=" + formatNumber(p.halfWidthM);
     case DensityProfile::Kind::Tabulated: return "tabulated h=" + join(p.altitudesM) + " values=" + join(p.values);
+    case DensityProfile::Kind::BoundaryLayer:
+      return "boundary-layer top=" + formatNumber(p.boundaryLayerTopM) + " H=" + formatNumber(p.scaleHeightM) +
+             " free=" + formatNumber(p.freeTroposphereDensity) + " H=" + formatNumber(p.freeTroposphereScaleHeightM) +
+             " top=" + formatNumber(p.freeTroposphereTopM) + " transition=" + formatNumber(p.transitionM);
   }
   return "?";
 }

@@ -16,6 +16,8 @@ const std::vector<Field>& atmosphereFields() {
       {"", "", "topRadiusM", "m", ">= bottomRadiusM + 1, <= 1e12", "6471000"},
       {"", "", "groundAlbedo", "", "[0, 1], spectrum", "0.1"},
       {"", "", "relativeHumidity", "", "[0, 0.99]: hygroscopic particles grow (default 0)", "0.8", false},
+      {"", "", "boundaryLayerHeightM", "m", "(0, 1e5]: the mixing layer's top in every boundary-layer density (default 2000)",
+       "1000", false},
       {"", "", "aerosolOpticalDepth550", "", "[0, 10]: the \"aerosol\" components scaled to it", nullptr, false},
       {"", "", "refraction", "", "object", R"({"seaLevelRefractivity": 2.77e-4})", false},
       {"", "", "components", "", "object of named components", "{}"},
@@ -39,10 +41,17 @@ const std::vector<Field>& atmosphereFields() {
       {"components.*.density", "tent", "type", "", "", "\"tent\""},
       {"components.*.density", "tent", "centreM", "m", "finite", "25000"},
       {"components.*.density", "tent", "halfWidthM", "m", "> 0", "15000"},
+      {"components.*.density", "boundary-layer", "type", "", "", "\"boundary-layer\""},
+      {"components.*.density", "boundary-layer", "scaleHeightM", "m", "> 0, in the mixing layer", "8000"},
+      {"components.*.density", "boundary-layer", "transitionM", "m",
+       ">= 0, < 2 boundaryLayerHeightM: each step blended over this width (default 0: steps)", "500", false},
+      {"components.*.density", "boundary-layer", "freeTroposphere", "", "object: the layer above the mixing layer",
+       R"({"relativeDensity": 0.0626, "scaleHeightM": 8000, "topM": 12000})", false},
       {"components.*.density", "tabulated", "type", "", "", "\"tabulated\""},
       {"components.*.density", "tabulated", "altitudesM", "m", "strictly increasing, >= 2 samples", "[0, 10000]"},
       {"components.*.density", "tabulated", "values", "", ">= 0, one per altitude", "[1, 0]"},
 
+      {"components.*.optics", "", "description", "", "text", "\"notes\"", false},
       {"components.*.optics", "rayleigh", "model", "", "", "\"rayleigh\""},
       {"components.*.optics", "rayleigh", "refractiveIndex", "", "formula or refractivity", R"({"formula": "peck-reeder-1972"})"},
       {"components.*.optics", "rayleigh", "numberDensityPerM3", "1/m^3", "> 0, <= 1e35", "2.546916e25"},
@@ -79,8 +88,15 @@ const std::vector<Field>& atmosphereFields() {
       {"components.*.optics", "mie", "refractiveIndexReal", "", "> 0, spectrum", "1.52"},
       {"components.*.optics", "mie", "refractiveIndexImag", "", ">= 0, spectrum", "0.006"},
 
+      {"components.*.density.freeTroposphere", "", "relativeDensity", "", ">= 0, just above the mixing layer", "0.0626"},
+      {"components.*.density.freeTroposphere", "", "scaleHeightM", "m", "> 0", "8000"},
+      {"components.*.density.freeTroposphere", "", "topM", "m", ">= boundaryLayerHeightM", "12000"},
       {"components.*.optics.refractiveIndex", "", "formula", "", "peck-reeder-1972, bideau-mehu-1973-co2", "\"peck-reeder-1972\"", false},
       {"components.*.optics.refractiveIndex", "", "refractivity", "", "n - 1 in (0, 1), spectrum (instead of formula; needs atNumberDensityPerM3)", nullptr, false},
+      {"components.*.optics", "mixture", "model", "", "", "\"mixture\""},
+      {"components.*.optics", "mixture", "of", "", "object of named optics, each with its own phase (mie, rayleigh)",
+       R"({"dust": {"model": "mie", "effectiveRadiusM": 1e-7, "numberDensityPerM3": 1e9, "refractiveIndexReal": 1.5, "refractiveIndexImag": 0}})"},
+
       {"components.*.optics.refractiveIndex", "", "atNumberDensityPerM3", "1/m^3", "> 0", "2.545e25", false},
       {"components.*.optics.hygroscopicGrowth", "", "relativeHumidity", "", "increasing in [0, 1)", "[0, 0.8]"},
       {"components.*.optics.hygroscopicGrowth", "", "radiusFactor", "", "in [1, 100], one per relative humidity",
@@ -115,7 +131,14 @@ std::string fieldPattern(const std::string& objectPath) {
   const std::string prefix = "components.";
   if (objectPath.rfind(prefix, 0) != 0) return objectPath;
   const std::size_t end = objectPath.find('.', prefix.size());
-  return prefix + "*" + (end == std::string::npos ? std::string() : objectPath.substr(end));
+  std::string pattern = prefix + "*" + (end == std::string::npos ? std::string() : objectPath.substr(end));
+  // A mixture's part ("optics.of.<name>") is an optics object.
+  const std::string part = ".optics.of.";
+  for (std::size_t at; (at = pattern.find(part)) != std::string::npos;) {
+    const std::size_t nameEnd = pattern.find('.', at + part.size());
+    pattern.replace(at, (nameEnd == std::string::npos ? pattern.size() : nameEnd) - at, ".optics");
+  }
+  return pattern;
 }
 
 std::string selectorKey(const std::string& where) {

@@ -35,7 +35,8 @@ struct Field {
 /// Every line of the table.
 const std::vector<Field>& atmosphereFields();
 
-/// "components.dust.optics.vanDeHulst" -> "components.*.optics.vanDeHulst".
+/// "components.dust.optics.vanDeHulst" -> "components.*.optics.vanDeHulst"; a mixture's part,
+/// "components.haze.optics.of.soot", -> "components.*.optics".
 std::string fieldPattern(const std::string& objectPath);
 
 /// The selector key of the objects at `where` ("type", "model"), "" when they have none.

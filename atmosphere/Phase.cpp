@@ -91,6 +91,34 @@ PhaseFunction PhaseFunction::cornetteShanks(double g) {
   return p;
 }
 
+PhaseFunction PhaseFunction::mixture(const std::vector<PhaseFunction>& parts, const std::vector<double>& weights) {
+  if (parts.empty() || parts.size() != weights.size())
+    throw std::invalid_argument("a mixture needs one weight per part and at least one part");
+  double total = 0.0;
+  for (double w : weights) {
+    if (!std::isfinite(w) || w < 0.0) throw std::invalid_argument("mixture weight " + number(w) + ": expected >= 0");
+    total += w;
+  }
+  if (!(total > 0.0)) throw std::invalid_argument("mixture weights: expected a positive sum");
+  bool shared = true;
+  for (const PhaseFunction& p : parts)
+    shared = shared && p.kind_ == Kind::Tabulated && p.mu_ == parts.front().mu_;
+  std::vector<double> mu;
+  if (shared) {
+    mu = parts.front().mu_;
+  } else {
+    constexpr int kSamples = 721;  // every 0.25 degrees
+    for (int i = 0; i < kSamples; ++i) mu.push_back(std::cos(kPi * (kSamples - 1 - i) / (kSamples - 1)));
+  }
+  std::vector<double> values(mu.size(), 0.0);
+  for (std::size_t j = 0; j < parts.size(); ++j) {
+    if (weights[j] == 0.0) continue;
+    for (std::size_t k = 0; k < mu.size(); ++k)
+      values[k] += weights[j] / total * (shared ? parts[j].p_[k] : parts[j](mu[k]));
+  }
+  return tabulated(std::move(mu), std::move(values));
+}
+
 PhaseFunction PhaseFunction::tabulated(std::vector<double> cosTheta, std::vector<double> values) {
   if (cosTheta.size() != values.size())
     throw std::invalid_argument("values: expected as many values as angles (" +

@@ -49,6 +49,11 @@ public:
   /// Same, from scattering angles in degrees strictly increasing from 0 to 180.
   static PhaseFunction tabulatedDegrees(const std::vector<double>& angleDeg,
                                         const std::vector<double>& values);
+  /// The phase function of a mixture: sum_i w_i p_i / sum_i w_i (w_i >= 0, e.g. each
+  /// part's scattering coefficient), tabulated: on the parts' own samples when every part
+  /// is tabulated on the same ones (Lorenz-Mie's), else every 0.25 degrees. Throws
+  /// std::invalid_argument on mismatched sizes or weights that do not sum above 0.
+  static PhaseFunction mixture(const std::vector<PhaseFunction>& parts, const std::vector<double>& weights);
 
   /// p(cos theta) in 1/sr; cosTheta is clamped to [-1, 1].
   double operator()(double cosTheta) const;

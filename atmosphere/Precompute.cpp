@@ -154,14 +154,25 @@ int densityDirectionsFor(const Atmosphere& atmosphere) {
     const Component& c = atmosphere.components[i];
     if (!c.scatters()) continue;
     for (std::size_t l = 0; l < nl; ++l) {
-      if (column[i] * c.scatteringPerM[l] < kMinDensityShare * total[l]) continue;
+      const double share = column[i] * c.scatteringPerM[l] / total[l];
+      if (share < kMinDensityShare) continue;
+      // The peak's half width: where p falls to half its value at the peak's start. A spike
+      // whose light (its share of the component's, times the component's share) is below
+      // kMinDensityShare is passed over, as a minor component is: the coarse particles of a
+      // mixture narrow its phase function's tip but carry little of its light.
       const PhaseFunction& p = c.phase(l);
-      const double forward = p(1.0);
-      for (double deg = 0.05; deg < halfWidthRad * 180.0 / kPi; deg += 0.05)
-        if (p(std::cos(deg * kPi / 180.0)) <= 0.5 * forward) {
-          halfWidthRad = deg * kPi / 180.0;
+      constexpr double kStepDeg = 0.05, kStepRad = kStepDeg * kPi / 180.0;
+      double start = p(1.0), inside = 0.0;  // inside: 2 pi int p dOmega from 0 to deg
+      for (double deg = kStepDeg; deg < halfWidthRad * 180.0 / kPi; deg += kStepDeg) {
+        const double theta = deg * kPi / 180.0, value = p(std::cos(theta));
+        inside += 2.0 * kPi * value * std::sin(theta) * kStepRad;
+        if (value > 0.5 * start) continue;
+        if (share * inside >= kMinDensityShare) {
+          halfWidthRad = theta;
           break;
         }
+        start = value;  // a faint spike: look on for the lobe under it
+      }
     }
   }
   const int n = static_cast<int>(std::ceil(kPi / (1.5 * halfWidthRad) / 8.0)) * 8;

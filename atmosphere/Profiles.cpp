@@ -1,7 +1,10 @@
 #include "Profiles.hpp"
 
+#include "Quadrature.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -56,6 +59,7 @@ const char* kindName(DensityProfile::Kind kind) {
     case DensityProfile::Kind::Exponential: return "exponential";
     case DensityProfile::Kind::DoubleExponential: return "double-exponential";
     case DensityProfile::Kind::Tent: return "tent";
+    case DensityProfile::Kind::BoundaryLayer: return "boundary-layer";
     case DensityProfile::Kind::Tabulated: return "tabulated";
   }
   return "?";
@@ -95,12 +99,58 @@ DensityProfile DensityProfile::tabulated(std::vector<double> altitudesM, std::ve
   return p;
 }
 
+DensityProfile DensityProfile::boundaryLayer(double topM, double scaleHeightM, double freeDensity,
+                                             double freeScaleHeightM, double freeTopM, double transitionM) {
+  DensityProfile p;
+  p.kind = Kind::BoundaryLayer;
+  p.boundaryLayerTopM = topM;
+  p.scaleHeightM = scaleHeightM;
+  p.freeTroposphereDensity = freeDensity;
+  p.freeTroposphereScaleHeightM = freeScaleHeightM;
+  p.freeTroposphereTopM = freeTopM;
+  p.transitionM = transitionM;
+  p.check();
+  return p;
+}
+
+std::vector<double> DensityProfile::kinksM() const {
+  switch (kind) {
+    case Kind::Tent: return {centreM - halfWidthM, centreM, centreM + halfWidthM};
+    case Kind::Tabulated: return altitudesM;
+    case Kind::BoundaryLayer: {
+      const double half = 0.5 * transitionM;
+      // (B itself: the free troposphere's part turns flat below it)
+      std::vector<double> at{boundaryLayerTopM - half, boundaryLayerTopM, boundaryLayerTopM + half};
+      if (freeTroposphereTopM > boundaryLayerTopM) at.insert(at.end(), {freeTroposphereTopM - half, freeTroposphereTopM + half});
+      at.erase(std::unique(at.begin(), at.end()), at.end());
+      return at;
+    }
+    default: return {};
+  }
+}
+
 double DensityProfile::at(double altitudeM) const {
   switch (kind) {
     case Kind::Exponential: return std::exp(-altitudeM / scaleHeightM);
     case Kind::DoubleExponential: return std::exp(1.0 - std::exp(altitudeM / scaleHeightM));
     case Kind::Tent: return std::max(0.0, 1.0 - std::abs(altitudeM - centreM) / halfWidthM);
     case Kind::Tabulated: return piecewiseLinearAt(altitudesM, values, altitudeM);
+    case Kind::BoundaryLayer: {
+      // smoothstep from 0 below c - w/2 to 1 above c + w/2 (a step at c when w = 0)
+      const auto blend = [&](double c) {
+        if (!(transitionM > 0.0)) return altitudeM >= c ? 1.0 : 0.0;
+        const double x = std::clamp((altitudeM - (c - 0.5 * transitionM)) / transitionM, 0.0, 1.0);
+        return x * x * (3.0 - 2.0 * x);
+      };
+      const double up = blend(boundaryLayerTopM);
+      const double top = freeTroposphereTopM > boundaryLayerTopM ? blend(freeTroposphereTopM) : 1.0;
+      double rho = 0.0;
+      if (up < 1.0) rho += (1.0 - up) * std::exp(-altitudeM / scaleHeightM);
+      if (up > 0.0 && top < 1.0)  // below B (in the blend) the free troposphere's value at B
+        rho += up * (1.0 - top) * freeTroposphereDensity *
+               std::exp(-std::max(altitudeM - boundaryLayerTopM, 0.0) / freeTroposphereScaleHeightM);
+      return rho;
+    }
   }
   return 0.0;
 }
@@ -126,6 +176,33 @@ double DensityProfile::integral(double fromM, double toM) const {
       return piecewiseLinearIntegral(x, y, fromM, toM);
     }
     case Kind::Tabulated: return piecewiseLinearIntegral(altitudesM, values, fromM, toM);
+    case Kind::BoundaryLayer: {
+      // Between the blending zones' edges: each layer's exponential in closed form; across a
+      // zone, Gauss-Legendre on the blend.
+      static const GaussLegendreRule rule(24);
+      const double B = boundaryLayerTopM, T = freeTroposphereTopM;
+      std::vector<double> cuts = kinksM();
+      cuts.insert(cuts.begin(), fromM);
+      cuts.push_back(toM);
+      for (double& c : cuts) c = std::clamp(c, fromM, toM);
+      std::sort(cuts.begin(), cuts.end());
+      double sum = 0.0;
+      for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+        const double lo = cuts[i], hi = cuts[i + 1];
+        if (!(hi > lo)) continue;
+        const double mid = 0.5 * (lo + hi), half = 0.5 * transitionM;
+        const bool inZone = std::abs(mid - B) < half || (T > B && std::abs(mid - T) < half);
+        if (inZone) {
+          for (std::size_t k = 0; k < rule.x.size(); ++k) sum += 0.5 * (hi - lo) * rule.w[k] * at(mid + 0.5 * (hi - lo) * rule.x[k]);
+        } else if (mid < B) {
+          sum += -scaleHeightM * std::exp(-lo / scaleHeightM) * std::expm1(-(hi - lo) / scaleHeightM);
+        } else if (mid < T) {
+          const double Hf = freeTroposphereScaleHeightM;
+          sum += -freeTroposphereDensity * Hf * std::exp(-(lo - B) / Hf) * std::expm1(-(hi - lo) / Hf);
+        }
+      }
+      return sum;
+    }
   }
   return 0.0;
 }
@@ -141,6 +218,26 @@ std::string DensityProfile::validate() const {
       if (!std::isfinite(centreM)) return "centreM: expected a finite altitude in metres, got " + number(centreM);
       if (!std::isfinite(halfWidthM) || !(halfWidthM > 0.0))
         return "halfWidthM: expected a positive length in metres, got " + number(halfWidthM);
+      return {};
+    case Kind::BoundaryLayer:
+      if (!std::isfinite(scaleHeightM) || !(scaleHeightM > 0.0))
+        return "scaleHeightM: expected a positive length in metres, got " + number(scaleHeightM);
+      if (!std::isfinite(boundaryLayerTopM) || !(boundaryLayerTopM > 0.0))
+        return "boundaryLayerHeightM: expected a positive height in metres, got " + number(boundaryLayerTopM);
+      if (!std::isfinite(freeTroposphereDensity) || freeTroposphereDensity < 0.0)
+        return "freeTroposphere.relativeDensity: expected a finite relative density >= 0, got " +
+               number(freeTroposphereDensity);
+      if (!std::isfinite(freeTroposphereScaleHeightM) || !(freeTroposphereScaleHeightM > 0.0))
+        return "freeTroposphere.scaleHeightM: expected a positive length in metres, got " +
+               number(freeTroposphereScaleHeightM);
+      if (!std::isfinite(freeTroposphereTopM) || !(freeTroposphereTopM >= boundaryLayerTopM))
+        return "freeTroposphere.topM: expected an altitude at or above the boundary layer's top (" +
+               number(boundaryLayerTopM) + " m), got " + number(freeTroposphereTopM);
+      if (!std::isfinite(transitionM) || transitionM < 0.0 || !(transitionM < 2.0 * boundaryLayerTopM) ||
+          (freeTroposphereTopM > boundaryLayerTopM && transitionM > freeTroposphereTopM - boundaryLayerTopM))
+        return "transitionM: expected a width >= 0, below twice the boundary layer's top (" + number(boundaryLayerTopM) +
+               " m) and at most the free troposphere's depth (" + number(freeTroposphereTopM - boundaryLayerTopM) +
+               " m), got " + number(transitionM);
       return {};
     case Kind::Tabulated:
       if (altitudesM.size() != values.size())

@@ -41,10 +41,10 @@ public:
   const std::string& sourceName() const { return this->source; }
   bool hasDocument() const { return this->doc.is_object(); }
 
-  /// Sets the value at `path` ("components.aerosols.density.scaleHeightM",
+  /// Sets the value at `path` ("components.troposphere.density.scaleHeightM",
   /// "groundAlbedo.values[1]") from text as typed (a number, a JSON array or object; for a
   /// string field, the text itself). An optional key of the field table that the object
-  /// lacks ("components.aerosols.densityScale") is added. Returns "" when the reader accepted the document with
+  /// lacks ("components.troposphere.densityScale") is added. Returns "" when the reader accepted the document with
   /// it, else the one-line message (also shown, and the text kept in red in the tree).
   std::string setValue(const std::string& path, const std::string& text);
   /// Turns the object at `objectPath` ("components.dust.phase") into `type` (its "type" or

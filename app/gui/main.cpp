@@ -69,7 +69,7 @@ struct Options {
       "atmosphere", "Draw this atmosphere (a preset, a file, or none) instead of the scene's.", "NAME"};
   const QCommandLineOption setOption{
       "atmosphere-set",
-      "Change a field of the atmosphere as the editor does (repeatable), e.g. components.aerosols.densityScale=20.",
+      "Change a field of the atmosphere as the editor does (repeatable), e.g. components.troposphere.densityScale=20.",
       "FIELD=VALUE"};
   const QCommandLineOption editorOption{"editor", "Show the atmosphere editor (every field of the model)."};
   const QCommandLineOption tablesOption{

@@ -156,16 +156,21 @@ void phaseLobes(const atmosphere::PhaseFunction& p, PhaseLobe& first, PhaseLobe&
       second.a *= 1.0 - p.alpha();
       return;
     }
-    case Kind::Tabulated: {
-      // No GLSL table: the single scattering drawn on the GPU uses Henyey-Greenstein with
-      // the table's asymmetry parameter (e.g. Mars' Lorenz-Mie dust); the tables computed
-      // on the CPU (multiple scattering, eclipse shadows) use the table itself.
-      const double g = p.asymmetry();
-      first = lobe(atmosphere::PhaseFunction::henyeyGreenstein(g), g);
-      return;
-    }
+    case Kind::Tabulated: return;  // drawn from the phase table (phaseTableRow)
   }
   throw std::invalid_argument("the renderer has no GLSL form of the phase function " + p.describe());
+}
+
+bool phaseTableRow(const atmosphere::Component& c, std::vector<float>& row) {
+  bool tabulated = false;
+  for (int l = 0; l < 3; ++l) tabulated = tabulated || c.phase(l).kind() == atmosphere::PhaseFunction::Kind::Tabulated;
+  row.assign(3 * static_cast<std::size_t>(kPhaseTableSamples), 0.0f);
+  if (!tabulated) return false;
+  for (int i = 0; i < kPhaseTableSamples; ++i) {
+    const double mu = std::cos(kPi * i / (kPhaseTableSamples - 1));
+    for (int l = 0; l < 3; ++l) row[3 * i + l] = static_cast<float>(c.phase(l)(mu));
+  }
+  return true;
 }
 
 namespace {
@@ -178,6 +183,8 @@ struct AtmosphereRendering::Impl {
   atmosphere::AtmosphereTables tables;
   glm::dvec3 centre{0.0}, albedo{0.1};
   std::vector<float> phase;  // 24 vec3
+  std::vector<float> phaseTable;  // kMaxComponents rows of kPhaseTableSamples RGB
+  int phaseTabulated[kMaxComponents] = {};
   SunLight sun;
   glm::dvec3 origin{0.0};
   glm::dmat3 colour{1.0};
@@ -193,7 +200,7 @@ struct AtmosphereRendering::Impl {
   vtkSmartPointer<vtkTextureObject> groundTexture;
   bool texturesStale = true;
 
-  vtkSmartPointer<vtkTextureObject> transmittance, scattering, irradiance, refraction;
+  vtkSmartPointer<vtkTextureObject> transmittance, scattering, irradiance, refraction, phaseTexture;
   std::vector<float> refractionValues;  // deviation, contact altitude per texel; empty: off
   int refractionSize[2] = {0, 0};
   std::unique_ptr<vtkOpenGLQuadHelper> quad;
@@ -237,6 +244,7 @@ struct AtmosphereRendering::Impl {
                               on ? refractionValues : none, 2);
     limb = limbValues.empty() ? nullptr
                               : floatTexture(window, limbSize[0], limbSize[1], limbSize[2], limbValues);
+    phaseTexture = floatTexture(window, kPhaseTableSamples, kMaxComponents, 1, phaseTable);
     groundTexture = groundMap ? mapTextureObjectOf(window, *groundMap)
                               : floatTexture(window, 1, 1, 1, std::vector<float>{1.0f, 1.0f, 1.0f}, 3);
     if (!groundTexture) throw std::runtime_error("cannot create the ground's albedo map texture");
@@ -256,7 +264,13 @@ void AtmosphereRendering::SetAtmosphere(const atmosphere::Atmosphere& model, atm
   if (tables.singleScattering.size() > static_cast<std::size_t>(kMaxComponents))
     throw std::invalid_argument("the renderer draws at most " + std::to_string(kMaxComponents) + " scattering components");
   Impl& m = *impl_;
-  std::vector<float> phase(24 * 3, 0.0f);
+  std::vector<float> phase(24 * 3, 0.0f), phaseTable, row;
+  for (std::size_t q = 0; q < static_cast<std::size_t>(kMaxComponents); ++q) {
+    const bool used = q < tables.scatteringComponents.size();
+    m.phaseTabulated[q] = used && phaseTableRow(model.component(tables.scatteringComponents[q]), row) ? 1 : 0;
+    if (!m.phaseTabulated[q]) row.assign(3 * static_cast<std::size_t>(kPhaseTableSamples), 0.0f);
+    phaseTable.insert(phaseTable.end(), row.begin(), row.end());
+  }
   for (std::size_t q = 0; q < tables.scatteringComponents.size(); ++q) {
     const atmosphere::Component& c = model.component(tables.scatteringComponents[q]);
     for (int l = 0; l < 3; ++l) {
@@ -273,6 +287,7 @@ void AtmosphereRendering::SetAtmosphere(const atmosphere::Atmosphere& model, atm
   }
   m.colour = atmosphereToDisplayMatrix(tables.wavelengthsNm);
   m.phase = std::move(phase);
+  m.phaseTable = std::move(phaseTable);
   m.model = model;
   m.tables = std::move(tables);
   m.centre = centreM;
@@ -535,6 +550,8 @@ void AtmosphereRendering::Impl::setUniforms(vtkShaderProgram* p, const FrameView
   p->SetUniformf("umbraPixelAngle", static_cast<float>(f.pixelAngle));
   p->SetUniformi("umbraLimbSubsamples", lastLimbSubsamples);
   p->SetUniform3fv("umbraAtmPhase", 24, reinterpret_cast<const float(*)[3]>(phase.data()));
+  p->SetUniform1iv("umbraAtmPhaseTabulated", kMaxComponents, phaseTabulated);
+  p->SetUniformi("umbraAtmPhaseTable", phaseTexture->GetTextureUnit());
   p->SetUniformi("umbraRefractionTable", refraction->GetTextureUnit());
   p->SetUniformi("umbraFrameColour", frameColour->GetTextureUnit());
   p->SetUniformi("umbraFrameDepth", frameDepth->GetTextureUnit());
@@ -587,7 +604,7 @@ void AtmosphereRendering::Impl::setCloudUniforms(vtkShaderProgram* p) const {
 
 void AtmosphereRendering::Impl::activate(vtkTextureObject* colour, vtkTextureObject* depth, bool on) {
   for (vtkTextureObject* texture : {colour, depth, transmittance.Get(), scattering.Get(), irradiance.Get(), refraction.Get(),
-                                    groundTexture.Get(), lastUsedLimb ? limb.Get() : nullptr})
+                                    phaseTexture.Get(), groundTexture.Get(), lastUsedLimb ? limb.Get() : nullptr})
     if (texture) on ? texture->Activate() : texture->Deactivate();
 }
 
@@ -664,7 +681,7 @@ void AtmosphereRendering::ReleaseGraphicsResources(vtkOpenGLRenderWindow* window
       q->reset();
     }
   }
-  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.refraction, &m.limb, &m.groundTexture}) {
+  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.refraction, &m.phaseTexture, &m.limb, &m.groundTexture}) {
     if (*t && window) (*t)->ReleaseGraphicsResources(window);
     *t = nullptr;
   }

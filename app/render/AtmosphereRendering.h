@@ -74,9 +74,18 @@ glm::dmat3 atmosphereToDisplayMatrix(const std::vector<double>& wavelengthsNm);
 struct PhaseLobe {
   double a = 0.0, b = 0.0, g = 0.0;
 };
-/// The two lobes of a phase function (the second A = 0 unless double Henyey-Greenstein).
-/// Throws std::invalid_argument for tabulated phase functions.
+/// The two lobes of a phase function (the second A = 0 unless double Henyey-Greenstein;
+/// both 0 for a tabulated one, which the shader reads from its phase table).
 void phaseLobes(const atmosphere::PhaseFunction& phase, PhaseLobe& first, PhaseLobe& second);
+
+/// Samples of the shader's phase table: theta = pi i / (kPhaseTableSamples - 1), every 0.125
+/// degrees, so that a Lorenz-Mie table's samples (every 0.5 degrees, linear in cos theta
+/// between them) fall on its samples: between them the two differ by < 1e-4.
+inline constexpr int kPhaseTableSamples = 1441;
+/// A component's row of the phase table, RGB per sample (its phase functions at the first
+/// three wavelengths): true when any of them is tabulated (Lorenz-Mie's) and the shader is
+/// to read the row; else false and the row zero.
+bool phaseTableRow(const atmosphere::Component& component, std::vector<float>& row);
 
 class AtmosphereRendering {
  public:

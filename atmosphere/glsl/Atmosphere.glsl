@@ -16,7 +16,9 @@
 // The phase function of component q is the sum of two lobes k = 0, 1, per channel:
 //   A (1 + B c^2) / (1 + g^2 - 2 g c)^(3/2),  A, B, g = umbraAtmPhase[6q + 3k + 0, 1, 2]
 // (isotropic, Rayleigh, Penndorf, Henyey-Greenstein, Cornette-Shanks: one lobe; double
-// Henyey-Greenstein: two).
+// Henyey-Greenstein: two), or, where umbraAtmPhaseTabulated[q] is 1 (Lorenz-Mie's tables),
+//   umbraAtmPhaseTable              2D, RGB p(theta) at theta = pi i / (N - 1), i in [0, N),
+//                              row q per component (linear between the samples).
 // No VTK shader tag may appear in this file, comments included.
 
 uniform sampler2D umbraAtmTransmittanceTable;
@@ -29,6 +31,8 @@ uniform float umbraAtmMuSMin;          // the lowest sun in the tables
 uniform int umbraAtmScatteringSize[4];  // R, MU, MU_S, NU
 uniform int umbraAtmComponents;        // single-scattering tables (<= 4)
 uniform vec3 umbraAtmPhase[24];
+uniform sampler2D umbraAtmPhaseTable;
+uniform int umbraAtmPhaseTabulated[4];
 
 float umbraAtmSafeSqrt(float a) { return sqrt(max(a, 0.0)); }
 
@@ -174,6 +178,11 @@ vec3 umbraAtmLookupScattering(int slab, float r, float mu, float muS, float nu, 
 
 // The phase function of component q at cos theta = nu, per channel.
 vec3 umbraAtmPhaseOf(int q, float nu) {
+  if (umbraAtmPhaseTabulated[q] != 0) {
+    float n = float(textureSize(umbraAtmPhaseTable, 0).x);
+    float theta = acos(clamp(nu, -1.0, 1.0)) / 3.14159265358979;
+    return texture(umbraAtmPhaseTable, vec2(umbraAtmTexCoord(theta, n), (float(q) + 0.5) / 4.0)).rgb;
+  }
   vec3 p = vec3(0.0);
   for (int k = 0; k < 2; ++k) {
     vec3 A = umbraAtmPhase[6 * q + 3 * k];

@@ -52,12 +52,7 @@ struct Model {
       profile.push_back(&comp.density);
       for (int l = 0; l < nl; ++l) ext.push_back(comp.extinctionPerM(l));
       if (comp.scatters()) scatterers.push_back(c);
-      std::vector<double> kinks;
-      if (comp.density.kind == DensityProfile::Kind::Tent)
-        kinks = {comp.density.centreM - comp.density.halfWidthM, comp.density.centreM,
-                 comp.density.centreM + comp.density.halfWidthM};
-      if (comp.density.kind == DensityProfile::Kind::Tabulated) kinks = comp.density.altitudesM;
-      for (double h : kinks)
+      for (double h : comp.density.kinksM())
         if (h > 0.0 && h < thickness) kinkRadii.push_back(b + h);
     }
     std::map<std::string, int> lobeIndex;
@@ -156,8 +151,8 @@ struct Model {
 
   /// Per-component column densities (integral of rho_c ds) along a path from s0 to s1,
   /// Simpson's rule with n (even) intervals; added to col[0..nc). On straight paths the
-  /// interval is split where the ray crosses the profiles' kinks (tent, tabulated), so that
-  /// piecewise-smooth profiles are integrated to rounding.
+  /// interval is split where the ray crosses the profiles' kinks (tent, tabulated, the
+  /// boundary layer's steps), so that piecewise-smooth profiles are integrated to rounding.
   void columns(const Path& path, double s0, double s1, int n, std::size_t& seg, double* col) const {
     if (!(s1 > s0)) return;
     if (!kinkRadii.empty()) {
@@ -216,8 +211,11 @@ struct Model {
     const double h = (s1 - s0) / n;
     for (int i = 0; i <= n; ++i) {
       const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+      // The ends a hair inside: at a cut where a profile jumps (the mixing layer's top) the
+      // density is the piece's own.
+      const double at = i == 0 ? s0 + 1e-9 * h : i == n ? s1 - 1e-9 * h : s0 + i * h;
       double x, y, tx, ty;
-      path.eval(s0 + i * h, seg, x, y, tx, ty);
+      path.eval(at, seg, x, y, tx, ty);
       const double alt = std::sqrt(x * x + y * y) - b;
       for (int c = 0; c < nc; ++c) col[c] += w * h / 3.0 * density(c, alt);
     }

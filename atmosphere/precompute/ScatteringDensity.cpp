@@ -131,6 +131,23 @@ void computeScatteringDensity(Batch& B, int order) {
     }
     std::vector<double> rho(ns);
     for (int q = 0; q < ns; ++q) rho[q] = m.density(m.scatterers[q], alt);
+    // The tabulated lobes of a wavelength (Lorenz-Mie's, one per component) summed into one
+    // table with their weights at this altitude (sca rho w): one lookup per direction and
+    // wavelength, however many aerosol populations; renormalised as one lobe.
+    std::vector<double> mixed, mixedIntegral(nl, 0.0);
+    std::vector<char> hasMixed(nl, 0);
+    for (int q = 0; q < ns; ++q)
+      for (int l = 0; l < nl; ++l)
+        for (auto [li, w] : m.phase[q * nl + l].lobes) {
+          if (m.lobes[li].table.empty()) continue;
+          if (mixed.empty()) mixed.assign(static_cast<std::size_t>(nl) * kPhaseTableSize, 0.0);
+          const double f = m.sca[q * nl + l] * rho[q] * w;
+          double* out = &mixed[static_cast<std::size_t>(l) * kPhaseTableSize];
+          const double* T = m.lobes[li].table.data();
+          for (int i = 0; i < kPhaseTableSize; ++i) out[i] += f * T[i];
+          mixedIntegral[l] += f * lobeIntegral[li];
+          hasMixed[l] = 1;
+        }
     // cj: the cosines with the view of the directions [0, nDir) and of their mirrors.
     std::vector<double> cj(2 * nDir), pj(2 * nDir), pPair(nDir), lobeSum(m.lobes.size() * nl), J(nl);
     // Tabulated lobes (one per wavelength for Lorenz-Mie) share the cosines: the table
@@ -156,27 +173,32 @@ void computeScatteringDensity(Batch& B, int order) {
         if (anyTable) {
           for (int j = 0; j < 2 * nDir; ++j) Model::tablePosition(cj[j], tableIndex[j], tableWeight[j]);
         }
-        for (std::size_t li = 0; li < m.lobes.size(); ++li) {
-          const Lobe& lobe = m.lobes[li];
-          if (lobe.table.empty()) {
-            lobeValues(lobe.A, lobe.B, lobe.g, cj.data(), pj.data(), 2 * nDir);
-          } else {
-            const double* T = lobe.table.data();
-            for (int j = 0; j < 2 * nDir; ++j) {
-              const int i = tableIndex[j];
-              const double w = tableWeight[j];
-              pj[j] = (1 - w) * T[i] + w * T[i + 1];
-            }
-          }
+        // pPair: a lobe's values over the directions, each averaged with its mirror's; the
+        // sum against the incoming light renormalised to the lobe's exact integral.
+        auto renormalisedSum = [&](double exactIntegral, int l) {
 #pragma omp simd
           for (int j = 0; j < nDir; ++j) pPair[j] = 0.5 * (pj[j] + pj[nDir + j]);
           const double norm = dot(pPair.data(), wdo, nDir);
-          const double scale = norm > 0.0 ? lobeIntegral[li] / norm : 1.0;
-          for (int l : m.lobeUsers[li]) {
-            lobeSum[li * nl + l] = scale * dot(pPair.data(), &Lw[static_cast<std::size_t>(l) * nDir], nDir);
-          }
+          const double scale = norm > 0.0 ? exactIntegral / norm : 1.0;
+          return scale * dot(pPair.data(), &Lw[static_cast<std::size_t>(l) * nDir], nDir);
+        };
+        for (std::size_t li = 0; li < m.lobes.size(); ++li) {
+          const Lobe& lobe = m.lobes[li];
+          if (!lobe.table.empty()) continue;
+          lobeValues(lobe.A, lobe.B, lobe.g, cj.data(), pj.data(), 2 * nDir);
+          for (int l : m.lobeUsers[li]) lobeSum[li * nl + l] = renormalisedSum(lobeIntegral[li], l);
         }
         std::fill(J.begin(), J.end(), 0.0);
+        for (int l = 0; l < nl; ++l) {
+          if (!hasMixed[l]) continue;
+          const double* T = &mixed[static_cast<std::size_t>(l) * kPhaseTableSize];
+          for (int j = 0; j < 2 * nDir; ++j) {
+            const int i = tableIndex[j];
+            const double w = tableWeight[j];
+            pj[j] = (1 - w) * T[i] + w * T[i + 1];
+          }
+          J[l] = renormalisedSum(mixedIntegral[l], l);
+        }
         for (int q = 0; q < ns; ++q) {
           for (int l = 0; l < nl; ++l) {
             const PhaseModel& pm = m.phase[q * nl + l];
@@ -187,7 +209,8 @@ void computeScatteringDensity(Batch& B, int order) {
                                  2.0 * (vx * vy * M[3] + vx * vz * M[4] + vy * vz * M[5]);
               s += pm.a * M0[l] + pm.b * vMv;
             }
-            for (auto [li, w] : pm.lobes) s += w * lobeSum[li * nl + l];
+            for (auto [li, w] : pm.lobes)
+              if (m.lobes[li].table.empty()) s += w * lobeSum[li * nl + l];
             J[l] += m.sca[q * nl + l] * rho[q] * s;
           }
         }

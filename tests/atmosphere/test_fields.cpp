@@ -73,7 +73,9 @@ void expectDescribed(const json& object, const std::string& path, const std::str
   const std::string type = !selector.empty() && object.contains(selector) ? object[selector].get<std::string>() : "";
   for (const auto& item : object.items()) {
     const std::string child = path.empty() ? item.key() : path + "." + item.key();
-    if (path == "components") {  // component names are the user's
+    const bool named = path == "components" ||  // component names and a mixture's parts' are the user's
+                       (path.size() > 10 && path.compare(path.size() - 10, 10, ".optics.of") == 0);
+    if (named) {
       expectDescribed(item.value(), child, preset);
       continue;
     }

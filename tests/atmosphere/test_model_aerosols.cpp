@@ -61,8 +61,8 @@ TEST(ModelAerosols, AnomalousDiffractionLimitsAndSeriesBranch) {
           << rr << " " << k;
 }
 
-TEST(ModelAerosols, EarthPresetHasBrunetonsAerosols) {
-  const Atmosphere earth = loadAtmosphere("earth", umbra::test::threeWavelengthsNm());
+TEST(ModelAerosols, EarthBrunetonPresetHasBrunetonsAerosols) {
+  const Atmosphere earth = loadAtmosphere("earth-bruneton", umbra::test::threeWavelengthsNm());
   const Component& a = earth.component("aerosols");
   for (std::size_t i = 0; i < 3; ++i) {
     EXPECT_DOUBLE_EQ(a.scatteringPerM[i], 3.996e-6);
@@ -184,31 +184,72 @@ TEST(ModelAerosols, OpacWaterSolubleGrowsWithHumidity) {
   EXPECT_THROW(parseAtmosphere(document(1.0), "waso.json", {550.0}), AtmosphereError);
 }
 
+// A "mixture" (an OPAC aerosol type) is its parts in one density: the coefficients of the
+// parts read as components of their own add up, and the phase function is their
+// scattering-weighted mean.
+TEST(ModelAerosols, MixtureAddsItsPartsCoefficientsAndMixesTheirPhases) {
+  const std::string small = R"({"model": "mie", "medianRadiusM": 0.0212e-6, "geometricStdDev": 2.24,
+      "numberDensityPerM3": 7e9, "refractiveIndexReal": 1.53, "refractiveIndexImag": 0.006})";
+  const std::string large = R"({"model": "mie", "medianRadiusM": 0.471e-6, "geometricStdDev": 2.51,
+      "numberDensityPerM3": 4e5, "refractiveIndexReal": 1.53, "refractiveIndexImag": 0.008})";
+  const std::string density = R"({"type": "exponential", "scaleHeightM": 2000})";
+  const std::string head = R"({"bottomRadiusM": 6371000, "topRadiusM": 6471000, "components": )";
+  const Atmosphere mixed = parseAtmosphere(head + R"({"haze": {"density": )" + density +
+                                               R"(, "optics": {"model": "mixture", "of": {"small": )" + small +
+                                               R"(, "large": )" + large + "}}}}}",
+                                           "mixed.json", umbra::test::threeWavelengthsNm());
+  const Atmosphere apart = parseAtmosphere(head + R"({"small": {"density": )" + density + R"(, "optics": )" + small +
+                                               R"(}, "large": {"density": )" + density + R"(, "optics": )" + large + "}}}",
+                                           "apart.json", umbra::test::threeWavelengthsNm());
+  const Component &h = mixed.component("haze"), &s = apart.component("small"), &l = apart.component("large");
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_DOUBLE_EQ(h.scatteringPerM[i], s.scatteringPerM[i] + l.scatteringPerM[i]);
+    EXPECT_DOUBLE_EQ(h.absorptionPerM[i], s.absorptionPerM[i] + l.absorptionPerM[i]);
+    const double ws = s.scatteringPerM[i] / h.scatteringPerM[i];
+    EXPECT_NEAR(h.phase(i).asymmetry(), ws * s.phase(i).asymmetry() + (1.0 - ws) * l.phase(i).asymmetry(), 1e-9);
+    EXPECT_NEAR(h.phase(i)(1.0), ws * s.phase(i)(1.0) + (1.0 - ws) * l.phase(i)(1.0), 1e-9 * h.phase(i)(1.0));
+  }
+  // A part without a phase of its own cannot be mixed.
+  try {
+    parseAtmosphere(head + R"({"haze": {"density": )" + density +
+                        R"(, "optics": {"model": "mixture", "of": {"c": {"model": "coefficients", "scatteringPerM": 1e-6}}}}}})",
+                    "bad.json", {550.0});
+    ADD_FAILURE() << "no error";
+  } catch (const AtmosphereError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.json: components.haze.optics.of.c: expected a model with its own phase"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // "aerosolOpticalDepth550" scales the components marked "aerosol" together (their ratios
 // kept), at whatever wavelengths the run has: their vertical optical depth at 550 nm is the
-// requested one, the others' are untouched, and a second wavelength set gives the same.
+// requested one, the others' (the stratosphere's) are untouched, and a second wavelength set
+// gives the same.
 TEST(ModelAerosols, AerosolOpticalDepthScalesTheMarkedComponents) {
-  const Atmosphere rgb = loadAtmosphere("earth-continental", umbra::test::threeWavelengthsNm());  // 680, 550, 440
-  double tau = 0.0;
-  for (const char* name : {"water-soluble", "insoluble", "soot"})
-    tau += rgb.verticalOpticalDepth(rgb.component(name), 0.0, rgb.thicknessM())[1];
-  EXPECT_NEAR(tau, 0.1, 1e-12);
+  const Atmosphere rgb = loadAtmosphere("earth", umbra::test::threeWavelengthsNm());  // 680, 550, 440
+  auto tauOf = [](const Atmosphere& a, const char* name, std::size_t l) {
+    return a.verticalOpticalDepth(a.component(name), 0.0, a.thicknessM())[l];
+  };
+  EXPECT_NEAR(tauOf(rgb, "troposphere", 1), 0.1, 1e-12);
+  // OPAC's stratospheric background: 3 sulphate droplets per cm^3 over 12-35 km, 7.120e-5 /km
+  // per particle per cm^3 at 550 nm (the package's suso00 file): 0.00491.
+  EXPECT_NEAR(tauOf(rgb, "stratosphere", 1), 3.0 * 7.120e-5 * 23.0, 0.005 * 3.0 * 7.120e-5 * 23.0);
   const Atmosphere bruneton = loadAtmosphere("earth-bruneton", umbra::test::threeWavelengthsNm());
   EXPECT_EQ(rgb.component("molecules").scatteringPerM, bruneton.component("molecules").scatteringPerM);
   EXPECT_EQ(rgb.find("aerosols"), nullptr);
-  // The turbid sky: three times the particles, the same mixture.
+  EXPECT_EQ(bruneton.find("troposphere"), nullptr);
+  // The turbid sky: three times the particles, the same mixture; the same stratosphere.
   const Atmosphere turbid = loadAtmosphere("earth-turbid", umbra::test::threeWavelengthsNm());
-  for (std::size_t i = 0; i < 3; ++i)
-    EXPECT_NEAR(turbid.component("soot").absorptionPerM[i] / rgb.component("soot").absorptionPerM[i], 3.0, 1e-9);
-  // Without 550 nm among the wavelengths: 545 and 555 nm bracket it.
-  const Atmosphere pair = loadAtmosphere("earth-continental", {545.0, 555.0});
-  double tau545 = 0.0, tau555 = 0.0;
-  for (const char* name : {"water-soluble", "insoluble", "soot"}) {
-    tau545 += pair.verticalOpticalDepth(pair.component(name), 0.0, pair.thicknessM())[0];
-    tau555 += pair.verticalOpticalDepth(pair.component(name), 0.0, pair.thicknessM())[1];
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(turbid.component("troposphere").absorptionPerM[i] / rgb.component("troposphere").absorptionPerM[i], 3.0,
+                1e-9);
+    EXPECT_EQ(turbid.component("stratosphere").scatteringPerM[i], rgb.component("stratosphere").scatteringPerM[i]);
   }
-  EXPECT_GT(tau545, 0.1);
-  EXPECT_LT(tau555, 0.1);
+  // Without 550 nm among the wavelengths: 545 and 555 nm bracket it.
+  const Atmosphere pair = loadAtmosphere("earth", {545.0, 555.0});
+  EXPECT_GT(tauOf(pair, "troposphere", 0), 0.1);
+  EXPECT_LT(tauOf(pair, "troposphere", 1), 0.1);
   const std::string noAerosol = R"({"bottomRadiusM": 6371000, "topRadiusM": 6471000, "aerosolOpticalDepth550": 0.1,
     "components": {"air": {"density": {"type": "exponential", "scaleHeightM": 8000},
       "optics": {"model": "coefficients", "scatteringPerM": 1e-5}, "phase": {"type": "isotropic"}}}})";

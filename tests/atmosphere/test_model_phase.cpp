@@ -96,6 +96,30 @@ TEST(ModelPhase, TabulatedInterpolatesLinearlyAndIsRenormalised) {
   EXPECT_NEAR(line(0.5) - line(0.0), (line(1.0) - line(0.0)) / 2.0, 1e-15);
 }
 
+// A mixture's phase function is the weighted mean of its parts': normalised, its asymmetry
+// the weighted mean of theirs (g is linear in p), on the parts' own samples when they share them.
+TEST(ModelPhase, MixtureIsTheWeightedMeanOfItsParts) {
+  std::vector<double> angles, a, b;
+  const PhaseFunction hgA = PhaseFunction::henyeyGreenstein(0.7), hgB = PhaseFunction::henyeyGreenstein(-0.2);
+  for (int i = 0; i <= 360; ++i) {
+    angles.push_back(i * 0.5);
+    a.push_back(hgA(std::cos(i * 0.5 * kPi / 180.0)));
+    b.push_back(hgB(std::cos(i * 0.5 * kPi / 180.0)));
+  }
+  const PhaseFunction ta = PhaseFunction::tabulatedDegrees(angles, a), tb = PhaseFunction::tabulatedDegrees(angles, b);
+  const PhaseFunction mix = PhaseFunction::mixture({ta, tb}, {3.0, 1.0});
+  EXPECT_EQ(mix.cosThetaSamples(), ta.cosThetaSamples());
+  EXPECT_NEAR(integrateSphere(mix, [](double) { return 1.0; }), 1.0, 1e-12);
+  EXPECT_NEAR(mix.asymmetry(), 0.75 * ta.asymmetry() + 0.25 * tb.asymmetry(), 1e-12);
+  for (double mu : {-1.0, 0.0, 0.7, 1.0}) EXPECT_NEAR(mix(mu), 0.75 * ta(mu) + 0.25 * tb(mu), 1e-12 * ta(1.0));
+  // Parts of other kinds: sampled every 0.25 degrees.
+  const PhaseFunction other = PhaseFunction::mixture({PhaseFunction::rayleigh(), hgB}, {1.0, 1.0});
+  EXPECT_EQ(other.cosThetaSamples().size(), 721u);
+  EXPECT_NEAR(other.asymmetry(), 0.5 * (0.0 - 0.2), 1e-4);
+  EXPECT_THROW(PhaseFunction::mixture({ta}, {0.0}), std::invalid_argument);
+  EXPECT_THROW(PhaseFunction::mixture({ta, tb}, {1.0}), std::invalid_argument);
+}
+
 TEST(ModelPhase, InvalidParametersAreRefused) {
   EXPECT_THROW(PhaseFunction::henyeyGreenstein(1.0), std::invalid_argument);
   EXPECT_THROW(PhaseFunction::henyeyGreenstein(-1.0), std::invalid_argument);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 using namespace umbra::atmosphere;
 
@@ -41,7 +42,7 @@ TEST(ModelPresets, EveryPresetLoadsWithFiniteNonNegativeCoefficients) {
 }
 
 TEST(ModelPresets, ExtinctionIsTheSumOfTheComponentsScaledByTheirProfiles) {
-  const Atmosphere earth = loadAtmosphere("earth", umbra::test::threeWavelengthsNm());
+  const Atmosphere earth = loadAtmosphere("earth-bruneton", umbra::test::threeWavelengthsNm());
   for (double h : {0.0, 3000.0, 25000.0, 70000.0}) {
     const std::vector<double> total = earth.extinctionPerM(h), sca = earth.scatteringPerM(h),
                               abs = earth.absorptionPerM(h);
@@ -68,9 +69,9 @@ TEST(ModelPresets, RefractivityFollowsTheMolecularDensityWithDispersion) {
   EXPECT_GT(mars.refractivity(0.0, 440.0), mars.refractivity(0.0, 680.0));
 }
 
-TEST(ModelPresets, CalbucoAerosolOpticalDepthIsFiveTimesEarths) {
+TEST(ModelPresets, CalbucoAerosolOpticalDepthIsFiveTimesBrunetons) {
   const auto wl = umbra::test::fifteenWavelengthsNm();
-  const Atmosphere earth = loadAtmosphere("earth", wl);
+  const Atmosphere earth = loadAtmosphere("earth-bruneton", wl);
   const Atmosphere calbuco = loadAtmosphere("earth-2015-calbuco", wl);
   const double L = earth.thicknessM();
   ASSERT_EQ(L, calbuco.thicknessM());
@@ -92,6 +93,42 @@ TEST(ModelPresets, CalbucoAerosolOpticalDepthIsFiveTimesEarths) {
   EXPECT_EQ(calbuco.component("aerosols").density.scaleHeightM, 3000.0);
   EXPECT_DOUBLE_EQ(calbuco.component("aerosols").scatteringPerM[3], 2.0 * 3.996e-6);
   EXPECT_EQ(calbuco.seaLevelRefractivity, earth.seaLevelRefractivity);
+}
+
+// earth-volcanic: earth with four times the stratospheric sulphate (0.0049 -> 0.020 at
+// 550 nm), the troposphere and the rest unchanged.
+TEST(ModelPresets, VolcanicIsEarthWithFourTimesTheStratosphere) {
+  const Atmosphere earth = loadAtmosphere("earth", umbra::test::threeWavelengthsNm());
+  const Atmosphere volcanic = loadAtmosphere("earth-volcanic", umbra::test::threeWavelengthsNm());
+  const double L = earth.thicknessM();
+  const double tauEarth = earth.verticalOpticalDepth(earth.component("stratosphere"), 0.0, L)[1];
+  EXPECT_NEAR(volcanic.verticalOpticalDepth(volcanic.component("stratosphere"), 0.0, L)[1] / tauEarth, 4.0, 1e-12);
+  EXPECT_NEAR(4.0 * tauEarth, 0.0197, 0.0003);
+  EXPECT_EQ(volcanic.component("troposphere").scatteringPerM, earth.component("troposphere").scatteringPerM);
+  EXPECT_EQ(volcanic.components.size(), earth.components.size());
+}
+
+// The boundary layer's height moves the tropospheric aerosol up or down; with
+// aerosolOpticalDepth550 its vertical optical depth stays the requested one.
+TEST(ModelPresets, BoundaryLayerHeightMovesTheAerosolNotItsOpticalDepth) {
+  const Atmosphere low = parseAtmosphere(R"({"extends": "earth", "boundaryLayerHeightM": 1000})", "low.json", {550.0});
+  const Atmosphere high = parseAtmosphere(R"({"extends": "earth", "boundaryLayerHeightM": 3000})", "high.json", {550.0});
+  const Component &a = low.component("troposphere"), &b = high.component("troposphere");
+  EXPECT_EQ(a.density.boundaryLayerTopM, 1000.0);
+  EXPECT_EQ(b.density.boundaryLayerTopM, 3000.0);
+  EXPECT_NEAR(low.verticalOpticalDepth(a, 0.0, low.thicknessM())[0], 0.1, 1e-12);
+  EXPECT_NEAR(high.verticalOpticalDepth(b, 0.0, high.thicknessM())[0], 0.1, 1e-12);
+  // At 2 km: above the low layer's top (its free troposphere), inside the high one.
+  EXPECT_LT(a.extinctionPerM(0) * a.density.at(2000.0), 0.2 * b.extinctionPerM(0) * b.density.at(2000.0));
+  try {
+    parseAtmosphere(R"({"extends": "earth", "boundaryLayerHeightM": 20000})", "bad.json", {550.0});
+    ADD_FAILURE() << "no error";
+  } catch (const AtmosphereError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.json: components.troposphere.density.freeTroposphere.topM: expected an "
+                                         "altitude at or above the boundary layer's top (20000 m), got 12000"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ModelPresets, LoadsFromAPathToo) {

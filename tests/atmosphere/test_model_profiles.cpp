@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 using namespace umbra::atmosphere;
 using umbra::test::integrate;
@@ -61,6 +62,52 @@ TEST(ModelProfiles, TabulatedInterpolatesLinearlyIsZeroOutsideAndIntegratesExact
   EXPECT_DOUBLE_EQ(p.at(3000.1), 0.0);
   EXPECT_NEAR(p.integral(-500.0, 5000.0), 750.0 + 600.0, 1e-9);
   EXPECT_NEAR(p.integral(500.0, 2000.0), 0.5 * 500 * (0.75 + 0.5) + 0.5 * 1000 * (0.5 + 0.3), 1e-9);
+}
+
+// OPAC's tropospheric layers: exp(-h/H) up to the mixing layer's top B, f exp(-(h-B)/H_ft)
+// up to T, 0 above; the integral in closed form, against quadrature across both jumps.
+TEST(ModelProfiles, BoundaryLayerIsTwoExponentialLayersWithJumps) {
+  const double B = 2000.0, H = 8000.0, f = 0.0626, Hft = 8000.0, T = 12000.0;
+  const DensityProfile p = DensityProfile::boundaryLayer(B, H, f, Hft, T);
+  EXPECT_DOUBLE_EQ(p.at(0.0), 1.0);
+  EXPECT_NEAR(p.at(1999.0), std::exp(-1999.0 / H), 1e-15);
+  EXPECT_DOUBLE_EQ(p.at(2000.0), f);
+  EXPECT_NEAR(p.at(10000.0), f * std::exp(-8000.0 / Hft), 1e-15);
+  EXPECT_DOUBLE_EQ(p.at(12000.0), 0.0);
+  const double whole = H * (1.0 - std::exp(-B / H)) + f * Hft * (1.0 - std::exp(-(T - B) / Hft));
+  EXPECT_NEAR(p.integral(0.0, 100000.0), whole, 1e-12 * whole);
+  const double numeric = integrate([&](double h) { return p.at(h); }, 500.0, B) +
+                         integrate([&](double h) { return p.at(h); }, B, 11000.0);
+  EXPECT_NEAR(p.integral(500.0, 11000.0), numeric, 1e-10 * numeric);
+  EXPECT_DOUBLE_EQ(p.integral(11000.0, 500.0), -p.integral(500.0, 11000.0));
+  EXPECT_EQ(p.kinksM(), (std::vector<double>{B, T}));
+  // Without a free troposphere (T = B): the mixing layer alone.
+  EXPECT_NEAR(DensityProfile::boundaryLayer(B, H, 0.0, Hft, B).integral(0.0, 1e5), H * (1.0 - std::exp(-B / H)), 1e-9);
+  EXPECT_THROW(DensityProfile::boundaryLayer(B, H, f, Hft, 1000.0), std::invalid_argument);  // top below B
+  EXPECT_THROW(DensityProfile::boundaryLayer(0.0, H, f, Hft, T), std::invalid_argument);
+}
+
+// The steps blended over w: continuous (and so is the slope) at every zone edge, the
+// layers' own values outside the zones, the integral against quadrature.
+TEST(ModelProfiles, BoundaryLayerBlendsItsStepsOverTheTransition) {
+  const double B = 2000.0, H = 8000.0, f = 0.0626, T = 12000.0, w = 500.0;
+  const DensityProfile p = DensityProfile::boundaryLayer(B, H, f, H, T, w);
+  const DensityProfile steps = DensityProfile::boundaryLayer(B, H, f, H, T);
+  for (double h : {0.0, 1500.0, 2500.0, 9000.0, 11500.0, 12500.0}) EXPECT_DOUBLE_EQ(p.at(h), steps.at(h)) << h;
+  EXPECT_NEAR(p.at(B), 0.5 * (std::exp(-B / H) + f), 1e-15);  // halfway through the zone
+  for (double edge : {B - 250.0, B + 250.0, T - 250.0, T + 250.0}) {
+    EXPECT_NEAR(p.at(edge - 1e-3), p.at(edge + 1e-3), 1e-6) << edge;
+    // one-sided slopes 1 cm either side: equal but for the blend's curvature (6 / w^2 x the step)
+    const double below = (p.at(edge) - p.at(edge - 0.01)) / 0.01, above = (p.at(edge + 0.01) - p.at(edge)) / 0.01;
+    EXPECT_NEAR(below, above, 1e-6) << edge;
+  }
+  EXPECT_EQ(p.kinksM(), (std::vector<double>{B - 250.0, B, B + 250.0, T - 250.0, T + 250.0}));
+  double numeric = 0.0;
+  const std::vector<double> at{0.0, B - 250.0, B, B + 250.0, T - 250.0, T + 250.0, 20000.0};
+  for (std::size_t i = 0; i + 1 < at.size(); ++i) numeric += integrate([&](double h) { return p.at(h); }, at[i], at[i + 1]);
+  EXPECT_NEAR(p.integral(0.0, 20000.0), numeric, 1e-10 * numeric);
+  EXPECT_NEAR(p.integral(1900.0, 2100.0), integrate([&](double h) { return p.at(h); }, 1900.0, 2100.0), 1e-9);
+  EXPECT_THROW(DensityProfile::boundaryLayer(B, H, f, H, T, 4000.0), std::invalid_argument);  // >= 2 B
 }
 
 TEST(ModelProfiles, InvalidShapesAreRefused) {

@@ -76,7 +76,7 @@ TEST(ModelValidation, UnknownKey) {
             "scatteringPerM, absorptionPerM)");
   EXPECT_EQ(errorOf(document("\"name\": \"test\"", "\"nmae\": \"test\"")),
             "bad.json: nmae: unknown key (expected one of: name, description, bottomRadiusM, topRadiusM, "
-            "groundAlbedo, relativeHumidity, aerosolOpticalDepth550, refraction, components)");
+            "groundAlbedo, relativeHumidity, boundaryLayerHeightM, aerosolOpticalDepth550, refraction, components)");
 }
 
 TEST(ModelValidation, NegativeOrMissingCoefficient) {
@@ -117,7 +117,7 @@ TEST(ModelValidation, TabulatedProfileWithUnsortedAltitudes) {
             "after 2000");
   EXPECT_EQ(errorOf(document("\"type\": \"tent\"", "\"type\": \"triangle\"")),
             "bad.json: components.ozone.density.type: expected one of: exponential, double-exponential, tent, "
-            "tabulated, got \"triangle\"");
+            "boundary-layer, tabulated, got \"triangle\"");
 }
 
 TEST(ModelValidation, PhaseAsymmetryOutsideMinusOneToOne) {
@@ -189,7 +189,7 @@ TEST(ModelValidation, ExtendsMergesAPresetWithOverrides) {
   EXPECT_EQ(thin.find("ozone"), nullptr);
   EXPECT_EQ(thin.component("molecules").density.scaleHeightM, 4000.0);
   EXPECT_EQ(thin.component("molecules").scatteringPerM, loadAtmosphere("earth", {550.0}).component("molecules").scatteringPerM);
-  std::ofstream(file) << R"({"extends": "earth", "components": {"aerosols": {"density": {"scaleHeightM": 0}}}})";
+  std::ofstream(file) << R"({"extends": "earth-bruneton", "components": {"aerosols": {"density": {"scaleHeightM": 0}}}})";
   try {
     loadAtmosphere(file.string(), {550.0});
     FAIL() << "no error";

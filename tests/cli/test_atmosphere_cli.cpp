@@ -122,7 +122,9 @@ TwilightSky readTwilightSky(const std::string& csv) {
 // views reach sunlit air. The zenith and the sky opposite the Sun see only the light
 // scattered into the shadowed air (second-order twilight), which the tables carry when
 // they hold the Sun below 102 degrees (by default 20 below the Sun asked for): dimmer than
-// the arch, and black with --lowest-sun-zenith-deg 102, which leaves the arch as it is.
+// the arch, and black with --lowest-sun-zenith-deg 102, which leaves the arch its light
+// scattered once (in the default haze a tenth of it: 1.9e-4 of 1.7e-3 cd/m^2; with
+// Bruneton's thin haze nearly all).
 TEST(AtmosphereSkyCli, TwilightSkyBelowTheTablesLowestSun) {
   TempDir dir;
   ASSERT_EQ(run(UMBRA_EXE, skyArgs(dir / "t.csv", 106.0)).exitCode, 0);
@@ -137,7 +139,8 @@ TEST(AtmosphereSkyCli, TwilightSkyBelowTheTablesLowestSun) {
   EXPECT_LT(t.zenith, 0.1 * t.arch);
   EXPECT_GT(t.opposite, 0.0);
   EXPECT_LT(t.opposite, 0.1 * t.arch);
-  EXPECT_NEAR(u.arch, t.arch, 0.2 * t.arch);
+  EXPECT_GT(u.arch, 0.05 * t.arch);
+  EXPECT_LT(u.arch, t.arch);
   EXPECT_EQ(u.zenith, 0.0);
   EXPECT_EQ(u.opposite, 0.0);
   // With the Sun 40 degrees down only the second-order light remains, 1e-6 of the arch's.

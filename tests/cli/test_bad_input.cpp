@@ -174,7 +174,7 @@ TEST(BadInput, ProfileNeedsABodyOrAScene) {
 TEST(BadInput, UnknownAtmospherePreset) {
   TempDir dir;
   expectFailure(dir, {"atmosphere", "refraction", "--preset", "pluto", "--csv", dir / "r.csv"},
-                "unknown atmosphere preset 'pluto' (known: earth, earth-2015-calbuco, earth-bruneton, earth-continental, earth-maritime, earth-turbid, mars)");
+                "unknown atmosphere preset 'pluto' (known: earth, earth-2015-calbuco, earth-bruneton, earth-maritime, earth-turbid, earth-volcanic, mars)");
 }
 
 TEST(BadInput, BadZenithRange) {

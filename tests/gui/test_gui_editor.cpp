@@ -51,7 +51,17 @@ namespace atm = umbra::atmosphere;
 
 namespace {
 
-const std::string kSunset = std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/earth-sunset.json";
+// The sunset scene with Bruneton's thin haze (earth-bruneton): the editor's tests edit its
+// "aerosols" component (a Cornette-Shanks phase, one exponential profile).
+const std::string kSunset = [] {
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("umbra-gui-editor-sunset-" + std::to_string(::getpid()) + ".json")).string();
+  std::ifstream in(std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/earth-sunset.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text = std::regex_replace(text, std::regex(R"("atmosphere": "earth")"), R"("atmosphere": "earth-bruneton")");
+  std::ofstream(path) << text;
+  return path;
+}();
 
 /// Runs the event loop until the tables are made and no edit is pending (at most 60 s).
 void settle(MainWindow& w) {
@@ -97,8 +107,8 @@ TEST(GuiEditor, ThePresetsFieldsAreInTheTreeWithUnits) {
   Window win;
   AtmosphereEditor& e = win.w.atmosphereEditor();
   ASSERT_TRUE(e.hasDocument());
-  EXPECT_EQ(e.sourceName(), "earth");
-  EXPECT_EQ(win.w.drawnAtmosphere(), "earth");
+  EXPECT_EQ(e.sourceName(), "earth-bruneton");
+  EXPECT_EQ(win.w.drawnAtmosphere(), "earth-bruneton");
   // Every component's profile parameter is an item with the table's unit.
   int scaleHeights = 0;
   for (QTreeWidgetItemIterator it(e.tree()); *it; ++it) {
@@ -156,14 +166,14 @@ TEST(GuiEditor, AnEditReachesTheTablesAndTheSky) {
   win.w.setExposure(-12.0);
   const QRgb before = win.sky(win.shot("before.png"));
   AtmosphereEditor& e = win.w.atmosphereEditor();
-  EXPECT_NE(e.setValue("components.aerosols.densityScales", "20").find("earth: components.aerosols.densityScales: no such field"),
+  EXPECT_NE(e.setValue("components.aerosols.densityScales", "20").find("earth-bruneton: components.aerosols.densityScales: no such field"),
             std::string::npos);
   EXPECT_FALSE(e.changePending());
   EXPECT_EQ(e.setValue("components.aerosols.densityScale", "20"), "");  // optional: not in the preset, added
   EXPECT_EQ(e.message(), "");
   EXPECT_TRUE(e.changePending());  // debounced
   settle(win.w);
-  EXPECT_NE(win.w.drawnAtmosphere(), "earth");
+  EXPECT_NE(win.w.drawnAtmosphere(), "earth-bruneton");
   const atm::Atmosphere a = drawn(win.w);
   for (int i = 0; i < 3; ++i) {
     EXPECT_DOUBLE_EQ(a.component("aerosols").scatteringPerM[i], 20 * 3.996e-6);
@@ -184,13 +194,13 @@ TEST(GuiEditor, ABadValueIsRejectedAndTheTablesStay) {
   AtmosphereEditor& e = win.w.atmosphereEditor();
   const Json doc = e.document();
   const std::string problem = e.setValue("components.molecules.density.scaleHeightM", "-8000");
-  EXPECT_NE(problem.find("earth: components.molecules.density.scaleHeightM: "), std::string::npos) << problem;
+  EXPECT_NE(problem.find("earth-bruneton: components.molecules.density.scaleHeightM: "), std::string::npos) << problem;
   EXPECT_EQ(std::count(problem.begin(), problem.end(), '\n'), 0) << problem;
   EXPECT_EQ(e.message().toStdString(), problem);
   EXPECT_EQ(e.document(), doc);
   EXPECT_FALSE(e.changePending());
   settle(win.w);
-  EXPECT_EQ(win.w.drawnAtmosphere(), "earth");
+  EXPECT_EQ(win.w.drawnAtmosphere(), "earth-bruneton");
   // The value stays in the tree, in red.
   for (QTreeWidgetItemIterator it(e.tree()); *it; ++it)
     if ((*it)->data(0, Qt::UserRole).toString() == "components.molecules.density.scaleHeightM") {
@@ -217,7 +227,7 @@ TEST(GuiEditor, CancelKeepsTheTablesDrawn) {
   ASSERT_TRUE(win.w.atmosphereBusy());
   win.w.cancelAtmosphereTables();
   settle(win.w);
-  EXPECT_EQ(win.w.drawnAtmosphere(), "earth");
+  EXPECT_EQ(win.w.drawnAtmosphere(), "earth-bruneton");
   EXPECT_NE(win.w.statusText().indexOf("atmosphere: cancelled"), -1) << win.w.statusText().toStdString();
   // The edit is still in the editor; the next one computes its tables.
   EXPECT_EQ(e.document()["components"]["molecules"]["density"]["scaleHeightM"], 7000);
@@ -232,7 +242,7 @@ TEST(GuiEditor, ComponentsAreAddedAndRemoved) {
   Window win;
   AtmosphereEditor& e = win.w.atmosphereEditor();
   const std::string follows = e.removeComponent("molecules");
-  EXPECT_NE(follows.find("earth: refraction.followsComponent: expected the name of a component"), std::string::npos) << follows;
+  EXPECT_NE(follows.find("earth-bruneton: refraction.followsComponent: expected the name of a component"), std::string::npos) << follows;
   EXPECT_NE(e.removeComponent("dust").find("components.dust: no such component"), std::string::npos);
   EXPECT_EQ(e.removeComponent("ozone"), "");
   EXPECT_EQ(e.addComponent("haze"), "");
@@ -272,7 +282,7 @@ TEST(GuiEditor, SaveThenLoadGivesTheSameModel) {
   EXPECT_EQ(atm::atmosphereParameters(drawn(win.w)), shown);
 
   // Load: the file becomes the document and the tables' model.
-  win.w.setAtmosphere("earth");
+  win.w.setAtmosphere("earth-bruneton");
   settle(win.w);
   EXPECT_NE(e.document(), edited);
   win.w.setAtmosphere(path);
@@ -398,7 +408,7 @@ TEST(GuiEditor, RefractionCheckBoxFlattensTheSettingSun) {
   settle(win.w);
   EXPECT_TRUE(win.w.refraction());
   EXPECT_TRUE(win.w.sceneView().atmosphereTables()->GetRefractedPaths());
-  EXPECT_EQ(win.w.drawnAtmosphere(), "earth");
+  EXPECT_EQ(win.w.drawnAtmosphere(), "earth-bruneton");
   const umbra::test::DiscExtent d = disc("bent.png");
   std::printf("  disc %d x %d px with refraction (height / width %.3f), %d x %d px without (%.3f)\n", d.width(),
               d.height(), double(d.height()) / d.width(), o.width(), o.height(), double(o.height()) / o.width());
@@ -538,7 +548,7 @@ TEST(GuiEditor, CancelTheAtmosphereShadowLutKeepsThePreviousShading) {
   EXPECT_FALSE(win.w.atmosphereBusy());
   EXPECT_TRUE(win.w.sceneView().atmosphereShadowCurrent());
 
-  win.w.setAtmosphere("earth");  // its tables, then its shadow LuT: cancelled
+  win.w.setAtmosphere("earth-bruneton");  // its tables, then its shadow LuT: cancelled
   ASSERT_TRUE(untilShadowJob(win.w));
   win.w.cancelAtmosphereTables();
   settle(win.w);
@@ -546,7 +556,7 @@ TEST(GuiEditor, CancelTheAtmosphereShadowLutKeepsThePreviousShading) {
   EXPECT_NE(win.w.sceneView().atmosphereShadowLut(), nullptr);
   EXPECT_FALSE(win.w.sceneView().atmosphereShadowCurrent());
   const auto after = viewSums(win, "after.png");
-  std::printf("  Moon's summed R: cancelled at 02:50 (airless) %.0f, 02:47 %.0f, cancelled for 'earth' (02:47's table) %.0f\n",
+  std::printf("  Moon's summed R: cancelled at 02:50 (airless) %.0f, 02:47 %.0f, cancelled for 'earth-bruneton' (02:47's table) %.0f\n",
               airless[0], before[0], after[0]);
   EXPECT_LT(airless[0], 0.1 * before[0]);
   EXPECT_TRUE(copper(after));
@@ -734,7 +744,7 @@ TEST(GuiEditor, LimbRingFromTheLutAsTheCliDrawsIt) {
   // Another atmosphere (the preset without Calbuco's aerosols): its tables, then its LuTs
   // in the worker; less extinction along the limb, a brighter ring (measured R 243 vs 218,
   // G 157 vs 117).
-  w.setAtmosphere("earth");
+  w.setAtmosphere("earth-bruneton");
   ASSERT_TRUE(untilShadowJob(w));
   EXPECT_TRUE(w.limbLuminanceBusy());
   settle(w);

@@ -267,11 +267,11 @@ TEST(GuiScreenshot, AtmosphereSetBadValueIsOneLine) {
   const std::string sunset = std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/earth-sunset.json";
   const RunResult r = umbra::test::run(
       UMBRA_GUI_EXE,
-      {sunset, "--atmosphere-tables", "small", "--atmosphere-set", "components.aerosols.density.scaleHeightM=-5",
+      {sunset, "--atmosphere-tables", "small", "--atmosphere-set", "components.troposphere.density.scaleHeightM=-5",
        "--screenshot", dir / "x.png"},
       {"UMBRA_CACHE_DIR=" + (dir / "cache")});
   EXPECT_EQ(r.exitCode, 1);
-  EXPECT_NE(r.err.find("--atmosphere-set: earth: components.aerosols.density.scaleHeightM: expected"), std::string::npos)
+  EXPECT_NE(r.err.find("--atmosphere-set: earth: components.troposphere.density.scaleHeightM: expected"), std::string::npos)
       << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));

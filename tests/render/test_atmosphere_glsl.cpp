@@ -282,19 +282,26 @@ TEST(AtmosphereGlsl, PhaseLobesReproduceThePhaseFunctions) {
       EXPECT_NEAR(lobe(a) + lobe(b), p(c), 1e-12 * std::max(1.0, p(c))) << p.describe() << " at " << c;
     }
   }
-  // A table (e.g. Lorenz-Mie's) has no GLSL form: one Henyey-Greenstein lobe with the
-  // table's asymmetry parameter stands in for it (exact for a flat table).
-  PhaseLobe a, b;
-  phaseLobes(PhaseFunction::tabulated({-1.0, 1.0}, {1.0, 1.0}), a, b);
-  EXPECT_NEAR(a.a, 1.0 / (4.0 * 3.14159265358979323846), 1e-15);
-  EXPECT_NEAR(a.g, 0.0, 1e-15);
-  EXPECT_EQ(b.a, 0.0);
+  // A table (e.g. Lorenz-Mie's) is drawn from the phase table: no lobes, and its row holds
+  // the function at theta = pi i / (N - 1) per channel.
   std::vector<double> mu, v;
   for (int i = 0; i <= 2000; ++i) mu.push_back(-1.0 + i / 1000.0);
   for (double m : mu) v.push_back(PhaseFunction::henyeyGreenstein(0.6)(m));
   const PhaseFunction table = PhaseFunction::tabulated(mu, v);
+  PhaseLobe a, b;
   phaseLobes(table, a, b);
-  EXPECT_NEAR(a.g, table.asymmetry(), 1e-15);
-  EXPECT_NEAR(a.g, 0.6, 1e-3);
+  EXPECT_EQ(a.a, 0.0);
   EXPECT_EQ(b.a, 0.0);
+  atmosphere::Component c;
+  c.phases = {table, table, PhaseFunction::rayleigh()};
+  std::vector<float> row;
+  ASSERT_TRUE(phaseTableRow(c, row));
+  ASSERT_EQ(row.size(), 3u * kPhaseTableSamples);
+  for (int i : {0, 1, 100, kPhaseTableSamples / 2, kPhaseTableSamples - 1}) {
+    const double cosTheta = std::cos(3.14159265358979323846 * i / (kPhaseTableSamples - 1));
+    EXPECT_NEAR(row[3 * i], table(cosTheta), 1e-6 * table(cosTheta)) << i;
+    EXPECT_NEAR(row[3 * i + 2], PhaseFunction::rayleigh()(cosTheta), 1e-6) << i;
+  }
+  c.phases = {PhaseFunction::rayleigh(), PhaseFunction::rayleigh(), PhaseFunction::rayleigh()};
+  EXPECT_FALSE(phaseTableRow(c, row));
 }
