@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -44,6 +43,11 @@ double piecewiseLinearIntegral(const std::vector<double>& x, const std::vector<d
     sum += 0.5 * (hi - lo) * (piecewiseLinearAt(x, y, lo) + piecewiseLinearAt(x, y, hi));
   }
   return sum;
+}
+
+/// int_a^b exp(-(h - base) / H) dh, a <= b, written to keep thin layers accurate.
+double exponentialIntegral(double base, double H, double a, double b) {
+  return -H * std::exp(-(a - base) / H) * std::expm1(-(b - a) / H);
 }
 
 /// E1(x) = int_x^inf e^-t / t dt for x > 0.
@@ -159,11 +163,7 @@ double DensityProfile::integral(double fromM, double toM) const {
   if (toM < fromM) return -integral(toM, fromM);
   if (toM == fromM) return 0.0;
   switch (kind) {
-    case Kind::Exponential: {
-      // H e^{-a/H} (1 - e^{-(b-a)/H}), written to keep thin layers accurate.
-      const double H = scaleHeightM;
-      return -H * std::exp(-fromM / H) * std::expm1(-(toM - fromM) / H);
-    }
+    case Kind::Exponential: return exponentialIntegral(0.0, scaleHeightM, fromM, toM);
     case Kind::DoubleExponential: {
       // u = e^{h/H}: int exp(1 - u) H du / u = H e [E1(u_a) - E1(u_b)].
       const double H = scaleHeightM;
@@ -195,10 +195,9 @@ double DensityProfile::integral(double fromM, double toM) const {
         if (inZone) {
           for (std::size_t k = 0; k < rule.x.size(); ++k) sum += 0.5 * (hi - lo) * rule.w[k] * at(mid + 0.5 * (hi - lo) * rule.x[k]);
         } else if (mid < B) {
-          sum += -scaleHeightM * std::exp(-lo / scaleHeightM) * std::expm1(-(hi - lo) / scaleHeightM);
+          sum += exponentialIntegral(0.0, scaleHeightM, lo, hi);
         } else if (mid < T) {
-          const double Hf = freeTroposphereScaleHeightM;
-          sum += -freeTroposphereDensity * Hf * std::exp(-(lo - B) / Hf) * std::expm1(-(hi - lo) / Hf);
+          sum += freeTroposphereDensity * exponentialIntegral(B, freeTroposphereScaleHeightM, lo, hi);
         }
       }
       return sum;
