@@ -4,12 +4,14 @@
 #include "Atmosphere.hpp"
 #include "Humidity.hpp"
 #include "Mie.hpp"
+#include "MieCache.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -689,11 +691,24 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
                               ? parseGrowth(in, value["hygroscopicGrowth"], key("hygroscopicGrowth"))
                               : 1.0;
     sizes.medianRadiusM *= growth, sizes.minRadiusM *= growth, sizes.maxRadiusM *= growth;
+    // The wavelengths in parallel, each through the Lorenz-Mie cache (MieCache.hpp).
+    // The first wavelength's error, as a loop in order would give it.
+    std::vector<MieAerosol> optics(n);
+    std::vector<std::exception_ptr> failures(n);
+#pragma omp parallel for schedule(dynamic)
     for (std::size_t i = 0; i < n; ++i) {
-      const std::complex<double> index =
-          humidRefractiveIndex({m[i], k[i]}, waterRefractiveIndexReal(lambdas[i]), growth);
-      const MieAerosol a = mieLogNormal(lambdas[i] * 1e-9, index, sizes, kMiePhaseSamples, 0, kMieBulkTolerance,
-                                        kMiePhaseTolerance);
+      try {
+        const std::complex<double> index =
+            humidRefractiveIndex({m[i], k[i]}, waterRefractiveIndexReal(lambdas[i]), growth);
+        optics[i] = cachedMieLogNormal(lambdas[i] * 1e-9, index, sizes, kMiePhaseSamples, 0, kMieBulkTolerance,
+                                       kMiePhaseTolerance);
+      } catch (...) {
+        failures[i] = std::current_exception();
+      }
+    }
+    for (const std::exception_ptr& failure : failures)
+      if (failure) std::rethrow_exception(failure);
+    for (const MieAerosol& a : optics) {
       o.scattering.push_back(a.scatteringPerM);
       o.absorption.push_back(a.absorptionPerM);
       o.defaultPhase.push_back(PhaseFunction::tabulated(a.cosTheta, a.phase));

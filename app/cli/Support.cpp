@@ -2,6 +2,7 @@
 
 #include "scene/Ephemeris.hpp"
 #include "scene/Units.hpp"
+#include "MieOpticsCache.h"
 
 #include <unistd.h>
 
@@ -97,6 +98,9 @@ void CacheOptions::addTo(CLI::App* command) {
                       "Table cache directory (default: $UMBRA_CACHE_DIR, else $XDG_CACHE_HOME/umbra, "
                       "else ~/.cache/umbra)");
   command->add_flag("--no-cache", this->disabled, "Neither read nor write the table cache");
+  // The Lorenz-Mie optics of the atmosphere go where its tables go (main keeps them in the
+  // default cache for the commands without these options).
+  command->parse_complete_callback([this] { filters::keepMieOpticsInCache(this->directory, !this->disabled); });
 }
 
 ProgressLine::ProgressLine(std::string w, vtkObject* s)

@@ -1,5 +1,6 @@
 // umbra: physically based eclipse shadows, from the command line.
 #include "Commands.hpp"
+#include "MieOpticsCache.h"
 #include "VtkMessages.hpp"
 
 #include <iostream>
@@ -8,6 +9,7 @@ int main(int argc, char** argv) {
   CLI::App app;
   umbra::cli::Action action;
   umbra::cli::addCommands(app, action);
+  umbra::filters::keepMieOpticsInCache("");  // a command's --cache-dir / --no-cache changes it
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -8,6 +8,7 @@
 // the window once it is shown (batch mode: errors are one line on stderr and exit 1).
 #include "AtmosphereEditor.hpp"
 #include "MainWindow.hpp"
+#include "MieOpticsCache.h"
 #include "OutputFile.hpp"
 #include "scene/Time.hpp"
 
@@ -201,6 +202,7 @@ int main(int argc, char** argv) {
   const Options o;
   o.addTo(parser);
   parser.process(app);
+  umbra::filters::keepMieOpticsInCache("");  // the Lorenz-Mie optics beside the tables
 
   const QStringList positional = parser.positionalArguments();
   const bool batch = parser.isSet(o.screenshotOption);

@@ -254,17 +254,28 @@ vec3 umbraAtmScatteredRadiance(float r, float mu, float muS, float nu, bool rayH
 
 // ---- irradiance ------------------------------------------------------------------------
 
-vec2 umbraAtmIrradianceUv(vec2 size, float r, float muS) {
-  float x = 0.5 * (clamp(muS, -1.0, 1.0) + 1.0);
-  float y = clamp((r - umbraAtmBottom) / (umbraAtmTop - umbraAtmBottom), 0.0, 1.0);
-  return vec2(umbraAtmTexCoord(x, size.x), umbraAtmTexCoord(y, size.y));
+// One row of the irradiance table across mu_s cell ix: geometric where the cell lies below
+// the horizon and both nodes are lit, else linear (lookupIrradiance).
+vec3 umbraAtmIrradianceRow(int ix, int iy, float wx, bool belowHorizon) {
+  vec3 a = texelFetch(umbraAtmIrradianceTable, ivec2(ix, iy), 0).rgb;
+  vec3 b = texelFetch(umbraAtmIrradianceTable, ivec2(ix + 1, iy), 0).rgb;
+  vec3 straight = mix(a, b, wx);
+  if (!belowHorizon) return straight;
+  bvec3 lit = greaterThan(min(a, b), vec3(0.0));
+  vec3 geometric = a * pow(max(b, vec3(1e-37)) / max(a, vec3(1e-37)), vec3(wx));
+  return mix(straight, geometric, vec3(lit));
 }
 
 // indirectIrradiance and directIrradiance (E_0) on a horizontal surface at radius r.
 vec3 umbraAtmIndirectIrradiance(float r, float muS) {
   if (muS < umbraAtmMuSMin) return vec3(0.0);  // below the tables' lowest Sun: dark
-  vec2 n = vec2(textureSize(umbraAtmIrradianceTable, 0));
-  return texture(umbraAtmIrradianceTable, umbraAtmIrradianceUv(n, r, muS)).rgb;
+  ivec2 n = textureSize(umbraAtmIrradianceTable, 0);
+  float fx = 0.5 * (clamp(muS, -1.0, 1.0) + 1.0) * float(n.x - 1);
+  float fy = clamp((r - umbraAtmBottom) / (umbraAtmTop - umbraAtmBottom), 0.0, 1.0) * float(n.y - 1);
+  int ix = min(int(fx), n.x - 2), iy = min(int(fy), n.y - 2);
+  float wx = fx - float(ix), wy = fy - float(iy);
+  bool belowHorizon = 2 * (ix + 1) <= n.x - 1;  // the cell's upper node at mu_s <= 0
+  return mix(umbraAtmIrradianceRow(ix, iy, wx, belowHorizon), umbraAtmIrradianceRow(ix, iy + 1, wx, belowHorizon), wy);
 }
 // E_0 from the transmittance, not the table's interpolated cells (directIrradiance).
 vec3 umbraAtmDirectIrradiance(float r, float muS) {

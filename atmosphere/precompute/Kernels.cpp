@@ -1,7 +1,9 @@
 #include "precompute/Kernels.hpp"
+#include "precompute/Model.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -89,6 +91,51 @@ void lobeValues(double A, double B, double g, const double* c, double* p, int n)
 #else
 void lobeValues(double A, double B, double g, const double* c, double* p, int n) { lobeValuesPlain(A, B, g, c, p, n); }
 #endif
+
+UMBRA_KERNEL void tablePositions(const double* c, int n, int* index, double* weight) {
+  for (int j = 0; j < n; ++j) Model::tablePosition(c[j], index[j], weight[j]);
+}
+
+namespace {
+typedef double Lanes __attribute__((vector_size(4 * sizeof(double))));
+
+/// tableSums for C groups of four wavelengths from l0 (C fixed: the sums stay in registers,
+/// and the table's rows are read once for all of them).
+template <int C>
+__attribute__((always_inline)) inline void tableSumsOf(const double* T, int stride, int l0, const int* index, const double* weight, int n,
+                        const double* wdo, const double* L, double* norm, double* sum) {
+  Lanes nAcc[C], sAcc[C], a0, a1, b0, b1, light;
+  for (int c = 0; c < C; ++c) nAcc[c] = Lanes{0.0, 0.0, 0.0, 0.0}, sAcc[c] = nAcc[c];
+  for (int j = 0; j < n; ++j) {
+    const double* a = T + static_cast<std::size_t>(index[j]) * stride + l0;
+    const double* b = T + static_cast<std::size_t>(index[n + j]) * stride + l0;
+    const double* l = L + static_cast<std::size_t>(j) * stride + l0;
+    const double wa = weight[j], wb = weight[n + j], w = wdo[j];
+    for (int c = 0; c < C; ++c) {
+      std::memcpy(&a0, a + 4 * c, sizeof a0), std::memcpy(&a1, a + stride + 4 * c, sizeof a1);
+      std::memcpy(&b0, b + 4 * c, sizeof b0), std::memcpy(&b1, b + stride + 4 * c, sizeof b1);
+      std::memcpy(&light, l + 4 * c, sizeof light);
+      const Lanes p = (a0 + wa * (a1 - a0)) + (b0 + wb * (b1 - b0));
+      nAcc[c] += p * w;
+      sAcc[c] += p * light;
+    }
+  }
+  for (int c = 0; c < C; ++c)
+    for (int k = 0; k < 4; ++k) norm[l0 + 4 * c + k] = 0.5 * nAcc[c][k], sum[l0 + 4 * c + k] = 0.5 * sAcc[c][k];
+}
+}  // namespace
+
+UMBRA_KERNEL void tableSums(const double* T, int stride, const int* index, const double* weight, int n,
+                            const double* wdo, const double* L, double* norm, double* sum) {
+  for (int l0 = 0; l0 < stride; l0 += 16) {
+    switch (std::min(16, stride - l0) / 4) {
+      case 4: tableSumsOf<4>(T, stride, l0, index, weight, n, wdo, L, norm, sum); break;
+      case 3: tableSumsOf<3>(T, stride, l0, index, weight, n, wdo, L, norm, sum); break;
+      case 2: tableSumsOf<2>(T, stride, l0, index, weight, n, wdo, L, norm, sum); break;
+      default: tableSumsOf<1>(T, stride, l0, index, weight, n, wdo, L, norm, sum); break;
+    }
+  }
+}
 
 /// sum_j a_j b_j.
 UMBRA_KERNEL double dot(const double* a, const double* b, int n) {

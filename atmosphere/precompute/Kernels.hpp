@@ -26,6 +26,18 @@ void sunTexels(const ShellRadii& shell, double alpha, double r, double xr, doubl
 void lobeValuesPlain(double A, double B, double g, const double* c, double* p, int n);
 void lobeValues(double A, double B, double g, const double* c, double* p, int n);
 
+/// Model::tablePosition of n cosines: the table entries index[j] and weights weight[j].
+void tablePositions(const double* c, int n, int* index, double* weight);
+
+/// A tabulated phase function per wavelength, interleaved (T[i * stride + l], uniform in the
+/// cosine; stride a multiple of 4, the lanes past the wavelengths zero), at n directions and
+/// their mirrors (table entry index[j] and weight[j] on the next one; the mirrors' at n + j),
+/// each direction's value averaged with its mirror's and summed against the solid angles
+/// wdo[j] (norm[l]) and against the incoming light L[j * stride + l] (sum[l]), for l < stride:
+/// the density's inner loop for Lorenz-Mie phases.
+void tableSums(const double* T, int stride, const int* index, const double* weight, int n, const double* wdo,
+               const double* L, double* norm, double* sum);
+
 /// sum_j a_j b_j.
 double dot(const double* a, const double* b, int n);
 

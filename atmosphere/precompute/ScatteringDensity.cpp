@@ -133,29 +133,32 @@ void computeScatteringDensity(Batch& B, int order) {
     for (int q = 0; q < ns; ++q) rho[q] = m.density(m.scatterers[q], alt);
     // The tabulated lobes of a wavelength (Lorenz-Mie's, one per component) summed into one
     // table with their weights at this altitude (sca rho w): one lookup per direction and
-    // wavelength, however many aerosol populations; renormalised as one lobe.
-    std::vector<double> mixed, mixedIntegral(nl, 0.0);
-    std::vector<char> hasMixed(nl, 0);
+    // wavelength, however many aerosol populations; renormalised as one lobe. The
+    // wavelengths side by side (mixed[i * stride + l], and the incoming light so too in
+    // LwT): one lookup reads four (tableSums).
+    const int stride = (nl + 3) / 4 * 4;
+    std::vector<double> mixed, LwT, mixedIntegral(nl, 0.0), mixedNorm(stride), mixedSum(stride);
     for (int q = 0; q < ns; ++q)
       for (int l = 0; l < nl; ++l)
         for (auto [li, w] : m.phase[q * nl + l].lobes) {
           if (m.lobes[li].table.empty()) continue;
-          if (mixed.empty()) mixed.assign(static_cast<std::size_t>(nl) * kPhaseTableSize, 0.0);
+          if (mixed.empty()) mixed.assign(static_cast<std::size_t>(stride) * kPhaseTableSize, 0.0);
           const double f = m.sca[q * nl + l] * rho[q] * w;
-          double* out = &mixed[static_cast<std::size_t>(l) * kPhaseTableSize];
           const double* T = m.lobes[li].table.data();
-          for (int i = 0; i < kPhaseTableSize; ++i) out[i] += f * T[i];
+          for (int i = 0; i < kPhaseTableSize; ++i) mixed[static_cast<std::size_t>(i) * stride + l] += f * T[i];
           mixedIntegral[l] += f * lobeIntegral[li];
-          hasMixed[l] = 1;
         }
+    if (!mixed.empty()) {
+      LwT.assign(static_cast<std::size_t>(stride) * nDir, 0.0);
+      for (int l = 0; l < nl; ++l)
+        for (int j = 0; j < nDir; ++j) LwT[static_cast<std::size_t>(j) * stride + l] = Lw[static_cast<std::size_t>(l) * nDir + j];
+    }
     // cj: the cosines with the view of the directions [0, nDir) and of their mirrors.
     std::vector<double> cj(2 * nDir), pj(2 * nDir), pPair(nDir), lobeSum(m.lobes.size() * nl), J(nl);
     // Tabulated lobes (one per wavelength for Lorenz-Mie) share the cosines: the table
     // index and weight of each, computed once per view (as Model::evalLobe does).
     std::vector<int> tableIndex(2 * nDir);
     std::vector<double> tableWeight(2 * nDir);
-    bool anyTable = false;
-    for (const Lobe& lobe : m.lobes) anyTable = anyTable || !lobe.table.empty();
     for (int y = 0; y < MU; ++y) {
       for (int k = 0; k < o.scatteringNu; ++k) {
         const int x = k * MUS + is;
@@ -170,9 +173,7 @@ void computeScatteringDensity(Batch& B, int order) {
             cj[nDir + j] = wx[j] * vx - wy[j] * vy + wz[j] * vz;
           }
         }
-        if (anyTable) {
-          for (int j = 0; j < 2 * nDir; ++j) Model::tablePosition(cj[j], tableIndex[j], tableWeight[j]);
-        }
+        if (!mixed.empty()) tablePositions(cj.data(), 2 * nDir, tableIndex.data(), tableWeight.data());
         // pPair: a lobe's values over the directions, each averaged with its mirror's; the
         // sum against the incoming light renormalised to the lobe's exact integral.
         auto renormalisedSum = [&](double exactIntegral, int l) {
@@ -189,15 +190,11 @@ void computeScatteringDensity(Batch& B, int order) {
           for (int l : m.lobeUsers[li]) lobeSum[li * nl + l] = renormalisedSum(lobeIntegral[li], l);
         }
         std::fill(J.begin(), J.end(), 0.0);
-        for (int l = 0; l < nl; ++l) {
-          if (!hasMixed[l]) continue;
-          const double* T = &mixed[static_cast<std::size_t>(l) * kPhaseTableSize];
-          for (int j = 0; j < 2 * nDir; ++j) {
-            const int i = tableIndex[j];
-            const double w = tableWeight[j];
-            pj[j] = (1 - w) * T[i] + w * T[i + 1];
-          }
-          J[l] = renormalisedSum(mixedIntegral[l], l);
+        if (!mixed.empty()) {
+          tableSums(mixed.data(), stride, tableIndex.data(), tableWeight.data(), nDir, wdo, LwT.data(),
+                    mixedNorm.data(), mixedSum.data());
+          for (int l = 0; l < nl; ++l)
+            J[l] = (mixedNorm[l] > 0.0 ? mixedIntegral[l] / mixedNorm[l] : 1.0) * mixedSum[l];
         }
         for (int q = 0; q < ns; ++q) {
           for (int l = 0; l < nl; ++l) {

@@ -181,4 +181,76 @@ TEST(PrecomputeStages, KernelsAgainstPlainSums) {
     const double d = 1.0 + 0.49 - 1.4 * c[i];
     EXPECT_NEAR(p[i], 0.1 * (1.0 + 0.5 * c[i] * c[i]) / std::pow(d, 1.5), 1e-12 * p[i]);
   }
+
+  // tableSums against the plain sums it stands for: 7 wavelengths (two groups of four, the
+  // last lane zero), 37 directions and their mirrors, the table a different function of the
+  // cosine per wavelength; tablePositions as Model::tablePosition.
+  const int nl = 7, stride = 8, n = 37;
+  std::vector<double> T(static_cast<std::size_t>(stride) * kPhaseTableSize, 0.0), L(stride * n, 0.0), w(n);
+  for (int i = 0; i < kPhaseTableSize; ++i)
+    for (int l = 0; l < nl; ++l) T[i * stride + l] = std::exp((l + 1) * (-1.0 + 2.0 * i / (kPhaseTableSize - 1)));
+  std::vector<double> cosines(2 * n), weight(2 * n);
+  std::vector<int> index(2 * n);
+  for (int j = 0; j < 2 * n; ++j) cosines[j] = std::cos(0.083 * j + 0.01);
+  tablePositions(cosines.data(), 2 * n, index.data(), weight.data());
+  for (int j = 0; j < 2 * n; ++j) {
+    int i;
+    double wj;
+    Model::tablePosition(cosines[j], i, wj);
+    EXPECT_EQ(index[j], i);
+    EXPECT_EQ(weight[j], wj);
+  }
+  for (int j = 0; j < n; ++j) {
+    w[j] = 0.01 * (j + 1);
+    for (int l = 0; l < nl; ++l) L[j * stride + l] = std::sin(0.3 * j + l) + 1.5;
+  }
+  std::vector<double> norm(stride), sums(stride);
+  tableSums(T.data(), stride, index.data(), weight.data(), n, w.data(), L.data(), norm.data(), sums.data());
+  for (int l = 0; l < stride; ++l) {
+    double expectNorm = 0.0, expectSum = 0.0;
+    for (int j = 0; j < n; ++j) {
+      auto at = [&](int k) { return (1 - weight[k]) * T[index[k] * stride + l] + weight[k] * T[(index[k] + 1) * stride + l]; };
+      const double pair = 0.5 * (at(j) + at(n + j));
+      expectNorm += pair * w[j];
+      expectSum += pair * L[j * stride + l];
+    }
+    EXPECT_NEAR(norm[l], expectNorm, 1e-12 * std::max(1.0, expectNorm)) << l;
+    EXPECT_NEAR(sums[l], expectSum, 1e-12 * std::max(1.0, expectSum)) << l;
+    if (l >= nl) EXPECT_EQ(norm[l], 0.0);
+  }
+}
+
+// The irradiance table: bilinear where its mu_s cell reaches the horizon or above (a linear
+// function comes back exactly), geometric across the cells wholly below it (an exponential
+// in mu_s, the ground's light after sunset, comes back exactly between its nodes), and
+// linear again where a node is dark.
+TEST(PrecomputeStages, IrradianceLookupIsGeometricBelowTheHorizon) {
+  Table2D t;
+  t.resize(17, 3, 2);  // nodes every 0.125 in mu_s; node 8 at mu_s = 0
+  auto muOf = [](int x) { return -1.0 + 2.0 * x / 16.0; };
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 17; ++x) {
+      t.at(x, y)[0] = muOf(x) > 0.0 ? 1.0 + muOf(x) + y : std::exp(20.0 * muOf(x)) * (1.0 + y);
+      t.at(x, y)[1] = x < 3 ? 0.0 : std::exp(20.0 * muOf(x));
+    }
+  const double top = kEarth.topRadiusM, bottom = kEarth.bottomRadiusM;
+  double out[2];
+  for (double mu : {-0.9, -0.52, -0.3, -0.125, -0.01}) {
+    for (double h : {0.0, 0.25, 1.0}) {
+      lookupIrradiance(t, kEarth, bottom + h * (top - bottom), mu, out);
+      // Rows 0, 1, 2 at h = 0, 0.5, 1, linear in r between them; the cell from -0.125 to 0
+      // ends at the horizon and is below it.
+      const double expected = std::exp(20.0 * mu) * (1.0 + 2.0 * h);
+      EXPECT_NEAR(out[0], expected, 1e-12 * expected) << mu << " " << h;
+    }
+  }
+  // Above the horizon (the cell from 0 to 0.125 and on): linear, exact for 1 + mu + y.
+  for (double mu : {0.01, 0.3, 0.99}) {
+    lookupIrradiance(t, kEarth, bottom, mu, out);
+    EXPECT_NEAR(out[0], 1.0 + mu, 1e-12);
+  }
+  // A dark node (channel 1 is zero below mu_s = -0.625): the straight line to it.
+  lookupIrradiance(t, kEarth, bottom, -0.7, out);
+  const double lit = std::exp(20.0 * -0.625);
+  EXPECT_NEAR(out[1], 0.4 * lit, 1e-15);
 }

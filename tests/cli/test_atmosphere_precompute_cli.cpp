@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -64,6 +66,46 @@ TEST(AtmospherePrecomputeCli, WritesOneExrPerTable) {
   ASSERT_EQ(again.exitCode, 0) << again.err;
   EXPECT_NE(again.err.find("cache hit"), std::string::npos) << again.err;
   EXPECT_EQ(filesIn(dir / "again"), files);
+}
+
+// The Lorenz-Mie optics of the default sky's aerosols (OPAC's three continental components
+// and the stratospheric sulphate, at each wavelength) go into the table cache beside the
+// tables; a run with other table sizes reads them and writes none; --no-cache leaves the
+// cache alone.
+TEST(AtmospherePrecomputeCli, TheLorenzMieOpticsAreCachedBesideTheTables) {
+  TempDir dir;
+  auto mieFiles = [&] {
+    std::vector<std::string> names;
+    if (fs::exists(dir / "cache"))
+      for (const std::string& f : filesIn(dir / "cache"))
+        if (f.rfind("mie-optics-", 0) == 0 && f.size() > 5 && f.substr(f.size() - 5) == ".json") names.push_back(f);
+    return names;
+  };
+  const std::vector<std::string> env{"UMBRA_CACHE_DIR=" + dir / "cache"};
+  const RunResult first = run(UMBRA_EXE, tiny({"atmosphere", "precompute", "--preset", "earth", "--output", dir / "a"}), env);
+  ASSERT_EQ(first.exitCode, 0) << first.err;
+  const std::vector<std::string> written = mieFiles();
+  EXPECT_EQ(written.size(), 4u * 3u);  // 4 populations, 3 wavelengths
+  auto inode = [&](const std::string& name) {
+    struct stat st {};
+    return ::stat((dir / ("cache/" + name)).c_str(), &st) == 0 ? st.st_ino : 0;
+  };
+  const auto before = inode(written.front());
+
+  std::vector<std::string> other = tiny({"atmosphere", "precompute", "--preset", "earth", "--output", dir / "b"});
+  other[other.size() - 1] = "3";  // --orders 3: every table misses
+  const RunResult second = run(UMBRA_EXE, other, env);
+  ASSERT_EQ(second.exitCode, 0) << second.err;
+  EXPECT_EQ(mieFiles(), written);
+  EXPECT_EQ(inode(written.front()), before);  // read, not written again
+  EXPECT_EQ(umbra::tables::readExr(dir / "b/atmosphere-transmittance.exr").data,
+            umbra::tables::readExr(dir / "a/atmosphere-transmittance.exr").data);
+
+  const std::vector<std::string> elsewhere{"UMBRA_CACHE_DIR=" + dir / "untouched"};
+  const RunResult off = run(UMBRA_EXE, tiny({"atmosphere", "precompute", "--preset", "earth", "--output", dir / "c",
+                                             "--no-cache"}), elsewhere);
+  ASSERT_EQ(off.exitCode, 0) << off.err;
+  EXPECT_FALSE(fs::exists(dir / "untouched"));
 }
 
 TEST(AtmospherePrecomputeCli, RefractionAndWavelengths) {

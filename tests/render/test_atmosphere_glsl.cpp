@@ -247,6 +247,13 @@ TEST(AtmosphereGlsl, GroundAsTheSunSets) {
   EXPECT_GE(a.samples, 300);
 }
 
+// The ground 5 degrees after sunset, lit by the sky alone: the irradiance table's cells
+// below the horizon, interpolated geometrically (lookupIrradiance), on both.
+TEST(AtmosphereGlsl, GroundAfterSunset) {
+  const Agreement a = compareGround(groundCamera(2000.0, -4.0, 8.0), directionFromAngles(-5.0, 0.0), 96, 4);
+  EXPECT_GE(a.samples, 300);
+}
+
 TEST(AtmosphereGlsl, GroundFrom150000km) {
   ViewCamera cam;
   cam.positionM = {0.0, -1.5e8, 2.0e7};

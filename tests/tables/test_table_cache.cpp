@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "TestSupport.h"
 #include "umbra/tables/Exr.h"
@@ -437,6 +438,57 @@ TEST_F(TableCacheTest, ZeroCapIsUnlimited) {
   }
   std::sort(names.begin(), names.end());
   EXPECT_EQ(entries(dir_), names);
+}
+
+TEST_F(TableCacheTest, JsonDocumentsComeBackToTheBitUnderTheirOwnParameters) {
+  const TableCache cache(dir_.string());
+  // Doubles that a float (or a decimal with too few digits) would change.
+  const nlohmann::json document = {{"values", {0.1, 1.0 / 3.0, 6.02214076e23, 4.9406564584124654e-324, -2.5e-308}},
+                                   {"converged", true}};
+  cache.storeJson("mie-optics", params_, document);
+  const std::string path = cache.jsonPathFor("mie-optics", params_);
+  EXPECT_EQ(name(path), "mie-optics-" + parameterHash(params_) + ".json");
+  ASSERT_TRUE(fs::exists(path));
+  const std::optional<nlohmann::json> hit = cache.loadJson("mie-optics", params_);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(*hit, document);
+  const auto values = (*hit)["values"].get<std::vector<double>>();
+  const auto expected = document["values"].get<std::vector<double>>();
+  for (std::size_t i = 0; i < values.size(); ++i)
+    EXPECT_EQ(std::memcmp(&values[i], &expected[i], sizeof(double)), 0) << i;
+
+  Parameters changed = params_;
+  changed["size"] = "32";
+  EXPECT_FALSE(cache.loadJson("mie-optics", changed).has_value());
+  EXPECT_FALSE(cache.loadJson("other", params_).has_value());
+  EXPECT_FALSE(cache.load("mie-optics", params_).has_value());  // a JSON entry is not a table
+
+  // Truncated, or not ours: missed, then overwritten.
+  const std::string full = readBytes(path);
+  writeBytes(path, full.substr(0, full.size() / 2));
+  EXPECT_FALSE(cache.loadJson("mie-optics", params_).has_value());
+  writeBytes(path, R"({"parameters": {"kind": "mie-optics"}, "document": 1})");
+  EXPECT_FALSE(cache.loadJson("mie-optics", params_).has_value());
+  cache.storeJson("mie-optics", params_, document);
+  EXPECT_EQ(cache.loadJson("mie-optics", params_), document);
+  EXPECT_THROW(cache.storeJson("../up", params_, document), std::invalid_argument);
+}
+
+TEST_F(TableCacheTest, JsonDocumentsCountTowardsTheCap) {
+  const TableCache unlimited(dir_.string(), 0);
+  const std::string table = storeNumbered(unlimited, 1);
+  setUsedHoursAgo(table, 3);
+  const nlohmann::json big = {{"values", std::vector<double>(4096, 1.0 / 7.0)}};
+  unlimited.storeJson("mie-optics", numbered(2), big);
+  const std::string json = unlimited.jsonPathFor("mie-optics", numbered(2));
+  ASSERT_TRUE(fs::exists(json));
+  setUsedHoursAgo(json, 2);
+  // Room for two of the three: the least recently used (the table) goes.
+  const TableCache capped(dir_.string(), fs::file_size(json) + fs::file_size(json) + 1);
+  capped.storeJson("mie-optics", numbered(3), big);
+  EXPECT_FALSE(fs::exists(table));
+  EXPECT_TRUE(fs::exists(json));
+  EXPECT_TRUE(capped.loadJson("mie-optics", numbered(3)).has_value());
 }
 
 }  // namespace

@@ -276,6 +276,28 @@ void checkDirectory(const std::string& path) {
   }
 }
 
+// A new temporary beside path (so that the rename is atomic), <path>.tmp-<pid>-<random>,
+// open for writing; its name in tmp. Throws TableError naming path.
+int openTemporaryFor(const std::string& path, std::string& tmp) {
+  int openErr = 0;
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + randomSuffix();
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) return fd;
+    openErr = errno;
+    if (openErr != EEXIST) break;
+  }
+  throw TableError(path, "cannot write: " + errorText(openErr));
+}
+
+// The written temporary flushed, closed and renamed over path: empty, or what failed.
+std::string commitTemporary(Fd& fd, const std::string& tmp, const std::string& path) {
+  if (::fsync(fd.get()) != 0) return errorText(errno);
+  if (const int err = fd.close(); err != 0) return errorText(err);
+  if (::rename(tmp.c_str(), path.c_str()) != 0) return errorText(errno);
+  return {};
+}
+
 void syncDirectoryOf(const std::string& path) {
   fs::path dir = fs::path(path).parent_path();
   if (dir.empty()) dir = ".";
@@ -300,19 +322,8 @@ void writeExr(const std::string& path, const Table& table,
   validateParameters(parameters, path);
   checkDirectory(path);
 
-  // Create the temporary next to path so that the rename is atomic.
   std::string tmp;
-  int rawFd = -1;
-  int openErr = 0;
-  for (int attempt = 0; attempt < 16; ++attempt) {
-    tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + randomSuffix();
-    rawFd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (rawFd >= 0) break;
-    openErr = errno;
-    if (openErr != EEXIST) break;
-  }
-  if (rawFd < 0) throw TableError(path, "cannot write: " + errorText(openErr));
-  Fd fd(rawFd);
+  Fd fd(openTemporaryFor(path, tmp));
 
   std::string failure;
   try {
@@ -342,21 +353,33 @@ void writeExr(const std::string& path, const Table& table,
       file.setFrameBuffer(frame);
       file.writePixels(table.height);
     }  // the destructor writes the line-offset table
-    if (out.error() != 0) {
-      failure = errorText(out.error());
-    } else if (::fsync(fd.get()) != 0) {
-      failure = errorText(errno);
-    } else if (const int err = fd.close(); err != 0) {
-      failure = errorText(err);
-    } else if (::rename(tmp.c_str(), path.c_str()) != 0) {
-      failure = errorText(errno);
-    }
+    failure = out.error() != 0 ? errorText(out.error()) : commitTemporary(fd, tmp, path);
   } catch (const std::exception& e) {
     failure = oneLine(withoutFileName(e.what(), path));
     if (failure.empty()) failure = "unknown error";
   } catch (...) {
     failure = "unknown error";
   }
+  if (!failure.empty()) {
+    fd.close();
+    ::unlink(tmp.c_str());
+    throw TableError(path, "cannot write: " + failure);
+  }
+  syncDirectoryOf(path);
+}
+
+void writeTextFile(const std::string& path, const std::string& text) {
+  checkDirectory(path);
+  std::string tmp;
+  Fd fd(openTemporaryFor(path, tmp));
+  std::string failure;
+  for (std::size_t done = 0; done < text.size() && failure.empty();) {
+    const ssize_t n = ::write(fd.get(), text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) failure = errorText(n < 0 ? errno : EIO);
+    else done += static_cast<std::size_t>(n);
+  }
+  if (failure.empty()) failure = commitTemporary(fd, tmp, path);
   if (!failure.empty()) {
     fd.close();
     ::unlink(tmp.c_str());

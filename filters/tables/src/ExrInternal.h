@@ -13,4 +13,8 @@ namespace umbra::tables::detail {
 void writeExr(const std::string& path, const Table& table,
               const std::map<std::string, std::string>& parameters);
 
+// text written to path through a temporary beside it and a rename (never half a file);
+// throws TableError naming path.
+void writeTextFile(const std::string& path, const std::string& text);
+
 }  // namespace umbra::tables::detail

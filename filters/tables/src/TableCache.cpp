@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <locale>
@@ -137,22 +138,24 @@ bool staleTemporary(const fs::path& path, long pid) {
   return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
 }
 
-// Whether name is one pathFor makes: <kind>-<16 lowercase hex digits (parameterHash)>.exr.
-// The writer's temporaries (<name>.tmp-<pid>-<random>) do not end in .exr.
+// Whether name is one pathFor makes: <kind>-<16 lowercase hex digits (parameterHash)>.exr,
+// or storeJson's .json. The writer's temporaries (<name>.tmp-<pid>-<random>) end in neither.
 bool isCacheFileName(const std::string& name) {
   constexpr size_t hashLength = 16;
-  const std::string suffix = ".exr";
-  if (name.size() < 1 + 1 + hashLength + suffix.size() ||
-      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
-    return false;
+  for (const std::string suffix : {".exr", ".json"}) {
+    if (name.size() < 1 + 1 + hashLength + suffix.size() ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+      continue;
+    }
+    const size_t hashStart = name.size() - suffix.size() - hashLength;
+    const std::string kind = name.substr(0, hashStart - 1);
+    const auto hash = name.begin() + static_cast<std::ptrdiff_t>(hashStart);
+    return name[hashStart - 1] == '-' && kind[0] != '.' &&
+           std::all_of(kind.begin(), kind.end(), isKindCharacter) &&
+           std::all_of(hash, hash + hashLength,
+                       [](char ch) { return (ch >= '0' && ch <= '9') || (ch >= 'a' && ch <= 'f'); });
   }
-  const size_t hashStart = name.size() - suffix.size() - hashLength;
-  const std::string kind = name.substr(0, hashStart - 1);
-  const auto hash = name.begin() + static_cast<std::ptrdiff_t>(hashStart);
-  return name[hashStart - 1] == '-' && kind[0] != '.' &&
-         std::all_of(kind.begin(), kind.end(), isKindCharacter) &&
-         std::all_of(hash, hash + hashLength,
-                     [](char ch) { return (ch >= '0' && ch <= '9') || (ch >= 'a' && ch <= 'f'); });
+  return false;
 }
 
 constexpr std::uint64_t kMiB = 1024 * 1024;
@@ -214,10 +217,50 @@ std::string TableCache::defaultDirectory() {
 TableCache::TableCache(std::string directory, std::uint64_t maxBytes)
     : directory_(std::move(directory)), maxBytes_(maxBytes) {}
 
+std::string TableCache::pathWith(const std::string& kind, const std::map<std::string, std::string>& parameters,
+                                 const char* extension) const {
+  checkKind(kind, parameters);
+  return (fs::path(directory_) / (kind + "-" + parameterHash(parameters) + extension)).string();
+}
+
 std::string TableCache::pathFor(const std::string& kind,
                                 const std::map<std::string, std::string>& parameters) const {
-  checkKind(kind, parameters);
-  return (fs::path(directory_) / (kind + "-" + parameterHash(parameters) + ".exr")).string();
+  return pathWith(kind, parameters, ".exr");
+}
+
+std::string TableCache::jsonPathFor(const std::string& kind,
+                                    const std::map<std::string, std::string>& parameters) const {
+  return pathWith(kind, parameters, ".json");
+}
+
+std::optional<nlohmann::json> TableCache::loadJson(const std::string& kind,
+                                                   const std::map<std::string, std::string>& parameters) const {
+  const std::string path = jsonPathFor(kind, parameters);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  const nlohmann::json file = nlohmann::json::parse(in, nullptr, false);
+  if (file.is_discarded() || !file.is_object() || !file.contains("parameters") || !file.contains("document"))
+    return std::nullopt;  // truncated or not ours: the caller computes it again and overwrites
+  std::map<std::string, std::string> stored;
+  for (const auto& [key, value] : file["parameters"].items()) {
+    if (!value.is_string()) return std::nullopt;
+    stored[key] = value.get<std::string>();
+  }
+  if (stored != withKind(kind, parameters)) return std::nullopt;  // stale file or hash collision
+  std::error_code ec;
+  fs::last_write_time(path, fs::file_time_type::clock::now(), ec);  // used now; may fail
+  return file["document"];
+}
+
+void TableCache::storeJson(const std::string& kind, const std::map<std::string, std::string>& parameters,
+                           const nlohmann::json& document) const {
+  const std::string path = jsonPathFor(kind, parameters);
+  std::error_code ec;
+  fs::create_directories(directory_, ec);
+  if (ec) throw TableError(path, "cannot create cache directory '" + directory_ + "': " + ec.message());
+  const nlohmann::json file = {{"parameters", withKind(kind, parameters)}, {"document", document}};
+  detail::writeTextFile(path, file.dump());
+  enforceCap(path);
 }
 
 std::optional<Table> TableCache::load(const std::string& kind,

@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "umbra/tables/Table.h"
 
 namespace umbra::tables {
@@ -43,16 +45,30 @@ public:
   // directory cannot be created or the file cannot be written. A "kind" entry in
   // parameters that differs from kind throws std::invalid_argument (also in load/pathFor).
   // Then, while the cache's own files (regular files named <kind>-<16 hex digits>.exr, as
-  // pathFor makes them) total more than maxBytes, removes them least recently used (oldest
+  // pathFor makes them, and storeJson's .json) total more than maxBytes, removes them least recently used (oldest
   // modification time) first, never the file just written. Other files, subdirectories and
   // the writer's temporaries are left alone; removal errors are ignored.
   void store(const std::string& kind, const std::map<std::string, std::string>& parameters,
              const Table& table) const;
 
+  // A JSON document kept beside the tables, for results that are not float images (the
+  // Lorenz-Mie optics, which must come back to the bit): jsonPathFor, pathFor's path ending
+  // in .json instead, under the
+  // same size cap and checks of kind. loadJson gives the document stored with exactly these
+  // parameters, or nullopt (missing, unreadable, not JSON, other parameters); a hit marks
+  // the file used now. storeJson writes it atomically; it throws TableError like store().
+  std::string jsonPathFor(const std::string& kind, const std::map<std::string, std::string>& parameters) const;
+  std::optional<nlohmann::json> loadJson(const std::string& kind,
+                                         const std::map<std::string, std::string>& parameters) const;
+  void storeJson(const std::string& kind, const std::map<std::string, std::string>& parameters,
+                 const nlohmann::json& document) const;
+
   const std::string& directory() const { return directory_; }
   std::uint64_t maxBytes() const { return maxBytes_; }
 
 private:
+  std::string pathWith(const std::string& kind, const std::map<std::string, std::string>& parameters,
+                       const char* extension) const;
   void enforceCap(const std::string& keepPath) const;
 
   std::string directory_;
