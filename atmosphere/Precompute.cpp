@@ -46,10 +46,10 @@ std::string PrecomputeOptions::validate() const {
 }
 
 std::size_t AtmosphereTables::bytes() const {
-  std::size_t n = transmittance.values.size() + multipleScattering.values.size() +
-                  directIrradiance.values.size() + irradiance.values.size();
-  for (const Table3D& t : singleScattering) n += t.values.size();
-  return n * sizeof(double);
+  std::size_t n = multipleScattering.values.size();
+  for (const FloatTable3D& t : singleScattering) n += t.values.size();
+  return n * sizeof(float) +
+         (transmittance.values.size() + directIrradiance.values.size() + irradiance.values.size()) * sizeof(double);
 }
 
 namespace {
@@ -58,8 +58,8 @@ namespace {
 
 /// One batch of wavelengths: its stages in order (atmosphere/precompute/Batch.hpp). The 3D
 /// tables go straight into `single` and `multiple` from channel l0 on.
-BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runner& run, std::vector<Table3D>& single,
-                         Table3D& multiple, int l0) {
+BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runner& run,
+                         std::vector<FloatTable3D>& single, FloatTable3D& multiple, int l0) {
   Batch batch(atm, o, run, single, multiple, l0);
   computeTransmittance(batch);
   computeDirectIrradiance(batch);
@@ -206,7 +206,7 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
                         1.0 + (orders - 1) * (2.0 + 0.1 + 1.0);
   const int W = options.scatteringNu * options.scatteringMuS;
   tables.singleScattering.resize(tables.scatteringComponents.size());
-  for (Table3D& T : tables.singleScattering) T.resize(W, options.scatteringMu, options.scatteringR, nl);
+  for (FloatTable3D& T : tables.singleScattering) T.resize(W, options.scatteringMu, options.scatteringR, nl);
   tables.multipleScattering.resize(W, options.scatteringMu, options.scatteringR, nl);
   for (int bi = 0; bi < batches; ++bi) {
     std::vector<int> ls;
@@ -257,7 +257,7 @@ std::vector<double> transmittanceToTop(const AtmosphereTables& tables, double r,
   return v;
 }
 
-std::vector<double> lookupScattering(const AtmosphereTables& tables, const Table3D& table, double r, double mu,
+std::vector<double> lookupScattering(const AtmosphereTables& tables, const FloatTable3D& table, double r, double mu,
                                      double muS, double nu, bool rayIntersectsGround) {
   const ScatterGeometry g = geometryOf(tables);
   std::vector<double> v(table.channels, 0.0);

@@ -124,20 +124,27 @@ struct Table2D {
 };
 
 /// A 3D table (width = NU * MU_S, height = MU, depth = R for the scattering tables).
-struct Table3D {
+template <class Value>
+struct BasicTable3D {
   int width = 0, height = 0, depth = 0, channels = 0;
-  std::vector<double> values;
+  std::vector<Value> values;
 
   void resize(int w, int h, int d, int c) {
     width = w, height = h, depth = d, channels = c;
-    values.assign(static_cast<std::size_t>(w) * h * d * c, 0.0);
+    values.assign(static_cast<std::size_t>(w) * h * d * c, Value(0));
   }
   std::size_t offset(int x, int y, int z) const {
     return ((static_cast<std::size_t>(z) * height + y) * width + x) * channels;
   }
-  const double* at(int x, int y, int z) const { return values.data() + offset(x, y, z); }
-  double* at(int x, int y, int z) { return values.data() + offset(x, y, z); }
+  const Value* at(int x, int y, int z) const { return values.data() + offset(x, y, z); }
+  Value* at(int x, int y, int z) { return values.data() + offset(x, y, z); }
 };
+/// The orders' working tables (J_k, L_k), in double precision.
+using Table3D = BasicTable3D<double>;
+/// The finished 4D tables of AtmosphereTables, in single precision as the EXR files and the
+/// GPU hold them (a relative 6e-8, far below the tables' interpolation error): half the
+/// memory of double, the precomputation's largest share of it.
+using FloatTable3D = BasicTable3D<float>;
 
 struct StageTiming {
   std::string stage;
@@ -154,8 +161,8 @@ struct AtmosphereTables {
   /// Names of the components that scatter, in the atmosphere's order; one single-scattering
   /// table each (without the phase function).
   std::vector<std::string> scatteringComponents;
-  std::vector<Table3D> singleScattering;
-  Table3D multipleScattering;  ///< orders 2..N, phase functions included
+  std::vector<FloatTable3D> singleScattering;
+  FloatTable3D multipleScattering;  ///< orders 2..N, phase functions included
   Table2D directIrradiance;    ///< E_0 (mu_s, r)
   Table2D irradiance;          ///< indirect, orders 1..N-1 (mu_s, r), as Bruneton's
 
@@ -216,7 +223,7 @@ void transmittanceToTop(const AtmosphereTables& tables, double r, double mu, dou
 std::vector<double> transmittanceAlong(const AtmosphereTables& tables, double r, double mu, double d,
                                        bool rayIntersectsGround, bool endsOnGround = false);
 /// Quadrilinear lookup in a scattering table.
-std::vector<double> lookupScattering(const AtmosphereTables& tables, const Table3D& table, double r,
+std::vector<double> lookupScattering(const AtmosphereTables& tables, const FloatTable3D& table, double r,
                                      double mu, double muS, double nu, bool rayIntersectsGround);
 /// Single (each component's table times its phase at nu) plus multiple scattering, times
 /// solarIrradiance (per wavelength; empty: 1). Straight-ray ground test for the half.

@@ -233,9 +233,9 @@ struct AtmosphereRendering::Impl {
     transmittance = floatTexture(window, t.transmittance.width, t.transmittance.height, 1, asFloat(t.transmittance.values));
     irradiance = floatTexture(window, t.irradiance.width, t.irradiance.height, 1, asFloat(t.irradiance.values));
     // Slab 0: multiple scattering, then one slab per component (z-major: consecutive).
-    std::vector<float> stacked = asFloat(t.multipleScattering.values);
-    for (const atmosphere::Table3D& s : t.singleScattering) stacked.insert(stacked.end(), s.values.begin(), s.values.end());
-    const atmosphere::Table3D& m = t.multipleScattering;
+    std::vector<float> stacked = t.multipleScattering.values;
+    for (const atmosphere::FloatTable3D& s : t.singleScattering) stacked.insert(stacked.end(), s.values.begin(), s.values.end());
+    const atmosphere::FloatTable3D& m = t.multipleScattering;
     scattering = floatTexture(window, m.width, m.height, m.depth * static_cast<int>(1 + t.singleScattering.size()), stacked);
     // Without refraction a 2x2 table of zeros keeps the sampler valid.
     const std::vector<float> none(8, 0.0f);

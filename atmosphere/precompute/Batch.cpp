@@ -6,8 +6,8 @@
 
 namespace umbra::atmosphere::stages {
 
-Batch::Batch(const Atmosphere& atmIn, const PrecomputeOptions& oIn, Runner& runIn, std::vector<Table3D>& singleIn,
-             Table3D& multipleIn, int l0In)
+Batch::Batch(const Atmosphere& atmIn, const PrecomputeOptions& oIn, Runner& runIn,
+             std::vector<FloatTable3D>& singleIn, FloatTable3D& multipleIn, int l0In)
     : atm(atmIn), o(oIn), run(runIn), m(atmIn, oIn), nl(m.nl), nc(m.nc), ns(static_cast<int>(m.scatterers.size())),
       shell{atmIn.bottomRadiusM, atmIn.topRadiusM}, b(m.b), t(m.t), alpha(oIn.sunAngularRadiusRad),
       g(shell, {oIn.scatteringR, oIn.scatteringMu, oIn.scatteringMuS, oIn.scatteringNu}, oIn.muSMin),

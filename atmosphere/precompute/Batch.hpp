@@ -59,8 +59,8 @@ struct DensityDirections {
 };
 
 struct Batch {
-  Batch(const Atmosphere& atm, const PrecomputeOptions& o, Runner& run, std::vector<Table3D>& single,
-        Table3D& multiple, int l0);
+  Batch(const Atmosphere& atm, const PrecomputeOptions& o, Runner& run, std::vector<FloatTable3D>& single,
+        FloatTable3D& multiple, int l0);
 
   const Atmosphere& atm;
   const PrecomputeOptions& o;
@@ -72,8 +72,8 @@ struct Batch {
   const ScatterGeometry g;
   const int W, MU, R, MUS, TW, TH, IW, IH;
   const std::size_t texels;
-  std::vector<Table3D>& single;  // per scatterer, all wavelengths wide
-  Table3D& multiple;             // all wavelengths wide
+  std::vector<FloatTable3D>& single;  // per scatterer, all wavelengths wide
+  FloatTable3D& multiple;             // all wavelengths wide
   const int l0;                  // the batch's first channel in them
 
   /// Refractive media: one per distinct refractivity (dispersion) for the transmittance,

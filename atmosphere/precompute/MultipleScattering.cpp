@@ -19,7 +19,7 @@ void computeMultipleScattering(Batch& B) {
   const std::vector<RaySamples>& mRays = B.multipleScatteringRays();
   const Table3D& density = B.density;
   Table3D& delta = B.delta;
-  Table3D& multiple = B.multiple;
+  FloatTable3D& multiple = B.multiple;
   B.run.run("multiple scattering", 1.0, R * MU, [&, g, b, nl, W, MU, MUS, l0](int i) {
     const int y = i % MU, z = i / MU;
     const RaySamples& s = mRays[i];
@@ -58,8 +58,8 @@ void computeMultipleScattering(Batch& B) {
     for (int x = 0; x < W; ++x) {
       const double* a = &acc[static_cast<std::size_t>(x) * nl];
       std::copy_n(a, nl, delta.at(x, y, z));
-      double* sum = multiple.at(x, y, z) + l0;
-      for (int l = 0; l < nl; ++l) sum[l] += a[l];
+      float* sum = multiple.at(x, y, z) + l0;
+      for (int l = 0; l < nl; ++l) sum[l] = static_cast<float>(sum[l] + a[l]);
     }
   });
 }

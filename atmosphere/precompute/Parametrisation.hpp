@@ -170,8 +170,9 @@ inline SNuCell sNuCell(const ScatterGeometry& g, double muS, double nu) {
 }
 
 /// out[0..n) += scale * table(r, mu, mu_s, nu) for the channels l0 .. l0 + n (n < 0: all).
-inline void accumulate4(const Table3D& T, const RMuCell& a, const SNuCell& s, double scale, double* out, int l0 = 0,
-                        int n = -1) {
+template <class Value>
+inline void accumulate4(const BasicTable3D<Value>& T, const RMuCell& a, const SNuCell& s, double scale, double* out,
+                        int l0 = 0, int n = -1) {
   const int nc = T.channels, nr = n < 0 ? nc : n;
   for (int dz = 0; dz < 2; ++dz) {
     const double wz = (dz ? a.wz : 1.0 - a.wz) * scale;
@@ -179,11 +180,11 @@ inline void accumulate4(const Table3D& T, const RMuCell& a, const SNuCell& s, do
     for (int dy = 0; dy < 2; ++dy) {
       const double wzy = wz * (dy ? a.wy : 1.0 - a.wy);
       if (wzy == 0.0) continue;
-      const double* row = T.at(0, a.iy + dy, a.iz + dz) + l0;
-      const double* p00 = row + static_cast<std::size_t>(s.x00) * nc;
-      const double* p01 = row + static_cast<std::size_t>(s.x01) * nc;
-      const double* p10 = row + static_cast<std::size_t>(s.x10) * nc;
-      const double* p11 = row + static_cast<std::size_t>(s.x11) * nc;
+      const Value* row = T.at(0, a.iy + dy, a.iz + dz) + l0;
+      const Value* p00 = row + static_cast<std::size_t>(s.x00) * nc;
+      const Value* p01 = row + static_cast<std::size_t>(s.x01) * nc;
+      const Value* p10 = row + static_cast<std::size_t>(s.x10) * nc;
+      const Value* p11 = row + static_cast<std::size_t>(s.x11) * nc;
       const double w00 = wzy * s.w00, w01 = wzy * s.w01, w10 = wzy * s.w10, w11 = wzy * s.w11;
       if (s.w10 == 0.0 && s.w11 == 0.0) {
         for (int l = 0; l < nr; ++l) out[l] += w00 * p00[l] + w01 * p01[l];

@@ -20,7 +20,7 @@ void computeSingleScattering(Batch& B) {
   const int nl = B.nl, ns = B.ns, W = B.W, MU = B.MU, R = B.R, TW = B.TW, TH = B.TH, l0 = B.l0;
   const Table2D& Ttab = B.out.transmittance;
   const std::vector<RaySamples>& singleRays = B.singleRays;
-  std::vector<Table3D>& single = B.single;
+  std::vector<FloatTable3D>& single = B.single;
   BatchResult& out = B.out;
   B.run.run("single scattering", 1.0, R * MU, [&, g, alpha, nl, ns, W, MU, TW, TH, l0](int i) {
     const int y = i % MU, z = i / MU;
@@ -75,7 +75,7 @@ void computeSingleScattering(Batch& B) {
     std::fill(v, v + nl, 0.0);
     for (int q = 0; q < ns; ++q) {
       const Component& comp = atm.components[m.scatterers[q]];
-      const double* S = single[q].at(x, y, z) + l0;
+      const float* S = single[q].at(x, y, z) + l0;
       for (int l = 0; l < nl; ++l) v[l] += S[l] * comp.phase(l)(p.nu);
     }
   }));

@@ -31,7 +31,8 @@ vtkImageData* block(vtkMultiBlockDataSet* blocks, const std::string& name) {
 }
 
 /// The block's arrays (one per wavelength, in order) interleaved per texel, as doubles.
-std::vector<double> interleaved(vtkImageData* image, const std::string& name, int channels) {
+template <class Value>
+std::vector<Value> interleaved(vtkImageData* image, const std::string& name, int channels) {
   vtkPointData* pd = image->GetPointData();
   if (pd->GetNumberOfArrays() != channels) {
     throw std::invalid_argument("atmosphere tables: block '" + name + "' has " +
@@ -39,13 +40,13 @@ std::vector<double> interleaved(vtkImageData* image, const std::string& name, in
                                 std::to_string(channels));
   }
   const vtkIdType n = image->GetNumberOfPoints();
-  std::vector<double> v(static_cast<std::size_t>(n) * channels);
+  std::vector<Value> v(static_cast<std::size_t>(n) * channels);
   for (int c = 0; c < channels; ++c) {
     vtkDataArray* a = pd->GetArray(c);
     if (!a || a->GetNumberOfTuples() != n || a->GetNumberOfComponents() != 1) {
       throw std::invalid_argument("atmosphere tables: block '" + name + "' has a malformed array");
     }
-    for (vtkIdType i = 0; i < n; ++i) v[static_cast<std::size_t>(i) * channels + c] = a->GetComponent(i, 0);
+    for (vtkIdType i = 0; i < n; ++i) v[static_cast<std::size_t>(i) * channels + c] = static_cast<Value>(a->GetComponent(i, 0));
   }
   return v;
 }
@@ -59,13 +60,13 @@ void readTable(vtkImageData* image, const std::string& name, int channels, Table
   t.height = dims[1];
   depth = dims[2];
   t.channels = channels;
-  t.values = interleaved(image, name, channels);
+  t.values = interleaved<typename decltype(t.values)::value_type>(image, name, channels);
 }
 void read2D(vtkMultiBlockDataSet* blocks, const std::string& name, int channels, atmosphere::Table2D& t) {
   int depth = 1;
   readTable(block(blocks, name), name, channels, t, depth);
 }
-void read3D(vtkImageData* image, const std::string& name, int channels, atmosphere::Table3D& t) {
+void read3D(vtkImageData* image, const std::string& name, int channels, atmosphere::FloatTable3D& t) {
   readTable(image, name, channels, t, t.depth);
 }
 
@@ -121,7 +122,7 @@ atmosphere::AtmosphereTables tablesFromBlocks(vtkMultiBlockDataSet* blocks, cons
   o.transmittanceHeight = t.transmittance.height;
   o.irradianceWidth = t.irradiance.width;
   o.irradianceHeight = t.irradiance.height;
-  auto checkScattering = [&](const atmosphere::Table3D& s, const std::string& name) {
+  auto checkScattering = [&](const atmosphere::FloatTable3D& s, const std::string& name) {
     if (s.width != o.scatteringNu * o.scatteringMuS || s.height != o.scatteringMu || s.depth != o.scatteringR)
       throw std::invalid_argument("atmosphere tables: block '" + name + "' does not match scatteringSize");
   };

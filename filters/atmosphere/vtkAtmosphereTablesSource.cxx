@@ -68,14 +68,15 @@ struct BrunetonTable {
   std::optional<umbra::tables::Table> table;
 };
 
-umbra::tables::Table toTable(const std::vector<double>& values, int width, int rows, int channels,
+template <class Value>
+umbra::tables::Table toTable(const std::vector<Value>& values, int width, int rows, int channels,
                              const std::vector<std::string>& names) {
   umbra::tables::Table t;
   t.width = width;
   t.height = rows;
   t.channels = names;
   t.data.assign(static_cast<std::size_t>(width) * rows * channels, 0.0f);
-  if (!values.empty()) std::transform(values.begin(), values.end(), t.data.begin(), [](double v) { return static_cast<float>(v); });
+  if (!values.empty()) std::transform(values.begin(), values.end(), t.data.begin(), [](Value v) { return static_cast<float>(v); });
   return t;
 }
 
@@ -172,19 +173,18 @@ struct BrunetonSet {
   umbra::tables::Table tableOf(const umbra::atmosphere::AtmosphereTables& result, const BrunetonTable& t) const {
     const auto [w, h] = this->sizeOf(t);
     const int nc = static_cast<int>(this->channels.size());
-    const std::vector<double>* v = nullptr;
-    if (t.name == "transmittance") v = &result.transmittance.values;
-    else if (t.name == "multiple-scattering") v = &result.multipleScattering.values;
-    else if (t.name == "direct-irradiance") v = &result.directIrradiance.values;
-    else if (t.name == "irradiance") v = &result.irradiance.values;
-    else {
-      const auto i = std::find(components.begin(), components.end(), t.parameters.at("component")) - components.begin();
-      v = &result.singleScattering.at(static_cast<std::size_t>(i)).values;
-    }
     // Orders 1: no multiple scattering nor indirect irradiance (empty tables: zeros).
-    if (!v->empty() && v->size() != static_cast<std::size_t>(w) * h * nc)
-      throw std::logic_error("precompute: unexpected size of table " + t.name);
-    return toTable(*v, w, h, nc, this->channels);
+    auto checked = [&](const auto& values) {
+      if (!values.empty() && values.size() != static_cast<std::size_t>(w) * h * nc)
+        throw std::logic_error("precompute: unexpected size of table " + t.name);
+      return toTable(values, w, h, nc, this->channels);
+    };
+    if (t.name == "transmittance") return checked(result.transmittance.values);
+    if (t.name == "multiple-scattering") return checked(result.multipleScattering.values);
+    if (t.name == "direct-irradiance") return checked(result.directIrradiance.values);
+    if (t.name == "irradiance") return checked(result.irradiance.values);
+    const auto i = std::find(components.begin(), components.end(), t.parameters.at("component")) - components.begin();
+    return checked(result.singleScattering.at(static_cast<std::size_t>(i)).values);
   }
 };
 
