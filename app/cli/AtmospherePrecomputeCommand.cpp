@@ -1,6 +1,7 @@
 // umbra atmosphere precompute --preset NAME|--config FILE [--refraction] [--orders N]
 //   [--wavelengths N] [--transmittance-size WxH] [--scattering-size R,MU,MU_S,NU]
-//   [--irradiance-size WxH] [--refraction-size WxH] --output DIR [--cache-dir D] [--no-cache]
+//   [--irradiance-size WxH] [--refraction-size WxH] [--wavelength-batch N] --output DIR
+//   [--cache-dir D] [--no-cache]
 //
 // Writes the Bruneton tables of vtkAtmosphereTablesSource (and, with --refraction, the
 // refraction table; the scattering then follows refracted paths) into DIR, one EXR file per
@@ -89,7 +90,7 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
   struct Options {
     std::string preset, config, output;
     bool refraction = false;
-    int orders = 4, wavelengths = 3;
+    int orders = 4, wavelengths = 3, wavelengthBatch = 0;
     std::string refractionSize = "512x256", transmittanceSize = "256x64", scatteringSize = "32,128,32,8", irradianceSize = "64x16";
     std::string step = "10km";
     CacheOptions cache;
@@ -111,6 +112,10 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       ->capture_default_str();
   precompute->add_option("--refraction-size", o->refractionSize,
                          "Refraction table WxH (x_mu x x_r), with --refraction")
+      ->capture_default_str();
+  precompute->add_option("--wavelength-batch", o->wavelengthBatch,
+                         "Wavelengths computed together (0: all): fewer hold less memory and take more time; "
+                         "the tables are the same (docs/accuracy-vs-speed.md, \"Wavelengths computed together\")")
       ->capture_default_str();
   precompute->add_option("--output", o->output, "Directory to write (created if its parent exists)")->required();
   o->cache.addTo(precompute);
@@ -135,6 +140,8 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       if (o->orders < 1 || o->orders > 64) throw CommandError("--orders: expected 1 to 64, got " + std::to_string(o->orders));
       if (o->wavelengths < 1 || o->wavelengths > 256)
         throw CommandError("--wavelengths: expected 1 to 256, got " + std::to_string(o->wavelengths));
+      if (o->wavelengthBatch < 0 || o->wavelengthBatch > 256)
+        throw CommandError("--wavelength-batch: expected 0 (all) to 256, got " + std::to_string(o->wavelengthBatch));
 
       // The output directory: its parent must exist; it must be (or become) a directory.
       const fs::path dir(o->output);
@@ -153,6 +160,7 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       source->SetTables(vtkAtmosphereTablesSource::Bruneton | (o->refraction ? vtkAtmosphereTablesSource::Refraction : 0));
       source->SetRefractedPaths(o->refraction);
       source->SetOrders(o->orders);
+      source->SetWavelengthBatch(o->wavelengthBatch);
       source->SetWavelengths(o->wavelengths);
       source->SetTransmittanceSize(transmittance[0], transmittance[1]);
       source->SetScatteringSize(scattering[0], scattering[1], scattering[2], scattering[3]);

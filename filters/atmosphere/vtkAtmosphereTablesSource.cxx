@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cctype>
 #include <optional>
+#include <type_traits>
 
 vtkStandardNewMacro(vtkAtmosphereTablesSource);
 
@@ -169,15 +170,18 @@ struct BrunetonSet {
     return {po.irradianceWidth, po.irradianceHeight};
   }
 
-  /// Table `t` of a precomputation's result.
-  umbra::tables::Table tableOf(const umbra::atmosphere::AtmosphereTables& result, const BrunetonTable& t) const {
+  /// Table `t` of a precomputation's result, taken out of it (its values there freed: the
+  /// result and the tables made of it are not held whole at once).
+  umbra::tables::Table takeTable(umbra::atmosphere::AtmosphereTables& result, const BrunetonTable& t) const {
     const auto [w, h] = this->sizeOf(t);
     const int nc = static_cast<int>(this->channels.size());
     // Orders 1: no multiple scattering nor indirect irradiance (empty tables: zeros).
-    auto checked = [&](const auto& values) {
+    auto checked = [&](auto& values) {
       if (!values.empty() && values.size() != static_cast<std::size_t>(w) * h * nc)
         throw std::logic_error("precompute: unexpected size of table " + t.name);
-      return toTable(values, w, h, nc, this->channels);
+      umbra::tables::Table table = toTable(values, w, h, nc, this->channels);
+      std::decay_t<decltype(values)>().swap(values);
+      return table;
     };
     if (t.name == "transmittance") return checked(result.transmittance.values);
     if (t.name == "multiple-scattering") return checked(result.multipleScattering.values);
@@ -271,6 +275,7 @@ umbra::atmosphere::PrecomputeOptions vtkAtmosphereTablesSource::PrecomputeOption
   po.refraction = this->RefractedPaths;
   po.refractionStepM = this->RefractionStepM;
   po.threads = this->Threads;
+  po.wavelengthBatch = this->WavelengthBatch;
   if (const std::string e = po.validate(); !e.empty()) throw std::invalid_argument("precompute options: " + e);
   return po;
 }
@@ -303,21 +308,25 @@ void vtkAtmosphereTablesSource::AddBrunetonBlocks(const umbra::atmosphere::Atmos
       cache, this->UseCache != 0, requests,
       [&] {
         ++this->PrecomputeCalls;
-        const atmosphere::AtmosphereTables result = atmosphere::precompute(
+        atmosphere::AtmosphereTables result = atmosphere::precompute(
             atm, onlyTransmittance ? transmittanceOnly(set.po) : set.po, [this](double f, const std::string&) {
               this->UpdateProgress(0.95 * f);
               return !this->GetAbortExecute();  // SetAbortExecute(1) from another thread cancels
             });
         std::vector<tables::Table> out;
-        for (const BrunetonTable* t : made) out.push_back(set.tableOf(result, *t));
+        for (const BrunetonTable* t : made) out.push_back(set.takeTable(result, *t));
         return out;
       },
       outcome);
   this->Count(outcome);
   for (std::size_t i = 0; i < made.size(); ++i)
     if (requests[i].needed) made[i]->table = std::move(values[i]);
+  values.clear();
   for (auto& [bit, t] : set.all)
-    if (requested & bit) setBlock(output, block, blockOf(*t.table, t.depth), t.parameters, "atmosphere-" + t.name, t.name);
+    if (requested & bit) {
+      setBlock(output, block, blockOf(*t.table, t.depth), t.parameters, "atmosphere-" + t.name, t.name);
+      t.table.reset();  // the block holds it now
+    }
 }
 
 void vtkAtmosphereTablesSource::AddRefractionBlock(const umbra::atmosphere::Atmosphere& atm,

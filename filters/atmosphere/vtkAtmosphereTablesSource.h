@@ -122,6 +122,12 @@ public:
   /// OpenMP threads (0: the default); does not change the values.
   vtkSetClampMacro(Threads, int, 0, 1024);
   vtkGetMacro(Threads, int);
+  /// Wavelengths computed together (PrecomputeOptions::wavelengthBatch; 0, the default: all):
+  /// fewer hold less memory (the orders' working tables are that many channels wide) and
+  /// take more time (the work common to the wavelengths is redone per batch). The tables
+  /// are the same to the bit, so it is not part of the cache key.
+  vtkSetClampMacro(WavelengthBatch, int, 0, 256);
+  vtkGetMacro(WavelengthBatch, int);
 
   // ---- the refraction table ----
   vtkSetClampMacro(RefractionWidth, int, 2, 8192);
@@ -185,6 +191,7 @@ private:
                               umbra::atmosphere::PrecomputeOptions().irradianceSamples};
   bool RefractedPaths = false;
   int Threads = 0;
+  int WavelengthBatch = 0;
   int RefractionWidth = 512;
   int RefractionHeight = 256;
   double RefractionStepM = 10e3;
