@@ -56,9 +56,11 @@ struct ScreenScene {
 };
 
 std::filesystem::path tempDir() {
-  auto dir = std::filesystem::temp_directory_path() / ("umbra-render-test-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  // A new, empty directory (mkdtemp): one named by the process id alone can hold the files
+  // of an earlier test process that had the same id.
+  std::string pattern = (std::filesystem::temp_directory_path() / "umbra-body-view-XXXXXX").string();
+  if (!::mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed for " + pattern);
+  return pattern;
 }
 
 std::vector<unsigned char> readPng(const std::string& path, int& w, int& h) {
