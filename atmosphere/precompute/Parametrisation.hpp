@@ -196,10 +196,19 @@ inline void accumulate4(const BasicTable3D<Value>& T, const RMuCell& a, const SN
 }
 
 /// Bilinear lookup in a 2D table of unit-range coordinates (texel centres on the ends).
+/// Where unit coordinate u falls among n texels (centres on the ends): between i and i + 1,
+/// weight w on i + 1.
+inline void unitCell(double u, int n, int& i, double& w) {
+  const double f = std::clamp(u, 0.0, 1.0) * (n - 1);
+  i = std::min(static_cast<int>(f), n - 2);
+  w = f - i;
+}
+
 inline void bilinearUnit(const Table2D& T, double xu, double yu, double* out) {
-  const double fx = std::clamp(xu, 0.0, 1.0) * (T.width - 1), fy = std::clamp(yu, 0.0, 1.0) * (T.height - 1);
-  const int ix = std::min(static_cast<int>(fx), T.width - 2), iy = std::min(static_cast<int>(fy), T.height - 2);
-  const double wx = fx - ix, wy = fy - iy;
+  int ix, iy;
+  double wx, wy;
+  unitCell(xu, T.width, ix, wx);
+  unitCell(yu, T.height, iy, wy);
   const double* p00 = T.at(ix, iy);
   const double* p01 = T.at(ix + 1, iy);
   const double* p10 = T.at(ix, iy + 1);
@@ -220,11 +229,10 @@ inline void lookupTransmittance(const Table2D& T, const ShellRadii& shell, doubl
 /// [-1, 1]: +44..64 % at 5.6 deg down; geometric: -4..+4 %). The GLSL twin is
 /// umbraAtmIndirectIrradiance.
 inline void lookupIrradiance(const Table2D& T, const ShellRadii& shell, double r, double muS, double* out) {
-  const double yu = (r - shell.bottomRadiusM) / (shell.topRadiusM - shell.bottomRadiusM);
-  const double fx = std::clamp(0.5 * (muS + 1.0), 0.0, 1.0) * (T.width - 1);
-  const double fy = std::clamp(yu, 0.0, 1.0) * (T.height - 1);
-  const int ix = std::min(static_cast<int>(fx), T.width - 2), iy = std::min(static_cast<int>(fy), T.height - 2);
-  const double wx = fx - ix, wy = fy - iy;
+  int ix, iy;
+  double wx, wy;
+  unitCell(0.5 * (muS + 1.0), T.width, ix, wx);
+  unitCell((r - shell.bottomRadiusM) / (shell.topRadiusM - shell.bottomRadiusM), T.height, iy, wy);
   const bool belowHorizon = 2.0 * (ix + 1) <= T.width - 1.0;  // the upper node's mu_s <= 0
   auto along = [&](int y, int l) {
     const double a = T.at(ix, y)[l], b = T.at(ix + 1, y)[l];

@@ -216,7 +216,9 @@ TEST(PrecomputeStages, KernelsAgainstPlainSums) {
     }
     EXPECT_NEAR(norm[l], expectNorm, 1e-12 * std::max(1.0, expectNorm)) << l;
     EXPECT_NEAR(sums[l], expectSum, 1e-12 * std::max(1.0, expectSum)) << l;
-    if (l >= nl) EXPECT_EQ(norm[l], 0.0);
+    if (l >= nl) {
+      EXPECT_EQ(norm[l], 0.0);
+    }
   }
 }
 
