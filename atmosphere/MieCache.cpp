@@ -95,8 +95,13 @@ MieAerosol cachedMieLogNormal(double wavelengthM, std::complex<double> m, const 
   // Loaded or computed outside the lock: wavelengths run in parallel (two threads asking
   // for the same key both compute it, and keep the same result).
   std::optional<MieAerosol> one;
-  if (store.load)
-    if (const std::optional<nlohmann::json> document = store.load(key)) one = mieFromJson(*document, phaseSamples);
+  auto fromStore = [&] {
+    if (store.load)
+      if (const std::optional<nlohmann::json> document = store.load(key)) one = mieFromJson(*document, phaseSamples);
+  };
+  fromStore();
+  std::shared_ptr<void> held;  // another process computing the key: wait, then read its result
+  if (!one && store.hold && (held = store.hold(key))) fromStore();
   const bool loaded = one.has_value();
   if (!loaded) {
     LogNormalSizes unit = sizes;

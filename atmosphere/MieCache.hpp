@@ -10,6 +10,7 @@
 #include <complex>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <map>
 #include <optional>
 #include <string>
@@ -20,10 +21,13 @@ namespace umbra::atmosphere {
 using MieKey = std::map<std::string, std::string>;
 
 /// Where results persist between processes: `load` gives the document stored under a key
-/// (nullopt: none), `store` keeps one. Either may be empty; neither may throw.
+/// (nullopt: none), `store` keeps one; while what `hold` gives for a key lives, no other
+/// process computes that key (the table cache's lock), and `load` is asked again under it.
+/// Any may be empty; none may throw.
 struct MieStore {
   std::function<std::optional<nlohmann::json>(const MieKey&)> load;
   std::function<void(const MieKey&, const nlohmann::json&)> store;
+  std::function<std::shared_ptr<void>(const MieKey&)> hold;
 };
 
 /// Replaces the store (by default there is none: results live in memory for the process).

@@ -12,6 +12,7 @@ packages=(
   libvtk9-dev libvtk9-qt-dev qtbase5-dev
   libopenexr-dev libgeographiclib-dev libglm-dev liberfa-dev libboost-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev libgdal-dev
+  openmpi-bin libopenmpi-dev
   xvfb xauth libgl1-mesa-dri libegl-dev libegl-mesa0
   marble-qt-data kstars-data stellarium-data
 )

@@ -25,4 +25,8 @@ void addCommands(CLI::App& app, Action& action) {
   refuseEmptyAndNonFinite(app);
 }
 
+bool spreadsOverRanks(const CLI::App& app) {
+  return app.got_subcommand("render");  // an animation's frames (a single frame: rank 0)
+}
+
 }  // namespace umbra::cli

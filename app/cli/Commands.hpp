@@ -42,6 +42,10 @@ void noteTimesBeyondEphemeris(const std::vector<scene::UtcTime>& times);
 /// errors, every command and the number checks; `action` is set by the command parsed.
 void addCommands(CLI::App& app, Action& action);
 
+/// Whether the command parsed on `app` spreads its work over MPI ranks (the others run on
+/// rank 0 alone): render (an animation's frames).
+bool spreadsOverRanks(const CLI::App& app);
+
 /// Every option of `app` and its subcommands that takes a value refuses an empty one, and
 /// every number option NaN and infinities, naming the option (CLI11 would read "" as 0 and
 /// let NaN through its ranges).

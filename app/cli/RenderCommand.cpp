@@ -14,6 +14,7 @@
 #include "AtmosphereShadow.h"
 #include "SceneTerrain.h"
 #include "TerrainDem.hpp"
+#include "Ranks.hpp"
 #include "ShadowCommon.hpp"
 #include "SolarDisc.hpp"
 #include "vtkUmbraRenderPass.h"
@@ -30,9 +31,11 @@
 #include <vtkNew.h>
 #include <vtkRenderer.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -73,6 +76,12 @@ std::vector<Frame> animationFrames(const std::string& from, const std::string& t
 }
 
 /// "6.5": a magnitude with at most two decimals, trailing zeros dropped.
+std::string formatSeconds(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f s", seconds);
+  return text;
+}
+
 std::string formatMagnitude(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.2f", v);
@@ -295,6 +304,89 @@ private:
   bool nightNoted = false;  // the note on night vision, at its first frame
 };
 
+/// Where frame `path` is written until the animation is done: beside it, hidden, with its
+/// extension (the writers go by it).
+std::string partPathOf(const std::string& path) {
+  const std::filesystem::path p(path);
+  return (p.parent_path() / ("." + p.stem().string() + ".part" + p.extension().string())).string();
+}
+
+/// An animation: each rank renders its share of the frames (parallel::share: consecutive
+/// frames, so that tables and LuTs carry over from frame to frame) into hidden part files;
+/// when every rank has succeeded they take the frames' names, else they go: an animation
+/// is written whole or not at all. Tables come from the shared cache (one rank makes a
+/// missing one, the others wait for it: TableCache::lock). Rank 0 reports progress.
+int renderAnimation(const RenderOptions& o, const std::vector<Frame>& frames, scene::Scene s) {
+  parallel::Ranks& ranks = parallel::Ranks::world();
+  const auto [begin, end] = parallel::share(frames.size(), ranks.rank(), ranks.size());
+  std::vector<std::string> parts;  // written by this rank
+  std::string error;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    FrameRenderer renderer(o, s);
+    std::optional<ProgressLine> progress;
+    if (ranks.root()) progress.emplace("frames (" + std::to_string(frames.size()) + ")");
+    int lastTenth = 0;
+    for (std::size_t k = begin; k < end; ++k) {
+      const Frame& f = frames[k];
+      try {
+        scene::setTime(s, f.time);
+      } catch (const scene::SceneError& e) {
+        throw CommandError("--from/--to: at " + scene::formatUtc(f.time) + ": " + e.what());
+      }
+      renderer.show(s, k - begin);
+      const std::string part = partPathOf(f.path);
+      try {
+        renderer.renderTo(s, k - begin, part);
+      } catch (const std::exception& e) {
+        throw CommandError("frame " + std::to_string(k) + " (" + scene::formatUtc(f.time) + ", " + f.path +
+                           "): " + e.what());
+      }
+      parts.push_back(part);
+      if (!progress) continue;
+      const double done = static_cast<double>(k + 1 - begin) / static_cast<double>(end - begin);
+      progress->update(done);
+      // Under mpirun stderr is no terminal: a line every tenth of rank 0's share.
+      if (ranks.size() > 1 && static_cast<int>(done * 10.0) > lastTenth && done < 1.0) {
+        lastTenth = static_cast<int>(done * 10.0);
+        std::cerr << "umbra: frames: " << lastTenth * 10 << "% of rank 0's " << end - begin << " (" << ranks.size()
+                  << " ranks, " << frames.size() << " frames)\n";
+      }
+    }
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  const double ownSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::string errors = ranks.finish(error);
+  std::size_t renamed = 0;
+  std::error_code ec;
+  if (errors.empty()) {
+    for (; renamed < parts.size(); ++renamed) {
+      std::filesystem::rename(parts[renamed], frames[begin + renamed].path, ec);
+      if (ec) {
+        error = frames[begin + renamed].path + ": cannot write: " + ec.message();
+        break;
+      }
+    }
+    errors = ranks.finish(error);
+  }
+  if (!errors.empty()) {
+    for (const std::string& p : parts) std::filesystem::remove(p, ec);
+    for (std::size_t k = begin; k < begin + renamed; ++k) std::filesystem::remove(frames[k].path, ec);
+    throw CommandError(errors);
+  }
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << "wrote " << frames.size() << " frames " << frames.front().path << " .. " << frames.back().path << " ("
+            << s.width << "x" << s.height << ", " << s.name << ", " << o.from << " .. "
+            << scene::formatUtc(frames.back().time) << " every " << o.step << ")";
+  if (ranks.size() > 1)
+    std::cout << " on " << ranks.size() << " ranks in " << formatSeconds(total) << " (rank 0: " << end - begin
+              << " frames in " << formatSeconds(ownSeconds) << ", then " << formatSeconds(ranks.collectiveSeconds())
+              << " waiting for the others)";
+  std::cout << "\n";
+  return 0;
+}
+
 int runRender(const RenderOptions& o) {
   const bool animation = o.animation();
   if (animation && !o.time.empty()) throw CommandError("--time: not with --from/--to/--step");
@@ -302,39 +394,19 @@ int runRender(const RenderOptions& o) {
       animation ? animationFrames(o.from, o.to, o.step, o.output) : std::vector<Frame>{{{}, o.output}};
   for (const Frame& f : frames) output::checkWritable(f.path, {".png", ".exr"});
   scene::Scene s = renderedScene(o, frames);
+  if (animation) return renderAnimation(o, frames, s);
+  if (!parallel::Ranks::world().root()) return 0;  // one frame: rank 0's
   FrameRenderer renderer(o, s);
-  std::optional<ProgressLine> progress;
-  if (animation) progress.emplace("frames (" + std::to_string(frames.size()) + ")");
-  for (std::size_t k = 0; k < frames.size(); ++k) {
-    const Frame& f = frames[k];
-    if (animation) {
-      try {
-        scene::setTime(s, f.time);
-      } catch (const scene::SceneError& e) {
-        throw CommandError("--from/--to: at " + scene::formatUtc(f.time) + ": " + e.what());
-      }
-    }
-    renderer.show(s, k);
-    renderer.renderTo(s, k, f.path);
-    if (progress) {
-      progress->update(static_cast<double>(k + 1) / frames.size());
-    } else {
-      const std::optional<double> sunDeg = scene::sunElevationDeg(s);
-      std::cout << "wrote " << f.path << " (" << s.width << "x" << s.height << ", " << s.name
-                << (s.hasTime ? ", " + scene::formatUtc(s.time) : std::string())
-                << (sunDeg ? ", " + scene::describeSunElevation(*sunDeg) : std::string())
-                << (s.stars ? ", " + std::to_string(renderer.stars()) + " stars to V " +
-                                  formatMagnitude(s.stars->limitingMagnitude)
-                            : std::string())
-                << ")\n";
-    }
-  }
-  if (progress) {
-    progress.reset();  // clears the progress line
-    std::cout << "wrote " << frames.size() << " frames " << frames.front().path << " .. " << frames.back().path << " ("
-              << s.width << "x" << s.height << ", " << s.name << ", " << o.from << " .. "
-              << scene::formatUtc(frames.back().time) << " every " << o.step << ")\n";
-  }
+  renderer.show(s, 0);
+  renderer.renderTo(s, 0, o.output);
+  const std::optional<double> sunDeg = scene::sunElevationDeg(s);
+  std::cout << "wrote " << o.output << " (" << s.width << "x" << s.height << ", " << s.name
+            << (s.hasTime ? ", " + scene::formatUtc(s.time) : std::string())
+            << (sunDeg ? ", " + scene::describeSunElevation(*sunDeg) : std::string())
+            << (s.stars ? ", " + std::to_string(renderer.stars()) + " stars to V " +
+                              formatMagnitude(s.stars->limitingMagnitude)
+                        : std::string())
+            << ")\n";
   return 0;
 }
 

@@ -332,8 +332,9 @@ void BodyView::WritePng(const std::string& path) {
   }
   fs::rename(tmp, target, ec);
   if (ec) {
+    const std::string why = ec.message();  // before the removal sets ec again
     fs::remove(tmp, ec);
-    throw std::runtime_error("cannot write PNG '" + path + "': " + ec.message());
+    throw std::runtime_error("cannot write PNG '" + path + "': " + why);
   }
 }
 

@@ -75,18 +75,25 @@ void writeCopy(const std::string& copy, const std::vector<sky::CatalogueStar>& s
 
 }  // namespace
 
-std::string starCatalogueCopyPath(const std::string& path, const std::string& cacheDirectory) {
+namespace {
+
+/// What names the copy of catalogue `path`: the file as it is now.
+std::map<std::string, std::string> copyKey(const std::string& path) {
   std::error_code ec;
   const fs::path absolute = fs::absolute(path, ec);
   const std::uintmax_t size = fs::file_size(path, ec);
   const auto time = fs::last_write_time(path, ec).time_since_epoch();
-  const std::map<std::string, std::string> key = {
-      {"kind", "star-catalogue"},
-      {"path", absolute.string()},
-      {"size", std::to_string(size)},
-      {"mtime", std::to_string(std::chrono::duration_cast<std::chrono::nanoseconds>(time).count())},
-      {"version", std::to_string(kVersion)}};
-  return (fs::path(cacheDirectory) / ("star-catalogue-" + tables::parameterHash(key) + ".bin")).string();
+  return {{"kind", "star-catalogue"},
+          {"path", absolute.string()},
+          {"size", std::to_string(size)},
+          {"mtime", std::to_string(std::chrono::duration_cast<std::chrono::nanoseconds>(time).count())},
+          {"version", std::to_string(kVersion)}};
+}
+
+}  // namespace
+
+std::string starCatalogueCopyPath(const std::string& path, const std::string& cacheDirectory) {
+  return (fs::path(cacheDirectory) / ("star-catalogue-" + tables::parameterHash(copyKey(path)) + ".bin")).string();
 }
 
 std::vector<sky::CatalogueStar> readStarCatalogue(const std::string& path, const std::string& cacheDirectory) {
@@ -94,6 +101,10 @@ std::vector<sky::CatalogueStar> readStarCatalogue(const std::string& path, const
   const std::string copy = starCatalogueCopyPath(path, cacheDirectory);
   std::vector<sky::CatalogueStar> stars = readCopy(copy);
   if (!stars.empty()) return stars;
+  // Several processes at once (the ranks of an MPI run): one writes the copy, the others
+  // wait and read it.
+  const auto lock = tables::TableCache(cacheDirectory).lock("star-catalogue", copyKey(path));
+  if (lock && !(stars = readCopy(copy)).empty()) return stars;
   stars = sky::readCatalogue(path);
   for (sky::CatalogueStar& s : stars) s.name.clear();
   writeCopy(copy, stars);

@@ -29,6 +29,13 @@ void keepMieOpticsInCache(const std::string& directory, bool enabled) {
       // a read-only or full cache: computed again next time
     }
   };
+  store.hold = [cache](const atmosphere::MieKey& key) -> std::shared_ptr<void> {
+    try {
+      return cache.lock(kKind, key);
+    } catch (const std::exception&) {
+      return nullptr;
+    }
+  };
   atmosphere::setMieStore(std::move(store));
 }
 

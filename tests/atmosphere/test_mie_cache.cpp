@@ -44,7 +44,8 @@ MieAerosol cached(double n) { return cachedMieLogNormal(kWavelengthM, kIndex, si
 /// A store in a map, as the table cache is one on disk.
 struct MapStore {
   std::map<MieKey, nlohmann::json> entries;
-  int loads = 0, stores = 0;
+  int loads = 0, stores = 0, holds = 0;
+  std::function<void(MapStore&)> whileWaiting;  // what another process does before the lock is had
   MieStore store() {
     return {[this](const MieKey& k) -> std::optional<nlohmann::json> {
               ++loads;
@@ -55,6 +56,11 @@ struct MapStore {
             [this](const MieKey& k, const nlohmann::json& d) {
               ++stores;
               entries[k] = d;
+            },
+            [this](const MieKey&) -> std::shared_ptr<void> {
+              ++holds;
+              if (whileWaiting) whileWaiting(*this);
+              return std::make_shared<int>(0);
             }};
   }
 };
@@ -81,6 +87,25 @@ TEST_F(MieCacheTest, OneEntryServesEveryNumberDensityToTheBit) {
   EXPECT_EQ(counts.computed, 1u);
   EXPECT_EQ(counts.fromMemory, 2u);
   EXPECT_EQ(counts.fromStore, 0u);
+}
+
+TEST_F(MieCacheTest, WhatAnotherProcessStoredWhileThisOneWaitedIsRead) {
+  // The first process computes and stores; a second, finding nothing, waits for the lock
+  // (meanwhile the first stores): it reads, it does not compute.
+  MapStore first;
+  setMieStore(first.store());
+  const MieAerosol made = cached(7.0e9);
+  EXPECT_EQ(first.holds, 1);  // a miss: computed under the lock
+  MapStore second;
+  second.whileWaiting = [&first](MapStore& self) { self.entries = first.entries; };
+  setMieStore(second.store());
+  forgetMieResults();
+  expectSameBits(cached(7.0e9), made);
+  EXPECT_EQ(second.holds, 1);
+  EXPECT_EQ(second.loads, 2);  // before the lock and under it
+  EXPECT_EQ(second.stores, 0);
+  EXPECT_EQ(mieCacheCounts().fromStore, 1u);
+  EXPECT_EQ(mieCacheCounts().computed, 0u);
 }
 
 TEST_F(MieCacheTest, TheStoreGivesTheResultBackToTheBitInTheNextProcess) {

@@ -4,6 +4,12 @@
 #include "TestSupport.h"
 #include "umbra/tables/CachedTables.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <thread>
+
 namespace umbra::tables::test {
 namespace {
 
@@ -105,6 +111,50 @@ TEST_F(CachedTablesTest, FailuresAreTheComputationsOrWarnings) {
   EXPECT_EQ(t.size(), 2u);
   EXPECT_EQ(o.computed, 2);
   EXPECT_FALSE(o.warning.empty());
+}
+
+// One of the processes of ProcessesAskingAtOnceComputeOnce (this program run again, with
+// the cache's directory in UMBRA_TEST_LOCK_DIR): appends "computed", "read" or "wrong" to
+// the directory's log.
+TEST(CachedTablesProcess, DISABLED_OneOfSeveral) {
+  const char* dir = std::getenv("UMBRA_TEST_LOCK_DIR");
+  ASSERT_NE(dir, nullptr);
+  const TableCache cache(std::string(dir) + "/cache");
+  CacheOutcome o;
+  const std::vector<Table> t = cachedOrComputed(cache, true, twoRequests(), [&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    return twoTables();
+  }, o);
+  const bool same = t.size() == 2 && t[0].data == twoTables()[0].data && t[1].data == twoTables()[1].data;
+  std::ofstream(std::string(dir) + "/log", std::ios::app)
+      << (!same ? "wrong" : o.hits == 2 ? "read" : o.computed == 2 ? "computed" : "wrong") << "\n";
+}
+
+TEST_F(CachedTablesTest, ProcessesAskingAtOnceComputeOnce) {
+  // Three processes (the ranks of an MPI run) ask for the same missing tables at once: one
+  // computes them (slowly), the others wait for its lock and read what it stored.
+  const std::string self = fs::read_symlink("/proc/self/exe").string();
+  const std::string command = "UMBRA_TEST_LOCK_DIR='" + dir_.string() + "' '" + self +
+                              "' --gtest_also_run_disabled_tests --gtest_filter=CachedTablesProcess.DISABLED_OneOfSeveral"
+                              " >/dev/null";
+  ASSERT_EQ(std::system(("sh -c \"" + command + " & " + command + " & " + command + " & wait\"").c_str()), 0);
+  std::ifstream in(file("log"));
+  std::vector<std::string> outcomes;
+  for (std::string line; std::getline(in, line);) outcomes.push_back(line);
+  std::sort(outcomes.begin(), outcomes.end());
+  EXPECT_EQ(outcomes, (std::vector<std::string>{"computed", "read", "read"}));
+  for (const std::string& name : entries(dir_ / "cache")) EXPECT_EQ(name.find(".lock"), std::string::npos) << name;
+}
+
+TEST_F(CachedTablesTest, AFailedComputationReleasesTheLock) {
+  const TableCache cache(dir_.string());
+  CacheOutcome o;
+  EXPECT_THROW(cachedOrComputed(cache, true, twoRequests(), []() -> std::vector<Table> { throw std::runtime_error("x"); }, o),
+               std::runtime_error);
+  // Were the lock still held, this would wait for ever (flock: a second descriptor waits).
+  const std::vector<Table> t = cachedOrComputed(cache, true, twoRequests(), [] { return twoTables(); }, o);
+  EXPECT_EQ(o.computed, 2);
+  EXPECT_EQ(entries(dir_).size(), 2u);  // the two tables; no lock file
 }
 
 }  // namespace

@@ -3,6 +3,9 @@
 #include <pwd.h>
 #include <unistd.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <sys/types.h>
 #include <signal.h>
 
@@ -226,6 +229,34 @@ std::string TableCache::pathWith(const std::string& kind, const std::map<std::st
 std::string TableCache::pathFor(const std::string& kind,
                                 const std::map<std::string, std::string>& parameters) const {
   return pathWith(kind, parameters, ".exr");
+}
+
+std::unique_ptr<TableCache::Lock> TableCache::lock(const std::string& kind,
+                                                   const std::map<std::string, std::string>& parameters) const {
+  const std::string path = pathWith(kind, parameters, ".lock");
+  std::error_code ec;
+  std::filesystem::create_directories(directory_, ec);
+  // The file locked must still be the one named: a holder removes it on release, and a
+  // process that opened it before then would hold a lock nobody else sees.
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) return nullptr;
+    int rc;
+    do rc = ::flock(fd, LOCK_EX);
+    while (rc != 0 && errno == EINTR);
+    struct stat held {}, named {};
+    if (rc == 0 && ::fstat(fd, &held) == 0 && ::stat(path.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+        held.st_dev == named.st_dev)
+      return std::make_unique<Lock>(fd, path);
+    ::close(fd);
+    if (rc != 0) return nullptr;  // no locks on this file system
+  }
+  return nullptr;
+}
+
+TableCache::Lock::~Lock() {
+  ::unlink(path_.c_str());
+  ::close(fd_);  // releases the lock
 }
 
 std::string TableCache::jsonPathFor(const std::string& kind,

@@ -34,7 +34,8 @@ struct CacheOutcome {
 /// The tables of `requests`, in their order. When `useCache` and each needed one is in
 /// `cache` as its request says, those are read (the others are left empty). Else compute()
 /// gives all of them, in the same order (it may throw: then nothing is stored), and each is
-/// stored when `useCache`. Throws std::logic_error when compute() gives another number of
+/// stored when `useCache`; under the cache's lock (TableCache::lock, named by the first
+/// request), so that of several processes asking at once one computes and the others read. Throws std::logic_error when compute() gives another number of
 /// tables.
 std::vector<Table> cachedOrComputed(const TableCache& cache, bool useCache, const std::vector<TableRequest>& requests,
                                     const std::function<std::vector<Table>()>& compute, CacheOutcome& outcome);

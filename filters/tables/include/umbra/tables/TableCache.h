@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -63,6 +64,15 @@ public:
   void storeJson(const std::string& kind, const std::map<std::string, std::string>& parameters,
                  const nlohmann::json& document) const;
 
+  // An exclusive lock on the making of the table pathFor names, shared by every process
+  // using the directory (the ranks of an MPI run, two runs side by side): whoever holds it
+  // makes and stores the table; the others wait, then find it stored. flock(2) on
+  // pathFor's path ending in .lock; the file goes when the lock is released. Blocks while
+  // another process holds it. Null when the lock file cannot be made (a read-only or
+  // missing directory: then nothing can be stored either, and nothing is waited for).
+  class Lock;
+  std::unique_ptr<Lock> lock(const std::string& kind, const std::map<std::string, std::string>& parameters) const;
+
   const std::string& directory() const { return directory_; }
   std::uint64_t maxBytes() const { return maxBytes_; }
 
@@ -73,6 +83,18 @@ private:
 
   std::string directory_;
   std::uint64_t maxBytes_;
+};
+
+class TableCache::Lock {
+public:
+  Lock(int fd, std::string path) : fd_(fd), path_(std::move(path)) {}
+  ~Lock();  // removes the lock file, then releases the lock
+  Lock(const Lock&) = delete;
+  Lock& operator=(const Lock&) = delete;
+
+private:
+  int fd_;
+  std::string path_;
 };
 
 }  // namespace umbra::tables
