@@ -107,8 +107,10 @@ LutRange lutRangeForU(double uMin, double uMax, bool darkUmbra, int height) {
 
 bool rangedLutPays(const LutRange& range, int height) { return 2.0 * range.uMax * height < 16.0; }
 
-ShadowLut buildAirlessShadowLut(const ShadowLutParams& p, const Progress& progress) {
+ShadowLut buildAirlessShadowLut(const ShadowLutParams& p, const Progress& progress, const TexelShare& share) {
   if (p.width < 2 || p.height < 2) throw std::invalid_argument("shadow LuT size must be at least 2x2");
+  if (share.count < 1 || share.index < 0 || share.index >= share.count)
+    throw std::invalid_argument("texel share: index outside 0..count-1");
   checkLutRange(p.uMin, p.uMax, p.vMin, p.vMax, p.vLowFraction);
   ShadowLut lut;
   lut.width = p.width;
@@ -128,6 +130,7 @@ ShadowLut buildAirlessShadowLut(const ShadowLutParams& p, const Progress& progre
     if (cancelled.load()) continue;
     errors.run([&] {
       for (int i = 0; i < p.width; ++i) {
+        if (!share.owns(static_cast<long long>(j) * p.width + i)) continue;
         const LutCoords c{lut.texelU(i), lut.texelV(j)};
         const float value = static_cast<float>(airlessShadow(c, p.limbDarkening, p.relativeTolerance));
         float* t = &lut.rgb[3 * (static_cast<std::size_t>(j) * p.width + i)];

@@ -89,10 +89,22 @@ double airlessShadow(const LutCoords& c, double limbDarkening = kDefaultLimbDark
 /// Progress callback: fraction done in [0, 1]; return false to cancel.
 using Progress = std::function<bool(double)>;
 
-/// Build the airless LuT (parallel over rows). Returns an empty LuT when cancelled.
-/// An airless LuT depends only on its size and the limb darkening: Eq. 4 makes the
-/// visible fraction a function of (u, v) alone, for every Sun and occluder.
-ShadowLut buildAirlessShadowLut(const ShadowLutParams& params, const Progress& progress = {});
+/// The texels of a LuT one process computes when several share it (the ranks of an MPI
+/// run): texel k (row-major over u and v) when k % count == index. Interleaved, so that
+/// costly and cheap parts of the table are shared alike. The others are left 0.
+struct TexelShare {
+  int index = 0, count = 1;
+  bool owns(long long k) const { return k % count == index; }
+  /// How many of `total` texels are this share's, and the n-th of them.
+  int texels(int total) const { return total / count + (index < total % count ? 1 : 0); }
+  int texel(int n) const { return index + n * count; }
+};
+
+/// Build the airless LuT (parallel over rows; only `share`'s texels). Returns an empty LuT
+/// when cancelled. An airless LuT depends only on its size and the limb darkening: Eq. 4
+/// makes the visible fraction a function of (u, v) alone, for every Sun and occluder.
+ShadowLut buildAirlessShadowLut(const ShadowLutParams& params, const Progress& progress = {},
+                                const TexelShare& share = {});
 
 /// The ranges of a scene-limited LuT. u: that (Eq. 4) of every point at distance
 /// [minDistanceM, maxDistanceM] from the occluder's centre, for `system` (conservative: the

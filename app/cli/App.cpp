@@ -22,11 +22,15 @@ void addCommands(CLI::App& app, Action& action) {
   addInspectCommand(app, action);
   addAtmosphereCommand(app, action);
   addTerrainCommand(app, action);
+  addSweepCommand(app, action);
   refuseEmptyAndNonFinite(app);
 }
 
 bool spreadsOverRanks(const CLI::App& app) {
-  return app.got_subcommand("render");  // an animation's frames (a single frame: rank 0)
+  if (app.got_subcommand("render") || app.got_subcommand("sweep")) return true;  // (a single frame: rank 0)
+  const CLI::App* precompute = app.get_subcommand("precompute");
+  return app.got_subcommand(precompute) &&
+         (precompute->got_subcommand("shadow") || precompute->got_subcommand("eclipse"));
 }
 
 }  // namespace umbra::cli

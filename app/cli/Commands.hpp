@@ -7,6 +7,7 @@
 
 class vtkObject;
 
+#include <chrono>
 #include <functional>
 #include <mutex>
 #include <stdexcept>
@@ -27,6 +28,8 @@ struct CommandError : std::runtime_error {
 struct CacheOptions {
   std::string directory;  ///< empty: $UMBRA_CACHE_DIR, $XDG_CACHE_HOME/umbra or ~/.cache/umbra
   bool disabled = false;
+  /// Not an option: the LuTs' texels shared by the MPI ranks (precompute shadow, eclipse).
+  bool overRanks = false;
   void addTo(CLI::App* command);
 };
 
@@ -43,8 +46,15 @@ void noteTimesBeyondEphemeris(const std::vector<scene::UtcTime>& times);
 void addCommands(CLI::App& app, Action& action);
 
 /// Whether the command parsed on `app` spreads its work over MPI ranks (the others run on
-/// rank 0 alone): render (an animation's frames).
+/// rank 0 alone): render (an animation's frames), precompute shadow and eclipse (the LuTs'
+/// texels), sweep (its cases).
 bool spreadsOverRanks(const CLI::App& app);
+
+/// Under mpirun, how a command's run went over the ranks, for its last line: " on N ranks in
+/// T s (in collectives: rank 0 C s, at most M s)", C the time rank 0 spent communicating and
+/// waiting for the others, M the most any rank spent so (parallel::Ranks), T counted from
+/// `start`; run directly, empty.
+std::string ranksNote(std::chrono::steady_clock::time_point start);
 
 /// Every option of `app` and its subcommands that takes a value refuses an empty one, and
 /// every number option NaN and infinities, naming the option (CLI11 would read "" as 0 and
@@ -58,6 +68,7 @@ void addProfileCommand(CLI::App& app, Action& action);
 void addInspectCommand(CLI::App& app, Action& action);
 void addAtmosphereCommand(CLI::App& app, Action& action);
 void addTerrainCommand(CLI::App& app, Action& action);
+void addSweepCommand(CLI::App& app, Action& action);
 
 /// Progress for long work on stderr: a live percentage on a terminal, quiet otherwise,
 /// never going back while shown; the line is cleared when the work is done (fraction 1)

@@ -6,6 +6,7 @@
 //   parameters in the header; DIR is created when its parent exists.
 #include "Commands.hpp"
 #include "OutputFile.hpp"
+#include "Ranks.hpp"
 #include "ShadowCommon.hpp"
 #include "ShadowLutData.h"
 #include "vtkEclipseShadowLutSource.h"
@@ -17,6 +18,7 @@
 #include <vtkImageData.h>
 #include <vtkPointData.h>
 
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -46,16 +48,19 @@ void addPrecomputeCommand(CLI::App& app, Action& action) {
 
   shadow->callback([&action, o] {
     action = [o] {
+      const auto start = std::chrono::steady_clock::now();
       output::checkWritable(o->output, {".exr"});
+      o->cache.overRanks = true;  // under mpirun: the texels shared by the ranks, rank 0 writes
       const OccluderChoice occ = chooseOccluder(o->occluder, "", "");
       eclipse::LutRange range;
       if (!o->distanceRange.empty()) range = distanceRangeOption(o->distanceRange, occ, true, o->size);
       auto source =
           updateShadowLut(o->size, o->limbDarkening, o->cache, &occ, nullptr, o->distanceRange.empty() ? nullptr : &range);
+      if (!parallel::Ranks::world().root()) return 0;
       vtkImageData* image = source->GetOutput();
       tables::writeExr(o->output, filters::toTable(filters::fromImageData(image), filters::fieldParameters(image)));
       std::cout << "wrote " << o->output << " (" << o->size << "x" << o->size << " shadow LuT of " << occ.name
-                << ")\n";
+                << ")" << ranksNote(start) << "\n";
       return 0;
     };
   });
@@ -88,6 +93,7 @@ void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action) {
 
   eclipse->callback([&action, o] {
     action = [o] {
+      const auto start = std::chrono::steady_clock::now();
       if (o->atmosphere.atmosphere.empty()) throw CommandError("--atmosphere: required (an airless occluder: 'umbra precompute shadow')");
       if (o->layers > o->atmosphere.limbSize)
         throw CommandError("--layers: at most --limb-size (" + std::to_string(o->atmosphere.limbSize) + ")");
@@ -99,6 +105,7 @@ void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action) {
         throw CommandError(o->output + ": directory " + parent.string() + " does not exist");
       OccluderChoice occ = chooseOccluder(o->occluder, "", "");
       occ.radiusM = o->atmosphere.bottomRadiusM();
+      o->cache.overRanks = true;  // under mpirun: the texels shared by the ranks, rank 0 writes
 
       eclipse::LutRange range;
       if (!o->distanceRange.empty()) range = distanceRangeOption(o->distanceRange, occ, false, o->size);
@@ -117,6 +124,7 @@ void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action) {
       if (shadow->GetNumberOfInputConnections(0) > 0) limb->SetInputConnection(shadow->GetInputConnection(0, 0));
       updateEclipseSource(limb, std::string("limb-luminance LuT") + (o->distanceRange.empty() ? "" : " (ranged)"), o->cache);
 
+      if (!parallel::Ranks::world().root()) return 0;
       const bool created = !fs::exists(dir, ec);
       if (created && !fs::create_directory(dir, ec))
         throw CommandError(o->output + ": cannot create directory: " + ec.message());
@@ -142,7 +150,7 @@ void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action) {
         throw;
       }
       std::cout << "wrote the eclipse tables of " << occ.name << " through " << o->atmosphere.atmosphere << " to "
-                << o->output << ":\n";
+                << o->output << ranksNote(start) << ":\n";
       for (const std::string& p : written) std::cout << "  " << p << "\n";
       return 0;
     };

@@ -76,12 +76,6 @@ std::vector<Frame> animationFrames(const std::string& from, const std::string& t
 }
 
 /// "6.5": a magnitude with at most two decimals, trailing zeros dropped.
-std::string formatSeconds(double seconds) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f s", seconds);
-  return text;
-}
-
 std::string formatMagnitude(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.2f", v);
@@ -356,7 +350,6 @@ int renderAnimation(const RenderOptions& o, const std::vector<Frame>& frames, sc
   } catch (const std::exception& e) {
     error = e.what();
   }
-  const double ownSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::string errors = ranks.finish(error);
   std::size_t renamed = 0;
   std::error_code ec;
@@ -375,14 +368,9 @@ int renderAnimation(const RenderOptions& o, const std::vector<Frame>& frames, sc
     for (std::size_t k = begin; k < begin + renamed; ++k) std::filesystem::remove(frames[k].path, ec);
     throw CommandError(errors);
   }
-  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cout << "wrote " << frames.size() << " frames " << frames.front().path << " .. " << frames.back().path << " ("
             << s.width << "x" << s.height << ", " << s.name << ", " << o.from << " .. "
-            << scene::formatUtc(frames.back().time) << " every " << o.step << ")";
-  if (ranks.size() > 1)
-    std::cout << " on " << ranks.size() << " ranks in " << formatSeconds(total) << " (rank 0: " << end - begin
-              << " frames in " << formatSeconds(ownSeconds) << ", then " << formatSeconds(ranks.collectiveSeconds())
-              << " waiting for the others)";
+            << scene::formatUtc(frames.back().time) << " every " << o.step << ")" << ranksNote(start);
   std::cout << "\n";
   return 0;
 }

@@ -130,6 +130,7 @@ void EclipseAtmosphereChoice::configure(vtkEclipseAtmosphereSource* source, cons
 void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& what, const CacheOptions& cache) {
   source->SetCacheDirectory(cache.directory.c_str());
   source->SetUseCache(!cache.disabled);
+  source->SetSpreadOverRanks(cache.overRanks);
   // The Bruneton and refraction tables from their cache; a failure there is the reason.
   auto* tables = vtkAtmosphereTablesSource::SafeDownCast(source->ConnectAtmosphereTables());
   ProgressLine progress(what, source);

@@ -1,4 +1,5 @@
 #include "Commands.hpp"
+#include "Ranks.hpp"
 
 #include "scene/Ephemeris.hpp"
 #include "scene/Units.hpp"
@@ -139,6 +140,16 @@ void ProgressLine::update(double fraction) {
   if (!this->terminal || percent == this->lastPercent) return;
   this->lastPercent = percent;
   std::cerr << "\r\033[K" << this->what << ": " << percent << "%" << std::flush;
+}
+
+std::string ranksNote(std::chrono::steady_clock::time_point start) {
+  const parallel::Ranks& ranks = parallel::Ranks::world();
+  if (ranks.size() == 1) return {};
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  char text[160];
+  std::snprintf(text, sizeof text, " on %d ranks in %.2f s (in collectives: rank 0 %.2f s, at most %.2f s)", ranks.size(),
+                seconds, ranks.collectiveSeconds(), std::max(ranks.collectiveSeconds(), ranks.mostCollectiveSeconds()));
+  return text;
 }
 
 } // namespace umbra::cli

@@ -4,6 +4,7 @@
 #include "OutputFile.hpp"
 
 #include <vtkAxis.h>
+#include <vtkRect.h>
 #include <vtkChartLegend.h>
 #include <vtkChartXY.h>
 #include <vtkContextScene.h>
@@ -17,6 +18,7 @@
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 #include <vtkTable.h>
+#include <vtkTextActor.h>
 #include <vtkTextProperty.h>
 #include <vtkWindowToImageFilter.h>
 
@@ -61,13 +63,26 @@ std::string xmlEscaped(const std::string& text) {
   return out;
 }
 
+/// An axis tick's label: whole numbers from 100 up, else three significant digits.
+std::string tickText(double v, double span) {
+  if (span >= 100.0) return std::to_string(std::lround(v));
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", v);
+  return text;
+}
+
 void writeSvg(vtkTable* t, const std::string& path, const std::string& title, const ProfilePlotStyle& style) {
-  const double W = 800, H = 500, left = 70, right = 20, top = 40, bottom = 60;
-  auto* x = column(t, "offset_km");
+  const double notesWidth = style.notes.empty() ? 0.0 : 420.0;
+  const double W = 800 + notesWidth, H = 500, left = 70, right = 20 + notesWidth, top = 40, bottom = 60;
+  auto* x = column(t, style.xColumn.c_str());
   const vtkIdType n = x->GetNumberOfTuples();
   const double xMax = std::max(x->GetValue(n - 1), 1e-12);
+  const double xMin = style.xLogScale ? std::max(x->GetValue(0), 1e-300) : 0.0;
   const double yLo = style.logScale ? logAxisMinimum(t) : 0.0;
-  const auto px = [&](double v) { return left + (W - left - right) * v / xMax; };
+  const auto px = [&](double v) {
+    const double f = style.xLogScale ? std::log(std::max(v, xMin) / xMin) / std::log(xMax / xMin) : v / xMax;
+    return left + (W - left - right) * f;
+  };
   // Linear: [0, 1.05]; log: [yLo, 1.05] in log10.
   const auto yFraction = [&](double v) {
     if (!style.logScale) return std::clamp(v, 0.0, 1.05) / 1.05;
@@ -85,10 +100,10 @@ void writeSvg(vtkTable* t, const std::string& path, const std::string& title, co
     s << "<text x=\"" << W / 2 << "\" y=\"36\" text-anchor=\"middle\" fill=\"#555\">" << xmlEscaped(style.subtitle)
       << "</text>\n";
   for (int k = 0; k <= 5; ++k) {  // axes and vertical grid
-    const double xv = xMax * k / 5;
+    const double xv = style.xLogScale ? xMin * std::pow(xMax / xMin, k / 5.0) : xMax * k / 5;
     s << "<line x1=\"" << px(xv) << "\" y1=\"" << py(yLo) << "\" x2=\"" << px(xv) << "\" y2=\"" << py(1.05)
       << "\" stroke=\"#ddd\"/>\n<text x=\"" << px(xv) << "\" y=\"" << py(yLo) + 18 << "\" text-anchor=\"middle\">"
-      << std::lround(xv) << "</text>\n";
+      << tickText(xv, style.xLogScale ? xv : xMax) << "</text>\n";
   }
   std::vector<double> yTicks;
   if (style.logScale)
@@ -96,14 +111,15 @@ void writeSvg(vtkTable* t, const std::string& path, const std::string& title, co
   else
     for (int k = 0; k <= 5; ++k) yTicks.push_back(0.2 * k);
   for (double yv : yTicks)
-    s << "<line x1=\"" << px(0) << "\" y1=\"" << py(yv) << "\" x2=\"" << px(xMax) << "\" y2=\"" << py(yv)
-      << "\" stroke=\"#ddd\"/>\n<text x=\"" << px(0) - 8 << "\" y=\"" << py(yv) + 4 << "\" text-anchor=\"end\">"
+    s << "<line x1=\"" << px(xMin) << "\" y1=\"" << py(yv) << "\" x2=\"" << px(xMax) << "\" y2=\"" << py(yv)
+      << "\" stroke=\"#ddd\"/>\n<text x=\"" << px(xMin) - 8 << "\" y=\"" << py(yv) + 4 << "\" text-anchor=\"end\">"
       << yv << "</text>\n";
   for (const auto& [km, label] : style.markersKm)
     s << "<line x1=\"" << px(km) << "\" y1=\"" << py(yLo) << "\" x2=\"" << px(km) << "\" y2=\"" << py(1.05)
       << "\" stroke=\"#555\" stroke-dasharray=\"6,4\"/>\n<text x=\"" << px(km) + 4 << "\" y=\"" << top + 12
       << "\" fill=\"#555\">" << xmlEscaped(label) << "</text>\n";
-  s << "<text x=\"" << W / 2 << "\" y=\"" << H - 15 << "\" text-anchor=\"middle\">offset from the shadow axis [km]</text>\n"
+  s << "<text x=\"" << (left + W - right) / 2 << "\" y=\"" << H - 15 << "\" text-anchor=\"middle\">"
+    << xmlEscaped(style.xLabel) << "</text>\n"
     << "<text transform=\"translate(18," << H / 2 << ") rotate(-90)\" text-anchor=\"middle\">I / I_sun</text>\n";
   int legend = 0;
   for (const Line& line : kLines) {
@@ -112,9 +128,14 @@ void writeSvg(vtkTable* t, const std::string& path, const std::string& title, co
     std::snprintf(colour, sizeof colour, "#%02x%02x%02x", line.r, line.g, line.b);
     s << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\" points=\"";
     for (vtkIdType i = 0; i < n; ++i) s << px(x->GetValue(i)) << "," << py(y->GetValue(i)) << " ";
-    s << "\"/>\n<text x=\"" << W - right - 10 << "\" y=\"" << H - bottom - 10 - 16 * (3 - legend++)
+    const double legendY = style.legendTop ? top + 24 + 16 * legend : H - bottom - 10 - 16 * (3 - legend);
+    ++legend;
+    s << "\"/>\n<text x=\"" << W - right - 10 << "\" y=\"" << legendY
       << "\" text-anchor=\"end\" fill=\"" << colour << "\">" << line.label << "</text>\n";
   }
+  for (std::size_t k = 0; k < style.notes.size(); ++k)
+    s << "<text x=\"" << W - notesWidth + 10 << "\" y=\"" << top + 30 + 18 * k << "\" fill=\"#333\">"
+      << xmlEscaped(style.notes[k]) << "</text>\n";
   s << "</svg>\n";
 
   output::OutputFile out(path);
@@ -134,15 +155,33 @@ void writePng(vtkTable* t, const std::string& path, const std::string& title, co
   }
   vtkNew<vtkContextView> view;
   view->GetRenderWindow()->SetOffScreenRendering(1);
-  view->GetRenderWindow()->SetSize(800, 500);
+  const int notesWidth = style.notes.empty() ? 0 : 420;
+  view->GetRenderWindow()->SetSize(800 + notesWidth, 500);
   view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
   vtkNew<vtkChartXY> chart;
   chart->SetTitle(style.subtitle.empty() ? title : title + "\n" + style.subtitle);
   chart->GetTitleProperties()->SetFontSize(16);
   view->GetScene()->AddItem(chart);
-  addProfileLines(chart, t);
+  addProfileLines(chart, t, style.xColumn, style.xLabel);
+  if (notesWidth > 0) {  // the chart keeps 800 pixels; the notes take the rest, on its right
+    chart->SetAutoSize(false);
+    chart->SetSize(vtkRectf(0.0f, 0.0f, 800.0f, 500.0f));
+  }
+  vtkNew<vtkTextActor> notes;
+  if (!style.notes.empty()) {
+    std::string text;
+    for (const std::string& line : style.notes) text += (text.empty() ? "" : "\n") + line;
+    notes->SetInput(text.c_str());
+    notes->GetTextProperty()->SetFontSize(13);
+    notes->GetTextProperty()->SetColor(0.2, 0.2, 0.2);
+    notes->GetTextProperty()->SetJustificationToLeft();
+    notes->GetTextProperty()->SetVerticalJustificationToTop();
+    notes->SetDisplayPosition(810, 440);
+    view->GetRenderer()->AddActor2D(notes);
+  }
+  if (style.xLogScale) chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
   chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
-  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::BOTTOM);
+  chart->GetLegend()->SetVerticalAlignment(style.legendTop ? vtkChartLegend::TOP : vtkChartLegend::BOTTOM);
   const double yLo = style.logScale ? logAxisMinimum(t) : 0.0;
   if (style.logScale) {
     chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
@@ -152,7 +191,7 @@ void writePng(vtkTable* t, const std::string& path, const std::string& title, co
   for (const auto& [km, label] : style.markersKm) {
     auto m = vtkSmartPointer<vtkTable>::New();
     vtkNew<vtkDoubleArray> mx, my;
-    mx->SetName("offset_km");
+    mx->SetName(style.xColumn.c_str());
     my->SetName(label.c_str());
     for (double yv : {std::max(yLo, 1e-12), 1.05}) mx->InsertNextValue(km), my->InsertNextValue(yv);
     m->AddColumn(mx);
@@ -181,18 +220,18 @@ void writePng(vtkTable* t, const std::string& path, const std::string& title, co
 
 } // namespace
 
-void addProfileLines(vtkChartXY* chart, vtkTable* t) {
-  column(t, "offset_km");
+void addProfileLines(vtkChartXY* chart, vtkTable* t, const std::string& xColumn, const std::string& xLabel) {
+  column(t, xColumn.c_str());
   for (const Line& line : kLines) {
     column(t, line.column);
     vtkPlot* plot = chart->AddPlot(vtkChart::LINE);
-    plot->SetInputData(t, "offset_km", line.column);
+    plot->SetInputData(t, xColumn, line.column);
     plot->SetColor(line.r, line.g, line.b, 255);
     plot->SetWidth(line.column == std::string("luminance") ? 2.5f : 1.5f);
     plot->SetLabel(line.label);
   }
   chart->SetShowLegend(true);
-  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("offset from the shadow axis [km]");
+  chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(xLabel);
   chart->GetAxis(vtkAxis::LEFT)->SetTitle("I / I_sun");
   chart->GetAxis(vtkAxis::LEFT)->SetRange(0.0, 1.05);
   chart->GetAxis(vtkAxis::LEFT)->SetBehavior(vtkAxis::FIXED);

@@ -25,10 +25,18 @@ struct ProfilePlotStyle {
   /// A line under the title: how the values were made (e.g. "sampled from the 256x256
   /// shadow LuT as the renderer reads it" or "computed point by point").
   std::string subtitle;
+  /// The column along the horizontal axis, and its title (a sweep's parameter instead of
+  /// the offset).
+  std::string xColumn = "offset_km";
+  std::string xLabel = "offset from the shadow axis [km]";
+  bool xLogScale = false;  ///< (its values then > 0)
+  bool legendTop = false;  ///< the legend in the top right corner (curves that fall to the right)
+  /// Lines of text beside the plot, on its right (e.g. the Danjon scale).
+  std::vector<std::string> notes;
 };
 
 /// Plot r, g, b and luminance over the offset, the legend in the bottom right corner (the
-/// curves rise to 1 away from the axis: that corner stays empty); the type follows the
+/// curves rise to 1 away from the axis: that corner stays empty; or as the style says); the type follows the
 /// extension (.png or .svg). Throws std::runtime_error naming the path on failure.
 void writeProfilePlot(vtkTable* profile, const std::string& path, const std::string& title,
                       const ProfilePlotStyle& style = {});
@@ -37,7 +45,9 @@ void writeProfilePlot(vtkTable* profile, const std::string& path, const std::str
 /// positive value (>= 1e-9).
 double logAxisMinimum(vtkTable* profile);
 
-/// The lines of a profile plot, added to a chart (shared by the PNG export and the GUI).
-void addProfileLines(vtkChartXY* chart, vtkTable* profile);
+/// The lines of a profile plot, added to a chart (shared by the PNG export and the GUI),
+/// against `xColumn` titled `xLabel`.
+void addProfileLines(vtkChartXY* chart, vtkTable* profile, const std::string& xColumn = "offset_km",
+                     const std::string& xLabel = "offset from the shadow axis [km]");
 
 } // namespace umbra::plot

@@ -191,18 +191,21 @@ bool useScattering(const AtmosphericShadowModel& m) {
   return m.scattering && m.tables != nullptr && m.atmosphere != nullptr;
 }
 
-/// Runs body(k) for k in [0, total) over OpenMP threads (dynamic schedule), reporting
-/// progress from the calling thread; false when the callback cancelled.
+/// Runs body(k) for `share`'s texels k of [0, all) over OpenMP threads (dynamic
+/// schedule), reporting progress from the calling thread; false when the callback cancelled.
 template <class Body>
-bool forEachTexel(int total, const Progress& progress, const Body& body) {
+bool forEachTexel(int all, const TexelShare& share, const Progress& progress, const Body& body) {
+  if (share.count < 1 || share.index < 0 || share.index >= share.count)
+    throw std::invalid_argument("texel share: index outside 0..count-1");
   std::atomic<bool> cancelled{false};
   std::atomic<int> done{0};
   ParallelErrors errors;
+  const int total = share.texels(all);
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int k = 0; k < total; ++k) {
+  for (int n = 0; n < total; ++n) {
     if (cancelled.load()) continue;
     errors.run([&] {
-      body(k);
+      body(share.texel(n));
       const int n = ++done;
       if (progress) {
 #pragma omp critical(umbra_progress)
@@ -371,6 +374,16 @@ LutCoords lutCoordsOf(const LimbPosition& p) {
   return lutCoords(ShadowAngles{p.sunAngularRadiusRad, p.occluderAngularRadiusRad, p.separationRad});
 }
 
+ProfileSample atmosphericShadowAt(const AtmosphericShadowModel& m, double distanceBehindM, double offsetM,
+                                  const LimbViewParams& limb) {
+  ProfileSample s;
+  s.offsetM = offsetM;
+  const std::vector<double> t = illuminanceAt(m, limbPositionBehind(m, distanceBehindM, offsetM), limb).total();
+  s.rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
+  s.luminance = luminance(s.rgb);
+  return s;
+}
+
 std::vector<ProfileSample> atmosphericShadowProfile(const AtmosphericShadowModel& m, double distanceBehindM,
                                                     double maxOffsetM, int samples, const ShadowLut* lut,
                                                     const LimbViewParams& limb) {
@@ -380,17 +393,16 @@ std::vector<ProfileSample> atmosphericShadowProfile(const AtmosphericShadowModel
   ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
   for (int k = 0; k < samples; ++k) errors.run([&] {
-    ProfileSample& s = out[k];
-    s.offsetM = maxOffsetM * k / (samples - 1);
-    const LimbPosition p = limbPositionBehind(m, distanceBehindM, s.offsetM);
-    const LutCoords c = lutCoordsOf(p);
-    if (lut) {
-      // The LuT ends at v = 1 (the solid body's penumbra), as the renderer reads it.
-      s.rgb = c.v >= 1.0 ? glm::dvec3(1.0) : lut->sample(c);
-    } else {  // directly: also past v = 1, where the atmosphere still dims the Sun
-      const std::vector<double> t = illuminanceAt(m, p, limb).total();
-      s.rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
+    const double offsetM = maxOffsetM * k / (samples - 1);
+    if (!lut) {  // directly: also past v = 1, where the atmosphere still dims the Sun
+      out[k] = atmosphericShadowAt(m, distanceBehindM, offsetM, limb);
+      return;
     }
+    ProfileSample& s = out[k];
+    s.offsetM = offsetM;
+    const LutCoords c = lutCoordsOf(limbPositionBehind(m, distanceBehindM, offsetM));
+    // The LuT ends at v = 1 (the solid body's penumbra), as the renderer reads it.
+    s.rgb = c.v >= 1.0 ? glm::dvec3(1.0) : lut->sample(c);
     s.luminance = luminance(s.rgb);
   });
   errors.rethrow();
@@ -508,7 +520,7 @@ glm::dvec3 rgbOfSpectralRatio(const std::vector<double>& nm, const double* ratio
 }
 
 ShadowLut buildAtmosphericShadowLut(const AtmosphericShadowModel& m, const AtmosphericShadowLutParams& params,
-                                    const LutExtent& requested, const Progress& progress) {
+                                    const LutExtent& requested, const Progress& progress, const TexelShare& share) {
   if (const std::string e = m.validate(); !e.empty()) throw std::invalid_argument("atmospheric shadow: " + e);
   if (params.width < 2 || params.height < 2) throw std::invalid_argument("shadow LuT size must be at least 2x2");
   checkLimbParams(params.limb);
@@ -533,7 +545,7 @@ ShadowLut buildAtmosphericShadowLut(const AtmosphericShadowModel& m, const Atmos
   lut.vMax = ext.vEnd == params.height ? params.vMax : params.vMin + vSpan * ext.vEnd / params.height;
   lut.vLowFraction = params.vLowFraction;
   lut.rgb.assign(static_cast<std::size_t>(lut.width) * lut.height * 3, 0.0f);
-  const bool finished = forEachTexel(lut.width * lut.height, progress, [&](int k) {
+  const bool finished = forEachTexel(lut.width * lut.height, share, progress, [&](int k) {
     const int i = k % lut.width, j = k / lut.width;
     const LutCoords c{whole.texelU(ext.uBegin + i), whole.texelV(ext.vBegin + j)};
     const std::vector<double> t = illuminanceAt(m, limbPosition(m, c), params.limb).total();
@@ -568,7 +580,7 @@ glm::dvec3 LimbLuminanceLut::texel(int i, int j, int k) const {
 }
 
 LimbLuminanceLut buildLimbLuminanceLut(const AtmosphericShadowModel& m, const LimbLuminanceLutParams& params,
-                                       const Progress& progress) {
+                                       const Progress& progress, const TexelShare& share) {
   if (const std::string e = m.validate(); !e.empty()) throw std::invalid_argument("limb luminance: " + e);
   if (params.width < 2 || params.height < 2 || params.columns < 1 || params.layers < 1 ||
       params.layers > params.limb.rows)
@@ -582,7 +594,7 @@ LimbLuminanceLut buildLimbLuminanceLut(const AtmosphericShadowModel& m, const Li
   lut.width = params.width, lut.height = params.height, lut.columns = params.columns, lut.layers = params.layers;
   lut.range = r;
   lut.rgb.assign(static_cast<std::size_t>(lut.width) * lut.height * lut.depth() * 3, 0.0f);
-  const bool finished = forEachTexel(lut.width * lut.height, progress, [&](int k) {
+  const bool finished = forEachTexel(lut.width * lut.height, share, progress, [&](int k) {
     const int i = k % lut.width, j = k / lut.width;
     const LutCoords c{r.texelU(i, lut.width), r.texelV(j, lut.height)};
     const LimbView view = renderLimbView(m, limbPosition(m, c), lp);

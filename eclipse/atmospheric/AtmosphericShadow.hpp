@@ -171,6 +171,11 @@ struct Illuminance {
 Illuminance illuminanceAt(const AtmosphericShadowModel& model, const LimbPosition& position,
                           const LimbViewParams& params);
 
+/// The light (I / I_sun) at `offsetM` from the shadow's axis `distanceBehindM` behind the
+/// occluder, computed directly (illuminanceAt with `limb`).
+ProfileSample atmosphericShadowAt(const AtmosphericShadowModel& model, double distanceBehindM, double offsetM,
+                                  const LimbViewParams& limb);
+
 /// Cross-section of the shadow `distanceBehindM` behind the occluder, offsets 0 to
 /// `maxOffsetM` in `samples` samples (>= 2): sampled from `lut` (bilinear, as the renderer;
 /// 1 past v = 1) or, without it, computed directly at each point (illuminanceAt with
@@ -202,7 +207,8 @@ struct AtmosphericShadowLutParams {
 /// std::invalid_argument for a bad model, sizes or extent.
 ShadowLut buildAtmosphericShadowLut(const AtmosphericShadowModel& model,
                                     const AtmosphericShadowLutParams& params,
-                                    const LutExtent& extent = {}, const Progress& progress = {});
+                                    const LutExtent& extent = {}, const Progress& progress = {},
+                                    const TexelShare& share = {});
 
 struct LimbLuminanceLutParams {
   int width = 64, height = 64;  ///< u, v
@@ -224,6 +230,6 @@ struct LimbLuminanceLut {
 };
 LimbLuminanceLut buildLimbLuminanceLut(const AtmosphericShadowModel& model,
                                        const LimbLuminanceLutParams& params,
-                                       const Progress& progress = {});
+                                       const Progress& progress = {}, const TexelShare& share = {});
 
 } // namespace umbra::eclipse

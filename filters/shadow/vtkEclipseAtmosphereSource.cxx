@@ -7,6 +7,7 @@
 #include "FieldParameters.h"
 #include "Precompute.hpp"
 #include "Spectrum.hpp"
+#include "SpreadTable.h"
 #include "umbra/tables/CachedTables.h"
 
 #include <vtkDataObject.h>
@@ -223,8 +224,8 @@ std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> vtkEclipseAtmosphereSou
 
 std::vector<float> vtkEclipseAtmosphereSource::CachedOrComputed(const char* kind,
                                                                 const std::map<std::string, std::string>& parameters,
-                                                                int width, int height, double limbDarkening,
-                                                                const Compute& compute) {
+                                                                int width, int height, int slices,
+                                                                double limbDarkening, const Compute& compute) {
   using namespace umbra;
   this->LastCacheHit = false;
   this->CacheWarning.clear();
@@ -232,9 +233,9 @@ std::vector<float> vtkEclipseAtmosphereSource::CachedOrComputed(const char* kind
                                                               : this->CacheDirectory);
   this->CachePath = cache.pathFor(kind, parameters);
   tables::CacheOutcome outcome;
-  std::vector<tables::Table> made = tables::cachedOrComputed(
-      cache, this->UseCache != 0, {{kind, parameters, width, height, {"R", "G", "B"}}},
-      [&] {
+  tables::Table made = filters::spreadOrCached(
+      cache, this->UseCache != 0, {kind, parameters, width, height, {"R", "G", "B"}}, width * height / slices, slices,
+      this->SpreadOverRanks, [&](int index, int count) {
         if (!this->InputTables()) this->UpdateProgress(0.0);  // (with input: its tables were the first half)
         eclipse::AtmosphericShadowModel model = this->PrepareAtmosphere(0.0, 0.5)->model;
         model.limbDarkening = limbDarkening;
@@ -243,14 +244,14 @@ std::vector<float> vtkEclipseAtmosphereSource::CachedOrComputed(const char* kind
         t.data = compute(model, [this](double f) {
           this->UpdateProgress(0.5 + 0.5 * f);
           return !this->GetAbortExecute();
-        });
+        }, eclipse::TexelShare{index, count});
         if (t.data.empty()) throw umbra::atmosphere::PrecomputeCancelled();
-        return std::vector<tables::Table>{std::move(t)};
+        return t;
       },
       outcome);
   this->LastCacheHit = outcome.hits > 0;
   this->CacheWarning = outcome.warning;
-  return std::move(made.front().data);
+  return std::move(made.data);
 }
 
 int vtkEclipseAtmosphereSource::RequestFailed(const std::exception& e, vtkDataObject* output) {

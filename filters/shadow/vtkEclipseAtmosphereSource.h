@@ -103,6 +103,13 @@ public:
   vtkGetMacro(UseCache, bool);
   vtkBooleanMacro(UseCache, bool);
 
+  /// Under mpirun: the LuT's texels shared by the ranks, gathered on every rank, stored by
+  /// rank 0 (filters::spreadOrCached; every rank must update the source). Off by default:
+  /// an animation's ranks each make their own frames' tables. Run directly: no change.
+  vtkSetMacro(SpreadOverRanks, bool);
+  vtkGetMacro(SpreadOverRanks, bool);
+  vtkBooleanMacro(SpreadOverRanks, bool);
+
   /// The prepared atmosphere (tables, deviation table, the shadow model), made now if
   /// needed, with progress events; for computations outside the tables, e.g. a profile
   /// computed directly. Throws on a bad atmosphere or options.
@@ -143,13 +150,15 @@ protected:
   /// Prepared once per process and parameters; progress goes to this algorithm (from
   /// `from` to `to`); throws on errors and when aborted.
   std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> PrepareAtmosphere(double from, double to);
-  /// An RGB table of `kind` and `width` x `height` texels: read from the cache when there,
-  /// else `compute` runs with the prepared model (this limb darkening; its progress from
-  /// 0.5 to 1, empty result = aborted) and the result is stored. Sets the cache status.
-  using Compute = std::function<std::vector<float>(const umbra::eclipse::AtmosphericShadowModel&,
-                                                   const umbra::eclipse::Progress&)>;
+  /// An RGB table of `kind` and `width` x `height` texels (`slices` slices stacked along
+  /// the height): read from the cache when there, else `compute` runs with the prepared
+  /// model (this limb darkening; its progress from 0.5 to 1, empty result = aborted; the
+  /// texels of the share, all of them unless SpreadOverRanks) and the result is stored.
+  /// Sets the cache status.
+  using Compute = std::function<std::vector<float>(
+      const umbra::eclipse::AtmosphericShadowModel&, const umbra::eclipse::Progress&, const umbra::eclipse::TexelShare&)>;
   std::vector<float> CachedOrComputed(const char* kind, const std::map<std::string, std::string>& parameters,
-                                      int width, int height, double limbDarkening, const Compute& compute);
+                                      int width, int height, int slices, double limbDarkening, const Compute& compute);
   /// What RequestData returns when it caught `e`: after an abort (GetAbortExecute, or
   /// atmosphere::PrecomputeCancelled) 1 with `output` emptied and LastAborted set (the
   /// executive would print a failure); else the error is reported (vtkErrorMacro) and 0.
@@ -183,6 +192,7 @@ protected:
   double TerrainMeanElevationM = -1.0;
   std::string CacheDirectory;
   bool UseCache = true;
+  bool SpreadOverRanks = false;
   double URange[2] = {0.0, 1.0};
   double VRange[2] = {0.0, 1.0};
   double VLowFraction = 0.0;

@@ -1,5 +1,7 @@
 #include "vtkEclipseShadowLutSource.h"
 
+#include "SpreadTable.h"
+
 #include "EclipseAtmosphere.hpp"
 #include "Precompute.hpp"
 #include "ShadowLutData.h"
@@ -53,22 +55,23 @@ int vtkEclipseShadowLutSource::RequestData(vtkInformation*, vtkInformationVector
   eclipse::ShadowLut lut;
   try {
     tables::CacheOutcome outcome;
-    const std::vector<tables::Table> made = tables::cachedOrComputed(
+    const tables::Table made = filters::spreadOrCached(
         cache, this->UseCache != 0,
-        {{filters::kAirlessShadowLutKind, parameters, params.width, params.height, {"R", "G", "B"}}},
-        [&] {
+        {filters::kAirlessShadowLutKind, parameters, params.width, params.height, {"R", "G", "B"}},
+        params.width * params.height, 1, this->SpreadOverRanks,
+        [&](int index, int count) {
           this->UpdateProgress(0.0);
           const eclipse::ShadowLut built = eclipse::buildAirlessShadowLut(params, [this](double f) {
             this->UpdateProgress(f);
             return !this->GetAbortExecute();
-          });
+          }, eclipse::TexelShare{index, count});
           if (built.rgb.empty()) throw atmosphere::PrecomputeCancelled();
-          return std::vector<tables::Table>{filters::toTable(built, parameters)};
+          return filters::toTable(built, parameters);
         },
         outcome);
     this->LastCacheHit = outcome.hits > 0;
     this->CacheWarning = outcome.warning;
-    lut = filters::fromTable(made.front(), this->CachePath);
+    lut = filters::fromTable(made, this->CachePath);
   } catch (const std::exception& e) {
     return this->RequestFailed(e, output);
   }
@@ -120,9 +123,10 @@ int vtkEclipseShadowLutSource::RequestAtmospheric(vtkInformation* outInfo, vtkIm
     lut.width = extent.uEnd - extent.uBegin;
     lut.height = extent.vEnd - extent.vBegin;
     lut.rgb = this->CachedOrComputed(
-        filters::kAtmosphereShadowLutKind, parameters, lut.width, lut.height, this->LimbDarkening,
-        [&](const eclipse::AtmosphericShadowModel& model, const eclipse::Progress& progress) {
-          return eclipse::buildAtmosphericShadowLut(model, params, extent, progress).rgb;
+        filters::kAtmosphereShadowLutKind, parameters, lut.width, lut.height, 1, this->LimbDarkening,
+        [&](const eclipse::AtmosphericShadowModel& model, const eclipse::Progress& progress,
+            const eclipse::TexelShare& share) {
+          return eclipse::buildAtmosphericShadowLut(model, params, extent, progress, share).rgb;
         });
     vtkSmartPointer<vtkImageData> image = filters::toImageData(lut);
     output->ShallowCopy(image);

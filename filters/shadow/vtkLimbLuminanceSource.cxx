@@ -54,10 +54,9 @@ int vtkLimbLuminanceSource::RequestData(vtkInformation*, vtkInformationVector**,
     filters::addLutRange(parameters, params.range);
     const int depth = this->Columns * this->Layers;
     const std::vector<float> rgb = this->CachedOrComputed(
-        filters::kLimbLuminanceLutKind, parameters, this->Width, this->Height * depth, this->LimbDarkening,
-        [&](const eclipse::AtmosphericShadowModel& model, const eclipse::Progress& progress) {
-          return eclipse::buildLimbLuminanceLut(model, params, progress).rgb;
-        });
+        filters::kLimbLuminanceLutKind, parameters, this->Width, this->Height * depth, depth, this->LimbDarkening,
+        [&](const eclipse::AtmosphericShadowModel& model, const eclipse::Progress& progress,
+            const eclipse::TexelShare& share) { return eclipse::buildLimbLuminanceLut(model, params, progress, share).rgb; });
     output->SetDimensions(this->Width, this->Height, depth);
     double spacing[3], origin[3];
     LutSpacingOrigin(this->Width, this->Height, this->URange, this->VRange, this->VLowFraction, spacing, origin);

@@ -216,6 +216,8 @@ const std::vector<Command>& commands() {
       {{"terrain", "shadow"},
        {"--synthetic", "1", "--size", "16", "--sun-elevation-deg", "5", "--sun-azimuth-deg", "90", "--output", "@/t.exr"},
        {{"--time", t}, {"--dem", "@/dem.tif"}, {"--body-radius", "1737.4km"}, {"--lat-deg", "-89.5"}, {"--lon-deg", "10"}, {"--spacing", "30m"}}},
+      {{"sweep"}, {sourcePath("examples/sweeps/moon-in-totality-quick.json"), "--csv", "@/s.csv"},
+       {{"--plot", "@/s.svg"}}},
   };
   return list;
 }
@@ -365,6 +367,13 @@ TEST(Extremes, AtmospherePrecompute) { sweepCommand(commands()[6]); }
 TEST(Extremes, AtmosphereRefraction) { sweepCommand(commands()[7]); }
 TEST(Extremes, AtmosphereSky) { sweepCommand(commands()[8]); }
 TEST(Extremes, TerrainShadow) { sweepCommand(commands()[9]); }
+TEST(Extremes, Sweep) { sweepCommand(commands()[10]); }
+
+// Every number of a sweep file at the extremes.
+TEST(Extremes, SweepFields) {
+  sweepJson(readJson(sourcePath("examples/sweeps/moon-in-totality-quick.json")), "sweep.json",
+            [](const std::string& file) { return std::vector<std::string>{"sweep", file, "--csv", "@/s.csv"}; });
+}
 
 // Every command of the CLI is in the sweep.
 TEST(Extremes, EveryCommandSwept) {

@@ -1,12 +1,16 @@
 // umbra across MPI ranks (mpirun -n 2, oversubscribed on a 2-core machine): the frames of
 // an animation split over the ranks are the frames of one process; a failing or killed
-// rank leaves no frames.
+// rank leaves no frames; the eclipse LuTs whose texels the ranks share are the LuTs of one
+// process, to the byte; a sweep's CSV is the same over ranks, in one process and case by case.
 #include "CliRunner.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -111,4 +115,185 @@ TEST(RenderMpi, AKilledRankLeavesNoFramesAndAValidCache) {
   }
   const RunResult again = run(UMBRA_EXE, animation(dir / "frames/g-%02d.png"), {"UMBRA_CACHE_DIR=" + dir / "cache"});
   EXPECT_EQ(again.exitCode, 0) << again.err;
+}
+
+TEST(PrecomputeMpi, LutsOverTwoRanksAreTheLutsOfOneProcessToTheByte) {
+  TempDir dir;
+  const std::vector<std::string> eclipse = {"precompute", "eclipse", "--occluder", "earth", "--atmosphere", "earth",
+                                            "--size", "24", "--limb-lut-size", "8", "--layers", "2", "--draft-tables",
+                                            "--orders", "2", "--limb-size", "32", "--scattering-cells", "8"};
+  auto to = [&](const std::string& out) {
+    std::vector<std::string> a = eclipse;
+    a.insert(a.end(), {"--output", out});
+    return a;
+  };
+  const RunResult one = run(UMBRA_EXE, to(dir / "one"), {"UMBRA_CACHE_DIR=" + dir / "cache-one"});
+  ASSERT_EQ(one.exitCode, 0) << one.err;
+  const RunResult two = run(UMBRA_MPIEXEC, mpirunArgs(2, to(dir / "two")), {"UMBRA_CACHE_DIR=" + dir / "cache-two"});
+  ASSERT_EQ(two.exitCode, 0) << two.err;
+  EXPECT_EQ(std::count(two.out.begin(), two.out.end(), '\n'), 3) << two.out;  // rank 0's report alone
+  for (const std::string& f : {"eclipse-shadow-atmosphere.exr", "eclipse-limb-luminance.exr"}) {
+    EXPECT_EQ(readAll(dir / ("one/" + f)), readAll(dir / ("two/" + f))) << f;
+  }
+  // The cache holds what one process stores, and a second run over the ranks reads it.
+  for (const std::string& name : namesIn(dir / "cache-one"))
+    if (name.rfind("eclipse-", 0) == 0) EXPECT_EQ(readAll(dir / ("cache-one/" + name)), readAll(dir / ("cache-two/" + name)));
+  const RunResult again = run(UMBRA_MPIEXEC, mpirunArgs(2, to(dir / "again")), {"UMBRA_CACHE_DIR=" + dir / "cache-two"});
+  ASSERT_EQ(again.exitCode, 0) << again.err;
+  EXPECT_NE(again.err.find("cache hit: "), std::string::npos) << again.err;
+  EXPECT_EQ(readAll(dir / "one/eclipse-shadow-atmosphere.exr"), readAll(dir / "again/eclipse-shadow-atmosphere.exr"));
+
+  // The airless LuT (precompute shadow), without the cache.
+  const RunResult a1 = run(UMBRA_EXE, {"precompute", "shadow", "--occluder", "moon", "--size", "40", "--no-cache",
+                                       "--output", dir / "airless-one.exr"});
+  const RunResult a2 = run(UMBRA_MPIEXEC, mpirunArgs(2, {"precompute", "shadow", "--occluder", "moon", "--size", "40",
+                                                         "--no-cache", "--output", dir / "airless-two.exr"}));
+  ASSERT_EQ(a1.exitCode, 0) << a1.err;
+  ASSERT_EQ(a2.exitCode, 0) << a2.err;
+  EXPECT_EQ(readAll(dir / "airless-one.exr"), readAll(dir / "airless-two.exr"));
+}
+
+TEST(Mpi, ACommandOfOneRankRunsOnRankZeroAlone) {
+  // Two ranks asked to write the same tables: rank 0 writes them, the other waits.
+  TempDir dir;
+  const RunResult r = run(UMBRA_MPIEXEC, mpirunArgs(2, {"atmosphere", "precompute", "--preset", "earth-bruneton",
+                                                        "--transmittance-size", "16x8", "--scattering-size", "4,8,4,2",
+                                                        "--irradiance-size", "8x4", "--orders", "1", "--no-cache",
+                                                        "--output", dir / "tables"}));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("this command runs on one rank"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1 + static_cast<long>(namesIn(dir / "tables").size()))
+      << r.out;
+}
+
+namespace {
+
+/// A small sweep (draft tables, small limb views) over the stratospheric aerosol load.
+std::string smallSweep(const std::string& grid) {
+  return R"({"description": "test", "occluder": "earth", "atmosphere": "earth", "distance": "384400km",
+            "offsetsKm": [2000], "tables": "draft", "orders": 2, "limbSize": 16, "scatteringCells": 4,
+            "grid": {"/components/stratosphere/densityScale": )" +
+         grid + "}}";
+}
+
+void writeText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+/// The CSV's rows without their first column (the case's number).
+std::vector<std::string> rowsWithoutCase(const std::string& csv) {
+  std::vector<std::string> rows;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) rows.push_back(line.substr(line.find(',')));
+  return rows;
+}
+
+}  // namespace
+
+TEST(SweepMpi, TheCsvOverTwoRanksIsTheCsvOfOneProcessAndOfEachCaseAlone) {
+  TempDir dir;
+  const std::vector<std::string> env{"UMBRA_CACHE_DIR=" + dir / "cache"};
+  writeText(dir / "sweep.json", smallSweep("[1, 10, 100]"));
+  const RunResult one = run(UMBRA_EXE, {"sweep", dir / "sweep.json", "--csv", dir / "one.csv"}, env);
+  ASSERT_EQ(one.exitCode, 0) << one.err;
+  const RunResult two =
+      run(UMBRA_MPIEXEC, mpirunArgs(2, {"sweep", dir / "sweep.json", "--csv", dir / "two.csv", "--plot",
+                                        dir / "two.svg"}),
+          {"UMBRA_CACHE_DIR=" + dir / "cache-two"});
+  ASSERT_EQ(two.exitCode, 0) << two.err;
+  const std::string csv = readAll(dir / "one.csv");
+  EXPECT_EQ(csv, readAll(dir / "two.csv"));
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "case,/components/stratosphere/densityScale,centre_r,centre_g,centre_b,centre_luminance,"
+            "centre_delta_v_mag,umbra_radius_km,penumbra_radius_km,luminance_at_2000km");
+  EXPECT_NE(readAll(dir / "two.svg").find("Danjon scale"), std::string::npos);
+  // Each case as a sweep of its own gives its row.
+  const std::vector<std::string> rows = rowsWithoutCase(csv);
+  ASSERT_EQ(rows.size(), 3u);
+  const char* values[] = {"[1]", "[10]", "[100]"};
+  for (int k = 0; k < 3; ++k) {
+    writeText(dir / "alone.json", smallSweep(values[k]));
+    ASSERT_EQ(run(UMBRA_EXE, {"sweep", dir / "alone.json", "--csv", dir / "alone.csv"}, env).exitCode, 0);
+    EXPECT_EQ(rowsWithoutCase(readAll(dir / "alone.csv")), std::vector<std::string>{rows[k]}) << k;
+  }
+  // More aerosols, a darker umbra (the Moon's magnitude drop grows).
+  std::vector<double> dropMag;
+  for (const std::string& row : rows) {
+    std::vector<std::string> cells;
+    std::istringstream in(row.substr(1));
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    dropMag.push_back(std::stod(cells.at(5)));
+  }
+  EXPECT_LT(dropMag[0], dropMag[1]);
+  EXPECT_LT(dropMag[1], dropMag[2]);
+}
+
+TEST(SweepMpi, TheFiguresAreTheExactProfilesAtTheSameOffsets) {
+  // One case, the atmosphere as the preset has it: the centre and 2000 km of `umbra profile
+  // shadow --exact` (two samples, 0 and 2000 km) with the same tables and limb views.
+  TempDir dir;
+  const std::vector<std::string> env{"UMBRA_CACHE_DIR=" + dir / "cache"};
+  writeText(dir / "sweep.json", R"({"occluder": "earth", "atmosphere": "earth", "distance": "384400km",
+      "offsetsKm": [2000], "tables": "draft", "orders": 2, "limbSize": 16, "scatteringCells": 4,
+      "cases": [{"groundAlbedo": 0.1}]})");
+  ASSERT_EQ(run(UMBRA_EXE, {"sweep", dir / "sweep.json", "--csv", dir / "s.csv"}, env).exitCode, 0);
+  const RunResult p = run(UMBRA_EXE, {"profile", "shadow", "--occluder", "earth", "--atmosphere", "earth", "--exact",
+                                      "--distance", "384400km", "--max-offset", "2000km", "--samples", "2",
+                                      "--draft-tables", "--orders", "2", "--limb-size", "16", "--scattering-cells",
+                                      "4", "--csv", dir / "p.csv"},
+                          env);
+  ASSERT_EQ(p.exitCode, 0) << p.err;
+  const Csv profile = readCsv(dir / "p.csv");
+  ASSERT_EQ(profile.rows.size(), 2u);
+  const std::string row = rowsWithoutCase(readAll(dir / "s.csv")).at(0);
+  std::vector<double> cells;
+  std::istringstream in(row.substr(1));
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(std::stod(cell));
+  // groundAlbedo, r, g, b, luminance, delta V, umbra, penumbra, luminance at 2000 km
+  ASSERT_EQ(cells.size(), 9u);
+  // (The sweep reads the atmosphere tables through their cache, in float; the profile
+  // computes them in double: 1e-6 apart.)
+  for (int q = 0; q < 4; ++q) EXPECT_NEAR(cells[1 + q], profile.rows[0][1 + q], 1e-6 * profile.rows[0][1 + q]) << q;
+  EXPECT_NEAR(cells[8], profile.rows[1][4], 1e-6 * profile.rows[1][4]);
+  EXPECT_NEAR(cells[5], -2.5 * std::log10(cells[4]), 1e-7);  // (both printed to 10 digits)
+  // The geometric radii at the Moon: umbra ~4600 km, penumbra ~8200 km (from the profile's note).
+  EXPECT_NE(p.out.find("umbra " + std::to_string(static_cast<int>(cells[6])).substr(0, 3)), std::string::npos) << p.out;
+}
+
+TEST(SweepMpi, ABadCaseOnOneRankLeavesNoCsvAndNamesTheCase) {
+  TempDir dir;
+  writeText(dir / "sweep.json", smallSweep("[1, 10, -1]"));  // the last case is rank 1's
+  const RunResult r = run(UMBRA_MPIEXEC, mpirunArgs(2, {"sweep", dir / "sweep.json", "--csv", dir / "out.csv"}),
+                          {"UMBRA_CACHE_DIR=" + dir / "cache"});
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("umbra: error: rank 1: " + dir / "sweep.json" + ": case 2 (/components/stratosphere/densityScale -1): "),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
+  for (const std::string& name : namesIn(dir.path.string())) EXPECT_EQ(name.find("out.csv"), std::string::npos) << name;
+}
+
+TEST(SweepCli, BadFilesNameTheFileAndTheField) {
+  TempDir dir;
+  struct Bad {
+    std::string json, message;
+  };
+  for (const Bad& b : {Bad{"{", "not JSON"},
+                       Bad{R"({"grid": {"groundAlbedo": [0.1]}, "cases": [{"groundAlbedo": 0.1}]})",
+                           "give either \"grid\" or \"cases\""},
+                       Bad{R"({"grid": {"groundAlbedo": [0.1]}, "colour": 1})", "colour: unknown key"},
+                       Bad{R"({"grid": {"/components/nosuch/densityScale": [1]}})",
+                           "/components/nosuch/densityScale: no such object in the atmosphere earth"},
+                       Bad{R"({"grid": {"groundAlbedo": []}})", "grid.groundAlbedo: expected a non-empty list"},
+                       Bad{R"({"cases": [{"groundAlbedo": 0.1}, {"distance": "1km"}]})", "cases[1]: no \"groundAlbedo\""},
+                       Bad{R"({"grid": {"distance": [384400]}})", "distance: expected a length with its unit"},
+                       Bad{R"({"tables": "huge", "grid": {"groundAlbedo": [0.1]}})", "tables: expected"}}) {
+    writeText(dir / "bad.json", b.json);
+    const RunResult r = run(UMBRA_EXE, {"sweep", dir / "bad.json", "--csv", dir / "out.csv"});
+    EXPECT_EQ(r.exitCode, 1) << b.json;
+    EXPECT_NE(r.err.find(dir / "bad.json"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(b.message), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
+  }
 }

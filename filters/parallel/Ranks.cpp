@@ -3,6 +3,7 @@
 #include <vtkMPIController.h>
 #include <vtkMultiProcessController.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <stdexcept>
@@ -100,6 +101,23 @@ std::vector<T> Ranks::gatherValues(const std::vector<T>& values) {
 }
 
 std::vector<float> Ranks::gather(const std::vector<float>& values) { return gatherValues(values); }
+
+std::vector<float> Ranks::allGather(const std::vector<float>& values) {
+  if (!controller_) return values;
+  const Timed t(collectiveSeconds_);
+  vtkMPIController* c = controllerOf(controller_);
+  const vtkIdType length = static_cast<vtkIdType>(values.size());
+  std::vector<vtkIdType> lengths(size_), offsets(size_);
+  c->AllGather(&length, lengths.data(), 1);
+  vtkIdType total = 0;
+  for (int r = 0; r < size_; ++r) {
+    offsets[r] = total;
+    total += lengths[r];
+  }
+  std::vector<float> all(static_cast<std::size_t>(total));
+  c->AllGatherV(values.data(), all.data(), length, lengths.data(), offsets.data());
+  return all;
+}
 std::vector<double> Ranks::gather(const std::vector<double>& values) { return gatherValues(values); }
 
 std::vector<std::string> Ranks::gather(const std::string& message) {
@@ -142,7 +160,12 @@ std::string Ranks::finish(const std::string& error) {
     if (!joined.empty()) joined += "; ";
     joined += size_ > 1 ? "rank " + std::to_string(r) + ": " + errors[r] : errors[r];
   }
-  return broadcast(joined);
+  joined = broadcast(joined);
+  // After the broadcast, where a rank that finished early has waited for rank 0 (a gather
+  // does not wait: its small messages go out at once).
+  const std::vector<double> waits = gather(std::vector<double>{collectiveSeconds_});
+  for (double w : waits) mostCollectiveSeconds_ = std::max(mostCollectiveSeconds_, w);
+  return joined;
 }
 
 }  // namespace umbra::parallel

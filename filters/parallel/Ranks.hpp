@@ -49,15 +49,20 @@ public:
   /// Collective; the ranks' lengths may differ.
   std::vector<float> gather(const std::vector<float>& values);
   std::vector<double> gather(const std::vector<double>& values);
+  /// As gather, the result on every rank.
+  std::vector<float> allGather(const std::vector<float>& values);
 
   /// The end of a share of work, collective: `error` is this rank's (empty: it went well).
   /// On every rank: the errors of all ranks, "rank R: message" joined by "; " (empty when
-  /// every rank succeeded).
+  /// every rank succeeded). Rank 0 also learns each rank's time in collectives.
   std::string finish(const std::string& error);
 
   /// Seconds spent so far in this rank's collectives (waiting for the other ranks
   /// included): the communication and load imbalance of a run.
   double collectiveSeconds() const { return collectiveSeconds_; }
+  /// On rank 0: the most any rank had spent in collectives at the last finish() (the
+  /// rank that waited longest for the others); elsewhere 0.
+  double mostCollectiveSeconds() const { return mostCollectiveSeconds_; }
 
 private:
   Ranks();  // one rank, no MPI
@@ -65,7 +70,7 @@ private:
   std::vector<T> gatherValues(const std::vector<T>& values);
 
   int rank_ = 0, size_ = 1;
-  double collectiveSeconds_ = 0.0;
+  double collectiveSeconds_ = 0.0, mostCollectiveSeconds_ = 0.0;
   void* controller_ = nullptr;  // vtkMPIController*, when MPI runs
   static Ranks* world_;
 };

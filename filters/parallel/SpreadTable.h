@@ -1,0 +1,23 @@
+#pragma once
+// A table whose texels are computed each on its own (the eclipse LuTs), through the cache
+// and, under mpirun, over the ranks.
+#include "umbra/tables/CachedTables.h"
+
+#include <functional>
+
+namespace umbra::filters {
+
+/// The table of `request`: `texels` texels (u, v) in `slices` slices, the slice outermost,
+/// request.channels values per texel. compute(index, count) gives the whole table with the
+/// texels k (row-major within a slice) for which k % count == index filled (eclipse::
+/// TexelShare); it may throw. On one rank (or `spread` false): tables::cachedOrComputed
+/// with compute(0, 1). Over ranks: collective; rank 0 looks in the cache and tells the
+/// others; on a miss every rank computes its share, the values are gathered on every
+/// rank, rank 0 alone stores the table; an error on any rank is thrown on every rank
+/// ("rank R: message"). The result is the same to the bit as compute(0, 1).
+tables::Table spreadOrCached(const tables::TableCache& cache, bool useCache, const tables::TableRequest& request,
+                             int texels, int slices, bool spread,
+                             const std::function<tables::Table(int index, int count)>& compute,
+                             tables::CacheOutcome& outcome);
+
+}  // namespace umbra::filters
