@@ -229,3 +229,36 @@ TEST(ShadowLutURange, TextureMapIsTextureUAndV) {
     }
   }
 }
+
+namespace umbra::eclipse {
+namespace {
+
+// Three processes' shares of a LuT (the ranks of an MPI run): each texel in exactly one
+// share, with the whole LuT's value to the bit; the others 0.
+TEST(ShadowLut, TexelSharesTogetherAreTheWholeLut) {
+  const ShadowLutParams params{24, 20};
+  const ShadowLut whole = buildAirlessShadowLut(params);
+  std::vector<int> owners(whole.rgb.size() / 3, 0);
+  for (int index = 0; index < 3; ++index) {
+    const TexelShare share{index, 3};
+    const ShadowLut part = buildAirlessShadowLut(params, {}, share);
+    ASSERT_EQ(part.rgb.size(), whole.rgb.size());
+    for (std::size_t k = 0; k < owners.size(); ++k)
+      for (int q = 0; q < 3; ++q) {
+        const float v = part.rgb[3 * k + q];
+        if (share.owns(static_cast<long long>(k))) {
+          EXPECT_EQ(v, whole.rgb[3 * k + q]) << k;
+        } else {
+          EXPECT_EQ(v, 0.0f) << k;
+        }
+      }
+    for (std::size_t k = 0; k < owners.size(); ++k) owners[k] += share.owns(static_cast<long long>(k)) ? 1 : 0;
+    EXPECT_EQ(share.texels(static_cast<int>(owners.size())),
+              static_cast<int>((owners.size() + 2 - static_cast<std::size_t>(index)) / 3));
+  }
+  for (int n : owners) EXPECT_EQ(n, 1);
+  EXPECT_THROW(buildAirlessShadowLut(params, {}, TexelShare{3, 3}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace umbra::eclipse
