@@ -42,6 +42,8 @@ std::string PrecomputeOptions::validate() const {
   if (!(sunAngularRadiusRad >= 0.0 && sunAngularRadiusRad < 0.5)) e << "sunAngularRadiusRad must be in [0, 0.5); ";
   if (!(refractionStepM > 0.0)) e << "refractionStepM must be > 0; ";
   if (wavelengthBatch < 0) e << "wavelengthBatch must be >= 0; ";
+  if (batchShareCount < 1 || batchShareIndex < 0 || batchShareIndex >= batchShareCount)
+    e << "batchShareIndex must be in [0, batchShareCount); ";
   return e.str();
 }
 
@@ -208,7 +210,9 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
   tables.singleScattering.resize(tables.scatteringComponents.size());
   for (FloatTable3D& T : tables.singleScattering) T.resize(W, options.scatteringMu, options.scatteringR, nl);
   tables.multipleScattering.resize(W, options.scatteringMu, options.scatteringR, nl);
+  bool first = true;  // the first batch this process computes sizes the 2D tables
   for (int bi = 0; bi < batches; ++bi) {
+    if (bi % options.batchShareCount != options.batchShareIndex) continue;
     std::vector<int> ls;
     for (int l = bi * batch; l < std::min(nl, (bi + 1) * batch); ++l) ls.push_back(l);
     Runner runner(progress, options.threads, static_cast<double>(bi) / batches, static_cast<double>(bi + 1) / batches);
@@ -221,7 +225,7 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
       tables.irradiance = std::move(r.irradiance);
       tables.orderMeanRadiance = std::move(r.orderMean);
     } else {
-      if (bi == 0) {
+      if (first) {
         auto size2 = [&](Table2D& d, const Table2D& s) { d.resize(s.width, s.height, nl); };
         size2(tables.transmittance, r.transmittance);
         size2(tables.directIrradiance, r.directIrradiance);
@@ -238,6 +242,7 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
       if (std::find(order.begin(), order.end(), s) == order.end()) order.push_back(s);
       timings[s] += runner.timings[s];
     }
+    first = false;
   }
   for (const std::string& s : order) tables.timings.push_back({s, timings[s]});
   tables.timings.push_back({"total", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});

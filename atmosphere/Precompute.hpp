@@ -89,6 +89,10 @@ struct PrecomputeOptions {
   /// Wavelengths computed together (0: all). The working tables are this many channels
   /// wide; the final tables hold all wavelengths.
   int wavelengthBatch = 0;
+  /// The batches this process computes when several share the work (the ranks of an MPI
+  /// run): batch b when b % batchShareCount == batchShareIndex; the other wavelengths'
+  /// channels are left 0 (and their orderMeanRadiance). Not in the tables' keys.
+  int batchShareIndex = 0, batchShareCount = 1;
 
   /// Empty when usable, else what is wrong.
   std::string validate() const;

@@ -29,8 +29,9 @@ void addCommands(CLI::App& app, Action& action) {
 bool spreadsOverRanks(const CLI::App& app) {
   if (app.got_subcommand("render") || app.got_subcommand("sweep")) return true;  // (a single frame: rank 0)
   const CLI::App* precompute = app.get_subcommand("precompute");
-  return app.got_subcommand(precompute) &&
-         (precompute->got_subcommand("shadow") || precompute->got_subcommand("eclipse"));
+  if (app.got_subcommand(precompute)) return precompute->got_subcommand("shadow") || precompute->got_subcommand("eclipse");
+  const CLI::App* atmosphere = app.get_subcommand("atmosphere");
+  return app.got_subcommand(atmosphere) && atmosphere->got_subcommand("precompute");
 }
 
 }  // namespace umbra::cli

@@ -14,6 +14,7 @@
 // --scattering-size 4,8,4,2 --irradiance-size 8x4 --orders 2 runs in well under a second).
 #include "AtmosphereCommon.hpp"
 #include "Commands.hpp"
+#include "Ranks.hpp"
 
 #include <signal.h>
 #include <unistd.h>
@@ -161,6 +162,7 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       source->SetRefractedPaths(o->refraction);
       source->SetOrders(o->orders);
       source->SetWavelengthBatch(o->wavelengthBatch);
+      source->SetSpreadOverRanks(true);  // under mpirun: the wavelength batches shared, rank 0 writes
       source->SetWavelengths(o->wavelengths);
       source->SetTransmittanceSize(transmittance[0], transmittance[1]);
       source->SetScatteringSize(scattering[0], scattering[1], scattering[2], scattering[3]);
@@ -168,6 +170,7 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       source->SetRefractionWidth(refraction[0]);
       source->SetRefractionHeight(refraction[1]);
       updateTablesSource(source, o->cache, "atmosphere tables (" + atm.name + ")");
+      if (!parallel::Ranks::world().root()) return 0;
 
       // Every table goes into a sibling temporary directory first; then that directory
       // becomes DIR (a new one: one rename), or its files move into DIR (an existing one):

@@ -47,7 +47,8 @@ void addCommands(CLI::App& app, Action& action);
 
 /// Whether the command parsed on `app` spreads its work over MPI ranks (the others run on
 /// rank 0 alone): render (an animation's frames), precompute shadow and eclipse (the LuTs'
-/// texels), sweep (its cases).
+/// texels, and the atmosphere tables' wavelengths), atmosphere precompute (the wavelengths),
+/// sweep (its cases).
 bool spreadsOverRanks(const CLI::App& app);
 
 /// Under mpirun, how a command's run went over the ranks, for its last line: " on N ranks in

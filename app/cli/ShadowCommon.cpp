@@ -133,6 +133,7 @@ void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& 
   source->SetSpreadOverRanks(cache.overRanks);
   // The Bruneton and refraction tables from their cache; a failure there is the reason.
   auto* tables = vtkAtmosphereTablesSource::SafeDownCast(source->ConnectAtmosphereTables());
+  if (tables) tables->SetSpreadOverRanks(cache.overRanks);  // their wavelengths shared too
   ProgressLine progress(what, source);
   source->Update();
   if (source->GetOutput()->GetNumberOfPoints() == 0) {

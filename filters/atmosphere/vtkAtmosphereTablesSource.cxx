@@ -7,6 +7,7 @@
 #include "FieldParameters.h"
 #include "Refraction.hpp"
 #include "SightLines.hpp"
+#include "SpreadTable.h"
 #include "umbra/tables/CachedTables.h"
 
 #include <vtkFloatArray.h>
@@ -303,13 +304,25 @@ void vtkAtmosphereTablesSource::AddBrunetonBlocks(const umbra::atmosphere::Atmos
     made.push_back(&t);
     requests.push_back({"atmosphere-" + t.name, t.parameters, w, h, set.channels, (requested & bit) != 0});
   }
+  // Over ranks: wavelength batches of ceil(wavelengths / ranks) unless the batch is given.
+  const int nl = static_cast<int>(set.channels.size());
+  const auto batchFor = [&](int count) {
+    return set.po.wavelengthBatch > 0 ? set.po.wavelengthBatch : std::max(1, (nl + count - 1) / count);
+  };
   tables::CacheOutcome outcome;
-  std::vector<tables::Table> values = tables::cachedOrComputed(
-      cache, this->UseCache != 0, requests,
-      [&] {
+  std::vector<tables::Table> values = filters::spreadChannelsOrCached(
+      cache, this->UseCache != 0, requests, this->SpreadOverRanks,
+      [&](int channel, int count) { return (channel / batchFor(count)) % count; },
+      [&](int index, int count) {
         ++this->PrecomputeCalls;
+        atmosphere::PrecomputeOptions po = onlyTransmittance ? transmittanceOnly(set.po) : set.po;
+        if (count > 1) {
+          po.wavelengthBatch = batchFor(count);
+          po.batchShareIndex = index;
+          po.batchShareCount = count;
+        }
         atmosphere::AtmosphereTables result = atmosphere::precompute(
-            atm, onlyTransmittance ? transmittanceOnly(set.po) : set.po, [this](double f, const std::string&) {
+            atm, po, [this](double f, const std::string&) {
               this->UpdateProgress(0.95 * f);
               return !this->GetAbortExecute();  // SetAbortExecute(1) from another thread cancels
             });

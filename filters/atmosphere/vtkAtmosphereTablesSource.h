@@ -128,6 +128,13 @@ public:
   /// are the same to the bit, so it is not part of the cache key.
   vtkSetClampMacro(WavelengthBatch, int, 0, 256);
   vtkGetMacro(WavelengthBatch, int);
+  /// Under mpirun: the Bruneton tables' wavelength batches shared by the ranks (batch b of
+  /// rank b mod N; a batch of ceil(wavelengths / N) unless WavelengthBatch says), the
+  /// channels gathered on every rank, the tables stored by rank 0
+  /// (filters::spreadChannelsOrCached; every rank must update the source). The same tables
+  /// to the bit; not in the cache key. Off by default. Run directly: no change.
+  vtkSetMacro(SpreadOverRanks, bool);
+  vtkGetMacro(SpreadOverRanks, bool);
 
   // ---- the refraction table ----
   vtkSetClampMacro(RefractionWidth, int, 2, 8192);
@@ -192,6 +199,7 @@ private:
   bool RefractedPaths = false;
   int Threads = 0;
   int WavelengthBatch = 0;
+  bool SpreadOverRanks = false;
   int RefractionWidth = 512;
   int RefractionHeight = 256;
   double RefractionStepM = 10e3;

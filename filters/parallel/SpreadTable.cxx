@@ -2,6 +2,7 @@
 
 #include "Ranks.hpp"
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -70,6 +71,71 @@ tables::Table spreadOrCached(const tables::TableCache& cache, bool useCache, con
     }
   }
   return table;
+}
+
+std::vector<tables::Table> spreadChannelsOrCached(const tables::TableCache& cache, bool useCache,
+                                                  const std::vector<tables::TableRequest>& requests, bool spread,
+                                                  const std::function<int(int channel, int count)>& owner,
+                                                  const std::function<std::vector<tables::Table>(int index, int count)>& compute,
+                                                  tables::CacheOutcome& outcome) {
+  parallel::Ranks& ranks = parallel::Ranks::world();
+  if (!spread || ranks.size() == 1)
+    return tables::cachedOrComputed(cache, useCache, requests, [&] { return compute(0, 1); }, outcome);
+  outcome = {};
+  int needed = 0;
+  for (const tables::TableRequest& r : requests) needed += r.needed ? 1 : 0;
+  // The cache, as rank 0 finds it; a hit goes to every rank.
+  std::optional<std::vector<tables::Table>> cached;
+  if (ranks.root() && useCache) cached = tables::cachedTables(cache, requests);
+  if (ranks.broadcast(cached ? "1" : "") == "1") {
+    std::vector<tables::Table> out(requests.size());
+    for (std::size_t i = 0; i < requests.size(); ++i) {
+      if (!requests[i].needed) continue;
+      tables::Table& t = out[i];
+      if (ranks.root()) t = std::move((*cached)[i]);
+      std::vector<float> data = ranks.allGather(ranks.root() ? t.data : std::vector<float>{});
+      if (!ranks.root()) {  // (the request says the size: the cached table has it)
+        t.width = requests[i].width, t.height = requests[i].height, t.channels = requests[i].channels;
+        t.parameters = requests[i].parameters;
+      }
+      t.data = std::move(data);
+    }
+    outcome.hits = needed;
+    return out;
+  }
+  // Every rank its channels; each value gathered from the rank that has it.
+  std::vector<tables::Table> out;
+  std::string error;
+  try {
+    out = compute(ranks.rank(), ranks.size());
+    if (out.size() != requests.size()) throw std::logic_error("spreadChannelsOrCached: another number of tables");
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  if (const std::string errors = ranks.finish(error); !errors.empty()) throw std::runtime_error(errors);
+  for (tables::Table& t : out) {
+    const std::size_t nc = t.channels.size(), texels = nc ? t.data.size() / nc : 0;
+    std::vector<float> mine;
+    for (std::size_t k = 0; k < texels; ++k)
+      for (std::size_t c = 0; c < nc; ++c)
+        if (owner(static_cast<int>(c), ranks.size()) == ranks.rank()) mine.push_back(t.data[k * nc + c]);
+    const std::vector<float> all = ranks.allGather(mine);
+    std::size_t at = 0;
+    for (int r = 0; r < ranks.size(); ++r)
+      for (std::size_t k = 0; k < texels; ++k)
+        for (std::size_t c = 0; c < nc; ++c)
+          if (owner(static_cast<int>(c), ranks.size()) == r) t.data[k * nc + c] = all[at++];
+  }
+  outcome.computed = needed;
+  if (ranks.root() && useCache)
+    for (std::size_t i = 0; i < requests.size(); ++i) {
+      try {
+        cache.store(requests[i].kind, requests[i].parameters, out[i]);
+      } catch (const std::exception& e) {
+        if (outcome.warning.empty()) outcome.warning = e.what();
+      }
+    }
+  return out;
 }
 
 }  // namespace umbra::filters

@@ -20,4 +20,19 @@ tables::Table spreadOrCached(const tables::TableCache& cache, bool useCache, con
                              const std::function<tables::Table(int index, int count)>& compute,
                              tables::CacheOutcome& outcome);
 
+/// The tables of `requests` (each with one value per texel and channel, the channels the
+/// wavelengths), through the cache and, over ranks with `spread`, made in shares of their
+/// channels: compute(index, count) gives every table with the channels c for which
+/// owner(c, count) == index filled (the others 0). On one rank (or `spread` false):
+/// tables::cachedOrComputed with compute(0, 1). Over ranks: collective; rank 0 looks in
+/// the cache and tells the others (a hit: the needed tables sent to every rank; the requests
+/// must then give their sizes and channels); on a miss
+/// every rank computes its share, the values are gathered on every rank, rank 0 alone
+/// stores the tables; an error on any rank is thrown on every rank.
+std::vector<tables::Table> spreadChannelsOrCached(const tables::TableCache& cache, bool useCache,
+                                                  const std::vector<tables::TableRequest>& requests, bool spread,
+                                                  const std::function<int(int channel, int count)>& owner,
+                                                  const std::function<std::vector<tables::Table>(int index, int count)>& compute,
+                                                  tables::CacheOutcome& outcome);
+
 }  // namespace umbra::filters

@@ -154,16 +154,47 @@ TEST(PrecomputeMpi, LutsOverTwoRanksAreTheLutsOfOneProcessToTheByte) {
 }
 
 TEST(Mpi, ACommandOfOneRankRunsOnRankZeroAlone) {
-  // Two ranks asked to write the same tables: rank 0 writes them, the other waits.
+  // Two ranks asked for one CSV: rank 0 writes it, the other exits.
   TempDir dir;
-  const RunResult r = run(UMBRA_MPIEXEC, mpirunArgs(2, {"atmosphere", "precompute", "--preset", "earth-bruneton",
-                                                        "--transmittance-size", "16x8", "--scattering-size", "4,8,4,2",
-                                                        "--irradiance-size", "8x4", "--orders", "1", "--no-cache",
-                                                        "--output", dir / "tables"}));
+  const RunResult r = run(UMBRA_MPIEXEC, mpirunArgs(2, {"atmosphere", "refraction", "--preset", "earth", "--zenith-deg",
+                                                        "80:90:5", "--csv", dir / "r.csv"}));
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("this command runs on one rank"), std::string::npos) << r.err;
-  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1 + static_cast<long>(namesIn(dir / "tables").size()))
-      << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_EQ(namesIn(dir.path.string()), std::vector<std::string>{"r.csv"});
+}
+
+TEST(PrecomputeMpi, AtmosphereTablesOverTwoRanksAreTheTablesOfOneProcessToTheByte) {
+  // 5 wavelengths: batches of 3 and 2 (ceil(5 / 2)), one per rank; and batches of 1, three
+  // for rank 0, two for rank 1.
+  TempDir dir;
+  std::vector<std::string> args = {"atmosphere", "precompute", "--preset", "earth", "--wavelengths", "5",
+                                   "--transmittance-size", "16x8", "--scattering-size", "4,8,4,2",
+                                   "--irradiance-size", "8x4", "--orders", "2", "--no-cache"};
+  auto to = [&](const std::string& out, const std::vector<std::string>& extra) {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), extra.begin(), extra.end());
+    a.insert(a.end(), {"--output", out});
+    return a;
+  };
+  const RunResult one = run(UMBRA_EXE, to(dir / "one", {}));
+  ASSERT_EQ(one.exitCode, 0) << one.err;
+  for (const auto& [name, extra] :
+       std::vector<std::pair<std::string, std::vector<std::string>>>{{"two", {}}, {"ones", {"--wavelength-batch", "1"}}}) {
+    const RunResult two = run(UMBRA_MPIEXEC, mpirunArgs(2, to(dir / name, extra)));
+    ASSERT_EQ(two.exitCode, 0) << two.err;
+    EXPECT_EQ(namesIn(dir / name), namesIn(dir / "one"));
+    for (const std::string& f : namesIn(dir / "one"))
+      EXPECT_EQ(readAll(dir / ("one/" + f)), readAll(dir / (name + "/" + f))) << name << " " << f;
+  }
+  // Through the cache: rank 0 stores them, a second run reads them on both ranks.
+  args.pop_back();
+  const std::vector<std::string> env{"UMBRA_CACHE_DIR=" + dir / "cache"};
+  ASSERT_EQ(run(UMBRA_MPIEXEC, mpirunArgs(2, to(dir / "cached", {})), env).exitCode, 0);
+  const RunResult again = run(UMBRA_MPIEXEC, mpirunArgs(2, to(dir / "again", {})), env);
+  ASSERT_EQ(again.exitCode, 0) << again.err;
+  for (const std::string& f : namesIn(dir / "one"))
+    EXPECT_EQ(readAll(dir / ("one/" + f)), readAll(dir / ("again/" + f))) << f;
 }
 
 namespace {

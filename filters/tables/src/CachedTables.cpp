@@ -6,10 +6,7 @@
 
 namespace umbra::tables {
 
-namespace {
-
-/// The needed tables of `requests` from the cache, when every one is there as asked.
-std::optional<std::vector<Table>> allCached(const TableCache& cache, const std::vector<TableRequest>& requests) {
+std::optional<std::vector<Table>> cachedTables(const TableCache& cache, const std::vector<TableRequest>& requests) {
   std::vector<Table> tables(requests.size());
   for (std::size_t i = 0; i < requests.size(); ++i) {
     const TableRequest& r = requests[i];
@@ -23,19 +20,17 @@ std::optional<std::vector<Table>> allCached(const TableCache& cache, const std::
   return tables;
 }
 
-}  // namespace
-
 std::vector<Table> cachedOrComputed(const TableCache& cache, bool useCache, const std::vector<TableRequest>& requests,
                                     const std::function<std::vector<Table>()>& compute, CacheOutcome& outcome) {
   outcome = {};
   std::unique_ptr<TableCache::Lock> lock;
   if (useCache) {
-    std::optional<std::vector<Table>> cached = allCached(cache, requests);
+    std::optional<std::vector<Table>> cached = cachedTables(cache, requests);
     // Not there: made by one process at a time (the first request names the set), and
     // looked for again once this one may make it: another may just have stored it.
     if (!cached && !requests.empty()) {
       lock = cache.lock(requests.front().kind, requests.front().parameters);
-      if (lock) cached = allCached(cache, requests);
+      if (lock) cached = cachedTables(cache, requests);
     }
     if (cached) {
       for (const TableRequest& r : requests) outcome.hits += r.needed ? 1 : 0;

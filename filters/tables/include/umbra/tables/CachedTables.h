@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,10 @@ struct CacheOutcome {
   int hits = 0, computed = 0;
   std::string warning;
 };
+
+/// The needed tables of `requests` from `cache` (the others left empty), when every needed
+/// one is there as its request says; else nullopt.
+std::optional<std::vector<Table>> cachedTables(const TableCache& cache, const std::vector<TableRequest>& requests);
 
 /// The tables of `requests`, in their order. When `useCache` and each needed one is in
 /// `cache` as its request says, those are read (the others are left empty). Else compute()
