@@ -1,5 +1,6 @@
 #include "Ranks.hpp"
 
+#include <vtkCommunicator.h>
 #include <vtkMPIController.h>
 #include <vtkMultiProcessController.h>
 
@@ -139,6 +140,15 @@ std::vector<std::string> Ranks::gather(const std::string& message) {
     at += static_cast<std::size_t>(l);
   }
   return out;
+}
+
+bool Ranks::all(bool mine) {
+  if (!controller_) return mine;
+  const Timed t(collectiveSeconds_);
+  const int in = mine ? 1 : 0;
+  int out = 0;
+  controllerOf(controller_)->AllReduce(&in, &out, 1, vtkCommunicator::MIN_OP);
+  return out == 1;
 }
 
 std::string Ranks::broadcast(const std::string& value) {

@@ -43,6 +43,8 @@ public:
   void barrier();
   /// Every rank's `message` on rank 0 (in rank order), empty elsewhere. Collective.
   std::vector<std::string> gather(const std::string& message);
+  /// Whether `mine` holds on every rank, on every rank. Collective.
+  bool all(bool mine);
   /// Rank 0's `value` on every rank. Collective.
   std::string broadcast(const std::string& value);
   /// Every rank's `values`, concatenated in rank order, on rank 0 (empty elsewhere).

@@ -20,16 +20,20 @@ tables::Table spreadOrCached(const tables::TableCache& cache, bool useCache, con
   outcome = {};
   const std::size_t nc = request.channels.size();
   const std::size_t values = static_cast<std::size_t>(texels) * slices * nc;
-  // The cache, as rank 0 finds it.
+  // The cache, read by every rank (a shared directory: nothing to send); else as rank 0 finds it.
   tables::Table table;
   std::string found;
-  if (ranks.root() && useCache)
+  if (useCache)
     if (std::optional<tables::Table> t = cache.load(request.kind, request.parameters);
         t && t->width == request.width && t->height == request.height && t->channels == request.channels &&
         t->data.size() == values) {
       table = std::move(*t);
       found = "1";
     }
+  if (ranks.all(found == "1")) {
+    outcome.hits = 1;
+    return table;
+  }
   if (ranks.broadcast(found) == "1") {
     table.data = ranks.allGather(ranks.root() ? table.data : std::vector<float>{});
     if (!ranks.root()) {
@@ -84,9 +88,14 @@ std::vector<tables::Table> spreadChannelsOrCached(const tables::TableCache& cach
   outcome = {};
   int needed = 0;
   for (const tables::TableRequest& r : requests) needed += r.needed ? 1 : 0;
-  // The cache, as rank 0 finds it; a hit goes to every rank.
+  // The cache, read by every rank (a shared directory: nothing to send); else rank 0's
+  // hit goes to every rank.
   std::optional<std::vector<tables::Table>> cached;
-  if (ranks.root() && useCache) cached = tables::cachedTables(cache, requests);
+  if (useCache) cached = tables::cachedTables(cache, requests);
+  if (ranks.all(cached.has_value())) {
+    outcome.hits = needed;
+    return std::move(*cached);
+  }
   if (ranks.broadcast(cached ? "1" : "") == "1") {
     std::vector<tables::Table> out(requests.size());
     for (std::size_t i = 0; i < requests.size(); ++i) {

@@ -11,8 +11,9 @@ namespace umbra::filters {
 /// request.channels values per texel. compute(index, count) gives the whole table with the
 /// texels k (row-major within a slice) for which k % count == index filled (eclipse::
 /// TexelShare); it may throw. On one rank (or `spread` false): tables::cachedOrComputed
-/// with compute(0, 1). Over ranks: collective; rank 0 looks in the cache and tells the
-/// others; on a miss every rank computes its share, the values are gathered on every
+/// with compute(0, 1). Over ranks: collective; every rank looks in the cache (found by all:
+/// each reads its own; found by rank 0 alone: sent from it to every rank); on a miss every
+/// rank computes its share, the values are gathered on every
 /// rank, rank 0 alone stores the table; an error on any rank is thrown on every rank
 /// ("rank R: message"). The result is the same to the bit as compute(0, 1).
 tables::Table spreadOrCached(const tables::TableCache& cache, bool useCache, const tables::TableRequest& request,
@@ -24,9 +25,9 @@ tables::Table spreadOrCached(const tables::TableCache& cache, bool useCache, con
 /// wavelengths), through the cache and, over ranks with `spread`, made in shares of their
 /// channels: compute(index, count) gives every table with the channels c for which
 /// owner(c, count) == index filled (the others 0). On one rank (or `spread` false):
-/// tables::cachedOrComputed with compute(0, 1). Over ranks: collective; rank 0 looks in
-/// the cache and tells the others (a hit: the needed tables sent to every rank; the requests
-/// must then give their sizes and channels); on a miss
+/// tables::cachedOrComputed with compute(0, 1). Over ranks: collective; every rank looks in
+/// the cache (found by all: each reads its own; found by rank 0 alone: the needed tables sent
+/// to every rank, the requests then giving their sizes and channels); on a miss
 /// every rank computes its share, the values are gathered on every rank, rank 0 alone
 /// stores the tables; an error on any rank is thrown on every rank.
 std::vector<tables::Table> spreadChannelsOrCached(const tables::TableCache& cache, bool useCache,
