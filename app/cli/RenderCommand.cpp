@@ -370,8 +370,7 @@ int renderAnimation(const RenderOptions& o, const std::vector<Frame>& frames, sc
   }
   std::cout << "wrote " << frames.size() << " frames " << frames.front().path << " .. " << frames.back().path << " ("
             << s.width << "x" << s.height << ", " << s.name << ", " << o.from << " .. "
-            << scene::formatUtc(frames.back().time) << " every " << o.step << ")" << ranksNote(start);
-  std::cout << "\n";
+            << scene::formatUtc(frames.back().time) << " every " << o.step << ")" << ranksNote(start) << "\n";
   return 0;
 }
 

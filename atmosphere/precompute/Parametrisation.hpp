@@ -195,7 +195,6 @@ inline void accumulate4(const BasicTable3D<Value>& T, const RMuCell& a, const SN
   }
 }
 
-/// Bilinear lookup in a 2D table of unit-range coordinates (texel centres on the ends).
 /// Where unit coordinate u falls among n texels (centres on the ends): between i and i + 1,
 /// weight w on i + 1.
 inline void unitCell(double u, int n, int& i, double& w) {
@@ -204,6 +203,7 @@ inline void unitCell(double u, int n, int& i, double& w) {
   w = f - i;
 }
 
+/// Bilinear lookup in a 2D table of unit-range coordinates (texel centres on the ends).
 inline void bilinearUnit(const Table2D& T, double xu, double yu, double* out) {
   int ix, iy;
   double wx, wy;

@@ -30,7 +30,7 @@ vtkImageData* block(vtkMultiBlockDataSet* blocks, const std::string& name) {
   throw std::invalid_argument("atmosphere tables: no block '" + name + "'");
 }
 
-/// The block's arrays (one per wavelength, in order) interleaved per texel, as doubles.
+/// The block's arrays (one per wavelength, in order) interleaved per texel, as `Value`s.
 template <class Value>
 std::vector<Value> interleaved(vtkImageData* image, const std::string& name, int channels) {
   vtkPointData* pd = image->GetPointData();

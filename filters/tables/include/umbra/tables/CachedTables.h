@@ -40,8 +40,8 @@ std::optional<std::vector<Table>> cachedTables(const TableCache& cache, const st
 /// `cache` as its request says, those are read (the others are left empty). Else compute()
 /// gives all of them, in the same order (it may throw: then nothing is stored), and each is
 /// stored when `useCache`; under the cache's lock (TableCache::lock, named by the first
-/// request), so that of several processes asking at once one computes and the others read. Throws std::logic_error when compute() gives another number of
-/// tables.
+/// request), so that of several processes asking at once one computes and the others read.
+/// Throws std::logic_error when compute() gives another number of tables.
 std::vector<Table> cachedOrComputed(const TableCache& cache, bool useCache, const std::vector<TableRequest>& requests,
                                     const std::function<std::vector<Table>()>& compute, CacheOutcome& outcome);
 
