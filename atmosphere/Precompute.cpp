@@ -59,10 +59,27 @@ namespace {
 // ---- one batch of wavelengths ---------------------------------------------------------------
 
 /// One batch of wavelengths: its stages in order (atmosphere/precompute/Batch.hpp). The 3D
-/// tables go straight into `single` and `multiple` from channel l0 on.
+/// tables go straight into `single` and `multiple` from channel l0 on. With a sink, they
+/// are the batch's own: each goes to the sink once finished and is freed (the single
+/// scattering after the second order's density and irradiance, the last to read it), and
+/// `multiple` is made (from empty) only then.
 BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runner& run,
-                         std::vector<FloatTable3D>& single, FloatTable3D& multiple, int l0) {
+                         std::vector<FloatTable3D>& single, FloatTable3D& multiple, int l0,
+                         const BatchTablesSink& sink) {
   Batch batch(atm, o, run, single, multiple, l0);
+  const auto handOnSingle = [&] {
+    if (!sink) return;
+    for (std::size_t q = 0; q < single.size(); ++q) {
+      sink(l0, static_cast<int>(q), single[q]);
+      FloatTable3D().values.swap(single[q].values);
+    }
+  };
+  const auto handOnMultiple = [&] {
+    if (!sink) return;
+    if (multiple.values.empty()) multiple.resize(batch.W, batch.MU, batch.R, batch.nl);  // one order: zeros
+    sink(l0, static_cast<int>(single.size()), multiple);
+    FloatTable3D().values.swap(multiple.values);
+  };
   computeTransmittance(batch);
   computeDirectIrradiance(batch);
   buildViewRays(batch, o.singleScatteringSamples, batch.singleRays);
@@ -72,20 +89,29 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
   // The single-scattering weights are spent: free them before the working tables.
   for (std::vector<RaySamples>* rays : {&batch.singleRays, &batch.multipleRays})
     for (RaySamples& s : *rays) std::vector<double>().swap(s.rhoT);
-  if (o.orders < 2) return std::move(batch.out);
+  if (o.orders < 2) {
+    handOnSingle();
+    handOnMultiple();
+    return std::move(batch.out);
+  }
 
-  batch.delta.resize(batch.W, batch.MU, batch.R, batch.nl);
   batch.density.resize(batch.W, batch.MU, batch.R, batch.nl);
   prepareDensityDirections(batch);
   batch.nextE.resize(batch.IW, batch.IH, batch.nl);
   for (int order = 2; order <= o.orders; ++order) {
     computeScatteringDensity(batch, order);
     computeIndirectIrradiance(batch, order);
+    if (order == 2) {  // L_1 is read no more; L_2 on
+      handOnSingle();
+      batch.delta.resize(batch.W, batch.MU, batch.R, batch.nl);
+      if (multiple.values.empty()) multiple.resize(batch.W, batch.MU, batch.R, batch.nl);
+    }
     batch.deltaE = batch.nextE;
     computeMultipleScattering(batch);
     batch.out.orderMean.push_back(batch.meanOf(
         [&](int x, int y, int z, double* v) { std::copy_n(batch.delta.at(x, y, z), batch.nl, v); }));
   }
+  handOnMultiple();
   return std::move(batch.out);
 }
 
@@ -141,6 +167,24 @@ ScatteringPoint scatteringTexelPoint(const ShellRadii& shell, const ScatteringTa
 
 // ---- precompute ------------------------------------------------------------------------------
 
+std::size_t batchBytesPerWavelength(const PrecomputeOptions& o, int scatterers) {
+  const std::size_t texels = static_cast<std::size_t>(o.scatteringNu) * o.scatteringMuS * o.scatteringMu * o.scatteringR;
+  const std::size_t rays = static_cast<std::size_t>(o.scatteringR) * o.scatteringMu;
+  std::size_t samples = rays * (o.singleScatteringSamples + 1);
+  if (o.multipleScatteringSamples != o.singleScatteringSamples) samples += rays * (o.multipleScatteringSamples + 1);
+  const std::size_t tables4D = o.orders < 2 ? static_cast<std::size_t>(scatterers) + 1
+                                            : std::max<std::size_t>(static_cast<std::size_t>(scatterers) + 1, 3);
+  return tables4D * texels * sizeof(float) + samples * (1 + static_cast<std::size_t>(scatterers)) * sizeof(double);
+}
+
+int wavelengthBatchFor(const PrecomputeOptions& o, int scatterers, int wavelengths, std::size_t budgetBytes) {
+  const std::size_t per = std::max<std::size_t>(1, batchBytesPerWavelength(o, scatterers));
+  const int n = std::max(1, wavelengths);
+  const int fit = static_cast<int>(std::clamp<std::size_t>(budgetBytes / per, 1, static_cast<std::size_t>(n)));
+  const int batches = (n + fit - 1) / fit;
+  return (n + batches - 1) / batches;  // as even as the batches can be: 47 in 16 + 16 + 15, not 22 + 22 + 3
+}
+
 int densityDirectionsFor(const Atmosphere& atmosphere) {
   double halfWidthRad = kPi / 2;  // of the narrowest forward peak
   const std::size_t nl = atmosphere.wavelengthsNm.size();
@@ -183,6 +227,11 @@ int densityDirectionsFor(const Atmosphere& atmosphere) {
 
 AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOptions& optionsIn,
                             const PrecomputeProgress& progress) {
+  return precompute(atmosphere, optionsIn, progress, BatchTablesSink());
+}
+
+AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOptions& optionsIn,
+                            const PrecomputeProgress& progress, const BatchTablesSink& sink) {
   if (const std::string e = optionsIn.validate(); !e.empty()) throw std::invalid_argument("PrecomputeOptions: " + e);
   if (const std::string e = atmosphere.validate(); !e.empty()) throw std::invalid_argument("Atmosphere: " + e);
   PrecomputeOptions options = optionsIn;
@@ -207,9 +256,16 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
   const double weight = 1.0 + 0.05 + 0.3 * (options.multipleScatteringSamples != options.singleScatteringSamples ? 2 : 1) +
                         1.0 + (orders - 1) * (2.0 + 0.1 + 1.0);
   const int W = options.scatteringNu * options.scatteringMuS;
-  tables.singleScattering.resize(tables.scatteringComponents.size());
-  for (FloatTable3D& T : tables.singleScattering) T.resize(W, options.scatteringMu, options.scatteringR, nl);
-  tables.multipleScattering.resize(W, options.scatteringMu, options.scatteringR, nl);
+  // The 4D tables: all wavelengths wide, or (with a sink) one batch's single scattering,
+  // handed on (computeBatch makes the batch's multiple scattering when it needs it).
+  auto sizeSingle = [&](std::vector<FloatTable3D>& single, int channels) {
+    single.resize(tables.scatteringComponents.size());
+    for (FloatTable3D& T : single) T.resize(W, options.scatteringMu, options.scatteringR, channels);
+  };
+  if (!sink) {
+    sizeSingle(tables.singleScattering, nl);
+    tables.multipleScattering.resize(W, options.scatteringMu, options.scatteringR, nl);
+  }
   bool first = true;  // the first batch this process computes sizes the 2D tables
   for (int bi = 0; bi < batches; ++bi) {
     if (bi % options.batchShareCount != options.batchShareIndex) continue;
@@ -217,8 +273,15 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
     for (int l = bi * batch; l < std::min(nl, (bi + 1) * batch); ++l) ls.push_back(l);
     Runner runner(progress, options.threads, static_cast<double>(bi) / batches, static_cast<double>(bi + 1) / batches);
     runner.setStages(weight);
-    BatchResult r = computeBatch(batches == 1 ? atmosphere : subAtmosphere(atmosphere, ls), options, runner,
-                                 tables.singleScattering, tables.multipleScattering, ls.front());
+    std::vector<FloatTable3D> batchSingle;
+    FloatTable3D batchMultiple;
+    if (sink) sizeSingle(batchSingle, static_cast<int>(ls.size()));
+    BatchResult r = computeBatch(
+        batches == 1 ? atmosphere : subAtmosphere(atmosphere, ls), options, runner,
+        sink ? batchSingle : tables.singleScattering, sink ? batchMultiple : tables.multipleScattering,
+        sink ? 0 : ls.front(),
+        sink ? BatchTablesSink([&](int, int table, const FloatTable3D& v) { sink(ls.front(), table, v); })
+             : BatchTablesSink());
     if (batches == 1) {
       tables.transmittance = std::move(r.transmittance);
       tables.directIrradiance = std::move(r.directIrradiance);

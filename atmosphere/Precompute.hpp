@@ -98,6 +98,17 @@ struct PrecomputeOptions {
   std::string validate() const;
 };
 
+/// The memory one wavelength of a batch holds at the precomputation's peak [bytes], for
+/// `scatterers` scattering components, with the tables handed on as they are finished
+/// (BatchTablesSink): the 4D tables alive at once (the single scattering and J_2 in the
+/// second order, or J_k, L_k and the multiple scattering after it), in float, and the view
+/// rays' transmittance and single-scattering weights, in double.
+std::size_t batchBytesPerWavelength(const PrecomputeOptions& options, int scatterers);
+/// The wavelengths of a batch whose memory (batchBytesPerWavelength) fits budgetBytes:
+/// `wavelengths` when all fit, else the fewest batches that fit, as even as they can be
+/// (at least 1 wavelength).
+int wavelengthBatchFor(const PrecomputeOptions& options, int scatterers, int wavelengths, std::size_t budgetBytes);
+
 /// The density directions an atmosphere's phase functions need (sphereSamples 0): the
 /// polar spacing pi / n no wider than 1.5 times the half width of the narrowest forward peak
 /// (the angle at which a phase function falls to half its forward value) of the components
@@ -143,11 +154,10 @@ struct BasicTable3D {
   const Value* at(int x, int y, int z) const { return values.data() + offset(x, y, z); }
   Value* at(int x, int y, int z) { return values.data() + offset(x, y, z); }
 };
-/// The orders' working tables (J_k, L_k), in double precision.
-using Table3D = BasicTable3D<double>;
-/// The finished 4D tables of AtmosphereTables, in single precision as the EXR files and the
-/// GPU hold them (a relative 6e-8, far below the tables' interpolation error): half the
-/// memory of double, the precomputation's largest share of it.
+/// The 4D tables, finished (AtmosphereTables) and the orders' working ones (J_k, L_k), in
+/// single precision as the EXR files and the GPU hold them (a relative 6e-8, far below the
+/// tables' interpolation error): half the memory of double, the precomputation's largest
+/// share of it.
 using FloatTable3D = BasicTable3D<float>;
 
 struct StageTiming {
@@ -192,6 +202,18 @@ public:
 using PrecomputeProgress = std::function<bool(double fraction, const std::string& stage)>;
 AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOptions& options = {},
                             const PrecomputeProgress& progress = {});
+
+/// Where precompute() hands the finished 4D tables of each batch of wavelengths when it is
+/// given one, each as soon as it is finished: the batch's first channel, which table
+/// (0 .. scattering components - 1: that component's single scattering; the number of
+/// scattering components: the multiple scattering), and its values, as many channels wide
+/// as the batch (a batch's channels are consecutive), freed once the sink returns. The
+/// tables precompute() returns then hold no 4D values (singleScattering and
+/// multipleScattering empty), so that no 4D table is ever held for every wavelength: the
+/// peak memory is one batch's working tables.
+using BatchTablesSink = std::function<void(int firstChannel, int table, const FloatTable3D& values)>;
+AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOptions& options,
+                            const PrecomputeProgress& progress, const BatchTablesSink& sink);
 
 // ---- the 4D parametrisation (Bruneton 2017, GetScatteringTextureUvwzFromRMuMuSNu) -------
 

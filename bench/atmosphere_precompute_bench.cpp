@@ -6,6 +6,7 @@
 //
 //   build/bench/umbra-bench-atmosphere [--preset earth] [--wavelengths 3] [--probes 2000]
 //       [--sections sizes,orders,refraction,wavelengths] [--reference-cache FILE]
+//       [--wavelength-counts 3,15,47] [--batches 0,8]
 //
 // --reference-cache keeps the reference's sky radiances in FILE (written when missing, read
 // when present), so that a changed precomputation is compared with the same reference.
@@ -126,12 +127,16 @@ int main(int argc, char** argv) {
   std::string preset = "earth", sectionList = "sizes,orders,refraction,wavelengths", referenceCache;
   int wavelengths = 3, probes = 2000, referenceOrders = 6;
   double referenceScale = 1.5;
+  std::vector<int> wavelengthCounts{3, 15, 47}, batches{0, 8};
   app.add_option("--preset", preset)->capture_default_str();
   app.add_option("--wavelengths", wavelengths, "3 (680/550/440 nm) or N between 360 and 830 nm")->capture_default_str();
   app.add_option("--probes", probes, "Random view/sun geometries compared")->capture_default_str();
   app.add_option("--sections", sectionList,
                  "Comma-separated: default (default sizes, 4 orders only), sizes, orders, refraction, wavelengths")
       ->capture_default_str();
+  app.add_option("--wavelength-counts", wavelengthCounts, "The wavelengths section's numbers of wavelengths")
+      ->capture_default_str();
+  app.add_option("--batches", batches, "The wavelengths section's batches (0: all at once)")->capture_default_str();
   app.add_option("--reference-cache", referenceCache, "File of the reference's sky radiances (read, else written)");
   app.add_option("--reference-scale", referenceScale, "Reference table sizes relative to the defaults")->capture_default_str();
   app.add_option("--reference-orders", referenceOrders, "Reference scattering orders")->capture_default_str();
@@ -243,9 +248,9 @@ int main(int argc, char** argv) {
   // Wavelengths: default sizes, 4 orders.
   if (want("wavelengths")) {
     std::printf("| wavelengths %s|\n%s|\n", header, rule);
-    for (int n : {3, 15, 47}) {
+    for (int n : wavelengthCounts) {
       const Atmosphere a = loadAtmosphere(preset, wavelengthSet(n).nm);
-      for (int batch : {0, 8}) {
+      for (int batch : batches) {
         if (batch >= n) continue;
         PrecomputeOptions o = scaled(1.0, 4, false);
         o.wavelengthBatch = batch;

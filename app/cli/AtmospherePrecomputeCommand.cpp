@@ -1,7 +1,7 @@
 // umbra atmosphere precompute --preset NAME|--config FILE [--refraction] [--orders N]
 //   [--wavelengths N] [--transmittance-size WxH] [--scattering-size R,MU,MU_S,NU]
-//   [--irradiance-size WxH] [--refraction-size WxH] [--wavelength-batch N] --output DIR
-//   [--cache-dir D] [--no-cache]
+//   [--irradiance-size WxH] [--refraction-size WxH] [--wavelength-batch N] [--memory MiB]
+//   --output DIR [--cache-dir D] [--no-cache]
 //
 // Writes the Bruneton tables of vtkAtmosphereTablesSource (and, with --refraction, the
 // refraction table; the scattering then follows refracted paths) into DIR, one EXR file per
@@ -23,7 +23,9 @@
 #include <cstdlib>
 
 
+#include "Describe.hpp"
 #include "FieldParameters.h"
+#include "Precompute.hpp"
 #include "vtkAtmosphereTablesSource.h"
 #include "umbra/tables/Exr.h"
 #include "umbra/tables/TableCache.h"
@@ -37,6 +39,7 @@
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -92,6 +95,7 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
     std::string preset, config, output;
     bool refraction = false;
     int orders = 4, wavelengths = 3, wavelengthBatch = 0;
+    double memoryMiB = 384;
     std::string refractionSize = "512x256", transmittanceSize = "256x64", scatteringSize = "32,128,32,8", irradianceSize = "64x16";
     std::string step = "10km";
     CacheOptions cache;
@@ -115,8 +119,13 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
                          "Refraction table WxH (x_mu x x_r), with --refraction")
       ->capture_default_str();
   precompute->add_option("--wavelength-batch", o->wavelengthBatch,
-                         "Wavelengths computed together (0: all): fewer hold less memory and take more time; "
-                         "the tables are the same (docs/accuracy-vs-speed.md, \"Wavelengths computed together\")")
+                         "Wavelengths computed together (0: as many as --memory allows): fewer hold less memory and "
+                         "take more time; the tables are the same (docs/accuracy-vs-speed.md, \"Wavelengths computed "
+                         "together\")")
+      ->capture_default_str();
+  precompute->add_option("--memory", o->memoryMiB,
+                         "MiB the batch of wavelengths computed together may hold (with --wavelength-batch 0): all "
+                         "wavelengths at once when they fit, else batches that do")
       ->capture_default_str();
   precompute->add_option("--output", o->output, "Directory to write (created if its parent exists)")->required();
   o->cache.addTo(precompute);
@@ -142,7 +151,10 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       if (o->wavelengths < 1 || o->wavelengths > 256)
         throw CommandError("--wavelengths: expected 1 to 256, got " + std::to_string(o->wavelengths));
       if (o->wavelengthBatch < 0 || o->wavelengthBatch > 256)
-        throw CommandError("--wavelength-batch: expected 0 (all) to 256, got " + std::to_string(o->wavelengthBatch));
+        throw CommandError("--wavelength-batch: expected 0 (from --memory) to 256, got " +
+                           std::to_string(o->wavelengthBatch));
+      if (!(o->memoryMiB >= 1.0 && o->memoryMiB <= 1e7))
+        throw CommandError("--memory: expected 1 to 1e7 MiB, got " + atmosphere::formatNumber(o->memoryMiB));
 
       // The output directory: its parent must exist; it must be (or become) a directory.
       const fs::path dir(o->output);
@@ -161,7 +173,21 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       source->SetTables(vtkAtmosphereTablesSource::Bruneton | (o->refraction ? vtkAtmosphereTablesSource::Refraction : 0));
       source->SetRefractedPaths(o->refraction);
       source->SetOrders(o->orders);
-      source->SetWavelengthBatch(o->wavelengthBatch);
+      // The batch: as asked, else all wavelengths when they fit --memory (over ranks: then
+      // shared out by the source), else the most that fit.
+      int batch = o->wavelengthBatch;
+      if (batch == 0) {
+        atmosphere::PrecomputeOptions po;
+        po.scatteringR = scattering[0], po.scatteringMu = scattering[1];
+        po.scatteringMuS = scattering[2], po.scatteringNu = scattering[3];
+        po.orders = o->orders;
+        const int scatterers = static_cast<int>(
+            std::count_if(atm.components.begin(), atm.components.end(), [](const auto& c) { return c.scatters(); }));
+        const int fit = atmosphere::wavelengthBatchFor(po, scatterers, o->wavelengths,
+                                                       static_cast<std::size_t>(o->memoryMiB * 1024.0 * 1024.0));
+        if (fit < o->wavelengths) batch = fit;
+      }
+      source->SetWavelengthBatch(batch);
       source->SetSpreadOverRanks(true);  // under mpirun: the wavelength batches shared, rank 0 writes
       source->SetWavelengths(o->wavelengths);
       source->SetTransmittanceSize(transmittance[0], transmittance[1]);
@@ -169,39 +195,54 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       source->SetIrradianceSize(irradiance[0], irradiance[1]);
       source->SetRefractionWidth(refraction[0]);
       source->SetRefractionHeight(refraction[1]);
-      updateTablesSource(source, o->cache, "atmosphere tables (" + atm.name + ")");
-      if (!parallel::Ranks::world().root()) return 0;
-
       // Every table goes into a sibling temporary directory first; then that directory
       // becomes DIR (a new one: one rename), or its files move into DIR (an existing one):
-      // a kill while the tables are written leaves no half-filled DIR.
-      vtkMultiBlockDataSet* blocks = source->GetOutput();
+      // a kill while the tables are written leaves no half-filled DIR. The source writes
+      // the Bruneton tables there itself, a batch of wavelengths at a time (FileBacked).
+      const bool root = parallel::Ranks::world().root();
       const bool created = !fs::exists(dir, ec);
       const fs::path target = dir.filename().empty() ? dir.parent_path() : dir;  // "out/" is "out"
       const fs::path staging = target.parent_path() / ("." + target.filename().string() + ".tmp-" +
                                                        std::to_string(::getpid()));
-      // A killed run's staging directory (its process gone) goes now.
-      const std::string stagingPrefix = "." + target.filename().string() + ".tmp-";
-      const fs::path parentDir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-      for (fs::directory_iterator it(parentDir, ec), end; !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        if (name.rfind(stagingPrefix, 0) != 0) continue;
-        const long pid = std::atol(name.c_str() + stagingPrefix.size());
-        std::error_code removeEc;
-        if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) fs::remove_all(it->path(), removeEc);
+      if (root) {
+        // A killed run's staging directory (its process gone) goes now.
+        const std::string stagingPrefix = "." + target.filename().string() + ".tmp-";
+        const fs::path parentDir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+        for (fs::directory_iterator it(parentDir, ec), end; !ec && it != end; it.increment(ec)) {
+          const std::string name = it->path().filename().string();
+          if (name.rfind(stagingPrefix, 0) != 0) continue;
+          const long pid = std::atol(name.c_str() + stagingPrefix.size());
+          std::error_code removeEc;
+          if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) fs::remove_all(it->path(), removeEc);
+        }
+        ec.clear();
+        fs::remove_all(staging, ec);
+        if (!fs::create_directory(staging, ec))
+          throw CommandError(o->output + ": cannot create a directory beside it: " + ec.message());
       }
-      ec.clear();
-      fs::remove_all(staging, ec);
-      if (!fs::create_directory(staging, ec))
-        throw CommandError(o->output + ": cannot create a directory beside it: " + ec.message());
+      source->SetFileBacked(true);
+      source->SetScratchDirectory(staging.string().c_str());
+      try {
+        updateTablesSource(source, o->cache, "atmosphere tables (" + atm.name + ")");
+      } catch (...) {
+        if (root) fs::remove_all(staging, ec);
+        throw;
+      }
+      if (!root) return 0;
+      vtkMultiBlockDataSet* blocks = source->GetOutput();
       std::vector<std::string> names;
       try {
         for (unsigned i = 0; i < blocks->GetNumberOfBlocks(); ++i) {
           auto* image = vtkImageData::SafeDownCast(blocks->GetBlock(i));
           if (!image) continue;
-          const tables::Table table = tableOf(image);
-          const std::string name = table.parameters.at("kind") + ".exr";
-          tables::writeExr((staging / name).string(), table);
+          const std::map<std::string, std::string> parameters = filters::fieldParameters(image);
+          const std::string name = parameters.at("kind") + ".exr";
+          if (const auto file = parameters.find("file"); file != parameters.end()) {
+            fs::rename(file->second, staging / name, ec);
+            if (ec) throw CommandError(file->second + ": cannot rename: " + ec.message());
+          } else {
+            tables::writeExr((staging / name).string(), tableOf(image));
+          }
           names.push_back(name);
         }
         if (created) {

@@ -28,12 +28,12 @@ UMBRA_KERNEL void sNuTexels(const ScatterGeometry& geometry, double xr, double y
 
 /// out[0..width * channels) = the (r, mu) interpolation of a 4D table: the cell's four
 /// rows of (mu_s, nu) texels blended with their weights, in one pass.
-UMBRA_KERNEL void blendRows(const Table3D& T, const RMuCell& a, double* out) {
+UMBRA_KERNEL void blendRows(const FloatTable3D& T, const RMuCell& a, double* out) {
   const std::size_t n = static_cast<std::size_t>(T.width) * T.channels;
-  const double* r00 = T.at(0, a.iy, a.iz);
-  const double* r01 = T.at(0, a.iy + 1, a.iz);
-  const double* r10 = T.at(0, a.iy, std::min(a.iz + 1, T.depth - 1));
-  const double* r11 = T.at(0, a.iy + 1, std::min(a.iz + 1, T.depth - 1));
+  const float* r00 = T.at(0, a.iy, a.iz);
+  const float* r01 = T.at(0, a.iy + 1, a.iz);
+  const float* r10 = T.at(0, a.iy, std::min(a.iz + 1, T.depth - 1));
+  const float* r11 = T.at(0, a.iy + 1, std::min(a.iz + 1, T.depth - 1));
   const double w00 = (1.0 - a.wz) * (1.0 - a.wy), w01 = (1.0 - a.wz) * a.wy, w10 = a.wz * (1.0 - a.wy),
                w11 = a.wz * a.wy;
   for (std::size_t i = 0; i < n; ++i) out[i] = w00 * r00[i] + w01 * r01[i] + w10 * r10[i] + w11 * r11[i];

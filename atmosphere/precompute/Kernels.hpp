@@ -13,7 +13,7 @@ void sNuTexels(const ScatterGeometry& geometry, double xr, double yr, double tx,
 
 /// out[0..width * channels) = the (r, mu) interpolation of a 4D table: the cell's four
 /// rows of (mu_s, nu) texels blended with their weights, in one pass.
-void blendRows(const Table3D& T, const RMuCell& a, double* out);
+void blendRows(const FloatTable3D& T, const RMuCell& a, double* out);
 
 /// The sun at a view-ray sample (radius r, frame xr, yr) for n texels of a row (the sun
 /// sx, muS0 in the ray's frame): its visibility (sunVisibility) and the column coordinate

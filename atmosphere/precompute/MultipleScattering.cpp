@@ -17,8 +17,8 @@ void computeMultipleScattering(Batch& B) {
   const double b = B.b;
   const int nl = B.nl, W = B.W, MU = B.MU, R = B.R, MUS = B.MUS, l0 = B.l0;
   const std::vector<RaySamples>& mRays = B.multipleScatteringRays();
-  const Table3D& density = B.density;
-  Table3D& delta = B.delta;
+  const FloatTable3D& density = B.density;
+  FloatTable3D& delta = B.delta;
   FloatTable3D& multiple = B.multiple;
   B.run.run("multiple scattering", 1.0, R * MU, [&, g, b, nl, W, MU, MUS, l0](int i) {
     const int y = i % MU, z = i / MU;

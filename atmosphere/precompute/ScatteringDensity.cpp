@@ -86,7 +86,7 @@ void computeScatteringDensity(Batch& B, int order) {
   const int nl = B.nl, ns = B.ns, MU = B.MU, MUS = B.MUS;
   const Table2D& Ttab = B.out.transmittance;
   const Table2D& deltaE = B.deltaE;
-  Table3D& density = B.density;
+  FloatTable3D& density = B.density;
   const DensityDirections& d = B.directions;
   const int nTh = d.nTh, nPh = d.nPh, nDir = d.nDir;
   const std::vector<double>&wxAll = d.wx, &wyAll = d.wy, &wzAll = d.wz, &wdoAll = d.wdo;
@@ -174,20 +174,19 @@ void computeScatteringDensity(Batch& B, int order) {
           }
         }
         if (!mixed.empty()) tablePositions(cj.data(), 2 * nDir, tableIndex.data(), tableWeight.data());
-        // pPair: a lobe's values over the directions, each averaged with its mirror's; the
-        // sum against the incoming light renormalised to the lobe's exact integral.
-        auto renormalisedSum = [&](double exactIntegral, int l) {
-#pragma omp simd
-          for (int j = 0; j < nDir; ++j) pPair[j] = 0.5 * (pj[j] + pj[nDir + j]);
-          const double norm = dot(pPair.data(), wdo, nDir);
-          const double scale = norm > 0.0 ? exactIntegral / norm : 1.0;
-          return scale * dot(pPair.data(), &Lw[static_cast<std::size_t>(l) * nDir], nDir);
-        };
+        // pPair: a lobe's values over the directions, each averaged with its mirror's; its
+        // sum against each of its wavelengths' incoming light, renormalised to the lobe's
+        // exact integral (one norm for all of them).
         for (std::size_t li = 0; li < m.lobes.size(); ++li) {
           const Lobe& lobe = m.lobes[li];
           if (!lobe.table.empty()) continue;
           lobeValues(lobe.A, lobe.B, lobe.g, cj.data(), pj.data(), 2 * nDir);
-          for (int l : m.lobeUsers[li]) lobeSum[li * nl + l] = renormalisedSum(lobeIntegral[li], l);
+#pragma omp simd
+          for (int j = 0; j < nDir; ++j) pPair[j] = 0.5 * (pj[j] + pj[nDir + j]);
+          const double norm = dot(pPair.data(), wdo, nDir);
+          const double scale = norm > 0.0 ? lobeIntegral[li] / norm : 1.0;
+          for (int l : m.lobeUsers[li])
+            lobeSum[li * nl + l] = scale * dot(pPair.data(), &Lw[static_cast<std::size_t>(l) * nDir], nDir);
         }
         std::fill(J.begin(), J.end(), 0.0);
         if (!mixed.empty()) {

@@ -8,7 +8,9 @@
 #include "Refraction.hpp"
 #include "SightLines.hpp"
 #include "SpreadTable.h"
+#include "Ranks.hpp"
 #include "umbra/tables/CachedTables.h"
+#include "umbra/tables/PlanarTableFile.h"
 
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
@@ -19,6 +21,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <memory>
 #include <optional>
 #include <type_traits>
 
@@ -82,17 +85,20 @@ umbra::tables::Table toTable(const std::vector<Value>& values, int width, int ro
   return t;
 }
 
-/// The block of a table: 2D over unit ranges, or 3D in texel indices (rows stacked per slice).
+/// The block of a table of width x height texels, no arrays yet: 2D over unit ranges, or 3D
+/// in texel indices (rows stacked per slice).
+vtkSmartPointer<vtkImageData> imageOf(int width, int height, int depth) {
+  if (depth <= 1) return unitRangeImage(width, height);
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(width, height / depth, depth);
+  image->SetSpacing(1.0, 1.0, 1.0);
+  image->SetOrigin(0.0, 0.0, 0.0);
+  return image;
+}
+
+/// The block of a table, its channels as arrays.
 vtkSmartPointer<vtkImageData> blockOf(const umbra::tables::Table& t, int depth) {
-  vtkSmartPointer<vtkImageData> image;
-  if (depth <= 1) {
-    image = unitRangeImage(t.width, t.height);
-  } else {
-    image = vtkSmartPointer<vtkImageData>::New();
-    image->SetDimensions(t.width, t.height / depth, depth);
-    image->SetSpacing(1.0, 1.0, 1.0);
-    image->SetOrigin(0.0, 0.0, 0.0);
-  }
+  vtkSmartPointer<vtkImageData> image = imageOf(t.width, t.height, depth);
   const std::size_t n = static_cast<std::size_t>(t.width) * t.height, nc = t.channels.size();
   std::vector<float> values(n);
   for (std::size_t c = 0; c < nc; ++c) {
@@ -212,6 +218,81 @@ void setBlock(vtkMultiBlockDataSet* output, unsigned& block, vtkImageData* image
   ++block;
 }
 
+/// The Bruneton tables `made` (requests[i] asks for made[i]) as files in `scratch` on one
+/// rank (vtkAtmosphereTablesSource::SetFileBacked): read from the cache, or computed by
+/// `po` a batch of wavelengths at a time.
+void makeBrunetonFiles(vtkAtmosphereTablesSource* source, const umbra::atmosphere::Atmosphere& atm,
+                       const umbra::tables::TableCache& cache, bool useCache, const umbra::tables::TableCache& scratch,
+                       const BrunetonSet& set, const std::vector<BrunetonTable*>& made,
+                       const std::vector<umbra::tables::TableRequest>& requests,
+                       const umbra::atmosphere::PrecomputeOptions& po, umbra::tables::CacheOutcome& outcome,
+                       int& precomputeCalls) {
+  using namespace umbra;
+  // From the cache when every needed table is there as asked (checked one at a time, each
+  // then dropped), copied as it is.
+  const auto fromCache = [&] {
+    for (const tables::TableRequest& r : requests) {
+      if (!r.needed) continue;
+      const std::optional<tables::Table> t = cache.load(r.kind, r.parameters);
+      if (!t || t->width != r.width || t->height != r.height || t->channels != r.channels) return false;
+    }
+    for (const tables::TableRequest& r : requests)
+      if (r.needed) scratch.copyFrom(cache, r.kind, r.parameters);
+    return true;
+  };
+  std::unique_ptr<tables::TableCache::Lock> lock;
+  if (useCache) {
+    bool hit = fromCache();
+    if (!hit && !requests.empty()) {  // made by one process at a time, as cachedOrComputed does
+      lock = cache.lock(requests.front().kind, requests.front().parameters);
+      if (lock) hit = fromCache();
+    }
+    if (hit) {
+      for (const tables::TableRequest& r : requests) outcome.hits += r.needed ? 1 : 0;
+      return;
+    }
+  }
+
+  ++precomputeCalls;
+  std::vector<std::unique_ptr<tables::PlanarTableFile>> planes(requests.size());
+  for (std::size_t i = 0; i < requests.size(); ++i)
+    if (made[i]->depth > 1)
+      planes[i] = std::make_unique<tables::PlanarTableFile>(scratch.directory(), requests[i].width, requests[i].height,
+                                                            requests[i].channels);
+  atmosphere::AtmosphereTables result = atmosphere::precompute(
+      atm, po,
+      [source](double f, const std::string&) {
+        source->UpdateProgress(0.9 * f);
+        return !source->GetAbortExecute();
+      },
+      [&](int first, int table, const atmosphere::FloatTable3D& values) {
+        // Table `table`: that component's single scattering, or (after them) the multiple.
+        const bool multiple = table == static_cast<int>(set.components.size());
+        for (std::size_t i = 0; i < requests.size(); ++i)
+          if (planes[i] && (multiple ? made[i]->name == "multiple-scattering"
+                                     : made[i]->parameters.count("component") &&
+                                           made[i]->parameters.at("component") == set.components.at(table)))
+            planes[i]->put(first, values.channels, values.values.data());
+      });
+  for (std::size_t i = 0; i < requests.size(); ++i) {
+    const tables::TableRequest& r = requests[i];
+    if (planes[i]) {
+      scratch.store(r.kind, r.parameters, *planes[i]);
+      planes[i].reset();
+    } else {
+      scratch.store(r.kind, r.parameters, set.takeTable(result, *made[i]));
+    }
+    source->UpdateProgress(0.9 + 0.1 * static_cast<double>(i + 1) / static_cast<double>(requests.size()));
+    outcome.computed += r.needed ? 1 : 0;
+    if (!useCache) continue;
+    try {
+      cache.copyFrom(scratch, r.kind, r.parameters);
+    } catch (const std::exception& e) {
+      if (outcome.warning.empty()) outcome.warning = e.what();
+    }
+  }
+}
+
 } // namespace
 
 vtkAtmosphereTablesSource::vtkAtmosphereTablesSource() { this->SetNumberOfInputPorts(0); }
@@ -304,6 +385,30 @@ void vtkAtmosphereTablesSource::AddBrunetonBlocks(const umbra::atmosphere::Atmos
     made.push_back(&t);
     requests.push_back({"atmosphere-" + t.name, t.parameters, w, h, set.channels, (requested & bit) != 0});
   }
+  const bool overRanks = this->SpreadOverRanks && parallel::Ranks::world().size() > 1;
+  std::optional<tables::TableCache> scratch;
+  if (this->FileBacked) {
+    if (this->ScratchDirectory.empty()) throw std::invalid_argument("FileBacked: no ScratchDirectory");
+    scratch.emplace(this->ScratchDirectory, 0);
+  }
+  // The blocks of the requested tables as files in the scratch directory.
+  const auto fileBlocks = [&] {
+    for (std::size_t i = 0; i < made.size(); ++i) {
+      if (!requests[i].needed) continue;
+      ParameterMap parameters = made[i]->parameters;
+      parameters["file"] = scratch->pathFor(requests[i].kind, parameters);
+      setBlock(output, block, imageOf(requests[i].width, requests[i].height, made[i]->depth), parameters,
+               requests[i].kind, made[i]->name);
+    }
+  };
+  if (this->FileBacked && !overRanks) {
+    tables::CacheOutcome outcome;
+    makeBrunetonFiles(this, atm, cache, this->UseCache, *scratch, set, made, requests,
+                      onlyTransmittance ? transmittanceOnly(set.po) : set.po, outcome, this->PrecomputeCalls);
+    this->Count(outcome);
+    fileBlocks();
+    return;
+  }
   // Over ranks: wavelength batches of ceil(wavelengths / ranks) unless the batch is given.
   const int nl = static_cast<int>(set.channels.size());
   const auto batchFor = [&](int count) {
@@ -332,6 +437,13 @@ void vtkAtmosphereTablesSource::AddBrunetonBlocks(const umbra::atmosphere::Atmos
       },
       outcome);
   this->Count(outcome);
+  if (this->FileBacked) {  // over ranks: rank 0 writes the gathered tables
+    if (parallel::Ranks::world().root())
+      for (std::size_t i = 0; i < made.size(); ++i)
+        if (requests[i].needed) scratch->store(requests[i].kind, made[i]->parameters, values[i]);
+    fileBlocks();
+    return;
+  }
   for (std::size_t i = 0; i < made.size(); ++i)
     if (requests[i].needed) made[i]->table = std::move(values[i]);
   values.clear();

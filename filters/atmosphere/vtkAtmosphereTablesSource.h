@@ -136,6 +136,19 @@ public:
   vtkSetMacro(SpreadOverRanks, bool);
   vtkGetMacro(SpreadOverRanks, bool);
 
+  /// The Bruneton tables as files, not arrays: each block holds its size and parameters
+  /// but no values, and its parameter "file" names its EXR file in ScratchDirectory (named
+  /// as umbra::tables::TableCache names it there). A precomputation writes each batch of
+  /// wavelengths (WavelengthBatch) to the files as it is made, so that no table is held
+  /// for every wavelength at once: the memory of one batch, for writing tables out (umbra
+  /// atmosphere precompute). With the cache, tables are read from it one at a time and
+  /// copied to ScratchDirectory, and computed ones copied into it. Off by default.
+  vtkSetMacro(FileBacked, bool);
+  vtkGetMacro(FileBacked, bool);
+  /// Where FileBacked puts the files (an existing directory; required with FileBacked).
+  vtkSetStdStringFromCharMacro(ScratchDirectory);
+  vtkGetCharFromStdStringMacro(ScratchDirectory);
+
   // ---- the refraction table ----
   vtkSetClampMacro(RefractionWidth, int, 2, 8192);
   vtkGetMacro(RefractionWidth, int);
@@ -200,6 +213,8 @@ private:
   int Threads = 0;
   int WavelengthBatch = 0;
   bool SpreadOverRanks = false;
+  bool FileBacked = false;
+  std::string ScratchDirectory;
   int RefractionWidth = 512;
   int RefractionHeight = 256;
   double RefractionStepM = 10e3;

@@ -785,6 +785,67 @@ TEST(Precompute, WavelengthBatchesGiveTheSameTables) {
   EXPECT_EQ(all.irradiance.values, one.irradiance.values);
 }
 
+// A sink gets each batch's tables as they are finished (each component's single
+// scattering, then the multiple), a batch's channels wide: put side by side they are the
+// tables precompute() gives without one, to the bit; the tables it returns then hold no 4D
+// values. One order: a multiple scattering of zeros.
+TEST(Precompute, ASinkGetsEachBatchsTablesOnceFinished) {
+  const Atmosphere earth = loadAtmosphere("earth", {680.0, 620.0, 550.0, 500.0, 440.0});
+  PrecomputeOptions o = smallOptions();
+  o.scatteringR = 4;
+  o.scatteringMu = 8;
+  for (int orders : {1, 2}) {
+    o.orders = orders;
+    o.wavelengthBatch = 0;
+    const AtmosphereTables all = precompute(earth, o);
+    const int ns = static_cast<int>(all.singleScattering.size());
+    ASSERT_GE(ns, 2);
+    std::vector<FloatTable3D> put(ns + 1);
+    for (int q = 0; q <= ns; ++q) put[q].resize(all.multipleScattering.width, all.multipleScattering.height,
+                                                all.multipleScattering.depth, 5);
+    std::vector<std::pair<int, int>> calls;  // (first channel, table)
+    o.wavelengthBatch = 2;
+    const AtmosphereTables sunk = precompute(earth, o, {}, [&](int first, int table, const FloatTable3D& v) {
+      calls.emplace_back(first, table);
+      ASSERT_EQ(v.channels, first == 4 ? 1 : 2);
+      ASSERT_EQ(v.values.size() / v.channels, put[table].values.size() / 5);
+      for (std::size_t i = 0; i < v.values.size() / v.channels; ++i)
+        for (int k = 0; k < v.channels; ++k) put[table].values[i * 5 + first + k] = v.values[i * v.channels + k];
+    });
+    std::vector<std::pair<int, int>> expected;
+    for (int first : {0, 2, 4})
+      for (int q = 0; q <= ns; ++q) expected.emplace_back(first, q);
+    EXPECT_EQ(calls, expected) << orders;
+    for (int q = 0; q < ns; ++q) EXPECT_EQ(put[q].values, all.singleScattering[q].values) << orders << " " << q;
+    EXPECT_EQ(put[ns].values, all.multipleScattering.values) << orders;
+    if (orders == 1)
+      EXPECT_TRUE(std::all_of(put[ns].values.begin(), put[ns].values.end(), [](float v) { return v == 0.0f; }));
+    EXPECT_TRUE(sunk.singleScattering.empty());
+    EXPECT_TRUE(sunk.multipleScattering.values.empty());
+    EXPECT_EQ(sunk.transmittance.values, all.transmittance.values);
+    EXPECT_EQ(sunk.irradiance.values, all.irradiance.values);
+  }
+}
+
+// The batch that fits a memory budget: all wavelengths when they fit, else the fewest
+// batches that do, as even as they can be.
+TEST(Precompute, WavelengthBatchForFitsTheBudgetEvenly) {
+  const PrecomputeOptions o;
+  const std::size_t per = batchBytesPerWavelength(o, 2);
+  // 4D: single x 2 + J_2 (3 tables in float); rays: T and two weights per sample (double).
+  const std::size_t texels = 8u * 32 * 128 * 32, samples = 32u * 128 * 51;
+  EXPECT_EQ(per, 3 * texels * 4 + samples * 3 * 8);
+  EXPECT_EQ(wavelengthBatchFor(o, 2, 15, 15 * per), 15);
+  EXPECT_EQ(wavelengthBatchFor(o, 2, 15, 15 * per - 1), 8);  // 14 fit: 2 batches, 8 + 7
+  EXPECT_EQ(wavelengthBatchFor(o, 2, 47, 22 * per), 16);     // 16 + 16 + 15, not 22 + 22 + 3
+  EXPECT_EQ(wavelengthBatchFor(o, 2, 47, 3 * per), 3);
+  EXPECT_EQ(wavelengthBatchFor(o, 2, 47, 0), 1);
+  // One order keeps no J nor L: one table more than the scatterers.
+  PrecomputeOptions single = o;
+  single.orders = 1;
+  EXPECT_EQ(batchBytesPerWavelength(single, 1), 2 * texels * 4 + samples * 2 * 8);
+}
+
 TEST(Precompute, ProgressIsReportedAndCanCancel) {
   const Atmosphere earth = loadAtmosphere("earth", {550.0});
   PrecomputeOptions o = smallOptions();

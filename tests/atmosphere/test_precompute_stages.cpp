@@ -168,7 +168,7 @@ TEST(PrecomputeStages, KernelsAgainstPlainSums) {
   double sum = 0.0;
   for (int i = 0; i < 37; ++i) a[i] = 0.1 * i, b[i] = 1.0 - 0.02 * i, sum += a[i] * b[i];
   EXPECT_NEAR(dot(a.data(), b.data(), 37), sum, 1e-12);
-  Table3D t;
+  FloatTable3D t;
   t.resize(6, 4, 3, 2);
   std::fill(t.values.begin(), t.values.end(), 0.75);
   std::vector<double> out(6 * 2);

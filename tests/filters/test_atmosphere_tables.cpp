@@ -1,6 +1,7 @@
 // vtkAtmosphereTablesSource: the blocks asked for, their values, and the cache keyed by
 // what each table depends on.
 #include "FieldParameters.h"
+#include "umbra/tables/Exr.h"
 #include "vtkAtmosphereTablesSource.h"
 
 #include <vtkCallbackCommand.h>
@@ -396,4 +397,82 @@ TEST(AtmosphereTablesSource, AnUnwritableCacheStillGivesTheTables) {
   EXPECT_EQ(source->GetLastCacheHits(), 0);
   EXPECT_GT(source->GetLastComputed(), 0);
   blocked.path = cache.path;  // removed once
+}
+
+// FileBacked: the tables written to files a batch of wavelengths at a time are the
+// in-memory blocks' values to the bit, with the same parameters; a second source reads them
+// from the cache (no precomputation) and copies the same files; without the cache nothing
+// goes into it.
+TEST(AtmosphereTablesSource, FileBackedTablesAreTheBlocksValuesWrittenBatchByBatch) {
+  CacheDir cache, scratch, scratch2, untouched;
+  scratch.path += "-scratch", scratch2.path += "-scratch2", untouched.path += "-untouched";
+  fs::create_directories(scratch.path);
+  fs::create_directories(scratch2.path);
+  vtkNew<vtkAtmosphereTablesSource> memory, files, again, off;
+  for (vtkAtmosphereTablesSource* s : {memory.Get(), files.Get(), again.Get(), off.Get()}) {
+    configure(s, cache, "earth", vtkAtmosphereTablesSource::Bruneton);
+    s->SetWavelengths(5);
+  }
+  memory->SetUseCache(false);
+  memory->Update();
+  ASSERT_TRUE(memory->GetLastError().empty()) << memory->GetLastError();
+  files->SetFileBacked(true);
+  files->SetScratchDirectory(scratch.path.c_str());
+  files->SetWavelengthBatch(2);  // 2 + 2 + 1
+  files->Update();
+  ASSERT_TRUE(files->GetLastError().empty()) << files->GetLastError();
+  EXPECT_EQ(files->GetLastComputed(), 7);
+  const auto names = blockNames(memory);
+  ASSERT_EQ(blockNames(files), names);
+  for (const std::string& name : names) {
+    auto parameters = umbra::filters::fieldParameters(block(files, name));
+    ASSERT_EQ(parameters.count("file"), 1u) << name;
+    EXPECT_EQ(block(files, name)->GetPointData()->GetNumberOfArrays(), 0) << name;
+    const umbra::tables::Table t = umbra::tables::readExr(parameters.at("file"));
+    vtkPointData* a = block(memory, name)->GetPointData();
+    ASSERT_EQ(t.channels.size(), static_cast<std::size_t>(a->GetNumberOfArrays())) << name;
+    for (std::size_t c = 0; c < t.channels.size(); ++c) {
+      auto* x = vtkFloatArray::SafeDownCast(a->GetArray(t.channels[c].c_str()));
+      ASSERT_NE(x, nullptr) << t.channels[c];
+      ASSERT_EQ(x->GetNumberOfTuples(), static_cast<vtkIdType>(t.width) * t.height) << name;
+      for (vtkIdType i = 0; i < x->GetNumberOfTuples(); ++i)
+        ASSERT_EQ(x->GetValue(i), t.data[static_cast<std::size_t>(i) * t.channels.size() + c]) << name << " " << i;
+    }
+    int dims[3], fileDims[3];
+    block(memory, name)->GetDimensions(dims);
+    block(files, name)->GetDimensions(fileDims);
+    EXPECT_EQ(std::vector<int>(dims, dims + 3), std::vector<int>(fileDims, fileDims + 3)) << name;
+    parameters.erase("file");
+    EXPECT_EQ(parameters, umbra::filters::fieldParameters(block(memory, name))) << name;
+  }
+
+  again->SetFileBacked(true);
+  again->SetScratchDirectory(scratch2.path.c_str());
+  again->Update();
+  ASSERT_TRUE(again->GetLastError().empty()) << again->GetLastError();
+  EXPECT_EQ(again->GetLastPrecomputeCalls(), 0);
+  EXPECT_EQ(again->GetLastCacheHits(), 7);
+  for (const std::string& name : names) {
+    const std::string a = umbra::filters::fieldParameters(block(files, name)).at("file");
+    const std::string b = umbra::filters::fieldParameters(block(again, name)).at("file");
+    EXPECT_NE(a, b);
+    std::ifstream fa(a, std::ios::binary), fb(b, std::ios::binary);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(fa), {}), std::string(std::istreambuf_iterator<char>(fb), {}))
+        << name;
+  }
+
+  off->SetFileBacked(true);
+  off->SetScratchDirectory(scratch.path.c_str());
+  off->SetCacheDirectory(untouched.path.c_str());
+  off->SetUseCache(false);
+  off->Update();
+  ASSERT_TRUE(off->GetLastError().empty()) << off->GetLastError();
+  EXPECT_EQ(off->GetLastComputed(), 7);
+  EXPECT_FALSE(fs::exists(untouched.path));
+
+  vtkNew<vtkAtmosphereTablesSource> noScratch;
+  configure(noScratch, cache, "earth", vtkAtmosphereTablesSource::Transmittance);
+  noScratch->SetFileBacked(true);
+  noScratch->Update();
+  EXPECT_NE(noScratch->GetLastError().find("ScratchDirectory"), std::string::npos) << noScratch->GetLastError();
 }

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstddef>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -328,8 +329,16 @@ namespace detail {
 
 void writeExr(const std::string& path, const Table& table,
               const std::map<std::string, std::string>& parameters) {
-  compressOnEveryCore();
   validateTable(table, path);
+  const std::size_t rowValues = static_cast<std::size_t>(table.width) * table.channels.size();
+  writeExrRows(path, table, parameters, table.height,
+               [&](int y0, int) { return table.data.data() + static_cast<std::size_t>(y0) * rowValues; });
+}
+
+void writeExrRows(const std::string& path, const Table& shape, const std::map<std::string, std::string>& parameters,
+                  int rowsPerBlock, const RowSource& rows) {
+  compressOnEveryCore();
+  validateShape(shape, path);
   validateParameters(parameters, path);
   checkDirectory(path);
 
@@ -338,15 +347,15 @@ void writeExr(const std::string& path, const Table& table,
 
   std::string failure;
   try {
-    const size_t nc = table.channels.size();
-    Imf::Header header(table.width, table.height);
+    const size_t nc = shape.channels.size();
+    Imf::Header header(shape.width, shape.height);
     header.compression() = Imf::ZIP_COMPRESSION;
     header.zipCompressionLevel() = 1;
     header.lineOrder() = Imf::INCREASING_Y;
-    for (const std::string& name : table.channels) {
+    for (const std::string& name : shape.channels) {
       header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     }
-    header.insert(kChannelOrderAttribute, Imf::StringVectorAttribute(table.channels));
+    header.insert(kChannelOrderAttribute, Imf::StringVectorAttribute(shape.channels));
     for (const auto& [key, value] : parameters) {
       header.insert(kParameterPrefix + key, Imf::StringAttribute(value));
     }
@@ -354,16 +363,19 @@ void writeExr(const std::string& path, const Table& table,
     FdOStream out(fd.get(), path);
     {
       Imf::OutputFile file(out, header);
-      Imf::FrameBuffer frame;
-      // The data window starts at (0, 0): pixel (x, y) of channel c is data[(y*w + x)*nc + c].
-      char* base = reinterpret_cast<char*>(const_cast<float*>(table.data.data()));
-      for (size_t c = 0; c < nc; ++c) {
-        frame.insert(table.channels[c],
-                     Imf::Slice(Imf::FLOAT, base + c * sizeof(float), nc * sizeof(float),
-                                nc * sizeof(float) * static_cast<size_t>(table.width)));
+      const size_t xStride = nc * sizeof(float), yStride = xStride * static_cast<size_t>(shape.width);
+      for (int y0 = 0; y0 < shape.height; y0 += std::max(1, rowsPerBlock)) {
+        const int n = std::min(std::max(1, rowsPerBlock), shape.height - y0);
+        // Pixel (x, y) of channel c is at block[((y - y0) * w + x) * nc + c]: the slices'
+        // base is where row 0 would be.
+        char* base = reinterpret_cast<char*>(const_cast<float*>(rows(y0, n))) - static_cast<std::ptrdiff_t>(y0) * yStride;
+        Imf::FrameBuffer frame;
+        for (size_t c = 0; c < nc; ++c) {
+          frame.insert(shape.channels[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+        }
+        file.setFrameBuffer(frame);
+        file.writePixels(n);
       }
-      file.setFrameBuffer(frame);
-      file.writePixels(table.height);
     }  // the destructor writes the line-offset table
     failure = out.error() != 0 ? errorText(out.error()) : commitTemporary(fd, tmp, path);
   } catch (const std::exception& e) {
@@ -372,6 +384,40 @@ void writeExr(const std::string& path, const Table& table,
   } catch (...) {
     failure = "unknown error";
   }
+  if (!failure.empty()) {
+    fd.close();
+    ::unlink(tmp.c_str());
+    throw TableError(path, "cannot write: " + failure);
+  }
+  syncDirectoryOf(path);
+}
+
+void copyFile(const std::string& from, const std::string& path) {
+  const int in = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) throw TableError(from, "cannot open: " + errorText(errno));
+  Fd source(in);
+  checkDirectory(path);
+  std::string tmp;
+  Fd fd(openTemporaryFor(path, tmp));
+  std::string failure;
+  std::vector<char> buffer(1 << 20);
+  for (;;) {
+    const ssize_t n = ::read(source.get(), buffer.data(), buffer.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      failure = "cannot read " + from + ": " + errorText(errno);
+      break;
+    }
+    if (n == 0) break;
+    for (ssize_t done = 0; done < n && failure.empty();) {
+      const ssize_t w = ::write(fd.get(), buffer.data() + done, static_cast<size_t>(n - done));
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) failure = errorText(w < 0 ? errno : EIO);
+      else done += w;
+    }
+    if (!failure.empty()) break;
+  }
+  if (failure.empty()) failure = commitTemporary(fd, tmp, path);
   if (!failure.empty()) {
     fd.close();
     ::unlink(tmp.c_str());

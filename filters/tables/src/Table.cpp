@@ -1,5 +1,7 @@
 #include "umbra/tables/Table.h"
 
+#include "ExrInternal.h"
+
 #include <set>
 
 namespace umbra::tables {
@@ -28,7 +30,9 @@ int Table::channelIndex(const std::string& name) const {
 TableError::TableError(const std::string& path, const std::string& detail)
     : std::runtime_error(path + ": " + detail), path_(path) {}
 
-void validateTable(const Table& table, const std::string& path) {
+namespace detail {
+
+void validateShape(const Table& table, const std::string& path) {
   auto fail = [&](const std::string& why) { throw TableError(path, "invalid table: " + why); };
   if (table.width <= 0 || table.height <= 0) {
     fail("size " + std::to_string(table.width) + " x " + std::to_string(table.height) +
@@ -42,13 +46,19 @@ void validateTable(const Table& table, const std::string& path) {
     if (name.size() > 255) fail("channel name longer than 255 characters");
     if (!seen.insert(name).second) fail("duplicate channel '" + name + "'");
   }
+}
+
+}  // namespace detail
+
+void validateTable(const Table& table, const std::string& path) {
+  detail::validateShape(table, path);
   const unsigned long long expected = static_cast<unsigned long long>(table.width) *
                                       static_cast<unsigned long long>(table.height) *
                                       table.channels.size();
   if (table.data.size() != expected) {
-    fail("data has " + std::to_string(table.data.size()) + " values, expected " +
-         std::to_string(table.width) + " x " + std::to_string(table.height) + " x " +
-         std::to_string(table.channels.size()) + " = " + std::to_string(expected));
+    throw TableError(path, "invalid table: data has " + std::to_string(table.data.size()) + " values, expected " +
+                               std::to_string(table.width) + " x " + std::to_string(table.height) + " x " +
+                               std::to_string(table.channels.size()) + " = " + std::to_string(expected));
   }
 }
 

@@ -32,6 +32,7 @@
 
 #include "ExrInternal.h"
 #include "umbra/tables/Exr.h"
+#include "umbra/tables/PlanarTableFile.h"
 
 namespace fs = std::filesystem;
 
@@ -86,19 +87,32 @@ std::map<std::string, std::string> withKind(const std::string& kind,
 constexpr const char* kChecksumKey = "checksum";
 
 // FNV-1a (64 bits) of the values' bytes and of the size, as 16 hex digits: a truncated,
-// swapped or edited table no longer matches its header.
-std::string checksumOf(const Table& t) {
-  std::uint64_t h = 1469598103934665603ull;
-  auto mix = [&](const void* data, std::size_t n) {
+// swapped or edited table no longer matches its header. Fed the values in order, a block
+// of rows at a time or all at once.
+class Checksum {
+public:
+  Checksum(int width, int height, std::size_t channels) {
+    const std::int64_t dims[3] = {width, height, static_cast<std::int64_t>(channels)};
+    mix(dims, sizeof dims);
+  }
+  void mix(const void* data, std::size_t n) {
     const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  };
-  const std::int64_t dims[3] = {t.width, t.height, static_cast<std::int64_t>(t.channels.size())};
-  mix(dims, sizeof dims);
-  mix(t.data.data(), t.data.size() * sizeof(float));
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
-  return text;
+    for (std::size_t i = 0; i < n; ++i) h_ = (h_ ^ p[i]) * 1099511628211ull;
+  }
+  std::string text() const {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h_));
+    return text;
+  }
+
+private:
+  std::uint64_t h_ = 1469598103934665603ull;
+};
+
+std::string checksumOf(const Table& t) {
+  Checksum sum(t.width, t.height, t.channels.size());
+  sum.mix(t.data.data(), t.data.size() * sizeof(float));
+  return sum.text();
 }
 
 // Why a cached table cannot be used as it is (its size, a non-finite value, its checksum),
@@ -332,6 +346,45 @@ void TableCache::store(const std::string& kind,
   auto header = withKind(kind, parameters);
   header[kChecksumKey] = checksumOf(table);
   detail::writeExr(path, table, header);
+  enforceCap(path);
+}
+
+void TableCache::store(const std::string& kind, const std::map<std::string, std::string>& parameters,
+                       const PlanarTableFile& table) const {
+  const std::string path = pathFor(kind, parameters);
+  std::error_code ec;
+  fs::create_directories(directory_, ec);
+  if (ec) throw TableError(path, "cannot create cache directory '" + directory_ + "': " + ec.message());
+  // Twice through the rows: the checksum goes in the header, before them.
+  constexpr int kRows = 256;
+  std::vector<float> block;
+  Checksum sum(table.width(), table.height(), table.channels().size());
+  for (int y0 = 0; y0 < table.height(); y0 += kRows) {
+    table.rows(y0, std::min(kRows, table.height() - y0), block);
+    for (float v : block)
+      if (!std::isfinite(v)) throw TableError(path, "not cached: the table holds a non-finite value");
+    sum.mix(block.data(), block.size() * sizeof(float));
+  }
+  auto header = withKind(kind, parameters);
+  header[kChecksumKey] = sum.text();
+  Table shape;
+  shape.width = table.width();
+  shape.height = table.height();
+  shape.channels = table.channels();
+  detail::writeExrRows(path, shape, header, kRows, [&](int y0, int n) {
+    table.rows(y0, n, block);
+    return block.data();
+  });
+  enforceCap(path);
+}
+
+void TableCache::copyFrom(const TableCache& other, const std::string& kind,
+                          const std::map<std::string, std::string>& parameters) const {
+  const std::string path = pathFor(kind, parameters);
+  std::error_code ec;
+  fs::create_directories(directory_, ec);
+  if (ec) throw TableError(path, "cannot create cache directory '" + directory_ + "': " + ec.message());
+  detail::copyFile(other.pathFor(kind, parameters), path);
   enforceCap(path);
 }
 

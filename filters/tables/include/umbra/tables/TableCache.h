@@ -13,6 +13,8 @@
 
 namespace umbra::tables {
 
+class PlanarTableFile;
+
 class TableCache {
 public:
   // $UMBRA_CACHE_DIR if set and non-empty, else $XDG_CACHE_HOME/umbra (if absolute), else
@@ -51,6 +53,17 @@ public:
   // the writer's temporaries are left alone; removal errors are ignored.
   void store(const std::string& kind, const std::map<std::string, std::string>& parameters,
              const Table& table) const;
+
+  // store() of a table made a batch of channels at a time: written from its file a block of
+  // rows at a time (the same file store() writes for the same values), never held whole.
+  void store(const std::string& kind, const std::map<std::string, std::string>& parameters,
+             const PlanarTableFile& table) const;
+
+  // The table `other` holds for kind and parameters, copied here as it is (a stored file
+  // read back by load() here), without reading its values; then the cap as store() keeps
+  // it. Throws TableError naming the file that cannot be read or written.
+  void copyFrom(const TableCache& other, const std::string& kind,
+                const std::map<std::string, std::string>& parameters) const;
 
   // A JSON document kept beside the tables, for results that are not float images (the
   // Lorenz-Mie optics, which must come back to the bit): jsonPathFor, pathFor's path ending
