@@ -347,14 +347,21 @@ std::vector<double> transmittanceAlong(const AtmosphereTables& tables, double r,
 
 namespace {
 
-/// skyRadiance's table lookups at a Sun within the tables (muS >= muSMin).
+/// skyRadiance's table lookups at a Sun within the tables (muS >= muSMin): lookupScattering
+/// in each table, the cell found once for all of them.
 std::vector<double> tableRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r, double mu,
                                   double muS, double nu, bool ground) {
-  std::vector<double> L = lookupScattering(tables, tables.multipleScattering, r, mu, muS, nu, ground);
+  const ScatterGeometry g = geometryOf(tables);
+  const RMuCell a = rMuCell(g, r, mu, ground);
+  const SNuCell c = sNuCell(g, muS, nu);
+  const std::size_t nl = tables.wavelengthCount();
+  std::vector<double> L(nl, 0.0), S(nl);
+  accumulate4(tables.multipleScattering, a, c, 1.0, L.data());
   for (std::size_t q = 0; q < tables.singleScattering.size(); ++q) {
-    const Component& c = atmosphere.component(tables.scatteringComponents[q]);
-    const std::vector<double> S = lookupScattering(tables, tables.singleScattering[q], r, mu, muS, nu, ground);
-    for (std::size_t l = 0; l < L.size(); ++l) L[l] += S[l] * c.phase(l)(nu);
+    const Component& component = atmosphere.component(tables.scatteringComponents[q]);
+    std::fill(S.begin(), S.end(), 0.0);
+    accumulate4(tables.singleScattering[q], a, c, 1.0, S.data());
+    for (std::size_t l = 0; l < nl; ++l) L[l] += S[l] * component.phase(l)(nu);
   }
   return L;
 }

@@ -43,10 +43,7 @@ Caps capsOf(double R, double d) {
 
 } // namespace
 
-double limbDarkenedLuminance(double rho, double u) {
-  const double mu = std::sqrt(std::max(0.0, 1.0 - rho * rho));
-  return (1.0 - u * (1.0 - mu)) / (1.0 - u / 3.0);
-}
+double limbDarkenedLuminance(double rho, double u) { return limbDarkenedLuminanceAtSquare(rho * rho, u); }
 
 double limbDarkenedFluxInside(double rho, double u) {
   rho = std::clamp(rho, 0.0, 1.0);

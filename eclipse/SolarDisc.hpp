@@ -6,6 +6,9 @@
 // at the origin; the occluder disc has radius `occluderRadius` (= phi_occ / phi_sun) and
 // its centre is `separation` (= delta / phi_sun) away. Both discs are treated as flat
 // circles in the sky, which is exact to the order of phi_sun^2 (< 2e-5 at 1 au).
+#include <algorithm>
+#include <cmath>
+
 namespace umbra::eclipse {
 
 /// Solar radius used by the eclipse papers [m].
@@ -16,6 +19,11 @@ inline constexpr double kDefaultLimbDarkening = 0.6;
 /// Luminance of the limb-darkened disc at normalised radius rho in [0, 1] (Eq. 1),
 /// normalised so that its mean over the disc is 1 (the uniform disc's flux).
 double limbDarkenedLuminance(double rho, double limbDarkening);
+/// The same at rho^2 = rho2 (inline: the limb views' inner loop).
+inline double limbDarkenedLuminanceAtSquare(double rho2, double limbDarkening) {
+  const double mu = std::sqrt(std::max(0.0, 1.0 - rho2));
+  return (1.0 - limbDarkening * (1.0 - mu)) / (1.0 - limbDarkening / 3.0);
+}
 
 /// Flux of the limb-darkened disc inside radius rho, as a fraction of the whole disc's.
 double limbDarkenedFluxInside(double rho, double limbDarkening);

@@ -23,13 +23,17 @@ double sq(double x) { return x * x; }
 /// cos(a) - cos(b) without cancellation.
 double cosDifference(double a, double b) { return 2.0 * std::sin(0.5 * (a + b)) * std::sin(0.5 * (b - a)); }
 
-/// Gauss-Legendre nodes and weights on [0, 1], N points.
+/// Gauss-Legendre nodes and weights on [0, 1], N points; with SunRow::integral's
+/// substitution at each node t = pi x: (1 - cos t) / 2 and sin t.
 template <int N>
 struct GaussLegendre {  // on [0, 1]
-  std::array<double, N> x{}, w{};
+  std::array<double, N> x{}, w{}, halfVersine{}, sine{};
   GaussLegendre() {
     const atmosphere::GaussLegendreRule rule(N);
-    for (int i = 0; i < N; ++i) x[i] = 0.5 * (1.0 - rule.x[i]), w[i] = 0.5 * rule.w[i];
+    for (int i = 0; i < N; ++i) {
+      x[i] = 0.5 * (1.0 - rule.x[i]), w[i] = 0.5 * rule.w[i];
+      halfVersine[i] = 0.5 * (1.0 - std::cos(kPi * x[i])), sine[i] = std::sin(kPi * x[i]);
+    }
   }
 };
 template <int N>
@@ -50,8 +54,9 @@ struct SunRow {
   double integrand(double beta) const {
     const double s = std::sin(0.5 * beta);
     const double rho2 = std::clamp((A + B * s * s) / K, 0.0, 1.0);
-    const double cosine = cosTheta * cosDelta + sinTheta * sinDelta * std::cos(beta);
-    return limbDarkenedLuminance(std::sqrt(rho2), limbDarkening) * std::max(cosine, 0.0);
+    // cos beta = 1 - 2 sin^2(beta / 2): one sine per point.
+    const double cosine = cosTheta * cosDelta + sinTheta * sinDelta * (1.0 - 2.0 * s * s);
+    return limbDarkenedLuminanceAtSquare(rho2, limbDarkening) * std::max(cosine, 0.0);
   }
   /// Integral of the integrand over [a, b] inside the chord (the substitution
   /// beta = a + (b - a)(1 - cos t) / 2 smooths the square roots at the disc's edge), with
@@ -62,21 +67,26 @@ struct SunRow {
     if (b <= a) return 0.0;
     const GaussLegendre<N>& g = gaussLegendre<N>();
     double sum = 0.0;
-    for (std::size_t i = 0; i < g.x.size(); ++i) {
-      const double t = kPi * g.x[i];
-      sum += g.w[i] * integrand(a + (b - a) * 0.5 * (1.0 - std::cos(t))) * std::sin(t);
-    }
+    for (std::size_t i = 0; i < g.x.size(); ++i) sum += g.w[i] * integrand(a + (b - a) * g.halfVersine[i]) * g.sine[i];
     return sum * kPi * (b - a) * 0.5;
   }
 };
 
-SunRow sunRow(double exitPolarRad, const LimbPosition& p, double theta, double limbDarkening) {
+/// What the rows of a limb position share: the Sun's direction and size.
+struct SunSeen {
+  double separationRad, cosDelta, sinDelta, K;  ///< K = sin^2(phi_sun / 2)
+  explicit SunSeen(const LimbPosition& p)
+      : separationRad(p.separationRad), cosDelta(std::cos(p.separationRad)), sinDelta(std::sin(p.separationRad)),
+        K(sq(std::sin(0.5 * p.sunAngularRadiusRad))) {}
+};
+
+SunRow sunRow(double exitPolarRad, const SunSeen& sun, double theta, double limbDarkening) {
   SunRow row;
-  row.A = sq(std::sin(0.5 * (exitPolarRad - p.separationRad)));
-  row.B = std::sin(exitPolarRad) * std::sin(p.separationRad);
-  row.K = sq(std::sin(0.5 * p.sunAngularRadiusRad));
+  row.A = sq(std::sin(0.5 * (exitPolarRad - sun.separationRad)));
+  row.B = std::sin(exitPolarRad) * sun.sinDelta;
+  row.K = sun.K;
   row.cosTheta = std::cos(theta), row.sinTheta = std::sin(theta);
-  row.cosDelta = std::cos(p.separationRad), row.sinDelta = std::sin(p.separationRad);
+  row.cosDelta = sun.cosDelta, row.sinDelta = sun.sinDelta;
   row.limbDarkening = limbDarkening;
   // A + B s2 <= K for s2 = sin^2(beta / 2) in [0, 1].
   double lo = 0.0, hi = 1.0;
@@ -134,14 +144,15 @@ void scatteredRadiance(const AtmosphericShadowModel& m, const LimbPosition& p, d
 
 /// The Sun seen along polar angle theta: its chord (empty when the ray sees no Sun) and, per
 /// channel, transmittance x terrain / (the Sun's solid angle) in `weight`.
-SunRow sunAlong(const AtmosphericShadowModel& m, const LimbPosition& p, double theta, double* weight) {
+SunRow sunAlong(const AtmosphericShadowModel& m, const LimbPosition& p, const SunSeen& sun, double theta,
+                double* weight) {
   double dev = 0.0, contact = 0.0;
   m.rays.at(p.occluderDistanceM * std::sin(theta), dev, contact, weight);
   const double terrain = m.terrain.transmission(contact);
   if (terrain <= 0.0) return {};
-  const double scale = terrain / (4.0 * kPi * sq(std::sin(0.5 * p.sunAngularRadiusRad)));
+  const double scale = terrain / (4.0 * kPi * sun.K);
   for (int c = 0; c < m.rays.channels; ++c) weight[c] *= scale;
-  return sunRow(theta - dev, p, theta, m.limbDarkening);
+  return sunRow(theta - dev, sun, theta, m.limbDarkening);
 }
 
 /// At most this many sub-rows per row (forEachSunSubRow).
@@ -174,9 +185,10 @@ void forEachSunSubRow(const AtmosphericShadowModel& m, const LimbPosition& p, co
     const double sweep = (eHi - eLo) / (2.0 * p.sunAngularRadiusRad);
     n = std::clamp(static_cast<int>(std::ceil(sweep * subRowsPerSunDiameter)), 1, kMaxSubRows);
   }
+  const SunSeen sun(p);
   for (int k = 0; k < n; ++k) {
     const double a = lo + (hi - lo) * k / n, b = lo + (hi - lo) * (k + 1) / n;
-    const SunRow row = sunAlong(m, p, n == 1 ? g.theta[i] : 0.5 * (a + b), weight);
+    const SunRow row = sunAlong(m, p, sun, n == 1 ? g.theta[i] : 0.5 * (a + b), weight);
     if (row.empty()) continue;
     body(row, static_cast<const double*>(weight), n == 1 ? 1.0 : cosDifference(a, b) / g.solidAnglePerBeta[i]);
   }
