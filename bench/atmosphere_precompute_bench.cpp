@@ -135,8 +135,11 @@ int main(int argc, char** argv) {
                  "Comma-separated: default (default sizes, 4 orders only), sizes, orders, refraction, wavelengths")
       ->capture_default_str();
   app.add_option("--wavelength-counts", wavelengthCounts, "The wavelengths section's numbers of wavelengths")
+      ->delimiter(',')
       ->capture_default_str();
-  app.add_option("--batches", batches, "The wavelengths section's batches (0: all at once)")->capture_default_str();
+  app.add_option("--batches", batches, "The wavelengths section's batches (0: all at once)")
+      ->delimiter(',')
+      ->capture_default_str();
   app.add_option("--reference-cache", referenceCache, "File of the reference's sky radiances (read, else written)");
   app.add_option("--reference-scale", referenceScale, "Reference table sizes relative to the defaults")->capture_default_str();
   app.add_option("--reference-orders", referenceOrders, "Reference scattering orders")->capture_default_str();

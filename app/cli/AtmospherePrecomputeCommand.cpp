@@ -10,6 +10,9 @@
 // the filter's header comment: channels "L<nm>nm", 3D tables with their R slices stacked.
 // DIR is created when its parent exists. Each file is written atomically; when one cannot
 // be written, those already written by this run are removed (and DIR if this run made it).
+// The source writes the Bruneton tables itself, each batch of wavelengths as it is finished
+// (vtkAtmosphereTablesSource::SetFileBacked), into DIR's staging directory: no table is held
+// for every wavelength, and --memory (or --wavelength-batch) bounds the batch.
 // The size options exist mostly for tests and quick looks (e.g. --transmittance-size 16x8
 // --scattering-size 4,8,4,2 --irradiance-size 8x4 --orders 2 runs in well under a second).
 #include "AtmosphereCommon.hpp"

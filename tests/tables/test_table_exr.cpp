@@ -166,6 +166,20 @@ TEST_F(ExrTest, FileHasFloatZipChannelsPrefixedParametersAndRowZeroFirst) {
   for (int x = 0; x < 5; ++x) EXPECT_EQ(row[x], t.at(x, 0, 1)) << x;
 }
 
+// Tables over kUncompressedAboveBytes are stored without compression (ZIP gains little on
+// them); one float more than the bound is enough, one at it stays ZIP. Both read back.
+TEST_F(ExrTest, TablesOverTheBoundAreWrittenUncompressed) {
+  const int width = 1024, rows = static_cast<int>(kUncompressedAboveBytes / sizeof(float) / width);
+  for (int extra : {0, 1}) {
+    Table t = makeTable(width, rows + extra, {"L"});
+    const std::string path = file("big" + std::to_string(extra) + ".exr");
+    writeExr(path, t);
+    Imf::InputFile in(path.c_str());
+    EXPECT_EQ(in.header().compression(), extra ? Imf::NO_COMPRESSION : Imf::ZIP_COMPRESSION) << extra;
+    EXPECT_EQ(readExr(path).data, t.data) << extra;
+  }
+}
+
 TEST_F(ExrTest, LongParameterNamesRoundTripAndTooLongOnesAreRejected) {
   Table t = makeTable(1, 1, {"Y"});
   const std::string longKey(200, 'k');

@@ -349,8 +349,13 @@ void writeExrRows(const std::string& path, const Table& shape, const std::map<st
   try {
     const size_t nc = shape.channels.size();
     Imf::Header header(shape.width, shape.height);
-    header.compression() = Imf::ZIP_COMPRESSION;
-    header.zipCompressionLevel() = 1;
+    const uint64_t bytes = uint64_t{sizeof(float)} * static_cast<uint64_t>(shape.width) * shape.height * nc;
+    if (bytes > kUncompressedAboveBytes) {
+      header.compression() = Imf::NO_COMPRESSION;
+    } else {
+      header.compression() = Imf::ZIP_COMPRESSION;
+      header.zipCompressionLevel() = 1;
+    }
     header.lineOrder() = Imf::INCREASING_Y;
     for (const std::string& name : shape.channels) {
       header.channels().insert(name, Imf::Channel(Imf::FLOAT));

@@ -1,6 +1,6 @@
 #pragma once
-// Reading and writing tables as OpenEXR files (FLOAT channels, ZIP compression, parameters
-// as "umbra:<key>" string attributes in the header).
+// Reading and writing tables as OpenEXR files (FLOAT channels, ZIP compression up to
+// kUncompressedAboveBytes, parameters as "umbra:<key>" string attributes in the header).
 
 #include <string>
 #include <vector>
@@ -8,6 +8,12 @@
 #include "umbra/tables/Table.h"
 
 namespace umbra::tables {
+
+// Tables of more values than this [bytes of float] are written without compression: ZIP
+// packs the precomputed tables' floats by only 10-20 %, and was a sixth of the CPU time of a
+// 15-wavelength atmosphere precomputation (docs/accuracy-vs-speed.md, "Wavelengths computed
+// together").
+inline constexpr unsigned long long kUncompressedAboveBytes = 4ull << 20;
 
 // Prefix of the header attributes that hold Table::parameters.
 inline constexpr const char* kParameterPrefix = "umbra:";
