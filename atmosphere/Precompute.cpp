@@ -280,7 +280,7 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
         batches == 1 ? atmosphere : subAtmosphere(atmosphere, ls), options, runner,
         sink ? batchSingle : tables.singleScattering, sink ? batchMultiple : tables.multipleScattering,
         sink ? 0 : ls.front(),
-        sink ? BatchTablesSink([&](int, int table, const FloatTable3D& v) { sink(ls.front(), table, v); })
+        sink ? BatchTablesSink([&](int, int table, FloatTable3D& v) { sink(ls.front(), table, v); })
              : BatchTablesSink());
     if (batches == 1) {
       tables.transmittance = std::move(r.transmittance);

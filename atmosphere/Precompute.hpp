@@ -207,11 +207,12 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
 /// given one, each as soon as it is finished: the batch's first channel, which table
 /// (0 .. scattering components - 1: that component's single scattering; the number of
 /// scattering components: the multiple scattering), and its values, as many channels wide
-/// as the batch (a batch's channels are consecutive), freed once the sink returns. The
+/// as the batch (a batch's channels are consecutive), freed once the sink returns (the sink
+/// may take them: a batch of every wavelength hands on whole tables, written as they are). The
 /// tables precompute() returns then hold no 4D values (singleScattering and
 /// multipleScattering empty), so that no 4D table is ever held for every wavelength: the
 /// peak memory is one batch's working tables.
-using BatchTablesSink = std::function<void(int firstChannel, int table, const FloatTable3D& values)>;
+using BatchTablesSink = std::function<void(int firstChannel, int table, FloatTable3D& values)>;
 AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOptions& options,
                             const PrecomputeProgress& progress, const BatchTablesSink& sink);
 

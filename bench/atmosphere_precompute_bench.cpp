@@ -5,7 +5,7 @@
 // docs/accuracy-vs-speed.md.
 //
 //   build/bench/umbra-bench-atmosphere [--preset earth] [--wavelengths 3] [--probes 2000]
-//       [--sections sizes,orders,refraction,wavelengths] [--reference-cache FILE]
+//       [--sections sizes,orders,refraction,wavelengths,stages] [--reference-cache FILE]
 //       [--wavelength-counts 3,15,47] [--batches 0,8]
 //
 // --reference-cache keeps the reference's sky radiances in FILE (written when missing, read
@@ -132,7 +132,7 @@ int main(int argc, char** argv) {
   app.add_option("--wavelengths", wavelengths, "3 (680/550/440 nm) or N between 360 and 830 nm")->capture_default_str();
   app.add_option("--probes", probes, "Random view/sun geometries compared")->capture_default_str();
   app.add_option("--sections", sectionList,
-                 "Comma-separated: default (default sizes, 4 orders only), sizes, orders, refraction, wavelengths")
+                 "Comma-separated: default (default sizes, 4 orders only), sizes, orders, refraction, wavelengths, stages (every stage's time at each of --wavelength-counts)")
       ->capture_default_str();
   app.add_option("--wavelength-counts", wavelengthCounts, "The wavelengths section's numbers of wavelengths")
       ->delimiter(',')
@@ -260,6 +260,25 @@ int main(int argc, char** argv) {
         row(std::to_string(n) + (batch > 0 ? ", " + std::to_string(batch) + " at a time" : ""), timed(a, o));
         std::printf("|\n");
       }
+    }
+    std::printf("\n");
+  }
+
+  // Every stage's time, default sizes and 4 orders, all wavelengths at once.
+  if (want("stages")) {
+    std::vector<AtmosphereTables> runs;
+    for (int n : wavelengthCounts) runs.push_back(timed(loadAtmosphere(preset, wavelengthSet(n).nm), scaled(1.0, 4, false)).tables);
+    std::printf("| stage [s] |");
+    for (int n : wavelengthCounts) std::printf(" %d wavelengths |", n);
+    std::printf("\n|---|");
+    for (std::size_t i = 0; i < wavelengthCounts.size(); ++i) std::printf("---:|");
+    std::printf("\n");
+    for (const auto& st : runs.front().timings) {
+      std::printf("| %s |", st.stage.c_str());
+      for (const AtmosphereTables& t : runs)
+        for (const auto& other : t.timings)
+          if (other.stage == st.stage) std::printf(" %.3f |", other.seconds);
+      std::printf("\n");
     }
     std::printf("\n");
   }

@@ -107,10 +107,13 @@ struct Batch {
     const RMuCell a = rMuCell(g, r, mu, ground);
     const SNuCell c = sNuCell(g, muS, nu);
     if (order == 1) {
-      std::vector<double> tmp(nl);
+      // A buffer on the stack for up to 64 wavelengths (this runs a million times an order).
+      double small[64];
+      std::vector<double> large(nl > 64 ? nl : 0);
+      double* tmp = nl > 64 ? large.data() : small;
       for (int q = 0; q < ns; ++q) {
-        std::fill(tmp.begin(), tmp.end(), 0.0);
-        accumulate4(single[q], a, c, 1.0, tmp.data(), l0, nl);
+        std::fill_n(tmp, nl, 0.0);
+        accumulate4(single[q], a, c, 1.0, tmp, l0, nl);
         const Component& comp = atm.components[m.scatterers[q]];
         for (int l = 0; l < nl; ++l) v[l] += tmp[l] * comp.phase(l)(nu);
       }

@@ -43,17 +43,7 @@ void computeMultipleScattering(Batch& B) {
       blendRows(density, cells[k], blend.data());
       const double xr = s.xr[k], yr = s.yr[k], tx = s.tx[k], ty = s.ty[k];
       sNuTexels(g, xr, yr, tx, ty, sxA.data(), muSA.data(), W, x00A.data(), wsA.data(), wnA.data());
-      const std::size_t up = static_cast<std::size_t>(MUS) * nl;
-      for (int x = 0; x < W; ++x) {
-        const double* p00 = &blend[static_cast<std::size_t>(x00A[x]) * nl];
-        const double* p01 = p00 + nl;
-        const double* p10 = p00 + up;
-        const double* p11 = p10 + nl;
-        const double ws = wsA[x], wn = wnA[x];
-        const double w00 = w * (1 - wn) * (1 - ws), w01 = w * (1 - wn) * ws, w10 = w * wn * (1 - ws), w11 = w * wn * ws;
-        double* a = &acc[static_cast<std::size_t>(x) * nl];
-        for (int l = 0; l < nl; ++l) a[l] += T[l] * (w00 * p00[l] + w01 * p01[l] + w10 * p10[l] + w11 * p11[l]);
-      }
+      gatherTexels(blend.data(), nl, MUS, x00A.data(), wsA.data(), wnA.data(), W, w, T, acc.data());
     }
     for (int x = 0; x < W; ++x) {
       const double* a = &acc[static_cast<std::size_t>(x) * nl];

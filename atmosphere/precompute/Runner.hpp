@@ -37,13 +37,19 @@ public:
     const Isolated isolated{fIn, {}};
     const auto& f = isolated.f;
     const auto t0 = std::chrono::steady_clock::now();
-    const int chunks = std::max(1, std::min(n, 16));
+#ifdef _OPENMP
+    const int nt = threads_ > 0 ? threads_ : omp_get_max_threads();
+#else
+    const int nt = 1;
+#endif
+    // Up to 16 reports, each chunk at least 4 tasks per thread: a stage of few tasks (the
+    // indirect irradiance's 16 rows) would otherwise run one task at a time.
+    const int chunks = std::max(1, std::min(n / (4 * nt), 16));
     for (int k = 0; k < chunks; ++k) {
       const int lo = static_cast<int>(static_cast<long long>(n) * k / chunks);
       const int hi = static_cast<int>(static_cast<long long>(n) * (k + 1) / chunks);
       ParallelErrors errors;
 #ifdef _OPENMP
-      const int nt = threads_ > 0 ? threads_ : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
 #endif
       for (int i = lo; i < hi; ++i) errors.run([&] { f(i); });

@@ -153,8 +153,9 @@ void computeScatteringDensity(Batch& B, int order) {
       for (int l = 0; l < nl; ++l)
         for (int j = 0; j < nDir; ++j) LwT[static_cast<std::size_t>(j) * stride + l] = Lw[static_cast<std::size_t>(l) * nDir + j];
     }
-    // cj: the cosines with the view of the directions [0, nDir) and of their mirrors.
-    std::vector<double> cj(2 * nDir), pj(2 * nDir), pPair(nDir), lobeSum(m.lobes.size() * nl), J(nl);
+    // cj: the cosines with the view of the directions [0, nDir) and of their mirrors (for
+    // the tabulated lobes).
+    std::vector<double> cj(2 * nDir), pPair(nDir), lobeSum(m.lobes.size() * nl), J(nl), sums(nl + 1);
     // Tabulated lobes (one per wavelength for Lorenz-Mie) share the cosines: the table
     // index and weight of each, computed once per view (as Model::evalLobe does).
     std::vector<int> tableIndex(2 * nDir);
@@ -166,7 +167,7 @@ void computeScatteringDensity(Batch& B, int order) {
         const double sz = std::sqrt(std::max(0.0, 1.0 - p.mu * p.mu));
         double vx = sinS > 1e-12 ? std::clamp((p.nu - p.mu * muS) / sinS, -sz, sz) : sz;
         const double vy = std::sqrt(std::max(0.0, sz * sz - vx * vx)), vz = p.mu;
-        if (!m.lobes.empty()) {
+        if (!mixed.empty()) {
 #pragma omp simd
           for (int j = 0; j < nDir; ++j) {
             cj[j] = wx[j] * vx + wy[j] * vy + wz[j] * vz;
@@ -174,19 +175,17 @@ void computeScatteringDensity(Batch& B, int order) {
           }
         }
         if (!mixed.empty()) tablePositions(cj.data(), 2 * nDir, tableIndex.data(), tableWeight.data());
-        // pPair: a lobe's values over the directions, each averaged with its mirror's; its
-        // sum against each of its wavelengths' incoming light, renormalised to the lobe's
-        // exact integral (one norm for all of them).
+        // A closed-form lobe's values over the directions, each averaged with its mirror's,
+        // summed against each of its wavelengths' incoming light and renormalised to the
+        // lobe's exact integral (one norm for all of them).
         for (std::size_t li = 0; li < m.lobes.size(); ++li) {
           const Lobe& lobe = m.lobes[li];
           if (!lobe.table.empty()) continue;
-          lobeValues(lobe.A, lobe.B, lobe.g, cj.data(), pj.data(), 2 * nDir);
-#pragma omp simd
-          for (int j = 0; j < nDir; ++j) pPair[j] = 0.5 * (pj[j] + pj[nDir + j]);
-          const double norm = dot(pPair.data(), wdo, nDir);
-          const double scale = norm > 0.0 ? lobeIntegral[li] / norm : 1.0;
-          for (int l : m.lobeUsers[li])
-            lobeSum[li * nl + l] = scale * dot(pPair.data(), &Lw[static_cast<std::size_t>(l) * nDir], nDir);
+          const std::vector<int>& users = m.lobeUsers[li];
+          lobePairSums(lobe.A, lobe.B, lobe.g, wx, wy, wz, vx, vy, vz, nDir, wdo, Lw.data(), users.data(),
+                       static_cast<int>(users.size()), pPair.data(), sums.data());
+          const double scale = sums[0] > 0.0 ? lobeIntegral[li] / sums[0] : 1.0;
+          for (std::size_t u = 0; u < users.size(); ++u) lobeSum[li * nl + users[u]] = scale * sums[1 + u];
         }
         std::fill(J.begin(), J.end(), 0.0);
         if (!mixed.empty()) {

@@ -255,6 +255,7 @@ void makeBrunetonFiles(vtkAtmosphereTablesSource* source, const umbra::atmospher
 
   ++precomputeCalls;
   std::vector<std::unique_ptr<tables::PlanarTableFile>> planes(requests.size());
+  std::vector<bool> written(requests.size(), false);
   for (std::size_t i = 0; i < requests.size(); ++i)
     if (made[i]->depth > 1)
       planes[i] = std::make_unique<tables::PlanarTableFile>(scratch.directory(), requests[i].width, requests[i].height,
@@ -265,21 +266,33 @@ void makeBrunetonFiles(vtkAtmosphereTablesSource* source, const umbra::atmospher
         source->UpdateProgress(0.9 * f);
         return !source->GetAbortExecute();
       },
-      [&](int first, int table, const atmosphere::FloatTable3D& values) {
+      [&](int first, int table, atmosphere::FloatTable3D& values) {
         // Table `table`: that component's single scattering, or (after them) the multiple.
         const bool multiple = table == static_cast<int>(set.components.size());
-        for (std::size_t i = 0; i < requests.size(); ++i)
-          if (planes[i] && (multiple ? made[i]->name == "multiple-scattering"
-                                     : made[i]->parameters.count("component") &&
-                                           made[i]->parameters.at("component") == set.components.at(table)))
+        for (std::size_t i = 0; i < requests.size(); ++i) {
+          if (!planes[i] || !(multiple ? made[i]->name == "multiple-scattering"
+                                       : made[i]->parameters.count("component") &&
+                                             made[i]->parameters.at("component") == set.components.at(table)))
+            continue;
+          if (first == 0 && values.channels == static_cast<int>(requests[i].channels.size())) {
+            // Every wavelength at once: the table is whole, written as it is (no planes).
+            tables::Table whole;
+            whole.width = requests[i].width, whole.height = requests[i].height, whole.channels = requests[i].channels;
+            whole.data = std::move(values.values);
+            scratch.store(requests[i].kind, requests[i].parameters, whole);
+            planes[i].reset();
+            written[i] = true;
+          } else {
             planes[i]->put(first, values.channels, values.values.data());
+          }
+        }
       });
   for (std::size_t i = 0; i < requests.size(); ++i) {
     const tables::TableRequest& r = requests[i];
     if (planes[i]) {
       scratch.store(r.kind, r.parameters, *planes[i]);
       planes[i].reset();
-    } else {
+    } else if (!written[i]) {
       scratch.store(r.kind, r.parameters, set.takeTable(result, *made[i]));
     }
     source->UpdateProgress(0.9 + 0.1 * static_cast<double>(i + 1) / static_cast<double>(requests.size()));

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -83,12 +84,17 @@ std::map<std::string, std::string> withKind(const std::string& kind,
   return parameters;
 }
 
-// The header entry that holds the checksum of a cached table's values (not a parameter).
-constexpr const char* kChecksumKey = "checksum";
+// The header entry that holds the checksum of a cached table's values (not a parameter),
+// and the one that held the byte-by-byte checksum before it: a file with that is stale.
+constexpr const char* kChecksumKey = "values-checksum";
+constexpr const char* kOldChecksumKey = "checksum";
 
-// FNV-1a (64 bits) of the values' bytes and of the size, as 16 hex digits: a truncated,
-// swapped or edited table no longer matches its header. Fed the values in order, a block
-// of rows at a time or all at once.
+// FNV-1a (64 bits) over the values' 8-byte words in four interleaved lanes (word i into lane
+// i % 4, the last word padded with zeros), the lanes and the byte count folded together at
+// the end, as 16 hex digits: a truncated, swapped or edited table no longer matches its
+// header. Fed the values in order, a block of rows at a time or all at once (the same
+// words whatever the blocks). The lanes are independent multiplications: about 8 bytes a
+// cycle, where one byte a step was a sixth of the tables' write time.
 class Checksum {
 public:
   Checksum(int width, int height, std::size_t channels) {
@@ -97,17 +103,52 @@ public:
   }
   void mix(const void* data, std::size_t n) {
     const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) h_ = (h_ ^ p[i]) * 1099511628211ull;
+    bytes_ += n;
+    while (n > 0 && pending_ > 0) {  // complete a word begun by the last block
+      word_[pending_++] = *p++, --n;
+      if (pending_ == 8) addWord(word_), pending_ = 0;
+    }
+    for (; n >= 8; p += 8, n -= 8) addWord(p);
+    if (n > 0) std::memcpy(word_, p, n), pending_ = static_cast<int>(n);  // pending_ was 0
   }
   std::string text() const {
+    Checksum c = *this;
+    if (c.pending_ > 0) {
+      std::fill(c.word_ + c.pending_, c.word_ + 8, 0);
+      c.addWord(c.word_);
+    }
+    std::uint64_t h = kOffset;
+    for (std::uint64_t lane : c.lanes_) h = (h ^ lane) * kPrime;
+    h = (h ^ c.bytes_) * kPrime;
     char text[17];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h_));
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
     return text;
   }
 
 private:
-  std::uint64_t h_ = 1469598103934665603ull;
+  static constexpr std::uint64_t kOffset = 1469598103934665603ull, kPrime = 1099511628211ull;
+  void addWord(const unsigned char* p) {
+    std::uint64_t w;
+    std::memcpy(&w, p, sizeof w);
+    std::uint64_t& lane = lanes_[words_++ & 3];
+    lane = (lane ^ w) * kPrime;
+  }
+  std::uint64_t lanes_[4] = {kOffset, kOffset ^ 1, kOffset ^ 2, kOffset ^ 3};
+  std::uint64_t words_ = 0, bytes_ = 0;
+  unsigned char word_[8] = {};
+  int pending_ = 0;
 };
+
+/// Whether every value is finite (a test of the exponent bits, branch-free: it vectorises).
+bool allFinite(const float* v, std::size_t n) {
+  std::uint32_t bad = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t bits;
+    std::memcpy(&bits, v + i, sizeof bits);
+    bad |= static_cast<std::uint32_t>((bits & 0x7f800000u) == 0x7f800000u);
+  }
+  return bad == 0;
+}
 
 std::string checksumOf(const Table& t) {
   Checksum sum(t.width, t.height, t.channels.size());
@@ -122,8 +163,9 @@ std::string contentProblem(const Table& t) {
   if (t.data.size() != expected || expected == 0)
     return std::to_string(t.data.size()) + " values for " + std::to_string(t.width) + "x" + std::to_string(t.height) +
            "x" + std::to_string(t.channels.size());
-  for (std::size_t i = 0; i < t.data.size(); ++i)
-    if (!std::isfinite(t.data[i])) return "a non-finite value (at " + std::to_string(i) + ")";
+  if (!allFinite(t.data.data(), t.data.size()))
+    for (std::size_t i = 0; i < t.data.size(); ++i)
+      if (!std::isfinite(t.data[i])) return "a non-finite value (at " + std::to_string(i) + ")";
   const auto stored = t.parameters.find(kChecksumKey);
   if (stored == t.parameters.end()) return "no checksum in its header";
   if (stored->second != checksumOf(t)) return "its values do not match the checksum in its header";
@@ -320,6 +362,8 @@ std::optional<Table> TableCache::load(const std::string& kind,
     std::cerr << "umbra: cache: " << e.what() << "; computing it again\n";
     return std::nullopt;  // corrupt or unreadable: the caller recomputes and overwrites
   }
+  if (table.parameters.count(kOldChecksumKey) && !table.parameters.count(kChecksumKey))
+    return std::nullopt;  // written with the earlier checksum: stale, computed again
   if (const std::string problem = contentProblem(table); !problem.empty()) {
     std::cerr << "umbra: cache: " << path << ": " << problem << "; computing it again\n";
     return std::nullopt;
@@ -341,8 +385,8 @@ void TableCache::store(const std::string& kind,
   if (ec) {
     throw TableError(path, "cannot create cache directory '" + directory_ + "': " + ec.message());
   }
-  for (float v : table.data)
-    if (!std::isfinite(v)) throw TableError(path, "not cached: the table holds a non-finite value");
+  if (!allFinite(table.data.data(), table.data.size()))
+    throw TableError(path, "not cached: the table holds a non-finite value");
   auto header = withKind(kind, parameters);
   header[kChecksumKey] = checksumOf(table);
   detail::writeExr(path, table, header);
@@ -361,8 +405,8 @@ void TableCache::store(const std::string& kind, const std::map<std::string, std:
   Checksum sum(table.width(), table.height(), table.channels().size());
   for (int y0 = 0; y0 < table.height(); y0 += kRows) {
     table.rows(y0, std::min(kRows, table.height() - y0), block);
-    for (float v : block)
-      if (!std::isfinite(v)) throw TableError(path, "not cached: the table holds a non-finite value");
+    if (!allFinite(block.data(), block.size()))
+      throw TableError(path, "not cached: the table holds a non-finite value");
     sum.mix(block.data(), block.size() * sizeof(float));
   }
   auto header = withKind(kind, parameters);
