@@ -12,6 +12,8 @@
 #include "precompute/Runner.hpp"
 
 #include <algorithm>
+#include <cstring>
+#include <new>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -19,6 +21,7 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#include <sys/mman.h>
 
 namespace umbra::atmosphere {
 
@@ -45,6 +48,29 @@ std::string PrecomputeOptions::validate() const {
   if (batchShareCount < 1 || batchShareIndex < 0 || batchShareIndex >= batchShareCount)
     e << "batchShareIndex must be in [0, batchShareCount); ";
   return e.str();
+}
+
+void* allocateTableMemory(std::size_t bytes) {
+  constexpr std::size_t kHugePage = std::size_t{2} << 20;
+  const bool huge = bytes >= kHugePage;
+  const std::size_t align = huge ? kHugePage : 64, size = (std::max<std::size_t>(bytes, 1) + align - 1) / align * align;
+  void* p = std::aligned_alloc(align, size);
+  if (!p) throw std::bad_alloc();
+#ifdef MADV_HUGEPAGE
+  if (huge) (void)::madvise(p, size, MADV_HUGEPAGE);  // a hint: without it, 4 KiB pages
+#endif
+  return p;
+}
+
+void zeroTableMemory(void* data, std::size_t bytes) {
+  constexpr std::size_t kBlock = std::size_t{2} << 20;
+  const long long blocks = static_cast<long long>((bytes + kBlock - 1) / kBlock);
+  auto* p = static_cast<unsigned char*>(data);
+#pragma omp parallel for schedule(static)
+  for (long long i = 0; i < blocks; ++i) {
+    const std::size_t from = static_cast<std::size_t>(i) * kBlock;
+    std::memset(p + from, 0, std::min(kBlock, bytes - from));
+  }
 }
 
 std::size_t AtmosphereTables::bytes() const {

@@ -46,6 +46,7 @@
 #include "TextureCoords.hpp"
 
 #include <cstddef>
+#include <cstdlib>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -138,15 +139,49 @@ struct Table2D {
   double* at(int x, int y) { return values.data() + offset(x, y); }
 };
 
+/// Memory for the 4D tables: `bytes` in transparent huge pages where the kernel gives them
+/// (one page fault per 2 MiB rather than per 4 KiB: in a virtual machine the faults of a
+/// table's first writing cost as much as computing it); freed with std::free. Zeroed by
+/// zeroTableMemory on every thread, so that the faults are shared too.
+void* allocateTableMemory(std::size_t bytes);
+void zeroTableMemory(void* data, std::size_t bytes);
+
+/// A std::vector allocator of table memory whose resize() leaves the values unset (the
+/// table's resize zeroes them, in parallel).
+template <class T>
+struct TableAllocator {
+  using value_type = T;
+  TableAllocator() = default;
+  template <class U>
+  TableAllocator(const TableAllocator<U>&) noexcept {}
+  T* allocate(std::size_t n) { return static_cast<T*>(allocateTableMemory(n * sizeof(T))); }
+  void deallocate(T* p, std::size_t) noexcept { std::free(p); }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;  // default-initialised: a float is left unset
+  }
+  template <class U>
+  bool operator==(const TableAllocator<U>&) const noexcept { return true; }
+  template <class U>
+  bool operator!=(const TableAllocator<U>&) const noexcept { return false; }
+};
+
 /// A 3D table (width = NU * MU_S, height = MU, depth = R for the scattering tables).
 template <class Value>
 struct BasicTable3D {
   int width = 0, height = 0, depth = 0, channels = 0;
-  std::vector<Value> values;
+  std::vector<Value, TableAllocator<Value>> values;
 
+  /// The size, every value zero.
   void resize(int w, int h, int d, int c) {
     width = w, height = h, depth = d, channels = c;
-    values.assign(static_cast<std::size_t>(w) * h * d * c, Value(0));
+    std::vector<Value, TableAllocator<Value>>().swap(values);
+    values.resize(static_cast<std::size_t>(w) * h * d * c);
+    zeroTableMemory(values.data(), values.size() * sizeof(Value));
   }
   std::size_t offset(int x, int y, int z) const {
     return ((static_cast<std::size_t>(z) * height + y) * width + x) * channels;

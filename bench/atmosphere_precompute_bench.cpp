@@ -5,7 +5,7 @@
 // docs/accuracy-vs-speed.md.
 //
 //   build/bench/umbra-bench-atmosphere [--preset earth] [--wavelengths 3] [--probes 2000]
-//       [--sections sizes,orders,refraction,wavelengths,stages] [--reference-cache FILE]
+//       [--sections sizes,orders,refraction,wavelengths,stages,directions] [--reference-cache FILE]
 //       [--wavelength-counts 3,15,47] [--batches 0,8]
 //
 // --reference-cache keeps the reference's sky radiances in FILE (written when missing, read
@@ -127,15 +127,20 @@ int main(int argc, char** argv) {
   std::string preset = "earth", sectionList = "sizes,orders,refraction,wavelengths", referenceCache;
   int wavelengths = 3, probes = 2000, referenceOrders = 6;
   double referenceScale = 1.5;
-  std::vector<int> wavelengthCounts{3, 15, 47}, batches{0, 8};
+  std::vector<int> wavelengthCounts{3, 15, 47}, batches{0, 8}, directionCounts{0, 24, 32};
+  int referenceDirections = 64;
   app.add_option("--preset", preset)->capture_default_str();
   app.add_option("--wavelengths", wavelengths, "3 (680/550/440 nm) or N between 360 and 830 nm")->capture_default_str();
   app.add_option("--probes", probes, "Random view/sun geometries compared")->capture_default_str();
   app.add_option("--sections", sectionList,
-                 "Comma-separated: default (default sizes, 4 orders only), sizes, orders, refraction, wavelengths, stages (every stage's time at each of --wavelength-counts)")
+                 "Comma-separated: default (default sizes, 4 orders only), sizes, orders, refraction, wavelengths, stages (every stage's time at each of --wavelength-counts), directions (density directions against a reference)")
       ->capture_default_str();
   app.add_option("--wavelength-counts", wavelengthCounts, "The wavelengths section's numbers of wavelengths")
       ->delimiter(',')
+      ->capture_default_str();
+  app.add_option("--directions", directionCounts, "The directions section's polar directions (0: the atmosphere's own)")
+      ->capture_default_str();
+  app.add_option("--reference-directions", referenceDirections, "The directions section's reference")
       ->capture_default_str();
   app.add_option("--batches", batches, "The wavelengths section's batches (0: all at once)")
       ->delimiter(',')
@@ -260,6 +265,39 @@ int main(int argc, char** argv) {
         row(std::to_string(n) + (batch > 0 ? ", " + std::to_string(batch) + " at a time" : ""), timed(a, o));
         std::printf("|\n");
       }
+    }
+    std::printf("\n");
+  }
+
+  // Density directions: the multiple scattering with n x 2n directions against
+  // --reference-directions (default sizes, 4 orders).
+  if (want("directions")) {
+    PrecomputeOptions o = scaled(1.0, 4, false);
+    o.sphereSamples = referenceDirections;
+    const Run ref = timed(atm, o);
+    const auto& r = ref.tables.multipleScattering.values;
+    double top = 0.0;
+    for (float v : r) top = std::max(top, static_cast<double>(v));
+    std::printf("multiple scattering against %d x %d directions (%.1f s)\n\n", referenceDirections, 2 * referenceDirections,
+                ref.seconds);
+    std::printf("| directions | total [s] | largest error / largest value | relative error, values over 1e-3 of the largest: median | 95th pct | largest |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|\n");
+    for (int n : directionCounts) {
+      o.sphereSamples = n;
+      const Run run = timed(atm, o);
+      const auto& v = run.tables.multipleScattering.values;
+      double worst = 0.0;
+      std::vector<double> relative;
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        const double d = std::abs(static_cast<double>(v[i]) - r[i]);
+        worst = std::max(worst, d);
+        if (r[i] > 1e-3 * top) relative.push_back(d / r[i]);
+      }
+      std::sort(relative.begin(), relative.end());
+      std::printf("| %d x %d%s | %.2f | %.4f | %.2f %% | %.2f %% | %.1f %% |\n", run.tables.options.sphereSamples,
+                  2 * run.tables.options.sphereSamples, n == 0 ? " (default)" : "", run.seconds, worst / top,
+                  100.0 * relative[relative.size() / 2], 100.0 * relative[relative.size() * 95 / 100],
+                  100.0 * relative.back());
     }
     std::printf("\n");
   }

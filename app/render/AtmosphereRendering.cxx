@@ -233,7 +233,7 @@ struct AtmosphereRendering::Impl {
     transmittance = floatTexture(window, t.transmittance.width, t.transmittance.height, 1, asFloat(t.transmittance.values));
     irradiance = floatTexture(window, t.irradiance.width, t.irradiance.height, 1, asFloat(t.irradiance.values));
     // Slab 0: multiple scattering, then one slab per component (z-major: consecutive).
-    std::vector<float> stacked = t.multipleScattering.values;
+    std::vector<float> stacked(t.multipleScattering.values.begin(), t.multipleScattering.values.end());
     for (const atmosphere::FloatTable3D& s : t.singleScattering) stacked.insert(stacked.end(), s.values.begin(), s.values.end());
     const atmosphere::FloatTable3D& m = t.multipleScattering;
     scattering = floatTexture(window, m.width, m.height, m.depth * static_cast<int>(1 + t.singleScattering.size()), stacked);

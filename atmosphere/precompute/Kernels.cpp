@@ -112,139 +112,120 @@ __attribute__((target("avx512f"), always_inline)) inline __m512d lobe8(__m512d A
 }  // namespace
 #endif
 
-namespace {
-/// sum_j a_j b_j in four chains (inline: the kernels below call it per wavelength).
-inline double dotInline(const double* a, const double* b, int n) {
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-  int j = 0;
-  for (; j + 4 <= n; j += 4) s0 += a[j] * b[j], s1 += a[j + 1] * b[j + 1], s2 += a[j + 2] * b[j + 2], s3 += a[j + 3] * b[j + 3];
-  for (; j < n; ++j) s0 += a[j] * b[j];
-  return (s0 + s1) + (s2 + s3);
-}
-}  // namespace
 
-UMBRA_KERNEL void lobePairSumsPlain(double A, double B, double g, const double* wx, const double* wy,
-                                    const double* wz, double vx, double vy, double vz, int n, const double* wdo,
-                                    const double* L, const int* rows, int users, double* pair, double* out) {
+UMBRA_KERNEL void lobeValuesPlain(double A, double B, double g, const double* c, double* p, int n) {
   const double g2 = 1.0 + g * g, twoG = 2.0 * g;
-  for (int j = 0; j < n; ++j) {
-    const double base = wx[j] * vx + wz[j] * vz, side = wy[j] * vy;
-    pair[j] = 0.5 * (lobeAt(A, B, g2, twoG, base + side) + lobeAt(A, B, g2, twoG, base - side));
+  for (int j = 0; j < n; ++j) p[j] = lobeAt(A, B, g2, twoG, c[j]);
+}
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+__attribute__((target("avx512f"))) static void lobeValuesAvx512(double A, double B, double g, const double* c, double* p,
+                                                                int n) {
+  const __m512d Av = _mm512_set1_pd(A), Bv = _mm512_set1_pd(B), g2 = _mm512_set1_pd(1.0 + g * g),
+                twoG = _mm512_set1_pd(2.0 * g);
+  int j = 0;
+  for (; j + 8 <= n; j += 8) _mm512_storeu_pd(p + j, lobe8(Av, Bv, g2, twoG, _mm512_loadu_pd(c + j)));
+  lobeValuesPlain(A, B, g, c + j, p + j, n - j);
+}
+void lobeValues(double A, double B, double g, const double* c, double* p, int n) {
+  static const bool avx512 = __builtin_cpu_supports("avx512f");
+  if (avx512) lobeValuesAvx512(A, B, g, c, p, n);
+  else lobeValuesPlain(A, B, g, c, p, n);
+}
+#else
+void lobeValues(double A, double B, double g, const double* c, double* p, int n) { lobeValuesPlain(A, B, g, c, p, n); }
+#endif
+
+UMBRA_KERNEL void cosineModesPlain(const double* f, const double* cosines, int n, int modes, double* out) {
+  std::fill_n(out, modes, 0.0);
+  for (int q = 0; q < n; ++q) {
+    const double v = f[q];
+    const double* c = cosines + static_cast<std::size_t>(q) * modes;
+    for (int m = 0; m < modes; ++m) out[m] += v * c[m];
   }
-  out[0] = dotInline(pair, wdo, n);
-  for (int u = 0; u < users; ++u) out[1 + u] = dotInline(pair, L + static_cast<std::size_t>(rows[u]) * n, n);
 }
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 namespace {
-/// sum_j a_j b_j, eight lanes at a time.
-__attribute__((target("avx512f"))) double dot8(const double* a, const double* b, int n) {
-  __m512d s0 = _mm512_setzero_pd(), s1 = _mm512_setzero_pd();
-  int j = 0;
-  for (; j + 16 <= n; j += 16) {
-    s0 = _mm512_fmadd_pd(_mm512_loadu_pd(a + j), _mm512_loadu_pd(b + j), s0);
-    s1 = _mm512_fmadd_pd(_mm512_loadu_pd(a + j + 8), _mm512_loadu_pd(b + j + 8), s1);
+/// cosineModes for modes = 8 V, with AVX-512: the sums in registers, in two chains (one
+/// chain through memory waits on every addition).
+template <int V>
+__attribute__((target("avx512f"))) void cosineModesAvx512(const double* f, const double* cosines, int n, double* out) {
+  __m512d a[V], b[V];
+  for (int v = 0; v < V; ++v) a[v] = _mm512_setzero_pd(), b[v] = _mm512_setzero_pd();
+  int q = 0;
+  for (; q + 2 <= n; q += 2) {
+    const __m512d f0 = _mm512_set1_pd(f[q]), f1 = _mm512_set1_pd(f[q + 1]);
+    const double* c0 = cosines + static_cast<std::size_t>(q) * 8 * V;
+    for (int v = 0; v < V; ++v) {
+      a[v] = _mm512_fmadd_pd(f0, _mm512_loadu_pd(c0 + 8 * v), a[v]);
+      b[v] = _mm512_fmadd_pd(f1, _mm512_loadu_pd(c0 + 8 * V + 8 * v), b[v]);
+    }
   }
-  for (; j + 8 <= n; j += 8) s0 = _mm512_fmadd_pd(_mm512_loadu_pd(a + j), _mm512_loadu_pd(b + j), s0);
-  alignas(64) double lanes[8];
-  _mm512_store_pd(lanes, _mm512_add_pd(s0, s1));
-  double s = ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) + ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
-  for (; j < n; ++j) s += a[j] * b[j];
-  return s;
+  if (q < n) {
+    const __m512d f0 = _mm512_set1_pd(f[q]);
+    const double* c0 = cosines + static_cast<std::size_t>(q) * 8 * V;
+    for (int v = 0; v < V; ++v) a[v] = _mm512_fmadd_pd(f0, _mm512_loadu_pd(c0 + 8 * v), a[v]);
+  }
+  for (int v = 0; v < V; ++v) _mm512_storeu_pd(out + 8 * v, _mm512_add_pd(a[v], b[v]));
 }
 }  // namespace
-__attribute__((target("avx512f"))) static void lobePairSumsAvx512(double A, double B, double g, const double* wx,
-                                                                  const double* wy, const double* wz, double vx,
-                                                                  double vy, double vz, int n, const double* wdo,
-                                                                  const double* L, const int* rows, int users,
-                                                                  double* pair, double* out) {
-  const __m512d Av = _mm512_set1_pd(A), Bv = _mm512_set1_pd(B), g2 = _mm512_set1_pd(1.0 + g * g),
-                twoG = _mm512_set1_pd(2.0 * g), vxv = _mm512_set1_pd(vx), vyv = _mm512_set1_pd(vy),
-                vzv = _mm512_set1_pd(vz), half = _mm512_set1_pd(0.5);
-  int j = 0;
-  for (; j + 8 <= n; j += 8) {
-    const __m512d base = _mm512_fmadd_pd(_mm512_loadu_pd(wx + j), vxv, _mm512_mul_pd(_mm512_loadu_pd(wz + j), vzv));
-    const __m512d side = _mm512_mul_pd(_mm512_loadu_pd(wy + j), vyv);
-    const __m512d p1 = lobe8(Av, Bv, g2, twoG, _mm512_add_pd(base, side));
-    const __m512d p2 = lobe8(Av, Bv, g2, twoG, _mm512_sub_pd(base, side));
-    _mm512_storeu_pd(pair + j, _mm512_mul_pd(half, _mm512_add_pd(p1, p2)));
-  }
-  if (j < n)  // the last n % 8 directions' pairs (its sums are overwritten below)
-    lobePairSumsPlain(A, B, g, wx + j, wy + j, wz + j, vx, vy, vz, n - j, wdo + j, L, rows, 0, pair + j, out);
-  out[0] = dot8(pair, wdo, n);
-  for (int u = 0; u < users; ++u) out[1 + u] = dot8(pair, L + static_cast<std::size_t>(rows[u]) * n, n);
-}
-void lobePairSums(double A, double B, double g, const double* wx, const double* wy, const double* wz, double vx,
-                  double vy, double vz, int n, const double* wdo, const double* L, const int* rows, int users,
-                  double* pair, double* out) {
+void cosineModes(const double* f, const double* cosines, int n, int modes, double* out) {
   static const bool avx512 = __builtin_cpu_supports("avx512f");
-  if (avx512) lobePairSumsAvx512(A, B, g, wx, wy, wz, vx, vy, vz, n, wdo, L, rows, users, pair, out);
-  else lobePairSumsPlain(A, B, g, wx, wy, wz, vx, vy, vz, n, wdo, L, rows, users, pair, out);
+  if (avx512) switch (modes) {  // the density's numbers of azimuths: multiples of 8
+      case 8: return cosineModesAvx512<1>(f, cosines, n, out);
+      case 16: return cosineModesAvx512<2>(f, cosines, n, out);
+      case 24: return cosineModesAvx512<3>(f, cosines, n, out);
+      case 32: return cosineModesAvx512<4>(f, cosines, n, out);
+      case 40: return cosineModesAvx512<5>(f, cosines, n, out);
+      case 48: return cosineModesAvx512<6>(f, cosines, n, out);
+      case 56: return cosineModesAvx512<7>(f, cosines, n, out);
+      case 64: return cosineModesAvx512<8>(f, cosines, n, out);
+      default: break;
+    }
+  cosineModesPlain(f, cosines, n, modes, out);
 }
 #else
-void lobePairSums(double A, double B, double g, const double* wx, const double* wy, const double* wz, double vx,
-                  double vy, double vz, int n, const double* wdo, const double* L, const int* rows, int users,
-                  double* pair, double* out) {
-  lobePairSumsPlain(A, B, g, wx, wy, wz, vx, vy, vz, n, wdo, L, rows, users, pair, out);
+void cosineModes(const double* f, const double* cosines, int n, int modes, double* out) {
+  cosineModesPlain(f, cosines, n, modes, out);
 }
 #endif
+
+AzimuthModes::AzimuthModes(int n) : nPh(n), Q(8 * n), qCos(Q), qModes(static_cast<std::size_t>(Q) * n), phiModes(static_cast<std::size_t>(n) * n) {
+  for (int q = 0; q < Q; ++q) {
+    const double d = (q + 0.5) * kPi / Q;
+    qCos[q] = std::cos(d);
+    for (int m = 0; m < nPh; ++m) qModes[static_cast<std::size_t>(q) * nPh + m] = 2.0 * kPi / Q * std::cos(m * d);
+  }
+  for (int i = 0; i < nPh; ++i)
+    for (int m = 0; m < nPh; ++m)
+      phiModes[static_cast<std::size_t>(i) * nPh + m] = (m == 0 ? 1.0 : 2.0) / nPh * std::cos(m * (i + 0.5) * kPi / nPh);
+}
+
+UMBRA_KERNEL void modeProducts(const double* alpha, const int* rows, int count, const double* gamma,
+                               std::size_t gammaStride, int rings, int modes, double* out) {
+  for (int u = 0; u < count; ++u) {
+    double* o = out + static_cast<std::size_t>(u) * modes;
+    const double* a = alpha + static_cast<std::size_t>(rows[u]) * rings * modes;
+    const double* gu = gamma + u * gammaStride;
+    std::fill_n(o, modes, 0.0);
+    for (int lt = 0; lt < rings; ++lt) {
+      const double* ar = a + static_cast<std::size_t>(lt) * modes;
+      const double* gr = gu + static_cast<std::size_t>(lt) * modes;
+      for (int m = 0; m < modes; ++m) o[m] += ar[m] * gr[m];
+    }
+  }
+}
 
 UMBRA_KERNEL void tablePositions(const double* c, int n, int* index, double* weight) {
   for (int j = 0; j < n; ++j) Model::tablePosition(c[j], index[j], weight[j]);
 }
 
-namespace {
-typedef double Lanes __attribute__((vector_size(4 * sizeof(double))));
-
-/// tableSums for C groups of four wavelengths from l0 (C fixed: the sums stay in registers,
-/// and the table's rows are read once for all of them).
-template <int C>
-__attribute__((always_inline)) inline void tableSumsOf(const double* T, int stride, int l0, const int* index, const double* weight, int n,
-                        const double* wdo, const double* L, double* norm, double* sum) {
-  Lanes nAcc[C], sAcc[C], a0, a1, b0, b1, light;
-  for (int c = 0; c < C; ++c) nAcc[c] = Lanes{0.0, 0.0, 0.0, 0.0}, sAcc[c] = nAcc[c];
-  for (int j = 0; j < n; ++j) {
-    const double* a = T + static_cast<std::size_t>(index[j]) * stride + l0;
-    const double* b = T + static_cast<std::size_t>(index[n + j]) * stride + l0;
-    const double* l = L + static_cast<std::size_t>(j) * stride + l0;
-    const double wa = weight[j], wb = weight[n + j], w = wdo[j];
-    for (int c = 0; c < C; ++c) {
-      std::memcpy(&a0, a + 4 * c, sizeof a0), std::memcpy(&a1, a + stride + 4 * c, sizeof a1);
-      std::memcpy(&b0, b + 4 * c, sizeof b0), std::memcpy(&b1, b + stride + 4 * c, sizeof b1);
-      std::memcpy(&light, l + 4 * c, sizeof light);
-      const Lanes p = (a0 + wa * (a1 - a0)) + (b0 + wb * (b1 - b0));
-      nAcc[c] += p * w;
-      sAcc[c] += p * light;
-    }
-  }
-  for (int c = 0; c < C; ++c)
-    for (int k = 0; k < 4; ++k) norm[l0 + 4 * c + k] = 0.5 * nAcc[c][k], sum[l0 + 4 * c + k] = 0.5 * sAcc[c][k];
-}
-}  // namespace
-
-UMBRA_KERNEL void tableSums(const double* T, int stride, const int* index, const double* weight, int n,
-                            const double* wdo, const double* L, double* norm, double* sum) {
-  for (int l0 = 0; l0 < stride; l0 += 16) {
-    switch (std::min(16, stride - l0) / 4) {
-      case 4: tableSumsOf<4>(T, stride, l0, index, weight, n, wdo, L, norm, sum); break;
-      case 3: tableSumsOf<3>(T, stride, l0, index, weight, n, wdo, L, norm, sum); break;
-      case 2: tableSumsOf<2>(T, stride, l0, index, weight, n, wdo, L, norm, sum); break;
-      default: tableSumsOf<1>(T, stride, l0, index, weight, n, wdo, L, norm, sum); break;
-    }
-  }
-}
-
-
 }  // namespace umbra::atmosphere::stages
 
 namespace umbra::atmosphere::detail {
-void lobePairSumsBaseline(double A, double B, double g, const double* wx, const double* wy, const double* wz,
-                          double vx, double vy, double vz, int n, const double* wdo, const double* L, const int* rows,
-                          int users, double* pair, double* out) {
-  stages::lobePairSumsPlain(A, B, g, wx, wy, wz, vx, vy, vz, n, wdo, L, rows, users, pair, out);
+void lobeValuesBaseline(double A, double B, double g, const double* c, double* p, int n) {
+  stages::lobeValuesPlain(A, B, g, c, p, n);
 }
-void lobePairSumsDispatched(double A, double B, double g, const double* wx, const double* wy, const double* wz,
-                            double vx, double vy, double vz, int n, const double* wdo, const double* L,
-                            const int* rows, int users, double* pair, double* out) {
-  stages::lobePairSums(A, B, g, wx, wy, wz, vx, vy, vz, n, wdo, L, rows, users, pair, out);
+void lobeValuesDispatched(double A, double B, double g, const double* c, double* p, int n) {
+  stages::lobeValues(A, B, g, c, p, n);
 }
 }  // namespace umbra::atmosphere::detail

@@ -1,8 +1,11 @@
 #pragma once
 // The precomputation's innermost loops, each compiled for AVX2 and for the baseline CPU and
-// chosen when the program loads (lobePairSums: AVX-512 where there is one). Their own file, so
+// chosen when the program loads (lobeValues: AVX-512 where there is one). Their own file, so
 // that the compiler's vectorising options apply to them alone (atmosphere/CMakeLists.txt).
 #include "precompute/Parametrisation.hpp"
+
+#include <cstddef>
+#include <vector>
 
 namespace umbra::atmosphere::stages {
 
@@ -27,28 +30,39 @@ void gatherTexels(const double* blend, int nl, int muS, const int* x00, const do
 void sunTexels(const ShellRadii& shell, double alpha, double r, double xr, double yr, const double* sx,
                const double* muS0, int n, int columns, double* vis, double* fx);
 
-/// One lobe, p(c) = A (1 + B c^2) / (1 + g^2 - 2 g c)^{3/2}, at one view v over the density's n directions w_j and their
-/// mirrors (w_y negated): pair_j = (p(w_j . v) + p(w'_j . v)) / 2, out[0] = sum_j pair_j wdo[j]
-/// and out[1 + u] = sum_j pair_j L[rows[u] * n + j] for u < users; pair (n values) is
-/// scratch. The density's inner loop for closed-form lobes, in one pass over the directions.
-/// lobePairSumsPlain is the portable loop; lobePairSums takes AVX-512 where the CPU has it.
-void lobePairSumsPlain(double A, double B, double g, const double* wx, const double* wy, const double* wz, double vx,
-                       double vy, double vz, int n, const double* wdo, const double* L, const int* rows, int users,
-                       double* pair, double* out);
-void lobePairSums(double A, double B, double g, const double* wx, const double* wy, const double* wz, double vx,
-                  double vy, double vz, int n, const double* wdo, const double* L, const int* rows, int users,
-                  double* pair, double* out);
+/// p_j = A (1 + B c_j^2) / (1 + g^2 - 2 g c_j)^{3/2} for j < n: a closed-form lobe.
+/// lobeValuesPlain is the portable loop; lobeValues takes AVX-512 where the CPU has it.
+void lobeValuesPlain(double A, double B, double g, const double* c, double* p, int n);
+void lobeValues(double A, double B, double g, const double* c, double* p, int n);
+
+/// out[m] = sum_q f[q] cosines[q * modes + m] for m < modes, q < n: a function's cosine
+/// modes from its samples (the weights in the cosines). cosineModesPlain is the portable
+/// loop; cosineModes takes AVX-512 where the CPU has it and modes is a multiple of 8.
+void cosineModesPlain(const double* f, const double* cosines, int n, int modes, double* out);
+void cosineModes(const double* f, const double* cosines, int n, int modes, double* out);
+
+/// The density's integrals in azimuth by cosine modes (ScatteringDensity.cpp). The light of
+/// a ring of directions, known at the nPh azimuths phi_i = (i + 1/2) pi / nPh and (the same)
+/// at their mirrors -phi_i, is the cosine series L(phi) = sum_{m < nPh} alpha_m cos(m phi)
+/// through those 2 nPh points; a lobe p(a + b cos(phi - phi_v)) seen from azimuth phi_v has
+/// the modes gamma_m = int_0^2pi p(a + b cos D) cos(m D) dD (midpoint rule, Q = 8 nPh points
+/// on [0, pi]); then int_0^2pi L(phi) p(a + b cos(phi - phi_v)) dphi = sum_m alpha_m gamma_m
+/// cos(m phi_v).
+struct AzimuthModes {
+  explicit AzimuthModes(int nPh);
+  int nPh, Q;
+  std::vector<double> qCos;      ///< cos D_q, D_q = (q + 1/2) pi / Q
+  std::vector<double> qModes;    ///< [q * nPh + m]: 2 pi / Q cos(m D_q), for cosineModes
+  std::vector<double> phiModes;  ///< [i * nPh + m]: (2 - [m = 0]) / nPh cos(m phi_i), for cosineModes
+};
+
+/// out[u * modes + m] = sum_lt alpha[(rows[u] * rings + lt) * modes + m] gamma[u * gammaStride +
+/// lt * modes + m] for u < count: the light's modes (of wavelength rows[u]) times a lobe's
+/// (gammaStride 0: one lobe for all), summed over the rings of directions.
+void modeProducts(const double* alpha, const int* rows, int count, const double* gamma, std::size_t gammaStride,
+                  int rings, int modes, double* out);
 
 /// Model::tablePosition of n cosines: the table entries index[j] and weights weight[j].
 void tablePositions(const double* c, int n, int* index, double* weight);
-
-/// A tabulated phase function per wavelength, interleaved (T[i * stride + l], uniform in the
-/// cosine; stride a multiple of 4, the lanes past the wavelengths zero), at n directions and
-/// their mirrors (table entry index[j] and weight[j] on the next one; the mirrors' at n + j),
-/// each direction's value averaged with its mirror's and summed against the solid angles
-/// wdo[j] (norm[l]) and against the incoming light L[j * stride + l] (sum[l]), for l < stride:
-/// the density's inner loop for Lorenz-Mie phases.
-void tableSums(const double* T, int stride, const int* index, const double* weight, int n, const double* wdo,
-               const double* L, double* norm, double* sum);
 
 }  // namespace umbra::atmosphere::stages

@@ -1,8 +1,9 @@
 // The scattering density J_k at each texel: the incoming L_(k-1) from a sphere of
 // directions (Gauss-Legendre in mu on each side of the horizon, midpoint in phi, each
 // direction standing for its mirror too), plus the ground's reflection of E_(k-2), times
-// each scatterer's phase function towards the view (the forward lobes renormalised to their
-// exact integral over the sphere).
+// each scatterer's phase function towards the view: the Rayleigh-like part a + b c^2 from
+// the light's moments, the lobes from its azimuthal cosine modes (AzimuthModes), each lobe
+// renormalised to its exact integral over the sphere.
 #include "precompute/Batch.hpp"
 #include "precompute/Kernels.hpp"
 #include "precompute/Paths.hpp"
@@ -91,125 +92,183 @@ void computeScatteringDensity(Batch& B, int order) {
   const int nTh = d.nTh, nPh = d.nPh, nDir = d.nDir;
   const std::vector<double>&wxAll = d.wx, &wyAll = d.wy, &wzAll = d.wz, &wdoAll = d.wdo;
   const std::vector<double>&groundT = d.groundT, &groundD = d.groundD, &lobeIntegral = d.lobeIntegral;
-  B.run.run("scattering density", 2.0, B.R * MUS,
-            [&, g, b, alpha, nl, ns, MU, MUS, nTh, nPh, nDir, order](int task) {
-    const int z = task / MUS, is = task % MUS;
-    const ScatteringPoint p0 = g.texel(is, 0, z);
-    const double r = p0.r, muS = p0.muS, sinS = std::sqrt(std::max(0.0, 1.0 - muS * muS));
-    const double alt = r - b;
-    const std::size_t zd = static_cast<std::size_t>(z) * nDir;
+
+  // The lobes, integrated in azimuth by their cosine modes (AzimuthModes): the light of each
+  // ring of directions interpolated by its cosine series, integrated against the lobe
+  // however narrow its peak, for nPh products per ring and view instead of 2 nPh lobe
+  // values. The lobes' modes (gamma) depend on the radius, the view's zenith cosine and the
+  // ring; the light's (alpha, here of Lw = L wdo) on the radius and the Sun. The lobes: each
+  // closed-form one (for the wavelengths that use it), and per wavelength the tabulated ones
+  // (Lorenz-Mie's) summed with their weights at the radius into one table. Each one's sum
+  // over the directions, sum_lt wdo_lt gamma_0 (wdo_lt = 2 dA dMu_lt: the sum with alpha
+  // from Lw is 2 dA times the integral), is renormalised to its exact integral.
+  std::vector<int> formLobes;
+  for (std::size_t li = 0; li < m.lobes.size(); ++li)
+    if (m.lobes[li].table.empty()) formLobes.push_back(static_cast<int>(li));
+  const int nForm = static_cast<int>(formLobes.size());
+  const AzimuthModes am(nPh);
+  const int Q = am.Q;
+  std::vector<int> everyWavelength(nl);
+  for (int l = 0; l < nl; ++l) everyWavelength[l] = l;
+
+  B.run.run("scattering density", 2.0, B.R, [&, g, b, alpha, nl, ns, MU, MUS, nTh, nPh, nDir, nForm, Q, order](int z) {
+    const std::size_t zd = static_cast<std::size_t>(z) * nDir, ringModes = static_cast<std::size_t>(nTh) * nPh;
     const double *wx = &wxAll[zd], *wy = &wyAll[zd], *wz = &wzAll[zd], *wdo = &wdoAll[zd];
-    // Incoming radiance per direction, times the solid angle: Lw[l][j].
-    std::vector<double> Lw(static_cast<std::size_t>(nl) * nDir), v(nl), E(nl);
-    std::vector<double> M0(nl, 0.0), M2(static_cast<std::size_t>(nl) * 6, 0.0);
-    for (int j = 0; j < nDir; ++j) {
-      const int lt = j / nPh;
-      const double nu = clampCosine(wx[j] * sinS + wz[j] * muS);
-      const bool ground = groundD[z * nTh + lt] >= 0.0;
-      std::fill(v.begin(), v.end(), 0.0);
-      B.incoming(order - 1, r, wz[j], muS, nu, ground, v.data());
-      if (ground) {
-        const double d = groundD[z * nTh + lt];
-        const double muSg = clampCosine((r * muS + d * nu) / b);
-        if (order == 2) {
-          directIrradianceAt(Ttab, shell, alpha, b, muSg, E.data());  // E_0, exact at the setting Sun
-        } else {
-          lookupIrradiance(deltaE, shell, b, muSg, E.data());
-        }
-        const double* Tg = &groundT[(static_cast<std::size_t>(z) * nTh + lt) * nl];
-        for (int l = 0; l < nl; ++l) v[l] += Tg[l] * atm.groundAlbedo[l] / kPi * E[l];
-      }
-      for (int l = 0; l < nl; ++l) {
-        const double L = v[l] * wdo[j];
-        Lw[static_cast<std::size_t>(l) * nDir + j] = L;
-        M0[l] += L;
-        double* M = &M2[l * 6];
-        // xy and yz cancel with the mirror (M[3] = M[5] = 0)
-        M[0] += wx[j] * wx[j] * L, M[1] += wy[j] * wy[j] * L, M[2] += wz[j] * wz[j] * L;
-        M[4] += wx[j] * wz[j] * L;
-      }
-    }
+    const double r = g.texel(0, 0, z).r, alt = r - b;
     std::vector<double> rho(ns);
     for (int q = 0; q < ns; ++q) rho[q] = m.density(m.scatterers[q], alt);
-    // The tabulated lobes of a wavelength (Lorenz-Mie's, one per component) summed into one
-    // table with their weights at this altitude (sca rho w): one lookup per direction and
-    // wavelength, however many aerosol populations; renormalised as one lobe. The
-    // wavelengths side by side (mixed[i * stride + l], and the incoming light so too in
-    // LwT): one lookup reads four (tableSums).
-    const int stride = (nl + 3) / 4 * 4;
-    std::vector<double> mixed, LwT, mixedIntegral(nl, 0.0), mixedNorm(stride), mixedSum(stride);
+    // The tabulated lobes of a wavelength summed into one table with their weights at this
+    // altitude (sca rho w), the wavelengths side by side (mixed[i * nl + l]), and its
+    // integral over the sphere.
+    std::vector<double> mixed, mixedIntegral(nl, 0.0);
     for (int q = 0; q < ns; ++q)
       for (int l = 0; l < nl; ++l)
         for (auto [li, w] : m.phase[q * nl + l].lobes) {
           if (m.lobes[li].table.empty()) continue;
-          if (mixed.empty()) mixed.assign(static_cast<std::size_t>(stride) * kPhaseTableSize, 0.0);
+          if (mixed.empty()) mixed.assign(static_cast<std::size_t>(nl) * kPhaseTableSize, 0.0);
           const double f = m.sca[q * nl + l] * rho[q] * w;
           const double* T = m.lobes[li].table.data();
-          for (int i = 0; i < kPhaseTableSize; ++i) mixed[static_cast<std::size_t>(i) * stride + l] += f * T[i];
+          for (int i = 0; i < kPhaseTableSize; ++i) mixed[static_cast<std::size_t>(i) * nl + l] += f * T[i];
           mixedIntegral[l] += f * lobeIntegral[li];
         }
-    if (!mixed.empty()) {
-      LwT.assign(static_cast<std::size_t>(stride) * nDir, 0.0);
-      for (int l = 0; l < nl; ++l)
-        for (int j = 0; j < nDir; ++j) LwT[static_cast<std::size_t>(j) * stride + l] = Lw[static_cast<std::size_t>(l) * nDir + j];
-    }
-    // cj: the cosines with the view of the directions [0, nDir) and of their mirrors (for
-    // the tabulated lobes).
-    std::vector<double> cj(2 * nDir), pPair(nDir), lobeSum(m.lobes.size() * nl), J(nl), sums(nl + 1);
-    // Tabulated lobes (one per wavelength for Lorenz-Mie) share the cosines: the table
-    // index and weight of each, computed once per view (as Model::evalLobe does).
-    std::vector<int> tableIndex(2 * nDir);
-    std::vector<double> tableWeight(2 * nDir);
-    for (int y = 0; y < MU; ++y) {
-      for (int k = 0; k < o.scatteringNu; ++k) {
-        const int x = k * MUS + is;
-        const ScatteringPoint p = g.texel(x, y, z);
-        const double sz = std::sqrt(std::max(0.0, 1.0 - p.mu * p.mu));
-        double vx = sinS > 1e-12 ? std::clamp((p.nu - p.mu * muS) / sinS, -sz, sz) : sz;
-        const double vy = std::sqrt(std::max(0.0, sz * sz - vx * vx)), vz = p.mu;
-        if (!mixed.empty()) {
-#pragma omp simd
-          for (int j = 0; j < nDir; ++j) {
-            cj[j] = wx[j] * vx + wy[j] * vy + wz[j] * vz;
-            cj[nDir + j] = wx[j] * vx - wy[j] * vy + wz[j] * vz;
+    const bool tabulated = !mixed.empty();
+
+    // gamma of each closed-form lobe f, [((f * MU + y) * nTh + lt) * nPh + k], and of each
+    // wavelength's tabulated one, [((y * nl + l) * nTh + lt) * nPh + k]; and each one's norm
+    // at a view zenith y.
+    std::vector<double> gammaForm(static_cast<std::size_t>(nForm) * MU * ringModes), normForm(static_cast<std::size_t>(nForm) * MU, 0.0);
+    std::vector<double> gammaMixed(tabulated ? static_cast<std::size_t>(MU) * nl * ringModes : 0), normMixed(tabulated ? static_cast<std::size_t>(MU) * nl : 0, 0.0);
+    {
+      std::vector<double> cq(Q), pq(Q), tw(Q);
+      std::vector<int> ti(Q);
+      for (int y = 0; y < MU; ++y) {
+        const double vz = g.texel(0, y, z).mu, sz = std::sqrt(std::max(0.0, 1.0 - vz * vz));
+        for (int lt = 0; lt < nTh; ++lt) {
+          const double wzl = wz[lt * nPh], sinL = std::sqrt(std::max(0.0, 1.0 - wzl * wzl));
+          const double ringWdo = wdo[lt * nPh];
+          for (int q = 0; q < Q; ++q) cq[q] = wzl * vz + sinL * sz * am.qCos[q];
+          for (int f = 0; f < nForm; ++f) {
+            const Lobe& lobe = m.lobes[formLobes[f]];
+            double* gm = &gammaForm[(static_cast<std::size_t>(f) * MU + y) * ringModes + static_cast<std::size_t>(lt) * nPh];
+            lobeValues(lobe.A, lobe.B, lobe.g, cq.data(), pq.data(), Q);
+            cosineModes(pq.data(), am.qModes.data(), Q, nPh, gm);
+            normForm[static_cast<std::size_t>(f) * MU + y] += ringWdo * gm[0];
           }
-        }
-        if (!mixed.empty()) tablePositions(cj.data(), 2 * nDir, tableIndex.data(), tableWeight.data());
-        // A closed-form lobe's values over the directions, each averaged with its mirror's,
-        // summed against each of its wavelengths' incoming light and renormalised to the
-        // lobe's exact integral (one norm for all of them).
-        for (std::size_t li = 0; li < m.lobes.size(); ++li) {
-          const Lobe& lobe = m.lobes[li];
-          if (!lobe.table.empty()) continue;
-          const std::vector<int>& users = m.lobeUsers[li];
-          lobePairSums(lobe.A, lobe.B, lobe.g, wx, wy, wz, vx, vy, vz, nDir, wdo, Lw.data(), users.data(),
-                       static_cast<int>(users.size()), pPair.data(), sums.data());
-          const double scale = sums[0] > 0.0 ? lobeIntegral[li] / sums[0] : 1.0;
-          for (std::size_t u = 0; u < users.size(); ++u) lobeSum[li * nl + users[u]] = scale * sums[1 + u];
-        }
-        std::fill(J.begin(), J.end(), 0.0);
-        if (!mixed.empty()) {
-          tableSums(mixed.data(), stride, tableIndex.data(), tableWeight.data(), nDir, wdo, LwT.data(),
-                    mixedNorm.data(), mixedSum.data());
-          for (int l = 0; l < nl; ++l)
-            J[l] = (mixedNorm[l] > 0.0 ? mixedIntegral[l] / mixedNorm[l] : 1.0) * mixedSum[l];
-        }
-        for (int q = 0; q < ns; ++q) {
+          if (!tabulated) continue;
+          tablePositions(cq.data(), Q, ti.data(), tw.data());
           for (int l = 0; l < nl; ++l) {
-            const PhaseModel& pm = m.phase[q * nl + l];
-            double s = 0.0;
-            if (pm.a != 0.0 || pm.b != 0.0) {
-              const double* M = &M2[l * 6];
-              const double vMv = vx * vx * M[0] + vy * vy * M[1] + vz * vz * M[2] +
-                                 2.0 * (vx * vy * M[3] + vx * vz * M[4] + vy * vz * M[5]);
-              s += pm.a * M0[l] + pm.b * vMv;
+            for (int q = 0; q < Q; ++q) {
+              const double* row = &mixed[static_cast<std::size_t>(ti[q]) * nl + l];
+              pq[q] = row[0] + tw[q] * (row[nl] - row[0]);
             }
-            for (auto [li, w] : pm.lobes)
-              if (m.lobes[li].table.empty()) s += w * lobeSum[li * nl + l];
-            J[l] += m.sca[q * nl + l] * rho[q] * s;
+            double* gm = &gammaMixed[(static_cast<std::size_t>(y) * nl + l) * ringModes + static_cast<std::size_t>(lt) * nPh];
+            cosineModes(pq.data(), am.qModes.data(), Q, nPh, gm);
+            normMixed[static_cast<std::size_t>(y) * nl + l] += ringWdo * gm[0];
           }
         }
-        std::copy_n(J.data(), nl, density.at(x, y, z));
+      }
+    }
+
+    // Per Sun: the light's modes (alpha, every wavelength), their products with each lobe's
+    // gamma summed over the rings (C), and the modes' cosines at a view (cheb).
+    std::vector<double> Lw(static_cast<std::size_t>(nl) * nDir), v(nl), E(nl), M0(nl), M2(static_cast<std::size_t>(nl) * 6);
+    std::vector<double> alphaModes(static_cast<std::size_t>(nl) * ringModes), cheb(nPh), lobeSum(m.lobes.size() * nl), J(nl);
+    std::vector<std::vector<double>> C(nForm);
+    for (int f = 0; f < nForm; ++f) C[f].resize(m.lobeUsers[formLobes[f]].size() * nPh);
+    std::vector<double> Cmixed(tabulated ? static_cast<std::size_t>(nl) * nPh : 0);
+    for (int is = 0; is < MUS; ++is) {
+      const double muS = g.texel(is, 0, z).muS, sinS = std::sqrt(std::max(0.0, 1.0 - muS * muS));
+      // Incoming radiance per direction, times the solid angle: Lw[l][j].
+      std::fill(M0.begin(), M0.end(), 0.0);
+      std::fill(M2.begin(), M2.end(), 0.0);
+      for (int j = 0; j < nDir; ++j) {
+        const int lt = j / nPh;
+        const double nu = clampCosine(wx[j] * sinS + wz[j] * muS);
+        const bool ground = groundD[z * nTh + lt] >= 0.0;
+        std::fill(v.begin(), v.end(), 0.0);
+        B.incoming(order - 1, r, wz[j], muS, nu, ground, v.data());
+        if (ground) {
+          const double dg = groundD[z * nTh + lt];
+          const double muSg = clampCosine((r * muS + dg * nu) / b);
+          if (order == 2) {
+            directIrradianceAt(Ttab, shell, alpha, b, muSg, E.data());  // E_0, exact at the setting Sun
+          } else {
+            lookupIrradiance(deltaE, shell, b, muSg, E.data());
+          }
+          const double* Tg = &groundT[(static_cast<std::size_t>(z) * nTh + lt) * nl];
+          for (int l = 0; l < nl; ++l) v[l] += Tg[l] * atm.groundAlbedo[l] / kPi * E[l];
+        }
+        for (int l = 0; l < nl; ++l) {
+          const double L = v[l] * wdo[j];
+          Lw[static_cast<std::size_t>(l) * nDir + j] = L;
+          M0[l] += L;
+          double* M = &M2[l * 6];
+          // xy and yz cancel with the mirror (M[3] = M[5] = 0)
+          M[0] += wx[j] * wx[j] * L, M[1] += wy[j] * wy[j] * L, M[2] += wz[j] * wz[j] * L;
+          M[4] += wx[j] * wz[j] * L;
+        }
+      }
+      if (nForm > 0 || tabulated)
+        for (int l = 0; l < nl; ++l)
+          for (int lt = 0; lt < nTh; ++lt)
+            cosineModes(&Lw[static_cast<std::size_t>(l) * nDir + static_cast<std::size_t>(lt) * nPh], am.phiModes.data(), nPh,
+                        nPh, &alphaModes[(static_cast<std::size_t>(l) * nTh + lt) * nPh]);
+      for (int y = 0; y < MU; ++y) {
+        for (int f = 0; f < nForm; ++f) {
+          const std::vector<int>& users = m.lobeUsers[formLobes[f]];
+          modeProducts(alphaModes.data(), users.data(), static_cast<int>(users.size()),
+                       &gammaForm[(static_cast<std::size_t>(f) * MU + y) * ringModes], 0, nTh, nPh, C[f].data());
+        }
+        if (tabulated)
+          modeProducts(alphaModes.data(), everyWavelength.data(), nl, &gammaMixed[static_cast<std::size_t>(y) * nl * ringModes],
+                       ringModes, nTh, nPh, Cmixed.data());
+        for (int k = 0; k < o.scatteringNu; ++k) {
+          const int x = k * MUS + is;
+          const ScatteringPoint p = g.texel(x, y, z);
+          const double sz = std::sqrt(std::max(0.0, 1.0 - p.mu * p.mu));
+          double vx = sinS > 1e-12 ? std::clamp((p.nu - p.mu * muS) / sinS, -sz, sz) : sz;
+          const double vy = std::sqrt(std::max(0.0, sz * sz - vx * vx)), vz = p.mu;
+          // cos(m phi_v) by the Chebyshev recurrence; each lobe's sum over the modes
+          // renormalised to its exact integral over the sphere (one norm for all users).
+          const double c1 = sz > 1e-12 ? std::clamp(vx / sz, -1.0, 1.0) : 1.0;
+          cheb[0] = 1.0;
+          if (nPh > 1) cheb[1] = c1;
+          for (int k2 = 2; k2 < nPh; ++k2) cheb[k2] = 2.0 * c1 * cheb[k2 - 1] - cheb[k2 - 2];
+          const auto modeSum = [&](const double* c) {
+            double sum = 0.0;
+            for (int k2 = 0; k2 < nPh; ++k2) sum += c[k2] * cheb[k2];
+            return sum;
+          };
+          for (int f = 0; f < nForm; ++f) {
+            const int li = formLobes[f];
+            const std::vector<int>& users = m.lobeUsers[li];
+            const double norm = normForm[static_cast<std::size_t>(f) * MU + y];
+            const double scale = norm > 0.0 ? lobeIntegral[li] / norm : 1.0;
+            for (std::size_t u = 0; u < users.size(); ++u) lobeSum[li * nl + users[u]] = scale * modeSum(&C[f][u * nPh]);
+          }
+          for (int l = 0; l < nl; ++l) {
+            J[l] = 0.0;
+            if (!tabulated) continue;
+            const double norm = normMixed[static_cast<std::size_t>(y) * nl + l];
+            J[l] = (norm > 0.0 ? mixedIntegral[l] / norm : 1.0) * modeSum(&Cmixed[static_cast<std::size_t>(l) * nPh]);
+          }
+          for (int q = 0; q < ns; ++q) {
+            for (int l = 0; l < nl; ++l) {
+              const PhaseModel& pm = m.phase[q * nl + l];
+              double s = 0.0;
+              if (pm.a != 0.0 || pm.b != 0.0) {
+                const double* M = &M2[l * 6];
+                const double vMv = vx * vx * M[0] + vy * vy * M[1] + vz * vz * M[2] +
+                                   2.0 * (vx * vy * M[3] + vx * vz * M[4] + vy * vz * M[5]);
+                s += pm.a * M0[l] + pm.b * vMv;
+              }
+              for (auto [li, w] : pm.lobes)
+                if (m.lobes[li].table.empty()) s += w * lobeSum[li * nl + l];
+              J[l] += m.sca[q * nl + l] * rho[q] * s;
+            }
+          }
+          std::copy_n(J.data(), nl, density.at(x, y, z));
+        }
       }
     }
   });

@@ -30,9 +30,11 @@ vtkImageData* block(vtkMultiBlockDataSet* blocks, const std::string& name) {
   throw std::invalid_argument("atmosphere tables: no block '" + name + "'");
 }
 
-/// The block's arrays (one per wavelength, in order) interleaved per texel, as `Value`s.
-template <class Value>
-std::vector<Value> interleaved(vtkImageData* image, const std::string& name, int channels) {
+/// The block's arrays (one per wavelength, in order) interleaved per texel, in a `Values`
+/// (a std::vector of some allocator).
+template <class Values>
+Values interleaved(vtkImageData* image, const std::string& name, int channels) {
+  using Value = typename Values::value_type;
   vtkPointData* pd = image->GetPointData();
   if (pd->GetNumberOfArrays() != channels) {
     throw std::invalid_argument("atmosphere tables: block '" + name + "' has " +
@@ -40,7 +42,7 @@ std::vector<Value> interleaved(vtkImageData* image, const std::string& name, int
                                 std::to_string(channels));
   }
   const vtkIdType n = image->GetNumberOfPoints();
-  std::vector<Value> v(static_cast<std::size_t>(n) * channels);
+  Values v(static_cast<std::size_t>(n) * channels);
   for (int c = 0; c < channels; ++c) {
     vtkDataArray* a = pd->GetArray(c);
     if (!a || a->GetNumberOfTuples() != n || a->GetNumberOfComponents() != 1) {
@@ -60,7 +62,7 @@ void readTable(vtkImageData* image, const std::string& name, int channels, Table
   t.height = dims[1];
   depth = dims[2];
   t.channels = channels;
-  t.values = interleaved<typename decltype(t.values)::value_type>(image, name, channels);
+  t.values = interleaved<decltype(t.values)>(image, name, channels);
 }
 void read2D(vtkMultiBlockDataSet* blocks, const std::string& name, int channels, atmosphere::Table2D& t) {
   int depth = 1;

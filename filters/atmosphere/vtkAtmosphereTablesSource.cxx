@@ -73,15 +73,15 @@ struct BrunetonTable {
   std::optional<umbra::tables::Table> table;
 };
 
-template <class Value>
-umbra::tables::Table toTable(const std::vector<Value>& values, int width, int rows, int channels,
+template <class Values>
+umbra::tables::Table toTable(const Values& values, int width, int rows, int channels,
                              const std::vector<std::string>& names) {
   umbra::tables::Table t;
   t.width = width;
   t.height = rows;
   t.channels = names;
   t.data.assign(static_cast<std::size_t>(width) * rows * channels, 0.0f);
-  if (!values.empty()) std::transform(values.begin(), values.end(), t.data.begin(), [](Value v) { return static_cast<float>(v); });
+  if (!values.empty()) std::transform(values.begin(), values.end(), t.data.begin(), [](auto v) { return static_cast<float>(v); });
   return t;
 }
 
@@ -276,10 +276,9 @@ void makeBrunetonFiles(vtkAtmosphereTablesSource* source, const umbra::atmospher
             continue;
           if (first == 0 && values.channels == static_cast<int>(requests[i].channels.size())) {
             // Every wavelength at once: the table is whole, written as it is (no planes).
-            tables::Table whole;
-            whole.width = requests[i].width, whole.height = requests[i].height, whole.channels = requests[i].channels;
-            whole.data = std::move(values.values);
-            scratch.store(requests[i].kind, requests[i].parameters, whole);
+            tables::Table shape;
+            shape.width = requests[i].width, shape.height = requests[i].height, shape.channels = requests[i].channels;
+            scratch.store(requests[i].kind, requests[i].parameters, shape, values.values.data());
             planes[i].reset();
             written[i] = true;
           } else {

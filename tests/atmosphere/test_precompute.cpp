@@ -19,12 +19,8 @@ namespace umbra::atmosphere {
 namespace detail {
 // The density's lobe kernel (atmosphere/precompute/Kernels.cpp): the plain loop and the one chosen at run time
 // (the AVX-512 reciprocal square root where the CPU has it).
-void lobePairSumsBaseline(double A, double B, double g, const double* wx, const double* wy, const double* wz,
-                          double vx, double vy, double vz, int n, const double* wdo, const double* L, const int* rows,
-                          int users, double* pair, double* out);
-void lobePairSumsDispatched(double A, double B, double g, const double* wx, const double* wy, const double* wz,
-                            double vx, double vy, double vz, int n, const double* wdo, const double* L,
-                            const int* rows, int users, double* pair, double* out);
+void lobeValuesBaseline(double A, double B, double g, const double* c, double* p, int n);
+void lobeValuesDispatched(double A, double B, double g, const double* c, double* p, int n);
 } // namespace detail
 
 namespace {
@@ -103,8 +99,8 @@ std::vector<double> opticalDepth(const Atmosphere& a, double r, double mu, doubl
   return tau;
 }
 
-template <class Value>
-bool allFiniteNonNegative(const std::vector<Value>& v, std::string& where, const std::string& name) {
+template <class Values>
+bool allFiniteNonNegative(const Values& v, std::string& where, const std::string& name) {
   for (std::size_t i = 0; i < v.size(); ++i)
     if (!std::isfinite(v[i]) || v[i] < 0.0) {
       where = name + "[" + std::to_string(i) + "] = " + std::to_string(v[i]);
@@ -126,38 +122,18 @@ void expectTablesSane(const AtmosphereTables& t) {
 // ---- the parametrisation ----------------------------------------------------------------------
 
 TEST(Precompute, LobeKernelDispatchedMatchesTheClosedForm) {
-  // 37 directions: whole 8-lane blocks and a tail; g from backward to forward lobes; the
-  // sums against the solid angles and two of three rows of light, each direction's lobe
-  // value averaged with its mirror's (w_y negated), summed here term by term.
-  const int n = 37;
-  std::vector<double> wx(n), wy(n), wz(n), wdo(n), L(3 * n);
-  for (int j = 0; j < n; ++j) {
-    const double mu = -1.0 + 2.0 * (j + 0.5) / n, phi = 0.37 * j, s = std::sqrt(1.0 - mu * mu);
-    wx[j] = s * std::cos(phi), wy[j] = s * std::sin(phi), wz[j] = mu, wdo[j] = 0.1 + 0.01 * j;
-    for (int l = 0; l < 3; ++l) L[l * n + j] = 1.0 + std::sin(0.3 * j + l);
-  }
-  const double vx = 0.48, vy = 0.6, vz = 0.64;  // a unit vector
-  const int rows[2] = {2, 0};
+  // 37 cosines: whole 8-lane blocks and a scalar tail; g from forward to backward lobes;
+  // against A (1 + B c^2) / (1 + g^2 - 2 g c)^(3/2) written out here.
+  std::vector<double> c(37);
+  for (std::size_t j = 0; j < c.size(); ++j) c[j] = -1.0 + 2.0 * j / (c.size() - 1);
   for (double g : {-0.76, 0.0, 0.3, 0.8, 0.99}) {
-    const double A = 0.07, B = 0.5;
-    double expected[3] = {0.0, 0.0, 0.0};
-    for (int j = 0; j < n; ++j) {
-      double pair = 0.0;
-      for (double side : {1.0, -1.0}) {
-        const double c = wx[j] * vx + side * wy[j] * vy + wz[j] * vz;
-        pair += 0.5 * A * (1.0 + B * c * c) / std::pow(1.0 + g * g - 2.0 * g * c, 1.5);
-      }
-      expected[0] += pair * wdo[j], expected[1] += pair * L[2 * n + j], expected[2] += pair * L[j];
-    }
-    std::vector<double> scratch(n);
-    double plain[3], fast[3];
-    detail::lobePairSumsBaseline(A, B, g, wx.data(), wy.data(), wz.data(), vx, vy, vz, n, wdo.data(), L.data(), rows, 2,
-                                 scratch.data(), plain);
-    detail::lobePairSumsDispatched(A, B, g, wx.data(), wy.data(), wz.data(), vx, vy, vz, n, wdo.data(), L.data(), rows,
-                                   2, scratch.data(), fast);
-    for (int k = 0; k < 3; ++k) {
-      EXPECT_NEAR(plain[k], expected[k], 1e-13 * expected[k]) << g << " " << k;
-      EXPECT_NEAR(fast[k], expected[k], 1e-13 * expected[k]) << g << " " << k;
+    std::vector<double> plain(c.size()), fast(c.size());
+    detail::lobeValuesBaseline(0.07, 0.5, g, c.data(), plain.data(), static_cast<int>(c.size()));
+    detail::lobeValuesDispatched(0.07, 0.5, g, c.data(), fast.data(), static_cast<int>(c.size()));
+    for (std::size_t j = 0; j < c.size(); ++j) {
+      const double expected = 0.07 * (1.0 + 0.5 * c[j] * c[j]) / std::pow(1.0 + g * g - 2.0 * g * c[j], 1.5);
+      EXPECT_NEAR(plain[j], expected, 1e-13 * expected) << g << " " << c[j];
+      EXPECT_NEAR(fast[j], expected, 1e-13 * expected) << g << " " << c[j];
     }
   }
 }

@@ -379,17 +379,28 @@ std::optional<Table> TableCache::load(const std::string& kind,
 void TableCache::store(const std::string& kind,
                        const std::map<std::string, std::string>& parameters,
                        const Table& table) const {
+  validateTable(table, pathFor(kind, parameters));
+  store(kind, parameters, table, table.data.data());
+}
+
+void TableCache::store(const std::string& kind, const std::map<std::string, std::string>& parameters,
+                       const Table& shape, const float* values) const {
   const std::string path = pathFor(kind, parameters);
   std::error_code ec;
   fs::create_directories(directory_, ec);
   if (ec) {
     throw TableError(path, "cannot create cache directory '" + directory_ + "': " + ec.message());
   }
-  if (!allFinite(table.data.data(), table.data.size()))
-    throw TableError(path, "not cached: the table holds a non-finite value");
+  detail::validateShape(shape, path);
+  const std::size_t rowValues = static_cast<std::size_t>(shape.width) * shape.channels.size();
+  const std::size_t n = rowValues * static_cast<std::size_t>(shape.height);
+  if (!allFinite(values, n)) throw TableError(path, "not cached: the table holds a non-finite value");
+  Checksum sum(shape.width, shape.height, shape.channels.size());
+  sum.mix(values, n * sizeof(float));
   auto header = withKind(kind, parameters);
-  header[kChecksumKey] = checksumOf(table);
-  detail::writeExr(path, table, header);
+  header[kChecksumKey] = sum.text();
+  detail::writeExrRows(path, shape, header, shape.height,
+                       [&](int y0, int) { return values + static_cast<std::size_t>(y0) * rowValues; });
   enforceCap(path);
 }
 

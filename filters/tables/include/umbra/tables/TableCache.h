@@ -54,6 +54,11 @@ public:
   void store(const std::string& kind, const std::map<std::string, std::string>& parameters,
              const Table& table) const;
 
+  // store() of values held elsewhere: shape's size and channels (its data unused), the
+  // values interleaved as Table::data holds them.
+  void store(const std::string& kind, const std::map<std::string, std::string>& parameters, const Table& shape,
+             const float* values) const;
+
   // store() of a table made a batch of channels at a time: written from its file a block of
   // rows at a time (the same file store() writes for the same values), never held whole.
   void store(const std::string& kind, const std::map<std::string, std::string>& parameters,
