@@ -148,6 +148,9 @@ PhaseFunction PhaseFunction::tabulated(std::vector<double> cosTheta, std::vector
   p.kind_ = Kind::Tabulated;
   p.mu_ = std::move(cosTheta);
   p.p_ = std::move(values);
+  p.bucket_.resize(kBuckets + 1);
+  for (int k = 0; k <= kBuckets; ++k)
+    p.bucket_[k] = static_cast<std::uint32_t>(std::upper_bound(p.mu_.begin(), p.mu_.end(), -1.0 + 2.0 * k / kBuckets) - p.mu_.begin());
   return p;
 }
 
@@ -189,7 +192,10 @@ double PhaseFunction::operator()(double cosTheta) const {
       return 3.0 / (8.0 * kPi) * (1.0 - g * g) / (2.0 + g * g) * (1.0 + mu * mu) / (d * std::sqrt(d));
     }
     case Kind::Tabulated: {
-      const auto upper = std::upper_bound(mu_.begin(), mu_.end(), mu);
+      // The bucket's samples, one bucket wider each side (the bucket's edges are rounded).
+      const int k = std::clamp(static_cast<int>((mu + 1.0) * (0.5 * kBuckets)), 0, kBuckets - 1);
+      const auto upper = std::upper_bound(mu_.begin() + bucket_[std::max(k - 1, 0)],
+                                          mu_.begin() + bucket_[std::min(k + 2, kBuckets)], mu);
       if (upper == mu_.end()) return p_.back();
       const std::size_t i = static_cast<std::size_t>(upper - mu_.begin());
       if (i == 0) return p_.front();

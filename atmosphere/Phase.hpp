@@ -17,6 +17,7 @@
 //                            between them, rescaled so that its exact integral is 1
 //                            (the hook for Lorenz-Mie phase functions)
 #include <string>
+#include <cstdint>
 #include <vector>
 
 namespace umbra::atmosphere {
@@ -75,6 +76,10 @@ private:
   Kind kind_ = Kind::Isotropic;
   double g1_ = 0.0, g2_ = 0.0, alpha_ = 1.0;
   std::vector<double> mu_, p_;
+  /// Tabulated: bucket_[k] = the first sample above -1 + 2 k / kBuckets (k <= kBuckets), so
+  /// that a lookup searches only the samples of its bucket (the same result as searching all).
+  static constexpr int kBuckets = 1024;
+  std::vector<std::uint32_t> bucket_;
 };
 
 const char* kindName(PhaseFunction::Kind kind);

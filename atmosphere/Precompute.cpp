@@ -12,6 +12,7 @@
 #include "precompute/Runner.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <new>
 #include <chrono>
@@ -50,16 +51,30 @@ std::string PrecomputeOptions::validate() const {
   return e.str();
 }
 
+namespace {
+constexpr std::size_t kHugePage = std::size_t{2} << 20;
+std::size_t mappedBytes(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
+}  // namespace
+
 void* allocateTableMemory(std::size_t bytes) {
-  constexpr std::size_t kHugePage = std::size_t{2} << 20;
-  const bool huge = bytes >= kHugePage;
-  const std::size_t align = huge ? kHugePage : 64, size = (std::max<std::size_t>(bytes, 1) + align - 1) / align * align;
-  void* p = std::aligned_alloc(align, size);
-  if (!p) throw std::bad_alloc();
+  if (bytes < kHugePage) {
+    void* p = std::malloc(std::max<std::size_t>(bytes, 1));
+    if (!p) throw std::bad_alloc();
+    return p;
+  }
+  const std::size_t size = mappedBytes(bytes);
+  void* p = ::mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (p == MAP_FAILED) throw std::bad_alloc();
 #ifdef MADV_HUGEPAGE
-  if (huge) (void)::madvise(p, size, MADV_HUGEPAGE);  // a hint: without it, 4 KiB pages
+  (void)::madvise(p, size, MADV_HUGEPAGE);  // a hint: without it, 4 KiB pages
 #endif
   return p;
+}
+
+void freeTableMemory(void* data, std::size_t bytes) noexcept {
+  if (!data) return;
+  if (bytes < kHugePage) std::free(data);
+  else ::munmap(data, mappedBytes(bytes));
 }
 
 void zeroTableMemory(void* data, std::size_t bytes) {

@@ -46,7 +46,6 @@
 #include "TextureCoords.hpp"
 
 #include <cstddef>
-#include <cstdlib>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -139,11 +138,13 @@ struct Table2D {
   double* at(int x, int y) { return values.data() + offset(x, y); }
 };
 
-/// Memory for the 4D tables: `bytes` in transparent huge pages where the kernel gives them
-/// (one page fault per 2 MiB rather than per 4 KiB: in a virtual machine the faults of a
-/// table's first writing cost as much as computing it); freed with std::free. Zeroed by
-/// zeroTableMemory on every thread, so that the faults are shared too.
+/// Memory for the 4D tables: from 2 MiB on, whole pages of its own (mapped, in transparent
+/// huge pages where the kernel gives them: one page fault per 2 MiB rather than per 4 KiB,
+/// and in a virtual machine the faults of a table's first writing cost as much as computing
+/// it), given back whole when freed; smaller, the heap's. freeTableMemory takes the same
+/// bytes. zeroTableMemory zeroes on every thread, so that the faults are shared too.
 void* allocateTableMemory(std::size_t bytes);
+void freeTableMemory(void* data, std::size_t bytes) noexcept;
 void zeroTableMemory(void* data, std::size_t bytes);
 
 /// A std::vector allocator of table memory whose resize() leaves the values unset (the
@@ -155,7 +156,7 @@ struct TableAllocator {
   template <class U>
   TableAllocator(const TableAllocator<U>&) noexcept {}
   T* allocate(std::size_t n) { return static_cast<T*>(allocateTableMemory(n * sizeof(T))); }
-  void deallocate(T* p, std::size_t) noexcept { std::free(p); }
+  void deallocate(T* p, std::size_t n) noexcept { freeTableMemory(p, n * sizeof(T)); }
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
     ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
