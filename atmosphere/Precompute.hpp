@@ -23,8 +23,8 @@
 //                  horizon, midpoint in phi). Computed per (r, mu_s) slice: the incoming
 //                  radiance is looked up once per direction and shared by the slice's
 //                  (mu, nu) texels; polynomial phases (isotropic, Rayleigh, Penndorf) use the
-//                  exact second moments of the incoming radiance, the others a vectorised
-//                  sum over directions with closed-form lobes.
+//                  exact second moments of the incoming radiance, the lobes (closed-form or
+//                  tabulated) its cosine modes in azimuth against theirs (AzimuthModes).
 //   indirect irr.  E_k(r, mu_s) = int_2pi L_k(w) w_z dw (ComputeIndirectIrradiance).
 //   multiple       L_k(r, mu, mu_s, nu) = int_0^d T(x, x_i) J_k(x_i) dx
 //                  (ComputeMultipleScattering), summed over orders k >= 2.
@@ -57,7 +57,7 @@ namespace umbra::atmosphere {
 /// How the density's sphere of directions is sampled (precompute/ScatteringDensity.cpp):
 /// part of the tables' cache keys, so that tables made with another rule are not read back.
 inline constexpr const char* kDensityQuadrature =
-    "mu Gauss-Legendre split at the ground's horizon, phi midpoint, lobes renormalised";
+    "mu Gauss-Legendre split at the ground's horizon, phi midpoint, lobes by their cosine modes in phi, renormalised";
 
 /// How the second order's ground reflection gets the Sun's direct irradiance: part of the
 /// keys of the tables it changes (multiple scattering, indirect irradiance).
