@@ -133,95 +133,103 @@ void computeScatteringDensity(Batch& B, int order) {
         }
     const bool tabulated = !mixed.empty();
 
-    // gamma of each closed-form lobe f, [((f * MU + y) * nTh + lt) * nPh + k], and of each
-    // wavelength's tabulated one, [((y * nl + l) * nTh + lt) * nPh + k]; and each one's norm
-    // at a view zenith y.
-    std::vector<double> gammaForm(static_cast<std::size_t>(nForm) * MU * ringModes), normForm(static_cast<std::size_t>(nForm) * MU, 0.0);
-    std::vector<double> gammaMixed(tabulated ? static_cast<std::size_t>(MU) * nl * ringModes : 0), normMixed(tabulated ? static_cast<std::size_t>(MU) * nl : 0, 0.0);
+    // First per Sun (mu_s): the incoming light's moments (M0, M2) and its modes in azimuth
+    // (alpha, every wavelength: [((is * nl + l) * nTh + lt) * nPh + k]).
+    const std::size_t lightModes = static_cast<std::size_t>(nl) * ringModes;
+    std::vector<double> M0(static_cast<std::size_t>(MUS) * nl, 0.0), M2(static_cast<std::size_t>(MUS) * nl * 6, 0.0);
+    std::vector<double> alphaModes(nForm > 0 || tabulated ? MUS * lightModes : 0);
     {
-      std::vector<double> cq(Q), pq(Q), tw(Q);
-      std::vector<int> ti(Q);
-      for (int y = 0; y < MU; ++y) {
-        const double vz = g.texel(0, y, z).mu, sz = std::sqrt(std::max(0.0, 1.0 - vz * vz));
-        for (int lt = 0; lt < nTh; ++lt) {
-          const double wzl = wz[lt * nPh], sinL = std::sqrt(std::max(0.0, 1.0 - wzl * wzl));
-          const double ringWdo = wdo[lt * nPh];
-          for (int q = 0; q < Q; ++q) cq[q] = wzl * vz + sinL * sz * am.qCos[q];
-          for (int f = 0; f < nForm; ++f) {
-            const Lobe& lobe = m.lobes[formLobes[f]];
-            double* gm = &gammaForm[(static_cast<std::size_t>(f) * MU + y) * ringModes + static_cast<std::size_t>(lt) * nPh];
-            lobeValues(lobe.A, lobe.B, lobe.g, cq.data(), pq.data(), Q);
-            cosineModes(pq.data(), am.qModes.data(), Q, nPh, gm);
-            normForm[static_cast<std::size_t>(f) * MU + y] += ringWdo * gm[0];
-          }
-          if (!tabulated) continue;
-          tablePositions(cq.data(), Q, ti.data(), tw.data());
-          for (int l = 0; l < nl; ++l) {
-            for (int q = 0; q < Q; ++q) {
-              const double* row = &mixed[static_cast<std::size_t>(ti[q]) * nl + l];
-              pq[q] = row[0] + tw[q] * (row[nl] - row[0]);
+      std::vector<double> Lw(static_cast<std::size_t>(nl) * nDir), v(nl), E(nl);
+      for (int is = 0; is < MUS; ++is) {
+        const double muS = g.texel(is, 0, z).muS, sinS = std::sqrt(std::max(0.0, 1.0 - muS * muS));
+        double* m0 = &M0[static_cast<std::size_t>(is) * nl];
+        double* m2 = &M2[static_cast<std::size_t>(is) * nl * 6];
+        // Incoming radiance per direction, times the solid angle: Lw[l][j].
+        for (int j = 0; j < nDir; ++j) {
+          const int lt = j / nPh;
+          const double nu = clampCosine(wx[j] * sinS + wz[j] * muS);
+          const bool ground = groundD[z * nTh + lt] >= 0.0;
+          std::fill(v.begin(), v.end(), 0.0);
+          B.incoming(order - 1, r, wz[j], muS, nu, ground, v.data());
+          if (ground) {
+            const double dg = groundD[z * nTh + lt];
+            const double muSg = clampCosine((r * muS + dg * nu) / b);
+            if (order == 2) {
+              directIrradianceAt(Ttab, shell, alpha, b, muSg, E.data());  // E_0, exact at the setting Sun
+            } else {
+              lookupIrradiance(deltaE, shell, b, muSg, E.data());
             }
-            double* gm = &gammaMixed[(static_cast<std::size_t>(y) * nl + l) * ringModes + static_cast<std::size_t>(lt) * nPh];
-            cosineModes(pq.data(), am.qModes.data(), Q, nPh, gm);
-            normMixed[static_cast<std::size_t>(y) * nl + l] += ringWdo * gm[0];
+            const double* Tg = &groundT[(static_cast<std::size_t>(z) * nTh + lt) * nl];
+            for (int l = 0; l < nl; ++l) v[l] += Tg[l] * atm.groundAlbedo[l] / kPi * E[l];
+          }
+          for (int l = 0; l < nl; ++l) {
+            const double L = v[l] * wdo[j];
+            Lw[static_cast<std::size_t>(l) * nDir + j] = L;
+            m0[l] += L;
+            double* M = &m2[l * 6];
+            // xy and yz cancel with the mirror (M[3] = M[5] = 0)
+            M[0] += wx[j] * wx[j] * L, M[1] += wy[j] * wy[j] * L, M[2] += wz[j] * wz[j] * L;
+            M[4] += wx[j] * wz[j] * L;
           }
         }
-      }
-    }
-
-    // Per Sun: the light's modes (alpha, every wavelength), their products with each lobe's
-    // gamma summed over the rings (C), and the modes' cosines at a view (cheb).
-    std::vector<double> Lw(static_cast<std::size_t>(nl) * nDir), v(nl), E(nl), M0(nl), M2(static_cast<std::size_t>(nl) * 6);
-    std::vector<double> alphaModes(static_cast<std::size_t>(nl) * ringModes), cheb(nPh), lobeSum(m.lobes.size() * nl), J(nl);
-    std::vector<std::vector<double>> C(nForm);
-    for (int f = 0; f < nForm; ++f) C[f].resize(m.lobeUsers[formLobes[f]].size() * nPh);
-    std::vector<double> Cmixed(tabulated ? static_cast<std::size_t>(nl) * nPh : 0);
-    for (int is = 0; is < MUS; ++is) {
-      const double muS = g.texel(is, 0, z).muS, sinS = std::sqrt(std::max(0.0, 1.0 - muS * muS));
-      // Incoming radiance per direction, times the solid angle: Lw[l][j].
-      std::fill(M0.begin(), M0.end(), 0.0);
-      std::fill(M2.begin(), M2.end(), 0.0);
-      for (int j = 0; j < nDir; ++j) {
-        const int lt = j / nPh;
-        const double nu = clampCosine(wx[j] * sinS + wz[j] * muS);
-        const bool ground = groundD[z * nTh + lt] >= 0.0;
-        std::fill(v.begin(), v.end(), 0.0);
-        B.incoming(order - 1, r, wz[j], muS, nu, ground, v.data());
-        if (ground) {
-          const double dg = groundD[z * nTh + lt];
-          const double muSg = clampCosine((r * muS + dg * nu) / b);
-          if (order == 2) {
-            directIrradianceAt(Ttab, shell, alpha, b, muSg, E.data());  // E_0, exact at the setting Sun
-          } else {
-            lookupIrradiance(deltaE, shell, b, muSg, E.data());
-          }
-          const double* Tg = &groundT[(static_cast<std::size_t>(z) * nTh + lt) * nl];
-          for (int l = 0; l < nl; ++l) v[l] += Tg[l] * atm.groundAlbedo[l] / kPi * E[l];
-        }
-        for (int l = 0; l < nl; ++l) {
-          const double L = v[l] * wdo[j];
-          Lw[static_cast<std::size_t>(l) * nDir + j] = L;
-          M0[l] += L;
-          double* M = &M2[l * 6];
-          // xy and yz cancel with the mirror (M[3] = M[5] = 0)
-          M[0] += wx[j] * wx[j] * L, M[1] += wy[j] * wy[j] * L, M[2] += wz[j] * wz[j] * L;
-          M[4] += wx[j] * wz[j] * L;
-        }
-      }
-      if (nForm > 0 || tabulated)
+        if (alphaModes.empty()) continue;
         for (int l = 0; l < nl; ++l)
           for (int lt = 0; lt < nTh; ++lt)
             cosineModes(&Lw[static_cast<std::size_t>(l) * nDir + static_cast<std::size_t>(lt) * nPh], am.phiModes.data(), nPh,
-                        nPh, &alphaModes[(static_cast<std::size_t>(l) * nTh + lt) * nPh]);
-      for (int y = 0; y < MU; ++y) {
+                        nPh, &alphaModes[is * lightModes + (static_cast<std::size_t>(l) * nTh + lt) * nPh]);
+      }
+    }
+
+    // Then per view zenith (mu): each lobe's modes, gamma (closed-form lobe f:
+    // [(f * nTh + lt) * nPh + k]; each wavelength's tabulated one: [(l * nTh + lt) * nPh + k])
+    // and norm; per Sun their products with the light's summed over the rings (C); per view
+    // the modes' cosines (cheb) and the sums.
+    std::vector<double> gammaForm(static_cast<std::size_t>(nForm) * ringModes), normForm(nForm);
+    std::vector<double> gammaMixed(tabulated ? lightModes : 0), normMixed(tabulated ? nl : 0);
+    std::vector<double> cq(Q), pq(Q), tw(Q), cheb(nPh), lobeSum(m.lobes.size() * nl), J(nl);
+    std::vector<int> ti(Q);
+    std::vector<std::vector<double>> C(nForm);
+    for (int f = 0; f < nForm; ++f) C[f].resize(m.lobeUsers[formLobes[f]].size() * nPh);
+    std::vector<double> Cmixed(tabulated ? static_cast<std::size_t>(nl) * nPh : 0);
+    for (int y = 0; y < MU; ++y) {
+      const double vzY = g.texel(0, y, z).mu, szY = std::sqrt(std::max(0.0, 1.0 - vzY * vzY));
+      std::fill(normForm.begin(), normForm.end(), 0.0);
+      std::fill(normMixed.begin(), normMixed.end(), 0.0);
+      for (int lt = 0; lt < nTh; ++lt) {
+        const double wzl = wz[lt * nPh], sinL = std::sqrt(std::max(0.0, 1.0 - wzl * wzl));
+        const double ringWdo = wdo[lt * nPh];
+        for (int q = 0; q < Q; ++q) cq[q] = wzl * vzY + sinL * szY * am.qCos[q];
+        for (int f = 0; f < nForm; ++f) {
+          const Lobe& lobe = m.lobes[formLobes[f]];
+          double* gm = &gammaForm[(static_cast<std::size_t>(f) * nTh + lt) * nPh];
+          lobeValues(lobe.A, lobe.B, lobe.g, cq.data(), pq.data(), Q);
+          cosineModes(pq.data(), am.qModes.data(), Q, nPh, gm);
+          normForm[f] += ringWdo * gm[0];
+        }
+        if (!tabulated) continue;
+        tablePositions(cq.data(), Q, ti.data(), tw.data());
+        for (int l = 0; l < nl; ++l) {
+          for (int q = 0; q < Q; ++q) {
+            const double* row = &mixed[static_cast<std::size_t>(ti[q]) * nl + l];
+            pq[q] = row[0] + tw[q] * (row[nl] - row[0]);
+          }
+          double* gm = &gammaMixed[(static_cast<std::size_t>(l) * nTh + lt) * nPh];
+          cosineModes(pq.data(), am.qModes.data(), Q, nPh, gm);
+          normMixed[l] += ringWdo * gm[0];
+        }
+      }
+      for (int is = 0; is < MUS; ++is) {
+        const double muS = g.texel(is, 0, z).muS, sinS = std::sqrt(std::max(0.0, 1.0 - muS * muS));
+        const double* alphaIs = alphaModes.empty() ? nullptr : &alphaModes[is * lightModes];
+        const double* m0 = &M0[static_cast<std::size_t>(is) * nl];
+        const double* m2 = &M2[static_cast<std::size_t>(is) * nl * 6];
         for (int f = 0; f < nForm; ++f) {
           const std::vector<int>& users = m.lobeUsers[formLobes[f]];
-          modeProducts(alphaModes.data(), users.data(), static_cast<int>(users.size()),
-                       &gammaForm[(static_cast<std::size_t>(f) * MU + y) * ringModes], 0, nTh, nPh, C[f].data());
+          modeProducts(alphaIs, users.data(), static_cast<int>(users.size()),
+                       &gammaForm[static_cast<std::size_t>(f) * ringModes], 0, nTh, nPh, C[f].data());
         }
         if (tabulated)
-          modeProducts(alphaModes.data(), everyWavelength.data(), nl, &gammaMixed[static_cast<std::size_t>(y) * nl * ringModes],
-                       ringModes, nTh, nPh, Cmixed.data());
+          modeProducts(alphaIs, everyWavelength.data(), nl, gammaMixed.data(), ringModes, nTh, nPh, Cmixed.data());
         for (int k = 0; k < o.scatteringNu; ++k) {
           const int x = k * MUS + is;
           const ScatteringPoint p = g.texel(x, y, z);
@@ -242,25 +250,23 @@ void computeScatteringDensity(Batch& B, int order) {
           for (int f = 0; f < nForm; ++f) {
             const int li = formLobes[f];
             const std::vector<int>& users = m.lobeUsers[li];
-            const double norm = normForm[static_cast<std::size_t>(f) * MU + y];
-            const double scale = norm > 0.0 ? lobeIntegral[li] / norm : 1.0;
+            const double scale = normForm[f] > 0.0 ? lobeIntegral[li] / normForm[f] : 1.0;
             for (std::size_t u = 0; u < users.size(); ++u) lobeSum[li * nl + users[u]] = scale * modeSum(&C[f][u * nPh]);
           }
           for (int l = 0; l < nl; ++l) {
             J[l] = 0.0;
             if (!tabulated) continue;
-            const double norm = normMixed[static_cast<std::size_t>(y) * nl + l];
-            J[l] = (norm > 0.0 ? mixedIntegral[l] / norm : 1.0) * modeSum(&Cmixed[static_cast<std::size_t>(l) * nPh]);
+            J[l] = (normMixed[l] > 0.0 ? mixedIntegral[l] / normMixed[l] : 1.0) * modeSum(&Cmixed[static_cast<std::size_t>(l) * nPh]);
           }
           for (int q = 0; q < ns; ++q) {
             for (int l = 0; l < nl; ++l) {
               const PhaseModel& pm = m.phase[q * nl + l];
               double s = 0.0;
               if (pm.a != 0.0 || pm.b != 0.0) {
-                const double* M = &M2[l * 6];
+                const double* M = &m2[l * 6];
                 const double vMv = vx * vx * M[0] + vy * vy * M[1] + vz * vz * M[2] +
                                    2.0 * (vx * vy * M[3] + vx * vz * M[4] + vy * vz * M[5]);
-                s += pm.a * M0[l] + pm.b * vMv;
+                s += pm.a * m0[l] + pm.b * vMv;
               }
               for (auto [li, w] : pm.lobes)
                 if (m.lobes[li].table.empty()) s += w * lobeSum[li * nl + l];
