@@ -103,11 +103,13 @@ namespace {
 /// tables go straight into `single` and `multiple` from channel l0 on. With a sink, they
 /// are the batch's own: each goes to the sink once finished and is freed (the single
 /// scattering after the second order's density and irradiance, the last to read it), and
-/// `multiple` is made (from empty) only then.
+/// `multiple` is made (from empty) only then. transmittanceColumns (or null): the straight
+/// rays' column densities, made by the first batch and read by the next.
 BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runner& run,
                          std::vector<FloatTable3D>& single, FloatTable3D& multiple, int l0,
-                         const BatchTablesSink& sink) {
+                         const BatchTablesSink& sink, std::vector<double>* transmittanceColumns) {
   Batch batch(atm, o, run, single, multiple, l0);
+  batch.transmittanceColumns = transmittanceColumns;
   const auto handOnSingle = [&] {
     if (!sink) return;
     for (std::size_t q = 0; q < single.size(); ++q) {
@@ -308,6 +310,7 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
     tables.multipleScattering.resize(W, options.scatteringMu, options.scatteringR, nl);
   }
   bool first = true;  // the first batch this process computes sizes the 2D tables
+  std::vector<double> transmittanceColumns;  // shared by the batches (computeBatch)
   for (int bi = 0; bi < batches; ++bi) {
     if (bi % options.batchShareCount != options.batchShareIndex) continue;
     std::vector<int> ls;
@@ -322,7 +325,8 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
         sink ? batchSingle : tables.singleScattering, sink ? batchMultiple : tables.multipleScattering,
         sink ? 0 : ls.front(),
         sink ? BatchTablesSink([&](int, int table, FloatTable3D& v) { sink(ls.front(), table, v); })
-             : BatchTablesSink());
+             : BatchTablesSink(),
+        batches > 1 ? &transmittanceColumns : nullptr);
     if (batches == 1) {
       tables.transmittance = std::move(r.transmittance);
       tables.directIrradiance = std::move(r.directIrradiance);

@@ -76,6 +76,11 @@ struct Batch {
   FloatTable3D& multiple;             // all wavelengths wide
   const int l0;                  // the batch's first channel in them
 
+  /// Without refraction, the transmittance texels' column densities [i * nc + c], which do
+  /// not depend on the wavelength: computed by the first batch, read by the others (null: not
+  /// shared).
+  std::vector<double>* transmittanceColumns = nullptr;
+
   /// Refractive media: one per distinct refractivity (dispersion) for the transmittance,
   /// with the wavelengths that use it; the reference wavelength's for the scattering paths.
   std::vector<RefractiveMedium> media;

@@ -20,16 +20,23 @@ void computeTransmittance(Batch& B) {
   const std::vector<std::vector<int>>& mediumUsers = B.mediumUsers;
   BatchResult& out = B.out;
   out.transmittance.resize(TW, TH, nl);
-  B.run.run("transmittance", 1.0, TW * TH, [&, TW, TH, t, nl, nc](int i) {
+  // The columns of straight rays, shared with the other batches when they are given.
+  std::vector<double>* shared = o.refraction ? nullptr : B.transmittanceColumns;
+  const bool reuse = shared && shared->size() == static_cast<std::size_t>(TW) * TH * nc;
+  if (shared && !reuse) shared->assign(static_cast<std::size_t>(TW) * TH * nc, 0.0);
+  B.run.run("transmittance", 1.0, TW * TH, [&, TW, TH, t, nl, nc, shared, reuse](int i) {
     const int x = i % TW, y = i / TW;
     const RadiusMu rm = rMuAtTexel(shell, x, y, TW, TH);
     std::vector<double> col(nc), tau(nl);
     double* T = out.transmittance.at(x, y);
     if (!o.refraction) {
-      const Path p = straightPath(rm.radiusM, rm.mu, distanceToTopBoundaryM(t, rm.radiusM, rm.mu));
-      std::size_t seg = 0;
-      m.columns(p, 0.0, p.length, o.transmittanceSamples, seg, col.data());
-      m.opticalDepth(col.data(), tau.data());
+      double* c = shared ? &(*shared)[static_cast<std::size_t>(i) * nc] : col.data();
+      if (!reuse) {
+        const Path p = straightPath(rm.radiusM, rm.mu, distanceToTopBoundaryM(t, rm.radiusM, rm.mu));
+        std::size_t seg = 0;
+        m.columns(p, 0.0, p.length, o.transmittanceSamples, seg, c);
+      }
+      m.opticalDepth(c, tau.data());
       for (int l = 0; l < nl; ++l) T[l] = std::exp(-tau[l]);
       return;
     }
