@@ -3,12 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
 
-// Compiled twice (AVX2 and the baseline), chosen at load time by the CPU.
+// Compiled three times (AVX-512, AVX2 and the baseline), chosen at load time by the CPU.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #define UMBRA_KERNEL __attribute__((target_clones("avx512f", "avx2", "default")))
 #else

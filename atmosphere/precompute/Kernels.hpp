@@ -1,7 +1,8 @@
 #pragma once
-// The precomputation's innermost loops, each compiled for AVX2 and for the baseline CPU and
-// chosen when the program loads (lobeValues: AVX-512 where there is one). Their own file, so
-// that the compiler's vectorising options apply to them alone (atmosphere/CMakeLists.txt).
+// The precomputation's innermost loops, each compiled for AVX-512, AVX2 and the baseline CPU
+// and chosen when the program loads (lobeValues and cosineModes: AVX-512 written out where
+// there is one). Their own file, so that the compiler's vectorising options apply to them
+// alone (atmosphere/CMakeLists.txt).
 #include "precompute/Parametrisation.hpp"
 
 #include <cstddef>
