@@ -111,7 +111,6 @@ __attribute__((target("avx512f"), always_inline)) inline __m512d lobe8(__m512d A
 }  // namespace
 #endif
 
-
 UMBRA_KERNEL void lobeValuesPlain(double A, double B, double g, const double* c, double* p, int n) {
   const double g2 = 1.0 + g * g, twoG = 2.0 * g;
   for (int j = 0; j < n; ++j) p[j] = lobeAt(A, B, g2, twoG, c[j]);

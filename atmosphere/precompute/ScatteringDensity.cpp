@@ -137,11 +137,12 @@ void computeScatteringDensity(Batch& B, int order) {
     // (alpha, every wavelength: [((is * nl + l) * nTh + lt) * nPh + k]).
     const std::size_t lightModes = static_cast<std::size_t>(nl) * ringModes;
     std::vector<double> M0(static_cast<std::size_t>(MUS) * nl, 0.0), M2(static_cast<std::size_t>(MUS) * nl * 6, 0.0);
-    std::vector<double> alphaModes(nForm > 0 || tabulated ? MUS * lightModes : 0);
+    std::vector<double> alphaModes(nForm > 0 || tabulated ? MUS * lightModes : 0), muSOf(MUS), sinSOf(MUS);
     {
       std::vector<double> Lw(static_cast<std::size_t>(nl) * nDir), v(nl), E(nl);
       for (int is = 0; is < MUS; ++is) {
-        const double muS = g.texel(is, 0, z).muS, sinS = std::sqrt(std::max(0.0, 1.0 - muS * muS));
+        muSOf[is] = g.texel(is, 0, z).muS, sinSOf[is] = std::sqrt(std::max(0.0, 1.0 - muSOf[is] * muSOf[is]));
+        const double muS = muSOf[is], sinS = sinSOf[is];
         double* m0 = &M0[static_cast<std::size_t>(is) * nl];
         double* m2 = &M2[static_cast<std::size_t>(is) * nl * 6];
         // Incoming radiance per direction, times the solid angle: Lw[l][j].
@@ -219,7 +220,7 @@ void computeScatteringDensity(Batch& B, int order) {
         }
       }
       for (int is = 0; is < MUS; ++is) {
-        const double muS = g.texel(is, 0, z).muS, sinS = std::sqrt(std::max(0.0, 1.0 - muS * muS));
+        const double muS = muSOf[is], sinS = sinSOf[is];
         const double* alphaIs = alphaModes.empty() ? nullptr : &alphaModes[is * lightModes];
         const double* m0 = &M0[static_cast<std::size_t>(is) * nl];
         const double* m2 = &M2[static_cast<std::size_t>(is) * nl * 6];

@@ -93,8 +93,8 @@ constexpr const char* kOldChecksumKey = "checksum";
 // i % 4, the last word padded with zeros), the lanes and the byte count folded together at
 // the end, as 16 hex digits: a truncated, swapped or edited table no longer matches its
 // header. Fed the values in order, a block of rows at a time or all at once (the same
-// words whatever the blocks). The lanes are independent multiplications: about 8 bytes a
-// cycle, where one byte a step was a sixth of the tables' write time.
+// words whatever the blocks). The lanes' multiplications are independent, so that the
+// checksum is not one multiplication's latency per byte.
 class Checksum {
 public:
   Checksum(int width, int height, std::size_t channels) {
@@ -148,6 +148,13 @@ bool allFinite(const float* v, std::size_t n) {
     bad |= static_cast<std::uint32_t>((bits & 0x7f800000u) == 0x7f800000u);
   }
   return bad == 0;
+}
+
+// The cache's directory (with parents) before a file at path goes into it.
+void createDirectory(const std::string& directory, const std::string& path) {
+  std::error_code ec;
+  fs::create_directories(directory, ec);
+  if (ec) throw TableError(path, "cannot create cache directory '" + directory + "': " + ec.message());
 }
 
 std::string checksumOf(const Table& t) {
@@ -342,9 +349,7 @@ std::optional<nlohmann::json> TableCache::loadJson(const std::string& kind,
 void TableCache::storeJson(const std::string& kind, const std::map<std::string, std::string>& parameters,
                            const nlohmann::json& document) const {
   const std::string path = jsonPathFor(kind, parameters);
-  std::error_code ec;
-  fs::create_directories(directory_, ec);
-  if (ec) throw TableError(path, "cannot create cache directory '" + directory_ + "': " + ec.message());
+  createDirectory(directory_, path);
   const nlohmann::json file = {{"parameters", withKind(kind, parameters)}, {"document", document}};
   detail::writeTextFile(path, file.dump());
   enforceCap(path);
@@ -386,11 +391,7 @@ void TableCache::store(const std::string& kind,
 void TableCache::store(const std::string& kind, const std::map<std::string, std::string>& parameters,
                        const Table& shape, const float* values) const {
   const std::string path = pathFor(kind, parameters);
-  std::error_code ec;
-  fs::create_directories(directory_, ec);
-  if (ec) {
-    throw TableError(path, "cannot create cache directory '" + directory_ + "': " + ec.message());
-  }
+  createDirectory(directory_, path);
   detail::validateShape(shape, path);
   const std::size_t rowValues = static_cast<std::size_t>(shape.width) * shape.channels.size();
   const std::size_t n = rowValues * static_cast<std::size_t>(shape.height);
@@ -407,9 +408,7 @@ void TableCache::store(const std::string& kind, const std::map<std::string, std:
 void TableCache::store(const std::string& kind, const std::map<std::string, std::string>& parameters,
                        const PlanarTableFile& table) const {
   const std::string path = pathFor(kind, parameters);
-  std::error_code ec;
-  fs::create_directories(directory_, ec);
-  if (ec) throw TableError(path, "cannot create cache directory '" + directory_ + "': " + ec.message());
+  createDirectory(directory_, path);
   // Twice through the rows: the checksum goes in the header, before them.
   constexpr int kRows = 256;
   std::vector<float> block;
@@ -436,9 +435,7 @@ void TableCache::store(const std::string& kind, const std::map<std::string, std:
 void TableCache::copyFrom(const TableCache& other, const std::string& kind,
                           const std::map<std::string, std::string>& parameters) const {
   const std::string path = pathFor(kind, parameters);
-  std::error_code ec;
-  fs::create_directories(directory_, ec);
-  if (ec) throw TableError(path, "cannot create cache directory '" + directory_ + "': " + ec.message());
+  createDirectory(directory_, path);
   detail::copyFile(other.pathFor(kind, parameters), path);
   enforceCap(path);
 }
