@@ -12,6 +12,7 @@
 #include "precompute/Runner.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <cstring>
 #include <new>
@@ -393,43 +394,71 @@ std::vector<double> transmittanceAlong(const AtmosphereTables& tables, double r,
 namespace {
 
 /// skyRadiance's table lookups at a Sun within the tables (muS >= muSMin): lookupScattering
-/// in each table, the cell found once for all of them.
-std::vector<double> tableRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r, double mu,
-                                  double muS, double nu, bool ground) {
-  const ScatterGeometry g = geometryOf(tables);
+/// in each table, the cell found once for all of them; adds to L (one value per wavelength).
+/// phaseOf(q, l): the phase function of single-scattering table q at wavelength l.
+template <class PhaseOf>
+void addTableRadiance(const AtmosphereTables& tables, const ScatterGeometry& g, const PhaseOf& phaseOf, double r,
+                      double mu, double muS, double nu, bool ground, double* L) {
   const RMuCell a = rMuCell(g, r, mu, ground);
   const SNuCell c = sNuCell(g, muS, nu);
   const std::size_t nl = tables.wavelengthCount();
-  std::vector<double> L(nl, 0.0), S(nl);
-  accumulate4(tables.multipleScattering, a, c, 1.0, L.data());
+  accumulate4(tables.multipleScattering, a, c, 1.0, L);
+  constexpr std::size_t kStack = 64;  // no allocation for up to this many wavelengths
+  std::array<double, kStack> stack;
+  std::vector<double> heap(nl > kStack ? nl : 0);
+  double* S = nl > kStack ? heap.data() : stack.data();
   for (std::size_t q = 0; q < tables.singleScattering.size(); ++q) {
-    const Component& component = atmosphere.component(tables.scatteringComponents[q]);
-    std::fill(S.begin(), S.end(), 0.0);
-    accumulate4(tables.singleScattering[q], a, c, 1.0, S.data());
-    for (std::size_t l = 0; l < nl; ++l) L[l] += S[l] * component.phase(l)(nu);
+    std::fill(S, S + nl, 0.0);
+    accumulate4(tables.singleScattering[q], a, c, 1.0, S);
+    for (std::size_t l = 0; l < nl; ++l) L[l] += S[l] * phaseOf(q, l)(nu);
   }
-  return L;
+}
+
+/// skyRadiance per unit solar irradiance into L, with the tables' geometry and phases given.
+template <class PhaseOf>
+void skyRadianceWith(const AtmosphereTables& tables, const ScatterGeometry& g, const PhaseOf& phaseOf, double r,
+                     double mu, double muS, double nu, double* L) {
+  const int nl = static_cast<int>(tables.wavelengthCount());
+  const double b = tables.bottomRadiusM, muSMin = tables.options.muSMin;
+  const bool ground = rayIntersectsGround(b, r, mu);
+  std::fill(L, L + nl, 0.0);
+  if (muS >= muSMin) return addTableRadiance(tables, g, phaseOf, r, mu, muS, nu, ground, L);
+  const double end = ground ? distanceToBottomBoundaryM(b, r, mu) : distanceToTopBoundaryM(tables.topRadiusM, r, mu);
+  const double d = distanceToSunCosineM(r, mu, muS, nu, muSMin);
+  if (!(d < end)) return;
+  const double rd = std::clamp(std::sqrt(d * d + 2.0 * r * mu * d + r * r), b, tables.topRadiusM);
+  addTableRadiance(tables, g, phaseOf, rd, clampCosine((r * mu + d) / rd), muSMin, nu, ground, L);
+  const std::vector<double> T = transmittanceAlong(tables, r, mu, d, ground);
+  for (int l = 0; l < nl; ++l) L[l] *= T[l];
 }
 
 }  // namespace
 
+void skyRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r, double mu, double muS,
+                 double nu, double* L) {
+  auto phaseOf = [&](std::size_t q, std::size_t l) -> const PhaseFunction& {
+    return atmosphere.component(tables.scatteringComponents[q]).phase(l);
+  };
+  skyRadianceWith(tables, geometryOf(tables), phaseOf, r, mu, muS, nu, L);
+}
+
+SkyRadianceLookup::SkyRadianceLookup(const AtmosphereTables& tables, const Atmosphere& atmosphere)
+    : tables_(tables), geometry_(std::make_shared<const ScatterGeometry>(geometryOf(tables))) {
+  for (const std::string& name : tables.scatteringComponents)
+    for (std::size_t l = 0; l < tables.wavelengthCount(); ++l) phases_.push_back(&atmosphere.component(name).phase(l));
+}
+
+void SkyRadianceLookup::operator()(double r, double mu, double muS, double nu, double* L) const {
+  const std::size_t nl = tables_.wavelengthCount();
+  auto phaseOf = [&](std::size_t q, std::size_t l) -> const PhaseFunction& { return *phases_[q * nl + l]; };
+  skyRadianceWith(tables_, *geometry_, phaseOf, r, mu, muS, nu, L);
+}
+
 std::vector<double> skyRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r, double mu,
                                 double muS, double nu, const std::vector<double>& solarIrradiance) {
   const int nl = static_cast<int>(tables.wavelengthCount());
-  const double b = tables.bottomRadiusM, muSMin = tables.options.muSMin;
-  const bool ground = rayIntersectsGround(b, r, mu);
-  std::vector<double> L;
-  if (muS >= muSMin) {
-    L = tableRadiance(tables, atmosphere, r, mu, muS, nu, ground);
-  } else {
-    const double end = ground ? distanceToBottomBoundaryM(b, r, mu) : distanceToTopBoundaryM(tables.topRadiusM, r, mu);
-    const double d = distanceToSunCosineM(r, mu, muS, nu, muSMin);
-    if (!(d < end)) return std::vector<double>(nl, 0.0);
-    const double rd = std::clamp(std::sqrt(d * d + 2.0 * r * mu * d + r * r), b, tables.topRadiusM);
-    L = tableRadiance(tables, atmosphere, rd, clampCosine((r * mu + d) / rd), muSMin, nu, ground);
-    const std::vector<double> T = transmittanceAlong(tables, r, mu, d, ground);
-    for (int l = 0; l < nl; ++l) L[l] *= T[l];
-  }
+  std::vector<double> L(nl);
+  skyRadiance(tables, atmosphere, r, mu, muS, nu, L.data());
   if (!solarIrradiance.empty())
     for (int l = 0; l < nl; ++l) L[l] *= solarIrradiance.at(l);
   return L;

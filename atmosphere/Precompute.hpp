@@ -47,12 +47,16 @@
 
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace umbra::atmosphere {
+namespace stages {
+struct ScatterGeometry;
+}
 
 /// How the density's sphere of directions is sampled (precompute/ScatteringDensity.cpp):
 /// part of the tables' cache keys, so that tables made with another rule are not read back.
@@ -299,6 +303,22 @@ std::vector<double> lookupScattering(const AtmosphereTables& tables, const Float
 std::vector<double> skyRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r,
                                 double mu, double muS, double nu,
                                 const std::vector<double>& solarIrradiance = {});
+/// The same per unit solar irradiance into L (wavelengthCount() values), without allocating
+/// for up to 64 wavelengths.
+void skyRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r, double mu, double muS,
+                 double nu, double* L);
+/// skyRadiance (per unit solar irradiance) for many lookups in the same tables: their
+/// geometry and the components' phase functions found once. Keeps references to both.
+class SkyRadianceLookup {
+public:
+  SkyRadianceLookup(const AtmosphereTables& tables, const Atmosphere& atmosphere);
+  void operator()(double r, double mu, double muS, double nu, double* L) const;
+
+private:
+  const AtmosphereTables& tables_;
+  std::shared_ptr<const stages::ScatterGeometry> geometry_;
+  std::vector<const PhaseFunction*> phases_;  ///< [component * wavelengths + wavelength]
+};
 /// The cosine factor of the direct irradiance on a horizontal surface from a Sun of angular
 /// radius alphaRad whose centre is at zenith cosine muS: muS above alphaRad, 0 below
 /// -alphaRad, (muS + alphaRad)^2 / (4 alphaRad) between, the disc partly set (Bruneton 2017).

@@ -374,6 +374,9 @@ RefractionSample RefractionTable::sample(double radiusM, double mu) const {
                             std::to_string(mu) + ")");
   const int x0 = std::clamp(static_cast<int>(std::floor(fx)), 0, width - 2);
   const int y0 = std::clamp(static_cast<int>(std::floor(fy)), 0, height - 2);
+  if (y0 < firstRow)
+    throw std::domain_error("refraction table lookup at r " + std::to_string(r) + " m: below the rows traced (from " +
+                            std::to_string(firstRow) + " of " + std::to_string(height) + ")");
   const double wx = std::clamp(fx - x0, 0.0, 1.0), wy = std::clamp(fy - y0, 0.0, 1.0);
   auto lerp2 = [&](auto&& value) {
     return (1 - wy) * ((1 - wx) * value(x0, y0) + wx * value(x0 + 1, y0)) +
@@ -403,8 +406,11 @@ RefractionSample RefractionTable::sample(double radiusM, double mu) const {
 }
 
 RefractionTable buildRefractionTable(const RefractiveMedium& medium, int width, int height,
-                                     double stepM, const std::function<void(double)>& progress) {
+                                     double stepM, const std::function<void(double)>& progress, int firstRow) {
   if (width < 2 || height < 2) throw std::invalid_argument("refraction table: size below 2x2");
+  if (firstRow < 0 || firstRow > height - 2)
+    throw std::invalid_argument("refraction table: first row " + std::to_string(firstRow) + " outside 0.." +
+                                std::to_string(height - 2));
   if (!(stepM > 0.0)) throw std::invalid_argument("refraction table: step must be positive");
   if (!(medium.bottomRadiusM > 0.0) || !(medium.topRadiusM > medium.bottomRadiusM)) {
     throw std::invalid_argument("refraction table: need 0 < bottom radius < top radius");
@@ -417,13 +423,15 @@ RefractionTable buildRefractionTable(const RefractiveMedium& medium, int width, 
   table.bottomRadiusM = medium.bottomRadiusM;
   table.topRadiusM = medium.topRadiusM;
   table.stepM = stepM;
+  table.firstRow = firstRow;
   table.deviationRad.assign(static_cast<std::size_t>(width) * height, 0.0f);
   table.contactAltitudeM.assign(static_cast<std::size_t>(width) * height, 0.0f);
 
   std::atomic<int> rowsDone{0};
   ParallelErrors errors;
+  const int rows = height - firstRow;
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int y = 0; y < height; ++y) {
+  for (int y = firstRow; y < height; ++y) {
     errors.run([&] {
       for (int x = 0; x < width; ++x) {
         const RadiusMu ray = table.texelRay(x, y);
@@ -438,7 +446,7 @@ RefractionTable buildRefractionTable(const RefractiveMedium& medium, int width, 
 #else
     const bool callingThread = true;
 #endif
-    if (progress && callingThread) progress(static_cast<double>(done) / height);
+    if (progress && callingThread) progress(static_cast<double>(done) / rows);
   }
   errors.rethrow();
   if (progress) progress(1.0);

@@ -136,6 +136,10 @@ struct RefractionTable {
   double stepM = 10e3;
   std::vector<float> deviationRad;
   std::vector<float> contactAltitudeM;
+  /// Rows below it were not traced (their texels are 0): a table of the top rows answers the
+  /// lookups from the top of the atmosphere (r = topRadiusM needs rows height - 2 and
+  /// height - 1), and sample() refuses the others.
+  int firstRow = 0;
 
   ShellRadii shell() const { return {bottomRadiusM, topRadiusM}; }
   std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width + x; }
@@ -151,11 +155,13 @@ struct RefractionTable {
   RefractionSample sample(double radiusM, double mu) const;
 };
 
-/// Build the table (OpenMP over rows). `progress` gets the fraction done, from the
+/// Build the table (OpenMP over rows), rows firstRow .. height - 1 of it (0: all; the rows
+/// traced are the whole table's, to the bit). `progress` gets the fraction done, from the
 /// calling thread only. Throws std::invalid_argument for sizes < 2, a step <= 0, radii
-/// with top <= bottom or a medium without refractivity.
+/// with top <= bottom, a medium without refractivity or firstRow outside 0 .. height - 2.
 RefractionTable buildRefractionTable(const RefractiveMedium& medium, int width = 512,
                                      int height = 256, double stepM = 10e3,
-                                     const std::function<void(double fraction)>& progress = {});
+                                     const std::function<void(double fraction)>& progress = {},
+                                     int firstRow = 0);
 
 } // namespace umbra::atmosphere

@@ -22,7 +22,8 @@ double limbDarkenedLuminance(double rho, double limbDarkening);
 /// The same at rho^2 = rho2 (inline: the limb views' inner loop).
 inline double limbDarkenedLuminanceAtSquare(double rho2, double limbDarkening) {
   const double mu = std::sqrt(std::max(0.0, 1.0 - rho2));
-  return (1.0 - limbDarkening * (1.0 - mu)) / (1.0 - limbDarkening / 3.0);
+  // times the reciprocal: in a loop at one limbDarkening it is computed once
+  return (1.0 - limbDarkening * (1.0 - mu)) * (1.0 / (1.0 - limbDarkening / 3.0));
 }
 
 /// Flux of the limb-darkened disc inside radius rho, as a fraction of the whole disc's.

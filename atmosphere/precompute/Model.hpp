@@ -171,16 +171,47 @@ struct Model {
         // Traced: sign changes of r - R_k on a grid finer than the knots, then bisection.
         std::size_t c = 0;
         auto radiusAt = [&](double sv) {
-          double x, y, tx, ty;
-          path.eval(sv, c, x, y, tx, ty);
+          double x, y;
+          path.position(sv, c, x, y);
           return std::sqrt(x * x + y * y);
         };
         std::size_t inside = 0;
         for (const Knot& k : path.knots) inside += (k.s > s0 && k.s < s1);
         const int M = static_cast<int>(4 * inside + 8);
-        double sa = s0, ra = radiusAt(s0);
+        // A grid interval is looked at only where the knots around it come near a kink: between
+        // two knots L apart the path dips below its ends by at most about L^2 / (8 r) (a
+        // straight chord; refraction bends it less than that); the margin is 4 times that and
+        // a metre. Elsewhere no radius is evaluated, and the cuts are the same.
+        const std::vector<Knot>& knots = path.knots;
+        const std::size_t segments = knots.size() > 1 ? knots.size() - 1 : 0;
+        std::vector<double> segLo(segments), segHi(segments);  // per knot segment
+        double rEnd = knots.empty() ? 0.0 : std::sqrt(knots[0].x * knots[0].x + knots[0].y * knots[0].y);
+        for (std::size_t q = 0; q + 1 < knots.size(); ++q) {
+          const double ra = rEnd, L = knots[q + 1].s - knots[q].s;
+          rEnd = std::sqrt(knots[q + 1].x * knots[q + 1].x + knots[q + 1].y * knots[q + 1].y);
+          const double margin = 1.0 + L * L / (2.0 * std::max(std::min(ra, rEnd), 1.0));
+          segLo[q] = std::min(ra, rEnd) - margin, segHi[q] = std::max(ra, rEnd) + margin;
+        }
+        std::size_t j = 0;  // the knot segment [j, j + 1] holding the interval's start
+        auto nearKink = [&](double sa, double sb) {
+          if (segments == 0) return true;
+          while (j + 2 < knots.size() && knots[j + 1].s <= sa) ++j;
+          double lo = segLo[j], hi = segHi[j];
+          for (std::size_t q = j + 1; q + 1 < knots.size() && knots[q].s < sb; ++q)
+            lo = std::min(lo, segLo[q]), hi = std::max(hi, segHi[q]);
+          for (double R : kinkRadii)
+            if (R >= lo && R <= hi) return true;
+          return false;
+        };
+        double sa = s0, ra = std::nan("");
         for (int i = 1; i <= M; ++i) {
-          const double sb = s0 + (s1 - s0) * i / M, rb = radiusAt(sb);
+          const double sb = s0 + (s1 - s0) * i / M;
+          if (!nearKink(sa, sb)) {
+            sa = sb, ra = std::nan("");
+            continue;
+          }
+          if (std::isnan(ra)) ra = radiusAt(sa);
+          const double rb = radiusAt(sb);
           for (double R : kinkRadii) {
             if (ra == R && sa > s0) cuts.push_back(sa);
             if ((ra - R) * (rb - R) >= 0.0) continue;
@@ -214,8 +245,8 @@ struct Model {
       // The ends a hair inside: at a cut where a profile jumps (the mixing layer's top) the
       // density is the piece's own.
       const double at = i == 0 ? s0 + 1e-9 * h : i == n ? s1 - 1e-9 * h : s0 + i * h;
-      double x, y, tx, ty;
-      path.eval(at, seg, x, y, tx, ty);
+      double x, y;
+      path.position(at, seg, x, y);
       const double alt = std::sqrt(x * x + y * y) - b;
       for (int c = 0; c < nc; ++c) col[c] += w * h / 3.0 * density(c, alt);
     }

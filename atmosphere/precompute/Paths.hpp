@@ -20,11 +20,10 @@ struct Path {
   std::vector<Knot> knots;
   double length = 0.0;
 
-  /// Position and unit tangent at arc length s; `seg` is a cursor for increasing s.
-  void eval(double s, std::size_t& seg, double& x, double& y, double& tx, double& ty) const {
+  /// Position at arc length s (eval's, without the tangent); `seg` as eval's.
+  void position(double s, std::size_t& seg, double& x, double& y) const {
     if (knots.size() < 2) {
-      const Knot& k = knots.front();
-      x = k.x, y = k.y, tx = k.tx, ty = k.ty;
+      x = knots.front().x, y = knots.front().y;
       return;
     }
     while (seg + 2 < knots.size() && s > knots[seg + 1].s) ++seg;
@@ -37,6 +36,20 @@ struct Path {
     const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
     x = h00 * a.x + h10 * L * a.tx + h01 * c.x + h11 * L * c.tx;
     y = h00 * a.y + h10 * L * a.ty + h01 * c.y + h11 * L * c.ty;
+  }
+  /// Position and unit tangent at arc length s; `seg` is a cursor for increasing s.
+  void eval(double s, std::size_t& seg, double& x, double& y, double& tx, double& ty) const {
+    if (knots.size() < 2) {
+      const Knot& k = knots.front();
+      x = k.x, y = k.y, tx = k.tx, ty = k.ty;
+      return;
+    }
+    position(s, seg, x, y);  // moves seg to the knot segment holding s
+    const Knot& a = knots[seg];
+    const Knot& c = knots[seg + 1];
+    const double L = c.s - a.s;
+    const double u = L > 0.0 ? std::clamp((s - a.s) / L, 0.0, 1.0) : 0.0;
+    const double u2 = u * u;
     const double d00 = 6 * u2 - 6 * u, d10 = 3 * u2 - 4 * u + 1, d01 = -d00, d11 = 3 * u2 - 2 * u;
     double dx = d00 * a.x / std::max(L, 1e-300) + d10 * a.tx + d01 * c.x / std::max(L, 1e-300) + d11 * c.tx;
     double dy = d00 * a.y / std::max(L, 1e-300) + d10 * a.ty + d01 * c.y / std::max(L, 1e-300) + d11 * c.ty;

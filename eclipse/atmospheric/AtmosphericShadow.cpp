@@ -42,32 +42,45 @@ const GaussLegendre<N>& gaussLegendre() {
   return g;
 }
 
-/// One limb-view row and where the Sun is seen through it.
+/// One limb-view row and where the Sun is seen through it. Along the row the azimuth beta
+/// enters only through s = sin(beta / 2), so the row integrates in s (dbeta = 2 ds /
+/// sqrt(1 - s^2)): the quadrature nodes then need a square root, not a sine.
 struct SunRow {
-  double A = 0.0, B = 0.0, K = 1.0;  ///< sin^2(a/2) = A + B sin^2(beta/2); K = sin^2(phi_sun/2)
+  double A = 0.0, B = 0.0, K = 1.0;  ///< sin^2(a/2) = A + B s^2; K = sin^2(phi_sun/2)
   double cosTheta = 1.0, sinTheta = 0.0, cosDelta = 1.0, sinDelta = 0.0;
   double limbDarkening = 0.6;
-  double betaBegin = 0.0, betaEnd = 0.0;  ///< the chord of the solar disc; empty when equal
-  bool empty() const { return betaEnd <= betaBegin; }
+  double sBegin = 0.0, sEnd = 0.0;  ///< the chord of the solar disc in s; empty when equal
+  bool empty() const { return sEnd <= sBegin; }
+  double betaBegin() const { return 2.0 * std::asin(sBegin); }
+  double betaEnd() const { return 2.0 * std::asin(sEnd); }
 
-  /// Radiance of the Sun (relative: the disc's mean is 1) times the cosine towards the Sun.
-  double integrand(double beta) const {
-    const double s = std::sin(0.5 * beta);
-    const double rho2 = std::clamp((A + B * s * s) / K, 0.0, 1.0);
-    // cos beta = 1 - 2 sin^2(beta / 2): one sine per point.
-    const double cosine = cosTheta * cosDelta + sinTheta * sinDelta * (1.0 - 2.0 * s * s);
-    return limbDarkenedLuminanceAtSquare(rho2, limbDarkening) * std::max(cosine, 0.0);
+  /// Radiance of the Sun (relative: the disc's mean is 1) times the cosine towards the Sun,
+  /// per unit s (the factor dbeta / ds). rho^2 = (A + B s^2) / K and the cosine
+  /// cos theta cos delta + sin theta sin delta cos beta (cos beta = 1 - 2 s^2) are linear
+  /// in s^2: rho2 = r0 + r1 s^2, cosine = c0 + c1 s^2 (coefficients()).
+  double integrand(double s, double r0, double r1, double c0, double c1) const {
+    const double s2 = s * s;
+    const double rho2 = std::clamp(r0 + r1 * s2, 0.0, 1.0);
+    const double cosine = std::max(c0 + c1 * s2, 0.0);
+    return limbDarkenedLuminanceAtSquare(rho2, limbDarkening) * cosine * 2.0 / std::sqrt(std::max(1.0 - s2, 1e-300));
   }
-  /// Integral of the integrand over [a, b] inside the chord (the substitution
-  /// beta = a + (b - a)(1 - cos t) / 2 smooths the square roots at the disc's edge), with
+  void coefficients(double& r0, double& r1, double& c0, double& c1) const {
+    r0 = A / K, r1 = B / K;
+    c0 = cosTheta * cosDelta + sinTheta * sinDelta, c1 = -2.0 * sinTheta * sinDelta;
+  }
+  /// Integral of the integrand over s in [a, b] inside the chord (the substitution
+  /// s = a + (b - a)(1 - cos t) / 2 smooths the square roots at the disc's edge), with
   /// N Gauss-Legendre points (12 for a whole chord, 4 for a pixel's part of it).
   template <int N>
   double integral(double a, double b) const {
-    a = std::max(a, betaBegin), b = std::min(b, betaEnd);
+    a = std::max(a, sBegin), b = std::min(b, sEnd);
     if (b <= a) return 0.0;
     const GaussLegendre<N>& g = gaussLegendre<N>();
+    double r0, r1, c0, c1;
+    coefficients(r0, r1, c0, c1);
     double sum = 0.0;
-    for (std::size_t i = 0; i < g.x.size(); ++i) sum += g.w[i] * integrand(a + (b - a) * g.halfVersine[i]) * g.sine[i];
+#pragma omp simd reduction(+ : sum)
+    for (int i = 0; i < N; ++i) sum += g.w[i] * integrand(a + (b - a) * g.halfVersine[i], r0, r1, c0, c1) * g.sine[i];
     return sum * kPi * (b - a) * 0.5;
   }
 };
@@ -80,12 +93,14 @@ struct SunSeen {
         K(sq(std::sin(0.5 * p.sunAngularRadiusRad))) {}
 };
 
-SunRow sunRow(double exitPolarRad, const SunSeen& sun, double theta, double limbDarkening) {
+/// The row at polar angle theta (in [0, pi / 2], given by its sine) whose light leaves
+/// the atmosphere at polar angle exitPolarRad.
+SunRow sunRow(double exitPolarRad, const SunSeen& sun, double sinTheta, double limbDarkening) {
   SunRow row;
   row.A = sq(std::sin(0.5 * (exitPolarRad - sun.separationRad)));
   row.B = std::sin(exitPolarRad) * sun.sinDelta;
   row.K = sun.K;
-  row.cosTheta = std::cos(theta), row.sinTheta = std::sin(theta);
+  row.sinTheta = sinTheta, row.cosTheta = std::sqrt(std::max(0.0, (1.0 - sinTheta) * (1.0 + sinTheta)));
   row.cosDelta = sun.cosDelta, row.sinDelta = sun.sinDelta;
   row.limbDarkening = limbDarkening;
   // A + B s2 <= K for s2 = sin^2(beta / 2) in [0, 1].
@@ -99,38 +114,66 @@ SunRow sunRow(double exitPolarRad, const SunSeen& sun, double theta, double limb
     lo = std::max(0.0, slack / row.B);
   }
   if (hi < lo || hi < 0.0 || lo > 1.0) return row;
-  row.betaBegin = 2.0 * std::asin(std::sqrt(std::clamp(lo, 0.0, 1.0)));
-  row.betaEnd = 2.0 * std::asin(std::sqrt(std::clamp(hi, 0.0, 1.0)));
+  row.sBegin = std::sqrt(std::clamp(lo, 0.0, 1.0)), row.sEnd = std::sqrt(std::clamp(hi, 0.0, 1.0));
   return row;
 }
 
 /// The rows of a view: gamma edges, polar angles, solid angle per unit beta.
 struct RowGeometry {
-  std::vector<double> edge, theta, solidAnglePerBeta;  ///< edge: rows + 1
+  std::vector<double> edge, sinEdge, theta, sinTheta, solidAnglePerBeta;  ///< edge: rows + 1
 };
 RowGeometry rowGeometry(const LimbPosition& p, int rows) {
   RowGeometry g;
-  g.edge.resize(rows + 1), g.theta.resize(rows), g.solidAnglePerBeta.resize(rows);
+  g.edge.resize(rows + 1), g.sinEdge.resize(rows + 1), g.theta.resize(rows), g.sinTheta.resize(rows);
+  g.solidAnglePerBeta.resize(rows);
   const double span = p.atmosphereAngularRadiusRad - p.occluderAngularRadiusRad;
-  for (int i = 0; i <= rows; ++i) g.edge[i] = p.occluderAngularRadiusRad + span * i / rows;
-  for (int i = 0; i < rows; ++i) {
-    g.theta[i] = p.occluderAngularRadiusRad + span * (i + 0.5) / rows;
-    g.solidAnglePerBeta[i] = cosDifference(g.edge[i], g.edge[i + 1]);
+  // The edges and centres are the angles o + k h, h = span / (2 rows), k = 0 .. 2 rows: their
+  // sines by rotating (cos, sin) by h (rounding grows like k: ~1e-13 at 512), not by a sine
+  // each. A row's solid angle per unit beta, cos(edge_i) - cos(edge_i+1), is 2 sin(theta_i)
+  // sin(h) (no cancellation).
+  const double h = 0.5 * span / rows, ch = std::cos(h), sh = std::sin(h);
+  double c = std::cos(p.occluderAngularRadiusRad), s = std::sin(p.occluderAngularRadiusRad);
+  for (int k = 0; k <= 2 * rows; ++k) {
+    if (k % 2 == 0) {
+      g.edge[k / 2] = p.occluderAngularRadiusRad + span * (k / 2) / rows;
+      g.sinEdge[k / 2] = s;
+    } else {
+      g.theta[k / 2] = p.occluderAngularRadiusRad + span * (k / 2 + 0.5) / rows;
+      g.sinTheta[k / 2] = s;
+      g.solidAnglePerBeta[k / 2] = 2.0 * s * sh;
+    }
+    const double cNext = c * ch - s * sh;
+    s = s * ch + c * sh, c = cNext;
   }
   return g;
 }
 
-/// The in-scattered radiance of cell (column, row) of a scatteringColumns x scatteringRows
-/// grid, per channel, and the cosine towards the Sun of its centre.
-void scatteredRadiance(const AtmosphericShadowModel& m, const LimbPosition& p, double theta, double beta,
-                       double* out, double& cosine) {
+/// The scattering cells of a view: scatteringColumns x scatteringRows, the sines and
+/// cosines of their centres' polar angles theta (rows) and azimuths beta (columns).
+struct ScatteringCells {
+  std::vector<double> cosTheta, sinTheta, cosBeta, sinBeta;
+  double cosDelta = 1.0, sinDelta = 0.0;  ///< the Sun's separation
+  ScatteringCells(const LimbPosition& p, const std::vector<double>& theta, int columns)
+      : cosDelta(std::cos(p.separationRad)), sinDelta(std::sin(p.separationRad)) {
+    for (double t : theta) cosTheta.push_back(std::cos(t)), sinTheta.push_back(std::sin(t));
+    for (int q = 0; q < columns; ++q) {
+      const double beta = kPi * (q + 0.5) / columns;
+      cosBeta.push_back(std::cos(beta)), sinBeta.push_back(std::sin(beta));
+    }
+  }
+};
+
+/// The in-scattered radiance of cell (column q, row r), per channel, and the cosine towards
+/// the Sun of its centre.
+void scatteredRadiance(const AtmosphericShadowModel& m, const atmosphere::SkyRadianceLookup& sky,
+                       const LimbPosition& p, const ScatteringCells& cells, int r, int q, double* out, double& cosine) {
   const double d = p.occluderDistanceM, rTop = m.atmosphereRadiusM();
-  const double st = std::sin(theta), ct = std::cos(theta);
+  const double st = cells.sinTheta[r], ct = cells.cosTheta[r];
   const double b = std::min(d * st, rTop);
   // Observer at (-d, 0, 0), occluder at the origin, Sun direction (cos delta, sin delta, 0),
   // view direction w = (cos theta, sin theta cos beta, sin theta sin beta).
-  const glm::dvec3 w(ct, st * std::cos(beta), st * std::sin(beta));
-  const glm::dvec3 s(std::cos(p.separationRad), std::sin(p.separationRad), 0.0);
+  const glm::dvec3 w(ct, st * cells.cosBeta[q], st * cells.sinBeta[q]);
+  const glm::dvec3 s(cells.cosDelta, cells.sinDelta, 0.0);
   const double t = d * ct - std::sqrt(std::max(0.0, rTop * rTop - b * b));
   const glm::dvec3 x(-d + t * w.x, t * w.y, t * w.z);
   const glm::dvec3 n = x / std::sqrt(x.x * x.x + x.y * x.y + x.z * x.z);
@@ -138,21 +181,20 @@ void scatteredRadiance(const AtmosphericShadowModel& m, const LimbPosition& p, d
   const double muS = n.x * s.x + n.y * s.y;
   const double nu = w.x * s.x + w.y * s.y;
   cosine = std::max(nu, 0.0);
-  const std::vector<double> L = atmosphere::skyRadiance(*m.tables, *m.atmosphere, rTop, mu, muS, nu);
-  std::copy(L.begin(), L.end(), out);
+  sky(rTop, mu, muS, nu, out);
 }
 
 /// The Sun seen along polar angle theta: its chord (empty when the ray sees no Sun) and, per
 /// channel, transmittance x terrain / (the Sun's solid angle) in `weight`.
 SunRow sunAlong(const AtmosphericShadowModel& m, const LimbPosition& p, const SunSeen& sun, double theta,
-                double* weight) {
+                double sinTheta, double* weight) {
   double dev = 0.0, contact = 0.0;
-  m.rays.at(p.occluderDistanceM * std::sin(theta), dev, contact, weight);
+  m.rays.at(p.occluderDistanceM * sinTheta, dev, contact, weight);
   const double terrain = m.terrain.transmission(contact);
   if (terrain <= 0.0) return {};
   const double scale = terrain / (4.0 * kPi * sun.K);
   for (int c = 0; c < m.rays.channels; ++c) weight[c] *= scale;
-  return sunRow(theta - dev, sun, theta, m.limbDarkening);
+  return sunRow(theta - dev, sun, sinTheta, m.limbDarkening);
 }
 
 /// At most this many sub-rows per row (forEachSunSubRow).
@@ -176,7 +218,7 @@ void forEachSunSubRow(const AtmosphericShadowModel& m, const LimbPosition& p, co
     // over the row; the Sun (polar angle delta) is seen at some beta iff ||e| - delta| <= phi_sun,
     // so rows whose range of |e| misses [delta - phi_sun, delta + phi_sun] see no Sun.
     double devMin = 0.0, devMax = 0.0;
-    m.rays.deviationRange(p.occluderDistanceM * std::sin(lo), p.occluderDistanceM * std::sin(hi), devMin, devMax);
+    m.rays.deviationRange(p.occluderDistanceM * g.sinEdge[i], p.occluderDistanceM * g.sinEdge[i + 1], devMin, devMax);
     const double eLo = lo - devMax, eHi = hi - devMin;
     const double aMin = eLo <= 0.0 && eHi >= 0.0 ? 0.0 : std::min(std::abs(eLo), std::abs(eHi));
     const double aMax = std::max(std::abs(eLo), std::abs(eHi));
@@ -188,7 +230,8 @@ void forEachSunSubRow(const AtmosphericShadowModel& m, const LimbPosition& p, co
   const SunSeen sun(p);
   for (int k = 0; k < n; ++k) {
     const double a = lo + (hi - lo) * k / n, b = lo + (hi - lo) * (k + 1) / n;
-    const SunRow row = sunAlong(m, p, sun, n == 1 ? g.theta[i] : 0.5 * (a + b), weight);
+    const double theta = n == 1 ? g.theta[i] : 0.5 * (a + b);
+    const SunRow row = sunAlong(m, p, sun, theta, n == 1 ? g.sinTheta[i] : std::sin(theta), weight);
     if (row.empty()) continue;
     body(row, static_cast<const double*>(weight), n == 1 ? 1.0 : cosDifference(a, b) / g.solidAnglePerBeta[i]);
   }
@@ -436,19 +479,22 @@ LimbView renderLimbView(const AtmosphericShadowModel& m, const LimbPosition& p, 
   view.solidAngleSr.resize(R);
   const RowGeometry g = rowGeometry(p, R);
   const double dBeta = kPi / C;
+  // Per column: s = sin(beta / 2) at its left edge (C + 1 of them) and cos beta at its centre.
+  std::vector<double> sEdge(C + 1), cosCentre(C);
+  for (int j = 0; j <= C; ++j) sEdge[j] = std::sin(0.5 * j * dBeta);
+  for (int j = 0; j < C; ++j) cosCentre[j] = std::cos((j + 0.5) * dBeta);
   std::vector<double> T(nc);
   for (int i = 0; i < R; ++i) {
     view.solidAngleSr[i] = g.solidAnglePerBeta[i] * dBeta;
     if (!m.refractedSun) continue;
     const double sub = params.subRowsPerSunDiameter;
     forEachSunSubRow(m, p, g, i, sub, T.data(), [&](const SunRow& row, const double* w, double fraction) {
-      const int j0 = std::max(0, static_cast<int>(row.betaBegin / dBeta));
-      const int j1 = std::min(C - 1, static_cast<int>(row.betaEnd / dBeta));
+      const int j0 = std::max(0, static_cast<int>(row.betaBegin() / dBeta));
+      const int j1 = std::min(C - 1, static_cast<int>(row.betaEnd() / dBeta));
       for (int j = j0; j <= j1; ++j) {
         // The mean over the pixel's beta range; the cosine is divided back out (radiance).
-        const double mean = row.integral<4>(j * dBeta, (j + 1) * dBeta) / dBeta;
-        const double beta = (j + 0.5) * dBeta;
-        const double cosine = row.cosTheta * row.cosDelta + row.sinTheta * row.sinDelta * std::cos(beta);
+        const double mean = row.integral<4>(sEdge[j], sEdge[j + 1]) / dBeta;
+        const double cosine = row.cosTheta * row.cosDelta + row.sinTheta * row.sinDelta * cosCentre[j];
         const double L = fraction * mean / std::max(cosine, 1e-12);
         for (int c = 0; c < nc; ++c) view.at(i, j, c) += L * w[c];
       }
@@ -456,13 +502,13 @@ LimbView renderLimbView(const AtmosphericShadowModel& m, const LimbPosition& p, 
   }
   if (useScattering(m)) {
     const int SC = params.scatteringColumns, SR = params.scatteringRows;
-    const double span = p.atmosphereAngularRadiusRad - p.occluderAngularRadiusRad;
+    const atmosphere::SkyRadianceLookup sky(*m.tables, *m.atmosphere);
+    const ScatteringCells cells(p, rowGeometry(p, SR).theta, SC);
     std::vector<double> L(nc);
     for (int r = 0; r < SR; ++r)
       for (int q = 0; q < SC; ++q) {
         double cosine = 0.0;
-        scatteredRadiance(m, p, p.occluderAngularRadiusRad + span * (r + 0.5) / SR, kPi * (q + 0.5) / SC, L.data(),
-                          cosine);
+        scatteredRadiance(m, sky, p, cells, r, q, L.data(), cosine);
         for (int i = r * R / SR; i < (r + 1) * R / SR; ++i)
           for (int j = q * C / SC; j < (q + 1) * C / SC; ++j)
             for (int c = 0; c < nc; ++c) view.at(i, j, c) += L[c];
@@ -482,18 +528,20 @@ Illuminance illuminanceAt(const AtmosphericShadowModel& m, const LimbPosition& p
     const double sub = params.subRowsPerSunDiameter;
     for (int i = 0; i < params.rows; ++i)
       forEachSunSubRow(m, p, g, i, sub, T.data(), [&](const SunRow& row, const double* w, double fraction) {
-        const double e = 2.0 * g.solidAnglePerBeta[i] * fraction * row.integral<12>(row.betaBegin, row.betaEnd);
+        const double e = 2.0 * g.solidAnglePerBeta[i] * fraction * row.integral<12>(row.sBegin, row.sEnd);
         for (int c = 0; c < nc; ++c) I.indirect[c] += e * w[c];
       });
   }
   if (useScattering(m)) {
     const int SC = params.scatteringColumns, SR = params.scatteringRows;
     const RowGeometry g = rowGeometry(p, SR);
+    const atmosphere::SkyRadianceLookup sky(*m.tables, *m.atmosphere);
+    const ScatteringCells cells(p, g.theta, SC);
     std::vector<double> L(nc);
     for (int r = 0; r < SR; ++r)
       for (int q = 0; q < SC; ++q) {
         double cosine = 0.0;
-        scatteredRadiance(m, p, g.theta[r], kPi * (q + 0.5) / SC, L.data(), cosine);
+        scatteredRadiance(m, sky, p, cells, r, q, L.data(), cosine);
         const double w = 2.0 * g.solidAnglePerBeta[r] * (kPi / SC) * cosine;
         for (int c = 0; c < nc; ++c) I.indirect[c] += w * L[c];
       }

@@ -15,6 +15,14 @@ void checkOptions(const EclipseAtmosphereOptions& options) {
     throw std::invalid_argument("eclipse atmosphere: refraction table >= 2x2, step > 0, profile samples >= 2");
 }
 
+/// The refraction table's top two rows: the limb ray profile samples the table at the top
+/// of the atmosphere only, and these rows are the whole table's there, to the bit.
+atmosphere::RefractionTable limbRefraction(const atmosphere::Atmosphere& atm, const EclipseAtmosphereOptions& o) {
+  return atmosphere::buildRefractionTable(atmosphere::refractiveMedium(atm, atm.refractivityReferenceWavelengthNm),
+                                          o.refractionWidth, o.refractionHeight, o.refractionStepM, {},
+                                          o.refractionHeight - 2);
+}
+
 /// The shadow model over the prepared tables of `e`.
 void finishModel(EclipseAtmosphere& e, const std::string& occluderName, double sunOccluderDistanceM,
                  const EclipseAtmosphereOptions& options) {
@@ -41,15 +49,12 @@ std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::At
   atmosphere::PrecomputeOptions po = options.tables;
   po.refraction = options.refraction;
   po.refractionStepM = options.refractionStepM;
-  // The Bruneton tables take most of the time; the refraction table about a tenth.
   e->tables = atmosphere::precompute(e->atmosphere, po, [&](double f, const std::string& stage) {
-    return !progress || progress(0.9 * f, stage);
+    return !progress || progress(0.99 * f, stage);
   });
   if (options.refraction) {
-    if (progress && !progress(0.9, "refraction")) throw atmosphere::PrecomputeCancelled();
-    e->refraction = atmosphere::buildRefractionTable(
-        atmosphere::refractiveMedium(e->atmosphere, e->atmosphere.refractivityReferenceWavelengthNm),
-        options.refractionWidth, options.refractionHeight, options.refractionStepM);
+    if (progress && !progress(0.99, "refraction")) throw atmosphere::PrecomputeCancelled();
+    e->refraction = limbRefraction(e->atmosphere, options);
   }
   finishModel(*e, occluderName, sunOccluderDistanceM, options);
   if (progress) progress(1.0, "done");
@@ -66,13 +71,14 @@ std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::At
   if (tables.wavelengthsNm != atm.wavelengthsNm || tables.bottomRadiusM != atm.bottomRadiusM ||
       tables.topRadiusM != atm.topRadiusM)
     throw std::invalid_argument("eclipse atmosphere: the tables were made for another atmosphere (radii or wavelengths)");
-  if (options.refraction && (refraction.deviationRad.empty() || refraction.bottomRadiusM != atm.bottomRadiusM ||
-                             refraction.topRadiusM != atm.topRadiusM))
-    throw std::invalid_argument("eclipse atmosphere: refraction on but no refraction table for this atmosphere");
+  if (options.refraction && !refraction.deviationRad.empty() &&
+      (refraction.bottomRadiusM != atm.bottomRadiusM || refraction.topRadiusM != atm.topRadiusM))
+    throw std::invalid_argument("eclipse atmosphere: the refraction table was made for another atmosphere (radii)");
   auto e = std::make_unique<EclipseAtmosphere>();
   e->atmosphere = atm;
   e->tables = std::move(tables);
-  if (options.refraction) e->refraction = std::move(refraction);
+  if (options.refraction)
+    e->refraction = refraction.deviationRad.empty() ? limbRefraction(atm, options) : std::move(refraction);
   finishModel(*e, occluderName, sunOccluderDistanceM, options);
   return e;
 }

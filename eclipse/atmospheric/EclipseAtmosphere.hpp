@@ -29,7 +29,7 @@ struct EclipseAtmosphereOptions {
 struct EclipseAtmosphere {
   atmosphere::Atmosphere atmosphere;
   atmosphere::AtmosphereTables tables;
-  atmosphere::RefractionTable refraction;
+  atmosphere::RefractionTable refraction;  ///< the rows the limb ray profile reads (all when given)
   AtmosphericShadowModel model;
   EclipseAtmosphere() = default;
   EclipseAtmosphere(const EclipseAtmosphere&) = delete;
@@ -53,7 +53,8 @@ std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::At
 /// The same from tables computed elsewhere (e.g. vtkAtmosphereTablesSource's cache):
 /// `tables` must be those of `atm` with options.tables (refracted paths when
 /// options.refraction), and `refraction` its deviation table (ignored without
-/// options.refraction). Throws std::invalid_argument when they do not match `atm`.
+/// options.refraction; empty: the rows the limb ray profile reads are traced here, at
+/// options' size and step). Throws std::invalid_argument when they do not match `atm`.
 std::unique_ptr<EclipseAtmosphere> prepareEclipseAtmosphere(const atmosphere::Atmosphere& atm,
                                                             atmosphere::AtmosphereTables tables,
                                                             atmosphere::RefractionTable refraction,

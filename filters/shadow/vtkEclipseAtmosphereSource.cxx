@@ -80,16 +80,17 @@ Resolved resolve(const std::string& spec, int wavelengths, vtkMultiBlockDataSet*
     if (k != "kind" && k != "layout" && k != "units" && k != "depth" && !atmosphereKeys.count(k))
       inputKey += k + "=" + v + "; ";
   if (options.refraction) {
-    const auto rp = umbra::filters::blockParameters(input, "refraction");
-    if (rp.empty())
-      throw std::invalid_argument("atmosphere tables input: refraction on but no 'refraction' block "
-                                  "(vtkAtmosphereTablesSource::SetTables(All))");
-    options.refractionStepM = std::stod(get(rp, "refraction", "stepM"));
+    // The refraction table's, when the input has one; else the rows that the limb ray
+    // profile reads are traced at the refracted paths' step (prepareEclipseAtmosphere).
+    options.refractionStepM = std::stod(get(ms, "multiple-scattering", "refractionStepM"));
     options.tables.refractionStepM = options.refractionStepM;
-    options.refractionWidth = std::stoi(get(rp, "refraction", "width"));
-    options.refractionHeight = std::stoi(get(rp, "refraction", "height"));
-    if (std::stod(get(ms, "multiple-scattering", "refractionStepM")) != options.refractionStepM)
-      throw std::invalid_argument("atmosphere tables input: the refracted paths and the refraction table have different steps");
+    const auto rp = umbra::filters::blockParameters(input, "refraction");
+    if (!rp.empty()) {
+      options.refractionWidth = std::stoi(get(rp, "refraction", "width"));
+      options.refractionHeight = std::stoi(get(rp, "refraction", "height"));
+      if (std::stod(get(rp, "refraction", "stepM")) != options.refractionStepM)
+        throw std::invalid_argument("atmosphere tables input: the refracted paths and the refraction table have different steps");
+    }
   }
   r.options = options;
   r.parameters = eclipse::eclipseAtmosphereParameters(r.atm, occluder, sunOccluderDistanceM, options);
@@ -147,10 +148,10 @@ vtkAlgorithm* vtkEclipseAtmosphereSource::ConnectAtmosphereTables() {
   const umbra::eclipse::EclipseAtmosphereOptions o = this->Options();
   tables->SetScatteringSize(o.tables.scatteringR, o.tables.scatteringMu, o.tables.scatteringMuS, o.tables.scatteringNu);
   tables->SetIrradianceSize(this->IrradianceSize);
-  tables->SetTables(this->Refraction ? vtkAtmosphereTablesSource::All : vtkAtmosphereTablesSource::Bruneton);
+  // The Bruneton tables only: of the refraction table the LuTs read two rows, which
+  // PrepareAtmosphere traces itself (the whole table would take longer than both LuTs' rays).
+  tables->SetTables(vtkAtmosphereTablesSource::Bruneton);
   tables->SetRefractedPaths(this->Refraction);
-  tables->SetRefractionWidth(this->RefractionSize[0]);
-  tables->SetRefractionHeight(this->RefractionSize[1]);
   tables->SetRefractionStepM(this->RefractionStepM);
   tables->SetCacheDirectory(this->CacheDirectory.c_str());
   tables->SetUseCache(this->UseCache);
@@ -211,7 +212,9 @@ std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> vtkEclipseAtmosphereSou
   std::shared_ptr<const eclipse::EclipseAtmosphere> made =
       input ? eclipse::prepareEclipseAtmosphere(
                   r.atm, filters::tablesFromBlocks(input, r.atm),
-                  r.options.refraction ? filters::refractionFromBlocks(input, r.atm) : atmosphere::RefractionTable{},
+                  r.options.refraction && !filters::blockParameters(input, "refraction").empty()
+                      ? filters::refractionFromBlocks(input, r.atm)
+                      : atmosphere::RefractionTable{},
                   this->OccluderName, this->SunOccluderDistanceM, r.options)
             : eclipse::prepareEclipseAtmosphere(r.atm, this->OccluderName, this->SunOccluderDistanceM, r.options,
                                                 [&](double f, const std::string&) {

@@ -3,14 +3,15 @@
 // share (vtkEclipseShadowLutSource, vtkLimbLuminanceSource): the bodies, the atmosphere
 // (preset name or JSON file; empty = airless) and the options of its precomputation
 // (umbra::eclipse::EclipseAtmosphereOptions), the cache settings. The prepared atmosphere
-// (Bruneton tables, refraction table, limb ray profile) is made once per process for a
-// given set of parameters and shared by the sources that ask for it.
+// (Bruneton tables, the refraction table's top rows, limb ray profile) is made once per
+// process for a given set of parameters and shared by the sources that ask for it.
 //
 // Input (optional, port 0): the tables of vtkAtmosphereTablesSource (a vtkMultiBlockDataSet,
 // e.g. read from its EXR cache) instead of preparing them here. It needs the Bruneton
-// tables and, with Refraction on (the default), the "refraction" block and refracted
-// paths: SetTables(vtkAtmosphereTablesSource::All), SetRefractedPaths(true). The table
-// sizes, orders and refraction step are then the input's (its field data feed the cache
+// tables, with Refraction on (the default) of refracted paths: SetRefractedPaths(true);
+// its "refraction" block is read when present (SetTables(All)), else the two rows of it
+// that the limb ray profile reads are traced here (RefractionSize, the input's step). The
+// table sizes, orders and refraction step are then the input's (its field data feed the cache
 // key); the atmosphere is the Atmosphere property, or when empty the input's "atmosphere"
 // (a preset name), and must be the one the tables were made for. No input and no
 // Atmosphere: the airless case.
@@ -116,8 +117,8 @@ public:
   std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> GetPreparedAtmosphere();
 
   /// Feeds the input from a new vtkAtmosphereTablesSource asking for the tables these
-  /// properties describe (atmosphere, wavelengths, sizes, orders, refraction, cache): the
-  /// Bruneton and refraction tables then come from their EXR cache across runs; made on
+  /// properties describe (atmosphere, wavelengths, sizes, orders, refracted paths, cache):
+  /// the Bruneton tables then come from their EXR cache across runs; made on
   /// demand, their progress is the first half of this source's ProgressEvents. A later
   /// call re-configures that tables source from the properties. Does nothing without an
   /// Atmosphere or when another input is connected. Returns the tables source (or null).

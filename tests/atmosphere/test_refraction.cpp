@@ -511,6 +511,32 @@ TEST(RefractionTable, LookupsMatchTracedRays) {
   }
 }
 
+// A table of the top rows only: those rows are the whole table's to the bit, a lookup from
+// the top of the atmosphere (or from far away) gives the whole table's answer, and a lookup
+// lower down is refused with an error instead of reading untraced rows.
+TEST(RefractionTable, TheTopRowsAloneAnswerTheLookupsFromTheTop) {
+  const RefractiveMedium m = earth();
+  const RefractionTable whole = buildRefractionTable(m, 64, 16, 10e3);
+  const RefractionTable top = buildRefractionTable(m, 64, 16, 10e3, {}, 14);
+  EXPECT_EQ(top.firstRow, 14);
+  for (int y = 14; y < 16; ++y)
+    for (int x = 0; x < 64; ++x) {
+      EXPECT_EQ(top.deviationRad[top.index(x, y)], whole.deviationRad[whole.index(x, y)]) << x << ", " << y;
+      EXPECT_EQ(top.contactAltitudeM[top.index(x, y)], whole.contactAltitudeM[whole.index(x, y)]) << x << ", " << y;
+    }
+  for (double mu : {-1.0, -0.3, -0.1, -0.05, 0.0, 0.5}) {
+    for (double r : {kEarthTopM, 1e9}) {
+      const RefractionSample a = top.sample(r, mu), b = whole.sample(r, mu);
+      EXPECT_EQ(a.deviationRad, b.deviationRad) << r << " " << mu;
+      EXPECT_EQ(a.contactAltitudeM, b.contactAltitudeM) << r << " " << mu;
+    }
+  }
+  EXPECT_GT(whole.sample(kEarthTopM, -0.1).deviationRad, 0.0);  // a ray through the air: bent
+  EXPECT_THROW(top.sample(kEarthBottomM + 10e3, 0.1), std::domain_error);
+  EXPECT_THROW(buildRefractionTable(m, 64, 16, 10e3, {}, 15), std::invalid_argument);
+  EXPECT_THROW(buildRefractionTable(m, 64, 16, 10e3, {}, -1), std::invalid_argument);
+}
+
 TEST(RefractionTable, RejectsUnusableArguments) {
   const RefractiveMedium m = earth();
   EXPECT_THROW(buildRefractionTable(m, 1, 16), std::invalid_argument);
