@@ -191,19 +191,27 @@ double PhaseFunction::operator()(double cosTheta) const {
       const double d = 1.0 + g * g - 2.0 * g * mu;
       return 3.0 / (8.0 * kPi) * (1.0 - g * g) / (2.0 + g * g) * (1.0 + mu * mu) / (d * std::sqrt(d));
     }
-    case Kind::Tabulated: {
-      // The bucket's samples, one bucket wider each side (the bucket's edges are rounded).
-      const int k = std::clamp(static_cast<int>((mu + 1.0) * (0.5 * kBuckets)), 0, kBuckets - 1);
-      const auto upper = std::upper_bound(mu_.begin() + bucket_[std::max(k - 1, 0)],
-                                          mu_.begin() + bucket_[std::min(k + 2, kBuckets)], mu);
-      if (upper == mu_.end()) return p_.back();
-      const std::size_t i = static_cast<std::size_t>(upper - mu_.begin());
-      if (i == 0) return p_.front();
-      const double f = (mu - mu_[i - 1]) / (mu_[i] - mu_[i - 1]);
-      return p_[i - 1] + f * (p_[i] - p_[i - 1]);
-    }
+    case Kind::Tabulated: return valueIn(interval(mu));
   }
   return 0.0;
+}
+
+PhaseFunction::Interval PhaseFunction::interval(double cosTheta) const {
+  if (kind_ != Kind::Tabulated) throw std::logic_error("PhaseFunction::interval of a closed-form phase function");
+  const double mu = std::clamp(cosTheta, -1.0, 1.0);
+  // The bucket's samples, one bucket wider each side (the bucket's edges are rounded).
+  const int k = std::clamp(static_cast<int>((mu + 1.0) * (0.5 * kBuckets)), 0, kBuckets - 1);
+  const auto upper = std::upper_bound(mu_.begin() + bucket_[std::max(k - 1, 0)],
+                                      mu_.begin() + bucket_[std::min(k + 2, kBuckets)], mu);
+  const std::size_t i = static_cast<std::size_t>(upper - mu_.begin());
+  if (i == 0 || i == mu_.size()) return {i, 0.0};
+  return {i, (mu - mu_[i - 1]) / (mu_[i] - mu_[i - 1])};
+}
+
+double PhaseFunction::valueIn(const Interval& s) const {
+  if (s.i >= p_.size()) return p_.back();
+  if (s.i == 0) return p_.front();
+  return p_[s.i - 1] + s.f * (p_[s.i] - p_[s.i - 1]);
 }
 
 double PhaseFunction::asymmetry() const {

@@ -59,6 +59,17 @@ public:
   /// p(cos theta) in 1/sr; cosTheta is clamped to [-1, 1].
   double operator()(double cosTheta) const;
 
+  /// Tabulated: where cos theta falls among the samples, as operator() finds it: between
+  /// samples i - 1 and i with weight f on i (i = 0: before the first, i = size: after the
+  /// last). valueIn(interval(c)) == operator()(c); tables on the same cosThetaSamples()
+  /// (Lorenz-Mie's, one per wavelength) share the interval.
+  struct Interval {
+    std::size_t i = 0;
+    double f = 0.0;
+  };
+  Interval interval(double cosTheta) const;
+  double valueIn(const Interval& s) const;
+
   /// The asymmetry parameter <cos theta> = 2 pi int p(mu) mu dmu (exact for every kind).
   double asymmetry() const;
 

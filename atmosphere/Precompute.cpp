@@ -395,39 +395,42 @@ namespace {
 
 /// skyRadiance's table lookups at a Sun within the tables (muS >= muSMin): lookupScattering
 /// in each table, the cell found once for all of them; adds to L (one value per wavelength).
-/// phaseOf(q, l): the phase function of single-scattering table q at wavelength l.
-template <class PhaseOf>
-void addTableRadiance(const AtmosphereTables& tables, const ScatterGeometry& g, const PhaseOf& phaseOf, double r,
+/// phasesOf(q, nu, P): the phase function of single-scattering table q at each wavelength,
+/// into P[0 .. wavelengths).
+template <class PhasesOf>
+void addTableRadiance(const AtmosphereTables& tables, const ScatterGeometry& g, const PhasesOf& phasesOf, double r,
                       double mu, double muS, double nu, bool ground, double* L) {
   const RMuCell a = rMuCell(g, r, mu, ground);
   const SNuCell c = sNuCell(g, muS, nu);
   const std::size_t nl = tables.wavelengthCount();
   accumulate4(tables.multipleScattering, a, c, 1.0, L);
   constexpr std::size_t kStack = 64;  // no allocation for up to this many wavelengths
-  std::array<double, kStack> stack;
-  std::vector<double> heap(nl > kStack ? nl : 0);
+  std::array<double, 2 * kStack> stack;
+  std::vector<double> heap(nl > kStack ? 2 * nl : 0);
   double* S = nl > kStack ? heap.data() : stack.data();
+  double* P = S + nl;
   for (std::size_t q = 0; q < tables.singleScattering.size(); ++q) {
     std::fill(S, S + nl, 0.0);
     accumulate4(tables.singleScattering[q], a, c, 1.0, S);
-    for (std::size_t l = 0; l < nl; ++l) L[l] += S[l] * phaseOf(q, l)(nu);
+    phasesOf(q, nu, P);
+    for (std::size_t l = 0; l < nl; ++l) L[l] += S[l] * P[l];
   }
 }
 
 /// skyRadiance per unit solar irradiance into L, with the tables' geometry and phases given.
-template <class PhaseOf>
-void skyRadianceWith(const AtmosphereTables& tables, const ScatterGeometry& g, const PhaseOf& phaseOf, double r,
+template <class PhasesOf>
+void skyRadianceWith(const AtmosphereTables& tables, const ScatterGeometry& g, const PhasesOf& phasesOf, double r,
                      double mu, double muS, double nu, double* L) {
   const int nl = static_cast<int>(tables.wavelengthCount());
   const double b = tables.bottomRadiusM, muSMin = tables.options.muSMin;
   const bool ground = rayIntersectsGround(b, r, mu);
   std::fill(L, L + nl, 0.0);
-  if (muS >= muSMin) return addTableRadiance(tables, g, phaseOf, r, mu, muS, nu, ground, L);
+  if (muS >= muSMin) return addTableRadiance(tables, g, phasesOf, r, mu, muS, nu, ground, L);
   const double end = ground ? distanceToBottomBoundaryM(b, r, mu) : distanceToTopBoundaryM(tables.topRadiusM, r, mu);
   const double d = distanceToSunCosineM(r, mu, muS, nu, muSMin);
   if (!(d < end)) return;
   const double rd = std::clamp(std::sqrt(d * d + 2.0 * r * mu * d + r * r), b, tables.topRadiusM);
-  addTableRadiance(tables, g, phaseOf, rd, clampCosine((r * mu + d) / rd), muSMin, nu, ground, L);
+  addTableRadiance(tables, g, phasesOf, rd, clampCosine((r * mu + d) / rd), muSMin, nu, ground, L);
   const std::vector<double> T = transmittanceAlong(tables, r, mu, d, ground);
   for (int l = 0; l < nl; ++l) L[l] *= T[l];
 }
@@ -436,22 +439,41 @@ void skyRadianceWith(const AtmosphereTables& tables, const ScatterGeometry& g, c
 
 void skyRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r, double mu, double muS,
                  double nu, double* L) {
-  auto phaseOf = [&](std::size_t q, std::size_t l) -> const PhaseFunction& {
-    return atmosphere.component(tables.scatteringComponents[q]).phase(l);
+  auto phasesOf = [&](std::size_t q, double c, double* P) {
+    const Component& component = atmosphere.component(tables.scatteringComponents[q]);
+    for (std::size_t l = 0; l < tables.wavelengthCount(); ++l) P[l] = component.phase(l)(c);
   };
-  skyRadianceWith(tables, geometryOf(tables), phaseOf, r, mu, muS, nu, L);
+  skyRadianceWith(tables, geometryOf(tables), phasesOf, r, mu, muS, nu, L);
 }
 
 SkyRadianceLookup::SkyRadianceLookup(const AtmosphereTables& tables, const Atmosphere& atmosphere)
     : tables_(tables), geometry_(std::make_shared<const ScatterGeometry>(geometryOf(tables))) {
-  for (const std::string& name : tables.scatteringComponents)
-    for (std::size_t l = 0; l < tables.wavelengthCount(); ++l) phases_.push_back(&atmosphere.component(name).phase(l));
+  const std::size_t nl = tables.wavelengthCount();
+  for (const std::string& name : tables.scatteringComponents) {
+    const Component& component = atmosphere.component(name);
+    bool shared = nl > 0;
+    for (std::size_t l = 0; l < nl; ++l) {
+      const PhaseFunction& p = component.phase(l);
+      phases_.push_back(&p);
+      shared = shared && p.kind() == PhaseFunction::Kind::Tabulated &&
+               p.cosThetaSamples() == component.phase(0).cosThetaSamples();
+    }
+    sharedSamples_.push_back(shared);
+  }
 }
 
 void SkyRadianceLookup::operator()(double r, double mu, double muS, double nu, double* L) const {
   const std::size_t nl = tables_.wavelengthCount();
-  auto phaseOf = [&](std::size_t q, std::size_t l) -> const PhaseFunction& { return *phases_[q * nl + l]; };
-  skyRadianceWith(tables_, *geometry_, phaseOf, r, mu, muS, nu, L);
+  auto phasesOf = [&](std::size_t q, double c, double* P) {
+    const PhaseFunction* const* p = phases_.data() + q * nl;
+    if (sharedSamples_[q]) {  // one search for every wavelength's table
+      const PhaseFunction::Interval s = p[0]->interval(c);
+      for (std::size_t l = 0; l < nl; ++l) P[l] = p[l]->valueIn(s);
+    } else {
+      for (std::size_t l = 0; l < nl; ++l) P[l] = (*p[l])(c);
+    }
+  };
+  skyRadianceWith(tables_, *geometry_, phasesOf, r, mu, muS, nu, L);
 }
 
 std::vector<double> skyRadiance(const AtmosphereTables& tables, const Atmosphere& atmosphere, double r, double mu,

@@ -318,6 +318,7 @@ private:
   const AtmosphereTables& tables_;
   std::shared_ptr<const stages::ScatterGeometry> geometry_;
   std::vector<const PhaseFunction*> phases_;  ///< [component * wavelengths + wavelength]
+  std::vector<bool> sharedSamples_;  ///< per component: tabulated on the same samples at every wavelength
 };
 /// The cosine factor of the direct irradiance on a horizontal surface from a Sun of angular
 /// radius alphaRad whose centre is at zenith cosine muS: muS above alphaRad, 0 below

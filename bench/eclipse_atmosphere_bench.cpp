@@ -134,7 +134,7 @@ void runSet(const Options& o, Context& c) {
   eclipse::LimbLuminanceLutParams lp;  // 64 x 64 x 64, 256 rows
   const double limbS = timed([&] { eclipse::buildLimbLuminanceLut(m, lp); });
   std::printf("## complete %s set\n\n| stage | seconds |\n|---|---|\n", preset.c_str());
-  std::printf("| atmosphere tables (3 wavelengths, 4 orders, refracted paths) + refraction table 512x256 + ray profile | %.1f |\n", c.tablesS);
+  std::printf("| atmosphere tables (3 wavelengths, 4 orders, refracted paths) + refraction table's 2 top rows (512 wide) + ray profile | %.1f |\n", c.tablesS);
   std::printf("| shadow LuT 256^2 (limb views 256^2, scattering 16^2 cells) | %.1f |\n", shadowS);
   std::printf("| limb-luminance LuT 64x64x64 (views 64x256) | %.1f |\n", limbS);
   std::printf("| **total** | **%.1f** |\n\n", c.tablesS + shadowS + limbS);

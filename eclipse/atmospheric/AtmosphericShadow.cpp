@@ -318,10 +318,33 @@ void LimbRayProfile::deviationRange(double bLo, double bHi, double& lo, double& 
     return deviationRad[k] + (x - k) * (deviationRad[k + 1] - deviationRad[k]);
   };
   lo = std::min(deviation(bLo), deviation(bHi)), hi = std::max(deviation(bLo), deviation(bHi));
-  // The nodes strictly inside (the profile is linear between them).
+  // The nodes strictly inside (the profile is linear between them): two runs cover them.
   const int k0 = std::max(0, static_cast<int>(std::floor((std::min(bLo, bHi) - occluderRadiusM) * scale)) + 1);
   const int k1 = std::min(n - 1, static_cast<int>(std::ceil((std::max(bLo, bHi) - occluderRadiusM) * scale)) - 1);
-  for (int k = k0; k <= k1; ++k) lo = std::min(lo, deviationRad[k]), hi = std::max(hi, deviationRad[k]);
+  if (k1 < k0) return;
+  if (deviationRunMin.size() < static_cast<std::size_t>(n))
+    throw std::logic_error("limb ray profile: its deviations are not indexed (indexDeviations)");
+  const int j = 31 - __builtin_clz(static_cast<unsigned>(k1 - k0 + 1));
+  const std::size_t a = static_cast<std::size_t>(j) * n + k0, b = static_cast<std::size_t>(j) * n + k1 - (1 << j) + 1;
+  lo = std::min({lo, deviationRunMin[a], deviationRunMin[b]});
+  hi = std::max({hi, deviationRunMax[a], deviationRunMax[b]});
+}
+
+void LimbRayProfile::indexDeviations() {
+  const int n = samples();
+  int levels = 1;
+  while ((2 << (levels - 1)) <= n) ++levels;  // runs of 1, 2, 4, ... up to n nodes
+  deviationRunMin.assign(static_cast<std::size_t>(levels) * n, 0.0);
+  deviationRunMax.assign(static_cast<std::size_t>(levels) * n, 0.0);
+  std::copy(deviationRad.begin(), deviationRad.end(), deviationRunMin.begin());
+  std::copy(deviationRad.begin(), deviationRad.end(), deviationRunMax.begin());
+  for (int j = 1; j < levels; ++j) {
+    const std::size_t row = static_cast<std::size_t>(j) * n, below = row - n, half = std::size_t{1} << (j - 1);
+    for (std::size_t k = 0; k + 2 * half <= static_cast<std::size_t>(n); ++k) {
+      deviationRunMin[row + k] = std::min(deviationRunMin[below + k], deviationRunMin[below + k + half]);
+      deviationRunMax[row + k] = std::max(deviationRunMax[below + k], deviationRunMax[below + k + half]);
+    }
+  }
 }
 
 void refractedTransmittanceToTop(const atmosphere::AtmosphereTables& tables, double r, double mu, double contact,
@@ -360,6 +383,7 @@ LimbRayProfile limbRayProfile(const atmosphere::AtmosphereTables& tables,
     double* T = p.transmittance.data() + static_cast<std::size_t>(k) * p.channels;
     refractedTransmittanceToTop(tables, rTop, -std::sqrt(std::max(0.0, rTop * rTop - b * b)) / rTop, contact, T);
   }
+  p.indexDeviations();
   return p;
 }
 
@@ -372,6 +396,7 @@ LimbRayProfile transparentLimbProfile(double rOcc, double rAtmo, const std::vect
   p.deviationRad.assign(n, 0.0);
   p.contactAltitudeM = {0.0, rAtmo - rOcc};
   p.transmittance.assign(static_cast<std::size_t>(n) * p.channels, 1.0);
+  p.indexDeviations();
   return p;
 }
 

@@ -75,7 +75,15 @@ struct LimbRayProfile {
   void at(double impactParameterM, double& deviationRad, double& contactAltitudeM,
           double* transmittanceOut) const;
   /// The smallest and largest deviation over impact parameters [bLo, bHi] (the interpolant's).
+  /// Reads the runs' extremes below.
   void deviationRange(double bLo, double bHi, double& minRad, double& maxRad) const;
+
+  /// The smallest and largest deviationRad over runs of 2^j nodes from node k, at
+  /// [j * samples() + k] (a sparse table: any range of nodes is two runs), made by
+  /// indexDeviations(); limbRayProfile and transparentLimbProfile call it, and whoever
+  /// changes deviationRad must call it again.
+  std::vector<double> deviationRunMin, deviationRunMax;
+  void indexDeviations();
 };
 
 /// T along a refracted ray from (r, mu) to the top (per channel into `out`), given its contact

@@ -96,6 +96,27 @@ TEST(ModelPhase, TabulatedInterpolatesLinearlyAndIsRenormalised) {
   EXPECT_NEAR(line(0.5) - line(0.0), (line(1.0) - line(0.0)) / 2.0, 1e-15);
 }
 
+// A tabulated function's interval gives operator()'s value to the bit, also read from
+// another table on the same samples (one search for the tables of every wavelength), and at
+// the ends and outside the samples; a closed form has no samples to search.
+TEST(ModelPhase, TheIntervalOfASampleIsSharedByTablesOnTheSameSamples) {
+  std::vector<double> angles, a, b;
+  for (int i = 0; i <= 360; ++i) {
+    angles.push_back(i * 0.5);
+    const double mu = std::cos(i * 0.5 * kPi / 180.0);
+    a.push_back(PhaseFunction::henyeyGreenstein(0.7)(mu));
+    b.push_back(PhaseFunction::henyeyGreenstein(0.2)(mu) + 0.01 * i);
+  }
+  const PhaseFunction ta = PhaseFunction::tabulatedDegrees(angles, a), tb = PhaseFunction::tabulatedDegrees(angles, b);
+  for (double mu : {-2.0, -1.0, -0.999, -0.3, 0.0, 0.123456, 0.9, 0.99996, 1.0, 3.0}) {
+    const PhaseFunction::Interval s = ta.interval(mu);
+    EXPECT_EQ(ta.valueIn(s), ta(mu)) << mu;
+    EXPECT_EQ(tb.valueIn(s), tb(mu)) << mu;
+  }
+  EXPECT_GT(tb(0.5), 0.0);
+  EXPECT_THROW(PhaseFunction::rayleigh().interval(0.5), std::logic_error);
+}
+
 // A mixture's phase function is the weighted mean of its parts': normalised, its asymmetry
 // the weighted mean of theirs (g is linear in p), on the parts' own samples when they share them.
 TEST(ModelPhase, MixtureIsTheWeightedMeanOfItsParts) {

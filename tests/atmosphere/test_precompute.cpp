@@ -482,6 +482,30 @@ TEST(Precompute, NightSkyBelowTheLowestSunMatchesBruteForce) {
       for (double v : skyRadiance(t, earth, b + 10.0, mu, std::cos(125.0 * kPi / 180.0), nu)) EXPECT_EQ(v, 0.0);
 }
 
+// SkyRadianceLookup (the table geometry and phase functions found once, one search of the
+// Lorenz-Mie samples for every wavelength) gives skyRadiance's values to the bit: in the
+// tables' Sun range and below it (the ray's first sunlit air), looking up, down and along
+// the horizon, for OPAC's tabulated aerosols and Bruneton's closed-form ones.
+TEST(Precompute, SkyRadianceLookupGivesSkyRadiancesValues) {
+  for (const std::string preset : {"earth", "earth-bruneton"}) {
+    const Atmosphere atm = loadAtmosphere(preset, {680.0, 550.0, 440.0});
+    const AtmosphereTables t = precompute(atm, belowTheLowestSunOptions());
+    const SkyRadianceLookup lookup(t, atm);
+    int nonzero = 0;
+    for (double r : {t.bottomRadiusM + 10.0, t.bottomRadiusM + 20e3, t.topRadiusM})
+      for (double mu : {-0.8, -0.1, 0.0, 0.05, 0.7})
+        for (double muS : {-0.5, -0.25, 0.0, 0.4, 1.0})
+          for (double nu : {-0.95, 0.0, 0.6, 0.999}) {
+            std::vector<double> got(3);
+            lookup(r, mu, muS, nu, got.data());
+            const std::vector<double> want = skyRadiance(t, atm, r, mu, muS, nu);
+            for (int l = 0; l < 3; ++l) EXPECT_EQ(got[l], want[l]) << preset << " " << r << " " << mu << " " << muS;
+            nonzero += want[1] > 0.0;
+          }
+    EXPECT_GT(nonzero, 100) << preset;
+  }
+}
+
 // Second-order twilight: with the Sun 16 deg down no sunlit air is above the observer
 // (the Earth's shadow is 256 km up at the zenith), so the zenith's only light is sunlight
 // scattered once in the sunlit air around and then again in the shadowed air overhead.
