@@ -182,22 +182,24 @@ struct Model {
         // two knots L apart the path dips below its ends by at most about L^2 / (8 r) (a
         // straight chord; refraction bends it less than that); the margin is 4 times that and
         // a metre. Elsewhere no radius is evaluated, and the cuts are the same.
+        // Radius bounds of the knot segments from q0 on that [s0, s1] overlaps (a view ray asks
+        // for one short interval at a time: only those segments are looked at).
         const std::vector<Knot>& knots = path.knots;
-        const std::size_t segments = knots.size() > 1 ? knots.size() - 1 : 0;
-        std::vector<double> segLo(segments), segHi(segments);  // per knot segment
-        double rEnd = knots.empty() ? 0.0 : std::sqrt(knots[0].x * knots[0].x + knots[0].y * knots[0].y);
-        for (std::size_t q = 0; q + 1 < knots.size(); ++q) {
-          const double ra = rEnd, L = knots[q + 1].s - knots[q].s;
-          rEnd = std::sqrt(knots[q + 1].x * knots[q + 1].x + knots[q + 1].y * knots[q + 1].y);
-          const double margin = 1.0 + L * L / (2.0 * std::max(std::min(ra, rEnd), 1.0));
-          segLo[q] = std::min(ra, rEnd) - margin, segHi[q] = std::max(ra, rEnd) + margin;
+        std::size_t q0 = 0;
+        while (q0 + 2 < knots.size() && knots[q0 + 1].s <= s0) ++q0;
+        std::vector<double> segLo, segHi;
+        for (std::size_t q = q0; q + 1 < knots.size() && knots[q].s < s1; ++q) {
+          const Knot &a = knots[q], &e = knots[q + 1];
+          const double ra = std::sqrt(a.x * a.x + a.y * a.y), re = std::sqrt(e.x * e.x + e.y * e.y);
+          const double margin = 1.0 + (e.s - a.s) * (e.s - a.s) / (2.0 * std::max(std::min(ra, re), 1.0));
+          segLo.push_back(std::min(ra, re) - margin), segHi.push_back(std::max(ra, re) + margin);
         }
-        std::size_t j = 0;  // the knot segment [j, j + 1] holding the interval's start
+        std::size_t j = 0;  // the segment q0 + j holding the interval's start
         auto nearKink = [&](double sa, double sb) {
-          if (segments == 0) return true;
-          while (j + 2 < knots.size() && knots[j + 1].s <= sa) ++j;
+          if (segLo.empty()) return true;
+          while (j + 1 < segLo.size() && knots[q0 + j + 1].s <= sa) ++j;
           double lo = segLo[j], hi = segHi[j];
-          for (std::size_t q = j + 1; q + 1 < knots.size() && knots[q].s < sb; ++q)
+          for (std::size_t q = j + 1; q < segLo.size() && knots[q0 + q].s < sb; ++q)
             lo = std::min(lo, segLo[q]), hi = std::max(hi, segHi[q]);
           for (double R : kinkRadii)
             if (R >= lo && R <= hi) return true;

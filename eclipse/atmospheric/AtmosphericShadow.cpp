@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cctype>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 namespace umbra::eclipse {
@@ -495,7 +496,17 @@ std::vector<double> Illuminance::total() const {
   return t;
 }
 
-LimbView renderLimbView(const AtmosphericShadowModel& m, const LimbPosition& p, const LimbViewParams& params) {
+namespace {
+
+/// The sky lookups of a model's views, prepared once for all of them; none without scattering.
+std::unique_ptr<const atmosphere::SkyRadianceLookup> skyLookup(const AtmosphericShadowModel& m) {
+  if (!useScattering(m)) return nullptr;
+  return std::make_unique<const atmosphere::SkyRadianceLookup>(*m.tables, *m.atmosphere);
+}
+
+/// renderLimbView with the model's sky lookups (skyLookup).
+LimbView limbView(const AtmosphericShadowModel& m, const atmosphere::SkyRadianceLookup* sky, const LimbPosition& p,
+                  const LimbViewParams& params) {
   checkLimbParams(params);
   const int nc = m.rays.channels, R = params.rows, C = params.columns;
   LimbView view;
@@ -525,15 +536,14 @@ LimbView renderLimbView(const AtmosphericShadowModel& m, const LimbPosition& p, 
       }
     });
   }
-  if (useScattering(m)) {
+  if (sky) {
     const int SC = params.scatteringColumns, SR = params.scatteringRows;
-    const atmosphere::SkyRadianceLookup sky(*m.tables, *m.atmosphere);
     const ScatteringCells cells(p, rowGeometry(p, SR).theta, SC);
     std::vector<double> L(nc);
     for (int r = 0; r < SR; ++r)
       for (int q = 0; q < SC; ++q) {
         double cosine = 0.0;
-        scatteredRadiance(m, sky, p, cells, r, q, L.data(), cosine);
+        scatteredRadiance(m, *sky, p, cells, r, q, L.data(), cosine);
         for (int i = r * R / SR; i < (r + 1) * R / SR; ++i)
           for (int j = q * C / SC; j < (q + 1) * C / SC; ++j)
             for (int c = 0; c < nc; ++c) view.at(i, j, c) += L[c];
@@ -542,7 +552,9 @@ LimbView renderLimbView(const AtmosphericShadowModel& m, const LimbPosition& p, 
   return view;
 }
 
-Illuminance illuminanceAt(const AtmosphericShadowModel& m, const LimbPosition& p, const LimbViewParams& params) {
+/// illuminanceAt with the model's sky lookups (skyLookup).
+Illuminance illuminance(const AtmosphericShadowModel& m, const atmosphere::SkyRadianceLookup* sky, const LimbPosition& p,
+                        const LimbViewParams& params) {
   checkLimbParams(params);
   const int nc = m.rays.channels;
   Illuminance I;
@@ -557,16 +569,15 @@ Illuminance illuminanceAt(const AtmosphericShadowModel& m, const LimbPosition& p
         for (int c = 0; c < nc; ++c) I.indirect[c] += e * w[c];
       });
   }
-  if (useScattering(m)) {
+  if (sky) {
     const int SC = params.scatteringColumns, SR = params.scatteringRows;
     const RowGeometry g = rowGeometry(p, SR);
-    const atmosphere::SkyRadianceLookup sky(*m.tables, *m.atmosphere);
     const ScatteringCells cells(p, g.theta, SC);
     std::vector<double> L(nc);
     for (int r = 0; r < SR; ++r)
       for (int q = 0; q < SC; ++q) {
         double cosine = 0.0;
-        scatteredRadiance(m, sky, p, cells, r, q, L.data(), cosine);
+        scatteredRadiance(m, *sky, p, cells, r, q, L.data(), cosine);
         const double w = 2.0 * g.solidAnglePerBeta[r] * (kPi / SC) * cosine;
         for (int c = 0; c < nc; ++c) I.indirect[c] += w * L[c];
       }
@@ -577,6 +588,16 @@ Illuminance illuminanceAt(const AtmosphericShadowModel& m, const LimbPosition& p
                  : visibleFractionLimbDarkened(p.atmosphereAngularRadiusRad / phiS, delta / phiS, m.limbDarkening)
                        .value;
   return I;
+}
+
+} // namespace
+
+LimbView renderLimbView(const AtmosphericShadowModel& m, const LimbPosition& p, const LimbViewParams& params) {
+  return limbView(m, skyLookup(m).get(), p, params);
+}
+
+Illuminance illuminanceAt(const AtmosphericShadowModel& m, const LimbPosition& p, const LimbViewParams& params) {
+  return illuminance(m, skyLookup(m).get(), p, params);
 }
 
 glm::dvec3 rgbOfSpectralRatio(const std::vector<double>& nm, const double* ratio) {
@@ -630,10 +651,11 @@ ShadowLut buildAtmosphericShadowLut(const AtmosphericShadowModel& m, const Atmos
   lut.vMax = ext.vEnd == params.height ? params.vMax : params.vMin + vSpan * ext.vEnd / params.height;
   lut.vLowFraction = params.vLowFraction;
   lut.rgb.assign(static_cast<std::size_t>(lut.width) * lut.height * 3, 0.0f);
+  const auto sky = skyLookup(m);  // one for every texel
   const bool finished = forEachTexel(lut.width * lut.height, share, progress, [&](int k) {
     const int i = k % lut.width, j = k / lut.width;
     const LutCoords c{whole.texelU(ext.uBegin + i), whole.texelV(ext.vBegin + j)};
-    const std::vector<double> t = illuminanceAt(m, limbPosition(m, c), params.limb).total();
+    const std::vector<double> t = illuminance(m, sky.get(), limbPosition(m, c), params.limb).total();
     const glm::dvec3 rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
     float* out = lut.rgb.data() + 3 * static_cast<std::size_t>(k);
     for (int q = 0; q < 3; ++q) out[q] = static_cast<float>(rgb[q]);
@@ -679,10 +701,11 @@ LimbLuminanceLut buildLimbLuminanceLut(const AtmosphericShadowModel& m, const Li
   lut.width = params.width, lut.height = params.height, lut.columns = params.columns, lut.layers = params.layers;
   lut.range = r;
   lut.rgb.assign(static_cast<std::size_t>(lut.width) * lut.height * lut.depth() * 3, 0.0f);
+  const auto sky = skyLookup(m);  // one for every texel
   const bool finished = forEachTexel(lut.width * lut.height, share, progress, [&](int k) {
     const int i = k % lut.width, j = k / lut.width;
     const LutCoords c{r.texelU(i, lut.width), r.texelV(j, lut.height)};
-    const LimbView view = renderLimbView(m, limbPosition(m, c), lp);
+    const LimbView view = limbView(m, sky.get(), limbPosition(m, c), lp);
     const std::vector<double> avg = layerAverages(view, lut.layers);
     for (int d = 0; d < lut.depth(); ++d) {
       const double* spectral = avg.data() + static_cast<std::size_t>(d) * view.channels;
