@@ -438,7 +438,7 @@ void MainWindow::startAtmosphere(const std::string& model) {
     this->atmosphereFailed(e.what());
     return;
   }
-  this->jobs->startTables(source, choice);
+  this->jobs->startTables(std::move(source), choice);
   this->showJob("computing the " + this->atmosphereChoice->currentText().toStdString() +
                 (choice.twilight ? " twilight" : "") + " atmosphere tables...");
 }

@@ -17,10 +17,14 @@
 namespace umbra::gui {
 
 /// A job's algorithms are only touched by the worker until it has finished (then by the
-/// GUI thread), except SetAbortExecute. The worker's progress callbacks set AbortExecute
-/// again from `cancelled`: VTK clears it when an execution starts, so a cancel that comes
-/// before that is not lost. Each observed algorithm's progress is mapped to its part
-/// [from, to] of the job's.
+/// GUI thread), except SetAbortExecute. Nor does the GUI thread take or drop references to
+/// them meanwhile: VTK's garbage collector walks an algorithm's references on every
+/// UnRegister that leaves it alive, while the worker's pipeline changes them. The job's
+/// references are taken before the worker starts and dropped after it has been joined, and
+/// what VTK makes on first use (the executives, the outputs) is made before it starts.
+/// The worker's progress callbacks set AbortExecute again from `cancelled`: VTK clears it
+/// when an execution starts, so a cancel that comes before that is not lost. Each observed
+/// algorithm's progress is mapped to its part [from, to] of the job's.
 struct TableJobs::Job {
   TableJobs* owner = nullptr;
   Result result;
@@ -87,14 +91,15 @@ bool TableJobs::wantsTables(const std::optional<pipeline::AtmosphereTableChoice>
   return missing && !this->job && missing != this->failedTables;
 }
 
-void TableJobs::startTables(vtkSmartPointer<vtkAtmosphereTablesSource> source,
+void TableJobs::startTables(vtkSmartPointer<vtkAtmosphereTablesSource>&& source,
                             const pipeline::AtmosphereTableChoice& choice) {
   this->stop();
   auto j = std::make_unique<Job>();
-  j->result.tables = source;
+  j->result.tables = std::move(source);  // the GUI thread's only reference from now on
   j->result.choice = choice;
-  j->observe(source, 0.0, 1.0);
-  this->run(std::move(j), [source] { source->Update(); });
+  vtkAtmosphereTablesSource* tables = j->result.tables;
+  j->observe(tables, 0.0, 1.0);
+  this->run(std::move(j), [tables] { tables->Update(); });
 }
 
 std::optional<std::string> TableJobs::startEclipseLuts(const SceneView& view) {
@@ -153,6 +158,9 @@ std::optional<std::string> TableJobs::startEclipseLuts(const SceneView& view) {
 }
 
 void TableJobs::run(std::unique_ptr<Job> j, std::function<void()> work) {
+  // The algorithms' executives and outputs, which VTK makes on first use, are made here on
+  // the GUI thread: the worker then only runs their pipeline.
+  for (const auto& st : j->stages) st->algorithm->UpdateDataObject();
   this->job = std::move(j);
   this->job->owner = this;
   const int g = ++this->generation;
@@ -203,6 +211,7 @@ void TableJobs::stop() {
   if (!this->job) return;
   this->job->cancel();
   if (this->job->thread.joinable()) this->job->thread.join();
+  this->job->stopObserving();  // its callbacks point into the job
   this->job.reset();
   ++this->generation;  // a queued end of that job is ignored
 }

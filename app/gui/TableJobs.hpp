@@ -63,7 +63,9 @@ public:
   /// not the last to fail.
   bool wantsTables(const std::optional<pipeline::AtmosphereTableChoice>& missing) const;
   /// Makes the tables of `source` (configured for `choice`; from its cache or computed).
-  void startTables(vtkSmartPointer<vtkAtmosphereTablesSource> source, const pipeline::AtmosphereTableChoice& choice);
+  /// The job takes the caller's reference: no other may be dropped on the GUI thread while
+  /// the worker runs (see TableJobs::Job).
+  void startTables(vtkSmartPointer<vtkAtmosphereTablesSource>&& source, const pipeline::AtmosphereTableChoice& choice);
   /// Remembers tables that could not even be configured, as a failed job is.
   void tablesFailed(const pipeline::AtmosphereTableChoice& choice) { this->failedTables = choice; }
   /// Starts the eclipse LuTs that `view` is missing and that did not fail last; returns

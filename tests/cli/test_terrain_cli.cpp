@@ -89,6 +89,28 @@ TEST(TerrainCli, GeoTiffInputMatchesTheSameHeightsAndHandlesNoData) {
   for (float v : tables::readExr(dir / "holes.exr").data) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v <= 1.0f);
 }
 
+// GDAL (a hundred-odd libraries, ~33 MiB resident) is loaded by the commands that read a
+// DEM only, from its module beside `umbra` (app/cli/DemModule.hpp); the loader's trace
+// (LD_DEBUG=files) names each library loaded.
+TEST(TerrainCli, GdalIsLoadedOnlyToReadADem) {
+  TempDir dir;
+  writeGeoTiff(dir / "dem.tif", field(16, 3), 0.0);
+  const std::vector<std::string> sun = {"--sun-elevation-deg", "3", "--sun-azimuth-deg", "10"};
+  auto shadow = [&](std::vector<std::string> a) {
+    a.insert(a.begin(), {"terrain", "shadow"});
+    a.insert(a.end(), sun.begin(), sun.end());
+    return run(UMBRA_EXE, a, {"LD_DEBUG=files"});
+  };
+  RunResult r = shadow({"--synthetic", "3", "--size", "16", "--output", dir / "syn.exr"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("file=libvtkCommonCore"), std::string::npos) << "no loader trace";
+  EXPECT_EQ(r.err.find("libgdal"), std::string::npos);
+  r = shadow({"--dem", dir / "dem.tif", "--output", dir / "dem.exr"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("umbra-dem-gdal.so"), std::string::npos);
+  EXPECT_NE(r.err.find("file=libgdal"), std::string::npos);
+}
+
 TEST(TerrainCli, TimeGivesTheSunTheLunarSouthPoleSees) {
   // The Moon's axis is tilted 1.54 deg to the ecliptic: from the pole the Sun stays within
   // ~1.6 deg of the horizon and goes once around it in a synodic month (29.53 days).

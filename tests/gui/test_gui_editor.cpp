@@ -236,6 +236,24 @@ TEST(GuiEditor, CancelKeepsTheTablesDrawn) {
   EXPECT_EQ(drawn(win.w).component("molecules").density.scaleHeightM, 7500.0);
 }
 
+// A user clicking through the presets: each choice stops the job before it and starts its
+// own (the tables from the cache after the first two), while the window goes on drawing;
+// the last choice is the one drawn and in the editor, and no stopped job reports.
+TEST(GuiEditor, ChoosingAtmospheresInQuickSuccessionDrawsTheLastOne) {
+  Window win;
+  const std::array<std::string, 2> presets{"earth", "earth-bruneton"};
+  for (int i = 0; i < 60; ++i) {
+    win.w.setAtmosphere(presets[i % 2]);
+    ASSERT_TRUE(win.w.atmosphereTablesBusy()) << i;
+    QApplication::processEvents();
+  }
+  win.w.setAtmosphere("earth");
+  settle(win.w);
+  EXPECT_EQ(win.w.drawnAtmosphere(), "earth");
+  EXPECT_EQ(win.w.atmosphereEditor().sourceName(), "earth");
+  EXPECT_EQ(win.w.statusText().indexOf("atmosphere:"), -1) << win.w.statusText().toStdString();
+}
+
 // Components: one removed (the ozone: no Chappuis absorption any more), one added with the
 // table's defaults; removing the one refraction follows is rejected naming that field.
 TEST(GuiEditor, ComponentsAreAddedAndRemoved) {
