@@ -8,7 +8,10 @@
 # each, and the ratios peer / umbra, as Markdown.
 #
 #   bench/peer_side_by_side.sh PEER_CHECKOUT [--runs N] [--wavelengths "3 15"]
-#       [--umbra build/app/cli/umbra] [--work DIR]
+#       [--memory MIB] [--umbra build/app/cli/umbra] [--work DIR]
+#
+# --memory MIB: umbra runs with `--memory MIB` (the working set it computes the wavelengths
+# in, a batch at a time; default: its own default).
 #
 # PEER_CHECKOUT: a checkout of github.com/ebruneton/precomputed_atmospheric_scattering
 # (measured at d9954923); it is only read. The driver (bench/peer/bruneton_init_driver.cc)
@@ -22,17 +25,20 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; }
 here=$(cd "$(dirname "$0")/.." && pwd)
 peer=$(cd "$1" 2>/dev/null && pwd) || { echo "peer_side_by_side: $1: no such directory" >&2; exit 2; }
 shift
-runs=3 wavelengths="3 15" umbra="$here/build/app/cli/umbra" work="${TMPDIR:-/tmp}/umbra-peer-bench"
+runs=3 wavelengths="3 15" memory="" umbra="$here/build/app/cli/umbra" work="${TMPDIR:-/tmp}/umbra-peer-bench"
 while [[ $# -gt 0 ]]; do
   case $1 in
     --runs) runs=$2; shift 2 ;;
     --wavelengths) wavelengths=$2; shift 2 ;;
+    --memory) memory=$2; shift 2 ;;
     --umbra) umbra=$2; shift 2 ;;
     --work) work=$2; shift 2 ;;
     *) echo "peer_side_by_side: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
 done
 [[ $runs =~ ^[1-9][0-9]*$ ]] || { echo "peer_side_by_side: --runs: expected a positive integer, got $runs" >&2; exit 2; }
+[[ -z $memory || $memory =~ ^[1-9][0-9]*$ ]] || { echo "peer_side_by_side: --memory: expected a positive integer (MiB), got $memory" >&2; exit 2; }
+umbraOptions=(${memory:+--memory "$memory"})
 for w in $wavelengths; do
   [[ $w == 3 || $w == 15 ]] || { echo "peer_side_by_side: --wavelengths: 3 and/or 15 (the peer's modes), got $w" >&2; exit 2; }
 done
@@ -44,7 +50,7 @@ done
 
 if [[ -z ${DISPLAY:-} && -z ${UMBRA_PEER_BENCH_INNER:-} ]]; then
   exec env UMBRA_PEER_BENCH_INNER=1 xvfb-run -a -s "-screen 0 640x480x24" "$0" "$peer" --runs "$runs" \
-    --wavelengths "$wavelengths" --umbra "$umbra" --work "$work"
+    --wavelengths "$wavelengths" ${memory:+--memory "$memory"} --umbra "$umbra" --work "$work"
 fi
 
 # ---- the driver --------------------------------------------------------------------------
@@ -85,7 +91,7 @@ for w in $wavelengths; do
     echo "  $w wavelengths, run $i of $runs: umbra ..." >&2
     rm -rf "$work/umbra-out"
     measure "$work/umbra-$w-$i" "$umbra" atmosphere precompute --preset earth-bruneton --wavelengths "$w" \
-      --no-cache --output "$work/umbra-out" >> "$work/umbra-$w.runs"
+      --no-cache "${umbraOptions[@]}" --output "$work/umbra-out" >> "$work/umbra-$w.runs"
   done
   read -r pw_min pw_med <<< "$(stat 1 "$work/peer-$w.runs")"
   read -r uw_min uw_med <<< "$(stat 1 "$work/umbra-$w.runs")"
@@ -93,7 +99,7 @@ for w in $wavelengths; do
   read -r _ uc_med <<< "$(stat 2 "$work/umbra-$w.runs")"
   read -r _ pm_med <<< "$(stat 3 "$work/peer-$w.runs")"
   read -r _ um_med <<< "$(stat 3 "$work/umbra-$w.runs")"
-  awk -v w="$w" -v n="$runs" -v a="$pw_min" -v b="$pw_med" -v c="$uw_min" -v d="$uw_med" -v e="$pc_med" \
+  awk -v w="$w${memory:+ (umbra --memory $memory)}" -v n="$runs" -v a="$pw_min" -v b="$pw_med" -v c="$uw_min" -v d="$uw_med" -v e="$pc_med" \
       -v f="$uc_med" -v g="$pm_med" -v h="$um_med" 'BEGIN {
     printf "| %s | %s | %.1f / %.1f | %.2f / %.2f | %.1fx | %.1f | %.1f | %.0f | %.0f |\n",
       w, n " each, alternating", a, b, c, d, b / d, e, f, g / 1024, h / 1024 }'

@@ -10,7 +10,7 @@ Batch::Batch(const Atmosphere& atmIn, const PrecomputeOptions& oIn, Runner& runI
              std::vector<FloatTable3D>& singleIn, FloatTable3D& multipleIn, int l0In)
     : atm(atmIn), o(oIn), run(runIn), m(atmIn, oIn), nl(m.nl), nc(m.nc), ns(static_cast<int>(m.scatterers.size())),
       shell{atmIn.bottomRadiusM, atmIn.topRadiusM}, b(m.b), t(m.t), alpha(oIn.sunAngularRadiusRad),
-      g(shell, {oIn.scatteringR, oIn.scatteringMu, oIn.scatteringMuS, oIn.scatteringNu}, oIn.muSMin),
+      g(shell, {oIn.scatteringR, oIn.scatteringMu, oIn.scatteringMuS, oIn.scatteringNu}, oIn.muSMin), points(g),
       W(oIn.scatteringNu * oIn.scatteringMuS), MU(oIn.scatteringMu), R(oIn.scatteringR), MUS(oIn.scatteringMuS),
       TW(oIn.transmittanceWidth), TH(oIn.transmittanceHeight), IW(oIn.irradianceWidth), IH(oIn.irradianceHeight),
       texels(static_cast<std::size_t>(W) * MU * R), single(singleIn), multiple(multipleIn), l0(l0In) {

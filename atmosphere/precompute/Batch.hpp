@@ -70,6 +70,7 @@ struct Batch {
   const ShellRadii shell;
   const double b, t, alpha;
   const ScatterGeometry g;
+  const TexelPoints points;  // g.texel, tabulated
   const int W, MU, R, MUS, TW, TH, IW, IH;
   const std::size_t texels;
   std::vector<FloatTable3D>& single;  // per scatterer, all wavelengths wide
@@ -109,8 +110,10 @@ struct Batch {
   /// L_{k-1}(r, mu, mu_s, nu) added into v: order 1 from the single tables (phases
   /// included), else delta.
   void incoming(int order, double r, double mu, double muS, double nu, bool ground, double* v) const {
-    const RMuCell a = rMuCell(g, r, mu, ground);
-    const SNuCell c = sNuCell(g, muS, nu);
+    incoming(order, rMuCell(g, r, mu, ground), sNuCell(g, muS, nu), nu, v);
+  }
+  /// The same at the cells of (r, mu) and (mu_s, nu), for a caller that reuses them.
+  void incoming(int order, const RMuCell& a, const SNuCell& c, double nu, double* v) const {
     if (order == 1) {
       // A buffer on the stack for up to 64 wavelengths (this runs a million times an order).
       double small[64];

@@ -30,26 +30,43 @@ void computeDirectIrradiance(Batch& B) {
 }
 
 void computeIndirectIrradiance(Batch& B, int order) {
-  const int nl = B.nl, IW = B.IW;
+  const ScatterGeometry g = B.g;  // a copy: the stores into the tables cannot alias it
+  const int nl = B.nl, IH = B.IH;
   const int nIrTh = B.o.irradianceSamples / 2, nIrPh = 2 * B.o.irradianceSamples;
   const double dI = kPi / B.o.irradianceSamples;
   Table2D& nextE = B.nextE;
   BatchResult& out = B.out;
-  B.run.run("indirect irradiance", 0.1, B.IH, [&, nl, IW, nIrTh, nIrPh, dI, order](int y) {
-    std::vector<double> v(nl);
-    for (int x = 0; x < IW; ++x) {
-      double r, muS;
+  // One column (mu_s) a task: its directions' (mu_s, nu) cells are the same at every
+  // radius, and a radius' (r, mu) cells the same for every mu_s.
+  B.run.run("indirect irradiance", 0.1, B.IW, [&, g, nl, IH, nIrTh, nIrPh, dI, order](int x) {
+    const std::size_t nDir = static_cast<std::size_t>(nIrTh) * nIrPh;
+    std::vector<SNuCell> sNu(nDir);
+    std::vector<double> nuOf(nDir), cosTh(nIrTh), sinTh(nIrTh);
+    std::vector<RMuCell> rMu(nIrTh);
+    double r, muS;
+    B.irradianceTexel(x, 0, r, muS);
+    const double sinS = std::sqrt(std::max(0.0, 1.0 - muS * muS));
+    for (int jt = 0; jt < nIrTh; ++jt) {
+      const double th = (jt + 0.5) * dI;
+      cosTh[jt] = std::cos(th), sinTh[jt] = std::sin(th);
+      for (int ip = 0; ip < nIrPh; ++ip) {
+        const double ph = (ip + 0.5) * dI;
+        const std::size_t j = static_cast<std::size_t>(jt) * nIrPh + ip;
+        nuOf[j] = clampCosine(std::cos(ph) * sinTh[jt] * sinS + cosTh[jt] * muS);
+        sNu[j] = sNuCell(g, muS, nuOf[j]);
+      }
+    }
+    std::vector<double> v(nl), E(nl);
+    for (int y = 0; y < IH; ++y) {
       B.irradianceTexel(x, y, r, muS);
-      const double sinS = std::sqrt(std::max(0.0, 1.0 - muS * muS));
-      std::vector<double> E(nl, 0.0);
+      for (int jt = 0; jt < nIrTh; ++jt) rMu[jt] = rMuCell(g, r, cosTh[jt], false);
+      std::fill(E.begin(), E.end(), 0.0);
       for (int jt = 0; jt < nIrTh; ++jt) {
-        const double th = (jt + 0.5) * dI, cz = std::cos(th), sth = std::sin(th);
+        const double w = cosTh[jt] * sinTh[jt] * dI * dI;
         for (int ip = 0; ip < nIrPh; ++ip) {
-          const double ph = (ip + 0.5) * dI;
-          const double nu = clampCosine(std::cos(ph) * sth * sinS + cz * muS);
+          const std::size_t j = static_cast<std::size_t>(jt) * nIrPh + ip;
           std::fill(v.begin(), v.end(), 0.0);
-          B.incoming(order - 1, r, cz, muS, nu, false, v.data());
-          const double w = cz * sth * dI * dI;
+          B.incoming(order - 1, rMu[jt], sNu[j], nuOf[j], v.data());
           for (int l = 0; l < nl; ++l) E[l] += v[l] * w;
         }
       }

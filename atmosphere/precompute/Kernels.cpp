@@ -60,10 +60,17 @@ __attribute__((always_inline)) inline void gatherTexelsOf(const double* blend, i
 
 UMBRA_KERNEL void gatherTexels(const double* blend, int nl, int muS, const int* x00, const double* ws,
                                const double* wn, int n, double w, const double* T, double* acc) {
-  switch (nl) {  // the common counts unrolled
+  // The common counts unrolled: 3 (RGB), 15 and 16 (15 or 47 wavelengths at once or in 3
+  // batches), 5 and 8 (15 in batches of 5, 8 + 7); over a count known only at run time the
+  // loop runs scalar, most of the multiple scattering's time with batches of 5.
+  switch (nl) {
     case 1: gatherTexelsOf<1>(blend, nl, muS, x00, ws, wn, n, w, T, acc); break;
     case 3: gatherTexelsOf<3>(blend, nl, muS, x00, ws, wn, n, w, T, acc); break;
     case 4: gatherTexelsOf<4>(blend, nl, muS, x00, ws, wn, n, w, T, acc); break;
+    case 5: gatherTexelsOf<5>(blend, nl, muS, x00, ws, wn, n, w, T, acc); break;
+    case 8: gatherTexelsOf<8>(blend, nl, muS, x00, ws, wn, n, w, T, acc); break;
+    case 15: gatherTexelsOf<15>(blend, nl, muS, x00, ws, wn, n, w, T, acc); break;
+    case 16: gatherTexelsOf<16>(blend, nl, muS, x00, ws, wn, n, w, T, acc); break;
     default: gatherTexelsOf<0>(blend, nl, muS, x00, ws, wn, n, w, T, acc); break;
   }
 }

@@ -17,6 +17,7 @@ void computeMultipleScattering(Batch& B) {
   const double b = B.b;
   const int nl = B.nl, W = B.W, MU = B.MU, R = B.R, MUS = B.MUS, l0 = B.l0;
   const std::vector<RaySamples>& mRays = B.multipleScatteringRays();
+  const TexelPoints& points = B.points;
   const FloatTable3D& density = B.density;
   FloatTable3D& delta = B.delta;
   FloatTable3D& multiple = B.multiple;
@@ -34,7 +35,7 @@ void computeMultipleScattering(Batch& B) {
     std::vector<double> sxA(W), muSA(W), wsA(W), wnA(W), acc(rowSize, 0.0), blend(rowSize);
     std::vector<int> x00A(W);
     for (int x = 0; x < W; ++x) {
-      const ScatteringPoint p = g.texel(x, y, z);
+      const ScatteringPoint p = points(x, y, z);
       sxA[x] = sunX(p), muSA[x] = p.muS;
     }
     for (int k = 0; k <= N && s.ds > 0.0; ++k) {

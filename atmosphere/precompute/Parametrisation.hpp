@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace umbra::atmosphere::stages {
 
@@ -114,15 +115,47 @@ struct ScatterGeometry {
 
   ScatteringPoint texel(int x, int y, int z) const {
     ScatteringPoint p;
-    const int k = x / MUS, i = x % MUS;
     p.r = rFromU((z + 0.5) / R);
     p.mu = muFromU(p.r, (y + 0.5) / MU, p.rayIntersectsGround);
-    p.muS = muSFromU((i + 0.5) / MUS);
-    const double nu = clampCosine(2.0 * k / (NU - 1) - 1.0);
-    const double s = std::sqrt(std::max(0.0, (1.0 - p.mu * p.mu) * (1.0 - p.muS * p.muS)));
-    p.nu = std::clamp(nu, p.mu * p.muS - s, p.mu * p.muS + s);
+    p.muS = muSFromU((x % MUS + 0.5) / MUS);
+    p.nu = texelNu(x / MUS, p.mu, p.muS);
     return p;
   }
+  /// The nu of the texels of nu column k, within what mu and mu_s allow.
+  double texelNu(int k, double mu, double muS) const {
+    const double nu = clampCosine(2.0 * k / (NU - 1) - 1.0);
+    const double s = std::sqrt(std::max(0.0, (1.0 - mu * mu) * (1.0 - muS * muS)));
+    return std::clamp(nu, mu * muS - s, mu * muS + s);
+  }
+};
+
+/// ScatterGeometry::texel with its inverse parametrisations tabulated per axis (r per z, mu
+/// and the ground per (y, z), mu_s per column): the same points, for the stages that visit
+/// every texel once an order.
+struct TexelPoints {
+  explicit TexelPoints(const ScatterGeometry& geometry) : g(geometry) {
+    for (int z = 0; z < g.R; ++z) {
+      const ScatteringPoint p = g.texel(0, 0, z);
+      r.push_back(p.r);
+      for (int y = 0; y < g.MU; ++y) {
+        const ScatteringPoint q = g.texel(0, y, z);
+        mu.push_back(q.mu), ground.push_back(q.rayIntersectsGround);
+      }
+    }
+    for (int i = 0; i < g.MUS; ++i) muS.push_back(g.texel(i, 0, 0).muS);
+  }
+  ScatteringPoint operator()(int x, int y, int z) const {
+    ScatteringPoint p;
+    const std::size_t yz = static_cast<std::size_t>(z) * g.MU + y;
+    p.r = r[z], p.mu = mu[yz], p.rayIntersectsGround = ground[yz], p.muS = muS[x % g.MUS];
+    p.nu = g.texelNu(x / g.MUS, p.mu, p.muS);
+    return p;
+  }
+
+private:
+  ScatterGeometry g;
+  std::vector<double> r, mu, muS;
+  std::vector<char> ground;
 };
 
 inline ScatterGeometry geometryOf(const AtmosphereTables& t) {

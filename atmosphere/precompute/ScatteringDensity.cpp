@@ -89,6 +89,7 @@ void computeScatteringDensity(Batch& B, int order) {
   const Table2D& deltaE = B.deltaE;
   FloatTable3D& density = B.density;
   const DensityDirections& d = B.directions;
+  const TexelPoints& points = B.points;
   const int nTh = d.nTh, nPh = d.nPh, nDir = d.nDir;
   const std::vector<double>&wxAll = d.wx, &wyAll = d.wy, &wzAll = d.wz, &wdoAll = d.wdo;
   const std::vector<double>&groundT = d.groundT, &groundD = d.groundD, &lobeIntegral = d.lobeIntegral;
@@ -233,7 +234,7 @@ void computeScatteringDensity(Batch& B, int order) {
           modeProducts(alphaIs, everyWavelength.data(), nl, gammaMixed.data(), ringModes, nTh, nPh, Cmixed.data());
         for (int k = 0; k < o.scatteringNu; ++k) {
           const int x = k * MUS + is;
-          const ScatteringPoint p = g.texel(x, y, z);
+          const ScatteringPoint p = points(x, y, z);
           const double sz = std::sqrt(std::max(0.0, 1.0 - p.mu * p.mu));
           double vx = sinS > 1e-12 ? std::clamp((p.nu - p.mu * muS) / sinS, -sz, sz) : sz;
           const double vy = std::sqrt(std::max(0.0, sz * sz - vx * vx)), vz = p.mu;

@@ -20,6 +20,7 @@ void computeSingleScattering(Batch& B) {
   const int nl = B.nl, ns = B.ns, W = B.W, MU = B.MU, R = B.R, TW = B.TW, TH = B.TH, l0 = B.l0;
   const Table2D& Ttab = B.out.transmittance;
   const std::vector<RaySamples>& singleRays = B.singleRays;
+  const TexelPoints& points = B.points;
   std::vector<FloatTable3D>& single = B.single;
   BatchResult& out = B.out;
   B.run.run("single scattering", 1.0, R * MU, [&, g, alpha, nl, ns, W, MU, TW, TH, l0](int i) {
@@ -39,7 +40,7 @@ void computeSingleScattering(Batch& B) {
     std::vector<double> sxA(W), muSA(W), visA(W), fxA(W), Trow(static_cast<std::size_t>(TW) * nl);
     std::vector<double> acc(static_cast<std::size_t>(W) * ns * nl, 0.0);
     for (int x = 0; x < W; ++x) {
-      const ScatteringPoint p = g.texel(x, y, z);
+      const ScatteringPoint p = points(x, y, z);
       sxA[x] = sunX(p), muSA[x] = p.muS;
     }
     for (int k = 0; k <= N && s.ds > 0.0; ++k) {
@@ -71,7 +72,7 @@ void computeSingleScattering(Batch& B) {
 
   // L_1 (phases included) at a texel, for the statistics.
   out.orderMean.push_back(B.meanOf([&](int x, int y, int z, double* v) {
-    const ScatteringPoint p = g.texel(x, y, z);
+    const ScatteringPoint p = points(x, y, z);
     std::fill(v, v + nl, 0.0);
     for (int q = 0; q < ns; ++q) {
       const Component& comp = atm.components[m.scatterers[q]];
