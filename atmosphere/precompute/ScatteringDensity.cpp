@@ -141,6 +141,8 @@ void computeScatteringDensity(Batch& B, int order) {
     std::vector<double> alphaModes(nForm > 0 || tabulated ? MUS * lightModes : 0), muSOf(MUS), sinSOf(MUS);
     {
       std::vector<double> Lw(static_cast<std::size_t>(nl) * nDir), v(nl), E(nl);
+      std::vector<RMuCell> rMuOf(nDir);  // a direction's (r, mu) cell: the same for every Sun
+      for (int j = 0; j < nDir; ++j) rMuOf[j] = rMuCell(g, r, wz[j], groundD[z * nTh + j / nPh] >= 0.0);
       for (int is = 0; is < MUS; ++is) {
         muSOf[is] = g.texel(is, 0, z).muS, sinSOf[is] = std::sqrt(std::max(0.0, 1.0 - muSOf[is] * muSOf[is]));
         const double muS = muSOf[is], sinS = sinSOf[is];
@@ -152,7 +154,7 @@ void computeScatteringDensity(Batch& B, int order) {
           const double nu = clampCosine(wx[j] * sinS + wz[j] * muS);
           const bool ground = groundD[z * nTh + lt] >= 0.0;
           std::fill(v.begin(), v.end(), 0.0);
-          B.incoming(order - 1, r, wz[j], muS, nu, ground, v.data());
+          B.incoming(order - 1, rMuOf[j], sNuCell(g, muS, nu), nu, v.data());
           if (ground) {
             const double dg = groundD[z * nTh + lt];
             const double muSg = clampCosine((r * muS + dg * nu) / b);
