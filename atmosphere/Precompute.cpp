@@ -19,11 +19,17 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <sstream>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
+#include <cerrno>
+#include <cstdint>
+#include <fcntl.h>
+#include <stdexcept>
 #include <sys/mman.h>
+#include <unistd.h>
 
 namespace umbra::atmosphere {
 
@@ -55,9 +61,76 @@ std::string PrecomputeOptions::validate() const {
 namespace {
 constexpr std::size_t kHugePage = std::size_t{2} << 20;
 std::size_t mappedBytes(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
+thread_local int spillScopes = 0;  // SpilledTableMemory's alive on this thread
+
+/// The open file of each spilled table, by its first byte (copySpilledTableMemory).
+std::mutex spilledFilesMutex;
+std::map<const void*, int>& spilledFiles() {
+  static std::map<const void*, int> files;
+  return files;
+}
+
+/// A shared mapping of `size` bytes of a new unlinked file in spilledTableDirectory().
+void* mapSpilledFile(std::size_t size) {
+  const std::string dir = spilledTableDirectory();
+  const auto fail = [&](const char* what) {
+    throw std::runtime_error("spilled tables: cannot " + std::string(what) + " a temporary file of " +
+                             std::to_string(size >> 20) + " MiB in " + dir + ": " + std::strerror(errno));
+  };
+  int fd = -1;
+#ifdef O_TMPFILE
+  fd = ::open(dir.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+#endif
+  if (fd < 0) {  // a file system without O_TMPFILE: a named one, unlinked at once
+    std::string name = dir + "/umbra-tables-XXXXXX";
+    fd = ::mkstemp(name.data());
+    if (fd < 0) fail("make");
+    ::unlink(name.c_str());
+  }
+  // The blocks reserved now: a full disk is this error, not a SIGBUS at a page's first write.
+  if (::fallocate(fd, 0, 0, static_cast<off_t>(size)) != 0 &&
+      (errno != EOPNOTSUPP || ::ftruncate(fd, static_cast<off_t>(size)) != 0)) {
+    ::close(fd);
+    fail("reserve");
+  }
+  void* p = ::mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+  if (p == MAP_FAILED) {
+    ::close(fd);
+    fail("map");
+  }
+  const std::lock_guard<std::mutex> lock(spilledFilesMutex);
+  spilledFiles()[p] = fd;
+  return p;
+}
 }  // namespace
 
+std::string spilledTableDirectory() {
+  const char* d = std::getenv("TMPDIR");
+  return d && *d ? d : "/tmp";
+}
+
+bool spillsTableMemory(std::size_t bytes) { return bytes >= kHugePage; }
+
+SpilledTableMemory::SpilledTableMemory() { ++spillScopes; }
+SpilledTableMemory::~SpilledTableMemory() { --spillScopes; }
+
+void releaseTableMemory(const void* data, std::size_t bytes) noexcept {
+  const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+  const auto begin = reinterpret_cast<std::uintptr_t>(data), end = begin + bytes;
+  const std::uintptr_t from = (begin + page - 1) / page * page, to = end / page * page;
+  if (to > from) (void)::madvise(reinterpret_cast<void*>(from), to - from, MADV_DONTNEED);
+}
+
+void populateTableMemory(const void* data, std::size_t bytes) noexcept {
+  constexpr int kPopulateRead = 22;  // MADV_POPULATE_READ, Linux 5.14 (an error before: then faults)
+  const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+  const auto begin = reinterpret_cast<std::uintptr_t>(data) / page * page;
+  const auto end = reinterpret_cast<std::uintptr_t>(data) + bytes;
+  if (end > begin) (void)::madvise(reinterpret_cast<void*>(begin), end - begin, kPopulateRead);
+}
+
 void* allocateTableMemory(std::size_t bytes) {
+  if (spillScopes > 0 && spillsTableMemory(bytes)) return mapSpilledFile(mappedBytes(bytes));
   if (bytes < kHugePage) {
     void* p = std::malloc(std::max<std::size_t>(bytes, 1));
     if (!p) throw std::bad_alloc();
@@ -74,8 +147,32 @@ void* allocateTableMemory(std::size_t bytes) {
 
 void freeTableMemory(void* data, std::size_t bytes) noexcept {
   if (!data) return;
-  if (bytes < kHugePage) std::free(data);
-  else ::munmap(data, mappedBytes(bytes));
+  if (bytes < kHugePage) return std::free(data);
+  ::munmap(data, mappedBytes(bytes));
+  const std::lock_guard<std::mutex> lock(spilledFilesMutex);
+  if (auto it = spilledFiles().find(data); it != spilledFiles().end()) {
+    ::close(it->second);
+    spilledFiles().erase(it);
+  }
+}
+
+void copySpilledTableMemory(const void* table, std::size_t offset, void* memory, std::size_t bytes, bool toTable) {
+  int fd = -1;
+  {
+    const std::lock_guard<std::mutex> lock(spilledFilesMutex);
+    if (auto it = spilledFiles().find(table); it != spilledFiles().end()) fd = it->second;
+  }
+  if (fd < 0) throw std::logic_error("copySpilledTableMemory: not a spilled table");
+  auto* p = static_cast<char*>(memory);
+  for (std::size_t done = 0; done < bytes;) {
+    const off_t at = static_cast<off_t>(offset + done);
+    const ssize_t n = toTable ? ::pwrite(fd, p + done, bytes - done, at) : ::pread(fd, p + done, bytes - done, at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0)
+      throw std::runtime_error("spilled tables: cannot " + std::string(toTable ? "write" : "read") + " their file in " +
+                               spilledTableDirectory() + ": " + (n < 0 ? std::strerror(errno) : "end of file"));
+    done += static_cast<std::size_t>(n);
+  }
 }
 
 void zeroTableMemory(void* data, std::size_t bytes) {
@@ -102,10 +199,11 @@ namespace {
 
 /// One batch of wavelengths: its stages in order (atmosphere/precompute/Batch.hpp). The 3D
 /// tables go straight into `single` and `multiple` from channel l0 on. With a sink, they
-/// are the batch's own: each goes to the sink once finished and is freed (the single
-/// scattering after the second order's density and irradiance, the last to read it), and
-/// `multiple` is made (from empty) only then. transmittanceColumns (or null): the straight
-/// rays' column densities, made by the first batch and read by the next.
+/// are the batch's own: the single scattering goes to the sink once finished and is freed
+/// after the second order's density and irradiance (the last to read it); `multiple` is
+/// made (from empty, spilled with o.spillTables) then, and goes to the sink at the end, J_k
+/// freed first. transmittanceColumns (or null): the straight rays' column densities, made
+/// by the first batch and read by the next.
 BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runner& run,
                          std::vector<FloatTable3D>& single, FloatTable3D& multiple, int l0,
                          const BatchTablesSink& sink, std::vector<double>* transmittanceColumns) {
@@ -114,27 +212,32 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
   const auto handOnSingle = [&] {
     if (!sink) return;
     for (std::size_t q = 0; q < single.size(); ++q) {
+      single[q].populate(0, single[q].depth);  // spilled: in one call, not a page fault each
       sink(l0, static_cast<int>(q), single[q]);
-      FloatTable3D().values.swap(single[q].values);
+      single[q].releaseAll();
     }
+  };
+  const auto freeSingle = [&] {
+    if (!sink) return;
+    for (FloatTable3D& s : single) FloatTable3D().values.swap(s.values);
   };
   const auto handOnMultiple = [&] {
     if (!sink) return;
-    if (multiple.values.empty()) multiple.resize(batch.W, batch.MU, batch.R, batch.nl);  // one order: zeros
+    FloatTable3D().values.swap(batch.density.values);
+    FloatTable3D().values.swap(batch.delta.values);
+    if (multiple.values.empty()) multiple.resize(batch.W, batch.MU, batch.R, batch.nl, o.spillTables);  // one order: zeros
+    multiple.populate(0, multiple.depth);
     sink(l0, static_cast<int>(single.size()), multiple);
     FloatTable3D().values.swap(multiple.values);
   };
   computeTransmittance(batch);
   computeDirectIrradiance(batch);
-  buildViewRays(batch, o.singleScatteringSamples, batch.singleRays);
   if (batch.ownMultipleScatteringRays() && o.orders > 1)
     buildViewRays(batch, o.multipleScatteringSamples, batch.multipleRays);
   computeSingleScattering(batch);
-  // The single-scattering weights are spent: free them before the working tables.
-  for (std::vector<RaySamples>* rays : {&batch.singleRays, &batch.multipleRays})
-    for (RaySamples& s : *rays) std::vector<double>().swap(s.rhoT);
+  handOnSingle();
   if (o.orders < 2) {
-    handOnSingle();
+    freeSingle();
     handOnMultiple();
     return std::move(batch.out);
   }
@@ -146,14 +249,15 @@ BatchResult computeBatch(const Atmosphere& atm, const PrecomputeOptions& o, Runn
     computeScatteringDensity(batch, order);
     computeIndirectIrradiance(batch, order);
     if (order == 2) {  // L_1 is read no more; L_2 on
-      handOnSingle();
-      batch.delta.resize(batch.W, batch.MU, batch.R, batch.nl);
-      if (multiple.values.empty()) multiple.resize(batch.W, batch.MU, batch.R, batch.nl);
+      freeSingle();
+      batch.delta.resize(batch.W, batch.MU, batch.R, batch.nl, o.spillTables);
+      if (multiple.values.empty()) multiple.resize(batch.W, batch.MU, batch.R, batch.nl, o.spillTables);
     }
     batch.deltaE = batch.nextE;
     computeMultipleScattering(batch);
     batch.out.orderMean.push_back(batch.meanOf(
-        [&](int x, int y, int z, double* v) { std::copy_n(batch.delta.at(x, y, z), batch.nl, v); }));
+        [&](int x, int y, int z, double* v) { std::copy_n(batch.delta.at(x, y, z), batch.nl, v); },
+        [&, reading = SliceWindow(batch.incomingTables(2))](int z) mutable { reading(z + 1, z + 2); }));
   }
   handOnMultiple();
   return std::move(batch.out);
@@ -212,13 +316,14 @@ ScatteringPoint scatteringTexelPoint(const ShellRadii& shell, const ScatteringTa
 // ---- precompute ------------------------------------------------------------------------------
 
 std::size_t batchBytesPerWavelength(const PrecomputeOptions& o, int scatterers) {
-  const std::size_t texels = static_cast<std::size_t>(o.scatteringNu) * o.scatteringMuS * o.scatteringMu * o.scatteringR;
-  const std::size_t rays = static_cast<std::size_t>(o.scatteringR) * o.scatteringMu;
-  std::size_t samples = rays * (o.singleScatteringSamples + 1);
-  if (o.multipleScatteringSamples != o.singleScatteringSamples) samples += rays * (o.multipleScatteringSamples + 1);
-  const std::size_t tables4D = o.orders < 2 ? static_cast<std::size_t>(scatterers) + 1
-                                            : std::max<std::size_t>(static_cast<std::size_t>(scatterers) + 1, 3);
-  return tables4D * texels * sizeof(float) + samples * (1 + static_cast<std::size_t>(scatterers)) * sizeof(double);
+  const std::size_t table = static_cast<std::size_t>(o.scatteringNu) * o.scatteringMuS * o.scatteringMu *
+                            o.scatteringR * sizeof(float);
+  const std::size_t ns = static_cast<std::size_t>(scatterers);
+  if (o.spillTables) {  // J_k (or a table the sink reads) whole; slices of the single scattering, or of L_k and the sum
+    const std::size_t slices = std::min<std::size_t>(kSpilledSlices, static_cast<std::size_t>(o.scatteringR));
+    return table + std::max<std::size_t>(ns, 2) * (table / o.scatteringR) * slices;
+  }
+  return (o.orders < 2 ? ns + 1 : std::max<std::size_t>(ns + 1, 3)) * table;
 }
 
 int wavelengthBatchFor(const PrecomputeOptions& o, int scatterers, int wavelengths, std::size_t budgetBytes) {
@@ -297,17 +402,17 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
   std::map<std::string, double> timings;
   std::vector<std::string> order;
   const int orders = options.orders;
-  const double weight = 1.0 + 0.05 + 0.3 * (options.multipleScatteringSamples != options.singleScatteringSamples ? 2 : 1) +
-                        1.0 + (orders - 1) * (2.0 + 0.1 + 1.0);
+  const double weight = 1.0 + 0.05 + 0.3 * (options.multipleScatteringSamples != options.singleScatteringSamples ? 1 : 0) +
+                        1.3 + (orders - 1) * (2.0 + 0.1 + 1.0);
   const int W = options.scatteringNu * options.scatteringMuS;
   // The 4D tables: all wavelengths wide, or (with a sink) one batch's single scattering,
   // handed on (computeBatch makes the batch's multiple scattering when it needs it).
-  auto sizeSingle = [&](std::vector<FloatTable3D>& single, int channels) {
+  auto sizeSingle = [&](std::vector<FloatTable3D>& single, int channels, bool spill) {
     single.resize(tables.scatteringComponents.size());
-    for (FloatTable3D& T : single) T.resize(W, options.scatteringMu, options.scatteringR, channels);
+    for (FloatTable3D& T : single) T.resize(W, options.scatteringMu, options.scatteringR, channels, spill);
   };
   if (!sink) {
-    sizeSingle(tables.singleScattering, nl);
+    sizeSingle(tables.singleScattering, nl, false);
     tables.multipleScattering.resize(W, options.scatteringMu, options.scatteringR, nl);
   }
   bool first = true;  // the first batch this process computes sizes the 2D tables
@@ -320,12 +425,12 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
     runner.setStages(weight);
     std::vector<FloatTable3D> batchSingle;
     FloatTable3D batchMultiple;
-    if (sink) sizeSingle(batchSingle, static_cast<int>(ls.size()));
+    if (sink) sizeSingle(batchSingle, static_cast<int>(ls.size()), options.spillTables);
     BatchResult r = computeBatch(
         batches == 1 ? atmosphere : subAtmosphere(atmosphere, ls), options, runner,
         sink ? batchSingle : tables.singleScattering, sink ? batchMultiple : tables.multipleScattering,
         sink ? 0 : ls.front(),
-        sink ? BatchTablesSink([&](int, int table, FloatTable3D& v) { sink(ls.front(), table, v); })
+        sink ? BatchTablesSink([&](int, int table, const FloatTable3D& v) { sink(ls.front(), table, v); })
              : BatchTablesSink(),
         batches > 1 ? &transmittanceColumns : nullptr);
     if (batches == 1) {

@@ -45,6 +45,7 @@
 #include "Atmosphere.hpp"
 #include "TextureCoords.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -97,6 +98,11 @@ struct PrecomputeOptions {
   /// run): batch b when b % batchShareCount == batchShareIndex; the other wavelengths'
   /// channels are left 0 (and their orderMeanRadiance). Not in the tables' keys.
   int batchShareIndex = 0, batchShareCount = 1;
+  /// The 4D tables a batch makes for a sink (the single scattering, the orders' sum) and
+  /// L_k go through an unlinked temporary file (spilledTableDirectory), a few r slices of
+  /// each in the process's memory at a time: a batch then holds only J_k whole in memory
+  /// (batchBytesPerWavelength). The values are the same. Not in the tables' keys.
+  bool spillTables = false;
 
   /// Empty when usable, else what is wrong.
   std::string validate() const;
@@ -104,10 +110,13 @@ struct PrecomputeOptions {
 
 /// The memory one wavelength of a batch holds at the precomputation's peak [bytes], for
 /// `scatterers` scattering components, with the tables handed on as they are finished
-/// (BatchTablesSink): the 4D tables alive at once (the single scattering and J_2 in the
-/// second order, or J_k, L_k and the multiple scattering after it), in float, and the view
-/// rays' transmittance and single-scattering weights, in double.
+/// (BatchTablesSink), in float: the 4D tables alive at once (the single scattering and J_2
+/// in the second order, or J_k, L_k and the multiple scattering after it); with
+/// options.spillTables J_k and the few r slices of the others that the stages work on
+/// (kSpilledSlices of each).
 std::size_t batchBytesPerWavelength(const PrecomputeOptions& options, int scatterers);
+/// The r slices of each spilled 4D table that batchBytesPerWavelength counts in memory.
+constexpr int kSpilledSlices = 4;
 /// The wavelengths of a batch whose memory (batchBytesPerWavelength) fits budgetBytes:
 /// `wavelengths` when all fit, else the fewest batches that fit, as even as they can be
 /// (at least 1 wavelength).
@@ -150,6 +159,49 @@ struct Table2D {
 void* allocateTableMemory(std::size_t bytes);
 void freeTableMemory(void* data, std::size_t bytes) noexcept;
 void zeroTableMemory(void* data, std::size_t bytes);
+/// Whether a table of `bytes` asked to spill does: from 2 MiB on (smaller ones are the heap's).
+bool spillsTableMemory(std::size_t bytes);
+/// While one lives, allocateTableMemory on this thread maps the tables that spill
+/// (spillsTableMemory) from an unlinked temporary file in spilledTableDirectory(), made to
+/// their size (zero), shared: the pages the process lets go (releaseTableMemory) keep their
+/// values in the kernel's page cache, which writes them to the disk when memory is short,
+/// and come back from it when next touched. Throws std::runtime_error naming the directory
+/// when it cannot make the file.
+struct SpilledTableMemory {
+  SpilledTableMemory();
+  ~SpilledTableMemory();
+  SpilledTableMemory(const SpilledTableMemory&) = delete;
+  SpilledTableMemory& operator=(const SpilledTableMemory&) = delete;
+};
+/// $TMPDIR, else /tmp.
+std::string spilledTableDirectory();
+/// Lets the whole pages within [data, data + bytes) of a spilled table go from the process's
+/// memory (their values stay in the file).
+void releaseTableMemory(const void* data, std::size_t bytes) noexcept;
+/// Copies `bytes` between memory and a spilled table (`table`: its first value) from byte
+/// `offset` on, through its file (pread, pwrite: no page of the table mapped into the
+/// process). Throws std::runtime_error when the file cannot be read or written.
+void copySpilledTableMemory(const void* table, std::size_t offset, void* memory, std::size_t bytes, bool toTable);
+/// Brings the pages of [data, data + bytes) of a spilled table into the process's memory in
+/// one call, rather than a page fault each; nothing where the kernel cannot.
+void populateTableMemory(const void* data, std::size_t bytes) noexcept;
+
+/// Whether a table's values are spilled (SpilledTableMemory): moved with them, never copied
+/// (a copy is the heap's).
+struct SpillMark {
+  bool on = false;
+  SpillMark() = default;
+  SpillMark(const SpillMark&) noexcept {}
+  SpillMark& operator=(const SpillMark&) noexcept {
+    on = false;
+    return *this;
+  }
+  SpillMark(SpillMark&& o) noexcept : on(o.on) { o.on = false; }
+  SpillMark& operator=(SpillMark&& o) noexcept {
+    on = o.on, o.on = false;
+    return *this;
+  }
+};
 
 /// A std::vector allocator of table memory whose resize() leaves the values unset (the
 /// table's resize zeroes them, in parallel).
@@ -180,13 +232,36 @@ template <class Value>
 struct BasicTable3D {
   int width = 0, height = 0, depth = 0, channels = 0;
   std::vector<Value, TableAllocator<Value>> values;
+  SpillMark spilled;
 
-  /// The size, every value zero.
-  void resize(int w, int h, int d, int c) {
+  /// The size, every value zero; spill: in a temporary file (SpilledTableMemory) when the
+  /// table is large enough (spillsTableMemory).
+  void resize(int w, int h, int d, int c, bool spill = false) {
     width = w, height = h, depth = d, channels = c;
     std::vector<Value, TableAllocator<Value>>().swap(values);
-    values.resize(static_cast<std::size_t>(w) * h * d * c);
-    zeroTableMemory(values.data(), values.size() * sizeof(Value));
+    const std::size_t n = static_cast<std::size_t>(w) * h * d * c;
+    spilled.on = spill && spillsTableMemory(n * sizeof(Value));
+    if (spilled.on) {
+      const SpilledTableMemory scope;
+      values.resize(n);  // the file's zeros
+    } else {
+      values.resize(n);
+      zeroTableMemory(values.data(), values.size() * sizeof(Value));
+    }
+  }
+  /// A spilled table's r slices [z0, z1) leave the process's memory (releaseTableMemory);
+  /// nothing for another.
+  void release(int z0, int z1) const {
+    if (!spilled.on || values.empty() || z1 <= z0) return;
+    releaseTableMemory(at(0, 0, z0), (offset(0, 0, z1) - offset(0, 0, z0)) * sizeof(Value));
+  }
+  void releaseAll() const { release(0, depth); }
+  /// A spilled table's r slices [z0, z1) brought into memory ahead of reading them
+  /// (populateTableMemory); nothing for another.
+  void populate(int z0, int z1) const {
+    z0 = std::max(z0, 0), z1 = std::min(z1, depth);
+    if (!spilled.on || values.empty() || z1 <= z0) return;
+    populateTableMemory(at(0, 0, z0), (offset(0, 0, z1) - offset(0, 0, z0)) * sizeof(Value));
   }
   std::size_t offset(int x, int y, int z) const {
     return ((static_cast<std::size_t>(z) * height + y) * width + x) * channels;
@@ -247,12 +322,13 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
 /// given one, each as soon as it is finished: the batch's first channel, which table
 /// (0 .. scattering components - 1: that component's single scattering; the number of
 /// scattering components: the multiple scattering), and its values, as many channels wide
-/// as the batch (a batch's channels are consecutive), freed once the sink returns (the sink
-/// may take them: a batch of every wavelength hands on whole tables, written as they are). The
+/// as the batch (a batch's channels are consecutive), to read before it returns (a batch of
+/// every wavelength hands on whole tables, written as they are; spilled ones, options.
+/// spillTables, are read back from their file as the sink goes, and let go after it). The
 /// tables precompute() returns then hold no 4D values (singleScattering and
 /// multipleScattering empty), so that no 4D table is ever held for every wavelength: the
 /// peak memory is one batch's working tables.
-using BatchTablesSink = std::function<void(int firstChannel, int table, FloatTable3D& values)>;
+using BatchTablesSink = std::function<void(int firstChannel, int table, const FloatTable3D& values)>;
 AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOptions& options,
                             const PrecomputeProgress& progress, const BatchTablesSink& sink);
 

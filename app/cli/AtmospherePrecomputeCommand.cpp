@@ -1,7 +1,7 @@
 // umbra atmosphere precompute --preset NAME|--config FILE [--refraction] [--orders N]
 //   [--wavelengths N] [--transmittance-size WxH] [--scattering-size R,MU,MU_S,NU]
 //   [--irradiance-size WxH] [--refraction-size WxH] [--wavelength-batch N] [--memory MiB]
-//   --output DIR [--cache-dir D] [--no-cache]
+//   [--spill auto|always|never] --output DIR [--cache-dir D] [--no-cache]
 //
 // Writes the Bruneton tables of vtkAtmosphereTablesSource (and, with --refraction, the
 // refraction table; the scattering then follows refracted paths) into DIR, one EXR file per
@@ -12,7 +12,9 @@
 // be written, those already written by this run are removed (and DIR if this run made it).
 // The source writes the Bruneton tables itself, each batch of wavelengths as it is finished
 // (vtkAtmosphereTablesSource::SetFileBacked), into DIR's staging directory: no table is held
-// for every wavelength, and --memory (or --wavelength-batch) bounds the batch.
+// for every wavelength, and --memory (or --wavelength-batch) bounds the batch; beyond what
+// fits in memory the tables but J_k go through a temporary file (--spill,
+// PrecomputeOptions::spillTables).
 // The size options exist mostly for tests and quick looks (e.g. --transmittance-size 16x8
 // --scattering-size 4,8,4,2 --irradiance-size 8x4 --orders 2 runs in well under a second).
 #include "AtmosphereCommon.hpp"
@@ -98,7 +100,8 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
     std::string preset, config, output;
     bool refraction = false;
     int orders = 4, wavelengths = 3, wavelengthBatch = 0;
-    double memoryMiB = 384;
+    double memoryMiB = 128;
+    std::string spill = "auto";
     std::string refractionSize = "512x256", transmittanceSize = "256x64", scatteringSize = "32,128,32,8", irradianceSize = "64x16";
     std::string step = "10km";
     CacheOptions cache;
@@ -128,7 +131,14 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       ->capture_default_str();
   precompute->add_option("--memory", o->memoryMiB,
                          "MiB the batch of wavelengths computed together may hold (with --wavelength-batch 0): all "
-                         "wavelengths at once when they fit, else batches that do")
+                         "wavelengths at once when they fit, else all at once with the tables spilled (--spill) when "
+                         "they fit so, else batches that do")
+      ->capture_default_str();
+  precompute->add_option("--spill", o->spill,
+                         "auto: when the batch does not fit --memory otherwise; always; never. Spilled, the tables but "
+                         "the scattering density go through a temporary file in $TMPDIR (the peak memory about a "
+                         "third, a little more time; the same tables)")
+      ->check(CLI::IsMember({"auto", "always", "never"}))
       ->capture_default_str();
   precompute->add_option("--output", o->output, "Directory to write (created if its parent exists)")->required();
   o->cache.addTo(precompute);
@@ -177,18 +187,25 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       source->SetRefractedPaths(o->refraction);
       source->SetOrders(o->orders);
       // The batch: as asked, else all wavelengths when they fit --memory (over ranks: then
-      // shared out by the source), else the most that fit.
+      // shared out by the source), else the most that fit; spilled (--spill auto) when the
+      // batch does not fit in memory.
       int batch = o->wavelengthBatch;
-      if (batch == 0) {
+      {
         atmosphere::PrecomputeOptions po;
         po.scatteringR = scattering[0], po.scatteringMu = scattering[1];
         po.scatteringMuS = scattering[2], po.scatteringNu = scattering[3];
         po.orders = o->orders;
         const int scatterers = static_cast<int>(
             std::count_if(atm.components.begin(), atm.components.end(), [](const auto& c) { return c.scatters(); }));
-        const int fit = atmosphere::wavelengthBatchFor(po, scatterers, o->wavelengths,
-                                                       static_cast<std::size_t>(o->memoryMiB * 1024.0 * 1024.0));
-        if (fit < o->wavelengths) batch = fit;
+        const auto budget = static_cast<std::size_t>(o->memoryMiB * 1024.0 * 1024.0);
+        const int count = batch > 0 ? std::min(batch, o->wavelengths) : o->wavelengths;
+        po.spillTables = o->spill == "always" ||
+                         (o->spill == "auto" && atmosphere::batchBytesPerWavelength(po, scatterers) * count > budget);
+        if (batch == 0) {
+          const int fit = atmosphere::wavelengthBatchFor(po, scatterers, o->wavelengths, budget);
+          if (fit < o->wavelengths) batch = fit;
+        }
+        source->SetSpillTables(po.spillTables);
       }
       source->SetWavelengthBatch(batch);
       source->SetSpreadOverRanks(true);  // under mpirun: the wavelength batches shared, rank 0 writes

@@ -4,8 +4,8 @@
 // themselves, one file each, in the order computeBatch runs them:
 //   Transmittance.cpp      T to the top per (r, mu), along straight or refracted rays
 //   Irradiance.cpp         the direct irradiance E_0, and the indirect E_k of each order
-//   ViewRays.cpp           the view rays' samples, transmittance and single-scattering weights
-//   SingleScattering.cpp   L_1 per component, without the phase function
+//   ViewRays.cpp           the view rays' samples, column densities and single-scattering weights
+//   SingleScattering.cpp   L_1 per component, without the phase function (tracing the view rays)
 //   ScatteringDensity.cpp  J_k: the light scattered at a point from every direction
 //   MultipleScattering.cpp L_k from J_k along the view rays
 // A stage's parallel tasks take its numbers (sizes, radii, the parametrisation) by value:
@@ -27,19 +27,31 @@
 #include "precompute/Parametrisation.hpp"
 #include "precompute/Runner.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <utility>
 #include <vector>
 
 namespace umbra::atmosphere::stages {
 
-/// A view ray's samples: positions, tangents, radii and the transmittance from the start.
+/// A view ray's samples: positions, tangents, radii and the column densities from the start
+/// (nc a sample, not nl: the transmittance is made from them where it is needed).
 struct RaySamples {
   int n = 0;          // intervals (n + 1 samples)
   double ds = 0.0;    // interval length
   bool ground = false;
   std::vector<double> r, xr, yr, tx, ty, mu;  // per sample; xr = x / r, yr = y / r; mu local
-  std::vector<double> T;                      // [i * nl + l]
-  std::vector<double> rhoT;  // [(i * ns + q) * nl + l]: int rho_q T_view hat_i ds
+  std::vector<double> col;                    // [i * nc + c]: int rho_c ds from the start
 };
+
+/// The transmittance from the ray's start at each of its samples, T[i * nl + l].
+inline void rayTransmittance(const Model& m, const RaySamples& s, double* T) {
+  for (int i = 0; i <= s.n; ++i) {
+    double* Ti = T + static_cast<std::size_t>(i) * m.nl;
+    m.opticalDepth(&s.col[static_cast<std::size_t>(i) * m.nc], Ti);
+    for (int l = 0; l < m.nl; ++l) Ti[l] = std::exp(-Ti[l]);
+  }
+}
 
 /// The 2D tables of a batch; its 3D tables go straight into the final ones (single, multiple:
 /// all wavelengths wide, the batch's channels from l0 on), so that no batch-wide copy of
@@ -90,6 +102,10 @@ struct Batch {
 
   BatchResult out;
   std::vector<RaySamples> singleRays, multipleRays;
+  /// The indirect irradiance's directions per Sun column x (ComputeIndirectIrradiance):
+  /// their (mu_s, nu) cells [x * nDir + j] and nu, the same at every radius and order.
+  std::vector<SNuCell> irradianceSNu;
+  std::vector<double> irradianceNu;
   /// L_{k-1} and J_k, in single precision (a relative 6e-8, far below the quadratures'
   /// error): half the memory of double, the largest share of a batch's.
   FloatTable3D delta, density;
@@ -129,20 +145,95 @@ struct Batch {
       accumulate4(delta, a, c, 1.0, v);
     }
   }
-  /// The mean over the scattering texels of texelValue(x, y, z, v) per wavelength.
-  template <class F>
-  std::vector<double> meanOf(F&& texelValue) const {
+  /// The tables of L_(order): the single-scattering tables for 1, else delta.
+  std::vector<const FloatTable3D*> incomingTables(int order) const {
+    std::vector<const FloatTable3D*> v;
+    if (order == 1) {
+      for (const FloatTable3D& s : single) v.push_back(&s);
+    } else {
+      v.push_back(&delta);
+    }
+    return v;
+  }
+  /// The r slice whose texels a lookup at radius r starts from (rMuCell's iz; the next one
+  /// too).
+  int sliceAt(double r) const { return rMuCell(g, r, 1.0, false).iz; }
+  /// The mean over the scattering texels of texelValue(x, y, z, v) per wavelength, slice by
+  /// slice, afterSlice(z) after each.
+  template <class F, class G>
+  std::vector<double> meanOf(F&& texelValue, G&& afterSlice) const {
     std::vector<double> sum(nl, 0.0);
     std::vector<double> v(nl);
-    for (int z = 0; z < R; ++z)
+    for (int z = 0; z < R; ++z) {
       for (int y = 0; y < MU; ++y)
         for (int x = 0; x < W; ++x) {
           texelValue(x, y, z, v.data());
           for (int l = 0; l < nl; ++l) sum[l] += v[l];
         }
+      afterSlice(z);
+    }
     for (double& s : sum) s /= static_cast<double>(texels);
     return sum;
   }
+};
+
+/// The r slices of spilled tables that a stage reads, as it goes (Runner::run's steps, the
+/// work moving up in r): window(from, to) lets the slices below `from` go and brings those
+/// from `from` to `to` in, each slice once. Nothing for tables that do not spill.
+class SliceWindow {
+public:
+  explicit SliceWindow(std::vector<const FloatTable3D*> tables) : tables_(std::move(tables)) {}
+  void operator()(int from, int to) {
+    if (from > released_) {
+      for (const FloatTable3D* T : tables_) T->release(released_, from);
+      released_ = from;
+    }
+    const int first = std::max(populated_, from);
+    if (to > first) {
+      for (const FloatTable3D* T : tables_) T->populate(first, to);
+      populated_ = to;
+    }
+  }
+  bool spilled() const {
+    return std::any_of(tables_.begin(), tables_.end(), [](const FloatTable3D* T) { return T->spilled.on; });
+  }
+
+private:
+  std::vector<const FloatTable3D*> tables_;
+  int released_ = 0, populated_ = 0;
+};
+
+/// The r slice of a spilled table that a stage writes, a step at a time (Runner::run's
+/// steps, one slice each): made in memory of its own, then written to the table's file
+/// (copySpilledTableMemory). Written in place, each 4 KiB page of the file that the
+/// process maps costs a page fault, and under a virtual machine's shadow page tables
+/// more than the copy. `accumulate`: the stage adds to the slice's values (read from the
+/// file first). For a table that does not spill, at() is the table's own.
+class SliceBuffer {
+public:
+  SliceBuffer(FloatTable3D& table, bool accumulate) : table_(table), accumulate_(accumulate) {
+    if (table.spilled.on) slice_.resize(table.width, table.height, 1, table.channels);
+  }
+  bool spilled() const { return table_.spilled.on; }
+  float* at(int x, int y, int z) { return spilled() ? slice_.at(x, y, 0) : table_.at(x, y, z); }
+  /// Between steps: slice z_ (the one finished) into the table, and slice z (next) made.
+  void moveTo(int z) {
+    if (!spilled()) return;
+    const std::size_t bytes = slice_.values.size() * sizeof(float);
+    const auto copy = [&](bool toTable) {
+      copySpilledTableMemory(table_.values.data(), table_.offset(0, 0, z_) * sizeof(float), slice_.values.data(), bytes,
+                             toTable);
+    };
+    if (z_ >= 0) copy(true);
+    z_ = z < table_.depth ? z : -1;
+    if (z_ >= 0 && accumulate_) copy(false);
+  }
+
+private:
+  FloatTable3D& table_;
+  FloatTable3D slice_;
+  bool accumulate_;
+  int z_ = -1;
 };
 
 /// The sun's direction in the ray's frame (x: the view's azimuth).
@@ -153,9 +244,17 @@ inline double sunX(const ScatteringPoint& p) {
   return std::clamp((p.nu - p.mu * p.muS) / sz, -ss, ss);
 }
 
+/// View ray (y, z) with `samples` intervals into s (straight, or traced through `medium`);
+/// with rhoT, also the hat-function weights of rho_q T_view that the single scattering
+/// sums ([(i * ns + q) * nl + l]: int rho_q T_view hat_i ds).
+void traceViewRay(const Model& m, const ScatterGeometry& g, const RefractiveMedium& medium, int samples, int y,
+                  int z, RaySamples& s, std::vector<double>* rhoT);
+
 // The stages, in the order they run.
 void computeTransmittance(Batch& batch);
 void computeDirectIrradiance(Batch& batch);
+/// Every view ray, without weights (the multiple scattering's, when it takes rays of its
+/// own; computeSingleScattering traces its own).
 void buildViewRays(Batch& batch, int samples, std::vector<RaySamples>& rays);
 void computeSingleScattering(Batch& batch);
 void prepareDensityDirections(Batch& batch);

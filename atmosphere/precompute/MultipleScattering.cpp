@@ -17,14 +17,24 @@ void computeMultipleScattering(Batch& B) {
   const double b = B.b;
   const int nl = B.nl, W = B.W, MU = B.MU, R = B.R, MUS = B.MUS, l0 = B.l0;
   const std::vector<RaySamples>& mRays = B.multipleScatteringRays();
+  const Model& m = B.m;
   const TexelPoints& points = B.points;
   const FloatTable3D& density = B.density;
   FloatTable3D& delta = B.delta;
   FloatTable3D& multiple = B.multiple;
+  // An r slice a step when the tables spill, made in memory of its own (SliceBuffer).
+  SliceBuffer deltaSlice(delta, false), sumSlice(multiple, true);
+  const bool spill = deltaSlice.spilled() || sumSlice.spilled();
+  const auto between = [&](int done) {
+    deltaSlice.moveTo(done / MU);
+    sumSlice.moveTo(done / MU);
+  };
   B.run.run("multiple scattering", 1.0, R * MU, [&, g, b, nl, W, MU, MUS, l0](int i) {
     const int y = i % MU, z = i / MU;
     const RaySamples& s = mRays[i];
     const int N = s.n;
+    std::vector<double> Tview(static_cast<std::size_t>(N + 1) * nl);
+    rayTransmittance(m, s, Tview.data());
     std::vector<RMuCell> cells(N + 1);
     for (int k = 0; k <= N; ++k)
       cells[k] = rMuCell(g, s.r[k], s.mu[k], rayIntersectsGround(b, s.r[k], s.mu[k]));
@@ -40,7 +50,7 @@ void computeMultipleScattering(Batch& B) {
     }
     for (int k = 0; k <= N && s.ds > 0.0; ++k) {
       const double w = s.ds * ((k == 0 || k == N) ? 0.5 : 1.0);
-      const double* T = &s.T[static_cast<std::size_t>(k) * nl];
+      const double* T = &Tview[static_cast<std::size_t>(k) * nl];
       blendRows(density, cells[k], blend.data());
       const double xr = s.xr[k], yr = s.yr[k], tx = s.tx[k], ty = s.ty[k];
       sNuTexels(g, xr, yr, tx, ty, sxA.data(), muSA.data(), W, x00A.data(), wsA.data(), wnA.data());
@@ -48,11 +58,11 @@ void computeMultipleScattering(Batch& B) {
     }
     for (int x = 0; x < W; ++x) {
       const double* a = &acc[static_cast<std::size_t>(x) * nl];
-      std::copy_n(a, nl, delta.at(x, y, z));
-      float* sum = multiple.at(x, y, z) + l0;
+      std::copy_n(a, nl, deltaSlice.at(x, y, z));
+      float* sum = sumSlice.at(x, y, z) + l0;
       for (int l = 0; l < nl; ++l) sum[l] = static_cast<float>(sum[l] + a[l]);
     }
-  });
+  }, spill ? MU : 0, between);
 }
 
 }  // namespace umbra::atmosphere::stages

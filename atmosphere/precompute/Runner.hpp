@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <string>
 #include <type_traits>
@@ -30,6 +31,15 @@ public:
   /// writes (a shared line costs the density stage up to 20 % with 2 threads).
   template <class F>
   void run(const std::string& stage, double weight, int n, F&& fIn) {
+    run(stage, weight, n, std::forward<F>(fIn), 0, {});
+  }
+  /// The same in steps of `stepTasks` tasks (0: the chunks of progress), each finished
+  /// before the next starts; between(done) before each step and after the last, every task
+  /// below `done` finished and none above started (so that the tables' spilled slices
+  /// behind the work can go, and those ahead come in).
+  template <class F>
+  void run(const std::string& stage, double weight, int n, F&& fIn, int stepTasks,
+           const std::function<void(int done)>& between) {
     struct alignas(128) Isolated {
       std::decay_t<F> f;
       char pad[128];
@@ -37,17 +47,15 @@ public:
     const Isolated isolated{fIn, {}};
     const auto& f = isolated.f;
     const auto t0 = std::chrono::steady_clock::now();
-#ifdef _OPENMP
-    const int nt = threads_ > 0 ? threads_ : omp_get_max_threads();
-#else
-    const int nt = 1;
-#endif
-    // Up to 16 reports, each chunk at least 4 tasks per thread: a stage of few tasks (the
-    // indirect irradiance's 16 rows) would otherwise run one task at a time.
-    const int chunks = std::max(1, std::min(n / (4 * nt), 16));
+    const int nt = threadCount();
+    // Up to 16 reports, each chunk at least 4 tasks per thread: a stage of few tasks would
+    // otherwise run one task at a time.
+    const int chunks = stepTasks > 0 ? (n + stepTasks - 1) / stepTasks : std::max(1, std::min(n / (4 * nt), 16));
     for (int k = 0; k < chunks; ++k) {
-      const int lo = static_cast<int>(static_cast<long long>(n) * k / chunks);
-      const int hi = static_cast<int>(static_cast<long long>(n) * (k + 1) / chunks);
+      const int lo = stepTasks > 0 ? k * stepTasks : static_cast<int>(static_cast<long long>(n) * k / chunks);
+      const int hi = stepTasks > 0 ? std::min(n, lo + stepTasks)
+                                   : static_cast<int>(static_cast<long long>(n) * (k + 1) / chunks);
+      if (between) between(lo);
       ParallelErrors errors;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nt)
@@ -56,10 +64,20 @@ public:
       errors.rethrow();
       report(stage, done_ + weight * (k + 1) / chunks);
     }
+    if (between) between(n);
     done_ += weight;
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     timings[stage] += s;
     if (std::find(order.begin(), order.end(), stage) == order.end()) order.push_back(stage);
+  }
+
+  /// The threads run() uses.
+  int threadCount() const {
+#ifdef _OPENMP
+    return threads_ > 0 ? threads_ : omp_get_max_threads();
+#else
+    return 1;
+#endif
   }
 
   std::map<std::string, double> timings;

@@ -112,6 +112,15 @@ void computeScatteringDensity(Batch& B, int order) {
   std::vector<int> everyWavelength(nl);
   for (int l = 0; l < nl; ++l) everyWavelength[l] = l;
 
+  // A few radii a step when L_(k-1) spills: a radius reads the r slices around it; those
+  // below the next step's leave memory, the next step's come in.
+  SliceWindow window(B.incomingTables(order - 1));
+  const int step = B.run.threadCount();
+  const auto between = [&](int done) {
+    if (done >= B.R) return window(B.R, B.R);
+    const int last = std::min(done + step, B.R) - 1;
+    window(B.sliceAt(g.texel(0, 0, done).r), B.sliceAt(g.texel(0, 0, last).r) + 2);
+  };
   B.run.run("scattering density", 2.0, B.R, [&, g, b, alpha, nl, ns, MU, MUS, nTh, nPh, nDir, nForm, Q, order](int z) {
     const std::size_t zd = static_cast<std::size_t>(z) * nDir, ringModes = static_cast<std::size_t>(nTh) * nPh;
     const double *wx = &wxAll[zd], *wy = &wyAll[zd], *wz = &wzAll[zd], *wdo = &wdoAll[zd];
@@ -281,7 +290,7 @@ void computeScatteringDensity(Batch& B, int order) {
         }
       }
     }
-  });
+  }, window.spilled() ? step : 0, between);
 }
 
 }  // namespace umbra::atmosphere::stages

@@ -1,6 +1,7 @@
-// L_1 per scattering component, without its phase function: along each view ray, the
-// sunlight that reaches each sample (the transmittance table's row at its radius, the Sun's
-// visibility over the horizon) times the ray's weights of rho_q T_view.
+// L_1 per scattering component, without its phase function: each view ray traced
+// (traceViewRay, kept for the next orders), then along it the sunlight that reaches each
+// sample (the transmittance table's row at its radius, the Sun's visibility over the
+// horizon) times the ray's weights of rho_q T_view.
 #include "precompute/Batch.hpp"
 #include "precompute/Kernels.hpp"
 #include "precompute/Paths.hpp"
@@ -19,21 +20,32 @@ void computeSingleScattering(Batch& B) {
   const double alpha = B.alpha;
   const int nl = B.nl, ns = B.ns, W = B.W, MU = B.MU, R = B.R, TW = B.TW, TH = B.TH, l0 = B.l0;
   const Table2D& Ttab = B.out.transmittance;
-  const std::vector<RaySamples>& singleRays = B.singleRays;
+  std::vector<RaySamples>& singleRays = B.singleRays;
+  const RefractiveMedium& referenceMedium = B.referenceMedium;
+  const int samples = B.o.singleScatteringSamples;
   const TexelPoints& points = B.points;
   std::vector<FloatTable3D>& single = B.single;
   BatchResult& out = B.out;
-  B.run.run("single scattering", 1.0, R * MU, [&, g, alpha, nl, ns, W, MU, TW, TH, l0](int i) {
+  singleRays.assign(static_cast<std::size_t>(R) * MU, RaySamples{});
+  // An r slice a step when the tables spill, made in memory of its own (SliceBuffer).
+  std::vector<SliceBuffer> slices;
+  for (FloatTable3D& S : single) slices.emplace_back(S, false);
+  const bool spill = !slices.empty() && slices.front().spilled();
+  const auto between = [&](int done) {
+    for (SliceBuffer& S : slices) S.moveTo(done / MU);
+  };
+  B.run.run("single scattering", 1.3, R * MU, [&, g, alpha, nl, ns, W, MU, TW, TH, l0, samples](int i) {
     const int y = i % MU, z = i / MU;
-    const RaySamples& s = singleRays[i];
-    const int N = s.n;
+    RaySamples& s = singleRays[i];
     // A[k][q][l] = beta_s * int rho_q T_view hat_k
-    std::vector<double> A(static_cast<std::size_t>(N + 1) * ns * nl);
+    std::vector<double> A;
+    traceViewRay(m, g, referenceMedium, samples, y, z, s, &A);
+    const int N = s.n;
     for (int k = 0; k <= N; ++k)
       for (int q = 0; q < ns; ++q)
         for (int l = 0; l < nl; ++l) {
           const std::size_t idx = (static_cast<std::size_t>(k) * ns + q) * nl + l;
-          A[idx] = m.sca[q * nl + l] * s.rhoT[idx];
+          A[idx] = m.sca[q * nl + l] * A[idx];
         }
     // Samples outer, texels inner: the sample's radius fixes the transmittance row
     // (blended once) and the horizon; the texels' sun cosines are computed together.
@@ -67,19 +79,21 @@ void computeSingleScattering(Batch& B) {
     }
     for (int x = 0; x < W; ++x)
       for (int q = 0; q < ns; ++q)
-        std::copy_n(&acc[(static_cast<std::size_t>(x) * ns + q) * nl], nl, single[q].at(x, y, z) + l0);
-  });
+        std::copy_n(&acc[(static_cast<std::size_t>(x) * ns + q) * nl], nl, slices[q].at(x, y, z) + l0);
+  }, spill ? MU : 0, between);
 
   // L_1 (phases included) at a texel, for the statistics.
-  out.orderMean.push_back(B.meanOf([&](int x, int y, int z, double* v) {
-    const ScatteringPoint p = points(x, y, z);
-    std::fill(v, v + nl, 0.0);
-    for (int q = 0; q < ns; ++q) {
-      const Component& comp = atm.components[m.scatterers[q]];
-      const float* S = single[q].at(x, y, z) + l0;
-      for (int l = 0; l < nl; ++l) v[l] += S[l] * comp.phase(l)(p.nu);
-    }
-  }));
+  out.orderMean.push_back(B.meanOf(
+      [&](int x, int y, int z, double* v) {
+        const ScatteringPoint p = points(x, y, z);
+        std::fill(v, v + nl, 0.0);
+        for (int q = 0; q < ns; ++q) {
+          const Component& comp = atm.components[m.scatterers[q]];
+          const float* S = single[q].at(x, y, z) + l0;
+          for (int l = 0; l < nl; ++l) v[l] += S[l] * comp.phase(l)(p.nu);
+        }
+      },
+      [&, reading = SliceWindow(B.incomingTables(1))](int z) mutable { reading(z + 1, z + 2); }));
 }
 
 }  // namespace umbra::atmosphere::stages

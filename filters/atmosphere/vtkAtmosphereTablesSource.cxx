@@ -266,7 +266,7 @@ void makeBrunetonFiles(vtkAtmosphereTablesSource* source, const umbra::atmospher
         source->UpdateProgress(0.9 * f);
         return !source->GetAbortExecute();
       },
-      [&](int first, int table, atmosphere::FloatTable3D& values) {
+      [&](int first, int table, const atmosphere::FloatTable3D& values) {
         // Table `table`: that component's single scattering, or (after them) the multiple.
         const bool multiple = table == static_cast<int>(set.components.size());
         for (std::size_t i = 0; i < requests.size(); ++i) {
@@ -370,6 +370,7 @@ umbra::atmosphere::PrecomputeOptions vtkAtmosphereTablesSource::PrecomputeOption
   po.refractionStepM = this->RefractionStepM;
   po.threads = this->Threads;
   po.wavelengthBatch = this->WavelengthBatch;
+  po.spillTables = this->SpillTables && this->FileBacked;
   if (const std::string e = po.validate(); !e.empty()) throw std::invalid_argument("precompute options: " + e);
   return po;
 }

@@ -128,6 +128,12 @@ public:
   /// are the same to the bit, so it is not part of the cache key.
   vtkSetClampMacro(WavelengthBatch, int, 0, 256);
   vtkGetMacro(WavelengthBatch, int);
+  /// With FileBacked: the 4D tables but J_k through a temporary file in $TMPDIR, a few r
+  /// slices of each in memory at a time (PrecomputeOptions::spillTables): a batch holds
+  /// about a third of the memory, for a little more time. The same tables to the bit; not in
+  /// the cache key. Off by default.
+  vtkSetMacro(SpillTables, bool);
+  vtkGetMacro(SpillTables, bool);
   /// Under mpirun: the Bruneton tables' wavelength batches shared by the ranks (batch b of
   /// rank b mod N; a batch of ceil(wavelengths / N) unless WavelengthBatch says), the
   /// channels gathered on every rank, the tables stored by rank 0
@@ -212,6 +218,7 @@ private:
   bool RefractedPaths = false;
   int Threads = 0;
   int WavelengthBatch = 0;
+  bool SpillTables = false;
   bool SpreadOverRanks = false;
   bool FileBacked = false;
   std::string ScratchDirectory;

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -861,9 +862,9 @@ TEST(Precompute, ASinkGetsEachBatchsTablesOnceFinished) {
 TEST(Precompute, WavelengthBatchForFitsTheBudgetEvenly) {
   const PrecomputeOptions o;
   const std::size_t per = batchBytesPerWavelength(o, 2);
-  // 4D: single x 2 + J_2 (3 tables in float); rays: T and two weights per sample (double).
-  const std::size_t texels = 8u * 32 * 128 * 32, samples = 32u * 128 * 51;
-  EXPECT_EQ(per, 3 * texels * 4 + samples * 3 * 8);
+  // 4D: single x 2 + J_2 (3 tables in float); the rays do not grow with the wavelengths.
+  const std::size_t texels = 8u * 32 * 128 * 32;
+  EXPECT_EQ(per, 3 * texels * 4);
   EXPECT_EQ(wavelengthBatchFor(o, 2, 15, 15 * per), 15);
   EXPECT_EQ(wavelengthBatchFor(o, 2, 15, 15 * per - 1), 8);  // 14 fit: 2 batches, 8 + 7
   EXPECT_EQ(wavelengthBatchFor(o, 2, 47, 22 * per), 16);     // 16 + 16 + 15, not 22 + 22 + 3
@@ -872,7 +873,67 @@ TEST(Precompute, WavelengthBatchForFitsTheBudgetEvenly) {
   // One order keeps no J nor L: one table more than the scatterers.
   PrecomputeOptions single = o;
   single.orders = 1;
-  EXPECT_EQ(batchBytesPerWavelength(single, 1), 2 * texels * 4 + samples * 2 * 8);
+  EXPECT_EQ(batchBytesPerWavelength(single, 1), 2 * texels * 4);
+  // Spilled: J_k whole, kSpilledSlices r slices of two tables (L_k and the sum, or the two
+  // single-scattering tables).
+  PrecomputeOptions spilled = o;
+  spilled.spillTables = true;
+  EXPECT_EQ(batchBytesPerWavelength(spilled, 2), texels * 4 + 2 * (texels / 32) * 4 * kSpilledSlices);
+  EXPECT_EQ(wavelengthBatchFor(spilled, 2, 15, 15 * batchBytesPerWavelength(spilled, 2)), 15);
+}
+
+// A spilled table (SpilledTableMemory): zero when made; its values survive letting its
+// slices go (release) and come back; the slices written through its file
+// (copySpilledTableMemory) read back the same; a copy of it is the heap's, not spilled.
+TEST(Precompute, SpilledTableKeepsItsValues) {
+  FloatTable3D t;
+  t.resize(64, 32, 8, 64, true);  // 4 MiB
+  ASSERT_TRUE(t.spilled.on);
+  EXPECT_TRUE(std::all_of(t.values.begin(), t.values.end(), [](float v) { return v == 0.0f; }));
+  for (std::size_t i = 0; i < t.values.size(); ++i) t.values[i] = static_cast<float>(i % 1000003);
+  t.release(0, 5);
+  t.populate(2, 4);
+  t.releaseAll();
+  for (std::size_t i = 0; i < t.values.size(); i += 977) ASSERT_EQ(t.values[i], static_cast<float>(i % 1000003)) << i;
+  const std::size_t slice = t.offset(0, 0, 1);
+  std::vector<float> in(slice, 2.5f), out(slice);
+  copySpilledTableMemory(t.values.data(), 3 * slice * sizeof(float), in.data(), slice * sizeof(float), true);
+  EXPECT_EQ(*t.at(0, 0, 3), 2.5f);
+  EXPECT_EQ(*t.at(0, 0, 4), static_cast<float>(4 * slice % 1000003));
+  copySpilledTableMemory(t.values.data(), 3 * slice * sizeof(float), out.data(), slice * sizeof(float), false);
+  EXPECT_EQ(out, in);
+  const FloatTable3D copy = t;
+  EXPECT_FALSE(copy.spilled.on);
+  EXPECT_EQ(copy.values, t.values);
+  FloatTable3D small;
+  small.resize(4, 4, 4, 4, true);  // below 2 MiB: the heap's
+  EXPECT_FALSE(small.spilled.on);
+  EXPECT_THROW(copySpilledTableMemory(small.values.data(), 0, out.data(), 4, false), std::logic_error);
+}
+
+// The spilled precomputation (options.spillTables, with a sink) hands on the same tables,
+// to the bit, as the one in memory.
+TEST(Precompute, SpilledTablesAreTheSame) {
+  const Atmosphere earth = loadAtmosphere("earth", {680.0, 550.0, 500.0, 440.0});
+  PrecomputeOptions o = smallOptions();
+  o.scatteringR = 16, o.scatteringMu = 32, o.scatteringMuS = 16, o.scatteringNu = 16;  // 2 MiB at 4 wavelengths
+  o.orders = 3;
+  std::map<std::pair<bool, int>, std::vector<float>> got;
+  int tables = 0;
+  for (bool spill : {false, true}) {
+    o.spillTables = spill;
+    const AtmosphereTables t = precompute(earth, o, {}, [&](int, int table, const FloatTable3D& v) {
+      EXPECT_EQ(v.spilled.on, spill) << table;
+      got[std::make_pair(spill, table)].assign(v.values.begin(), v.values.end());
+    });
+    tables = static_cast<int>(t.scatteringComponents.size()) + 1;
+  }
+  ASSERT_GE(tables, 3);
+  for (int table = 0; table < tables; ++table) {
+    const std::vector<float>&spilled = got[std::make_pair(true, table)], &inMemory = got[std::make_pair(false, table)];
+    EXPECT_FALSE(spilled.empty()) << table;
+    EXPECT_EQ(spilled, inMemory) << table;
+  }
 }
 
 TEST(Precompute, ProgressIsReportedAndCanCancel) {

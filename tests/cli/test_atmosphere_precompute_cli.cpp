@@ -145,6 +145,46 @@ TEST(AtmospherePrecomputeCli, WavelengthBatchesGiveTheSameTables) {
   EXPECT_FALSE(fs::exists(dir / "bad"));
 }
 
+// --spill always: the tables but J_k through a temporary file in $TMPDIR give the same
+// tables, to the bit, as all in memory (tables of 2 MiB a wavelength batch: the least that
+// spills); with $TMPDIR missing the run fails naming it and writes nothing, and --spill never
+// does not need it. A --spill that is none of the three is refused naming the option.
+TEST(AtmospherePrecomputeCli, SpilledTablesAreTheSame) {
+  TempDir dir;
+  auto args = [&](const std::string& out, const std::string& spill) {
+    return std::vector<std::string>{"atmosphere", "precompute", "--preset", "earth", "--wavelengths", "4",
+                                    "--transmittance-size", "16x8", "--scattering-size", "16,32,16,16",
+                                    "--irradiance-size", "8x4", "--orders", "3", "--spill", spill,
+                                    "--output", dir / out, "--no-cache"};
+  };
+  const std::string tmp = "TMPDIR=" + (dir / "tmp");
+  fs::create_directory(dir / "tmp");
+  const RunResult memory = run(UMBRA_EXE, args("memory", "never"));
+  ASSERT_EQ(memory.exitCode, 0) << memory.err;
+  const RunResult spilled = run(UMBRA_EXE, args("spilled", "always"), {tmp});
+  ASSERT_EQ(spilled.exitCode, 0) << spilled.err;
+  const auto files = filesIn(dir / "memory");
+  ASSERT_EQ(filesIn(dir / "spilled"), files);
+  for (const std::string& f : files) {
+    const umbra::tables::Table a = umbra::tables::readExr(dir / ("memory/" + f));
+    const umbra::tables::Table b = umbra::tables::readExr(dir / ("spilled/" + f));
+    EXPECT_EQ(a.data, b.data) << f;
+  }
+  EXPECT_TRUE(fs::is_empty(dir / "tmp"));  // the file was never named, or unlinked at once
+
+  const std::string missing = "TMPDIR=" + (dir / "no-such-dir");
+  const RunResult failed = run(UMBRA_EXE, args("failed", "always"), {missing});
+  EXPECT_NE(failed.exitCode, 0);
+  EXPECT_NE(failed.err.find("no-such-dir"), std::string::npos) << failed.err;
+  EXPECT_FALSE(fs::exists(dir / "failed"));
+  EXPECT_EQ(run(UMBRA_EXE, args("never", "never"), {missing}).exitCode, 0);
+
+  const RunResult bad = run(UMBRA_EXE, args("bad", "sometimes"));
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_NE(bad.err.find("--spill"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir / "bad"));
+}
+
 TEST(AtmospherePrecomputeCli, BadInputWritesNothing) {
   TempDir dir;
   struct Case {
