@@ -136,8 +136,8 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       ->capture_default_str();
   precompute->add_option("--spill", o->spill,
                          "auto: when the batch does not fit --memory otherwise; always; never. Spilled, the tables but "
-                         "the scattering density go through a temporary file in $TMPDIR (the peak memory about a "
-                         "third, a little more time; the same tables)")
+                         "the scattering density go through a temporary file in $TMPDIR (a batch's tables in less than "
+                         "half the memory, for a little more time; the same tables)")
       ->check(CLI::IsMember({"auto", "always", "never"}))
       ->capture_default_str();
   precompute->add_option("--output", o->output, "Directory to write (created if its parent exists)")->required();

@@ -129,9 +129,9 @@ public:
   vtkSetClampMacro(WavelengthBatch, int, 0, 256);
   vtkGetMacro(WavelengthBatch, int);
   /// With FileBacked: the 4D tables but J_k through a temporary file in $TMPDIR, a few r
-  /// slices of each in memory at a time (PrecomputeOptions::spillTables): a batch holds
-  /// about a third of the memory, for a little more time. The same tables to the bit; not in
-  /// the cache key. Off by default.
+  /// slices of each in memory at a time (PrecomputeOptions::spillTables): a batch's tables
+  /// take less than half the memory, for a little more time. The same tables to the bit;
+  /// not in the cache key. Off by default.
   vtkSetMacro(SpillTables, bool);
   vtkGetMacro(SpillTables, bool);
   /// Under mpirun: the Bruneton tables' wavelength batches shared by the ranks (batch b of
