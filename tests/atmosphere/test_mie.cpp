@@ -514,7 +514,7 @@ TEST(MieLogNormal, PhaseTableIsNormalisedWithMeanCosineG) {
 TEST(MieLogNormal, EffectiveRadiusAndVarianceAreTheAreaWeightedMoments) {
   // r_eff = <r^3>/<r^2>, v_eff = <r^4><r^2>/<r^3>^2 - 1 (Hansen & Travis 1974), the moments
   // summed numerically over the distribution logNormalFromEffective returns.
-  for (const auto [reff, veff] : {std::pair{1.5e-6, 0.3}, std::pair{0.2e-6, 0.05}, std::pair{5e-6, 1.0}}) {
+  for (const auto& [reff, veff] : {std::pair{1.5e-6, 0.3}, std::pair{0.2e-6, 0.05}, std::pair{5e-6, 1.0}}) {
     const LogNormalSizes d = logNormalFromEffective(reff, veff, 7.0);
     EXPECT_EQ(d.numberDensityPerM3, 7.0);
     const double s = std::log(d.geometricStdDev);
