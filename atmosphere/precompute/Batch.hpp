@@ -123,12 +123,9 @@ struct Batch {
     r = b + (t - b) * y / (IH - 1.0);
     muS = clampCosine(-1.0 + 2.0 * x / (IW - 1.0));
   }
-  /// L_{k-1}(r, mu, mu_s, nu) added into v: order 1 from the single tables (phases
-  /// included), else delta.
-  void incoming(int order, double r, double mu, double muS, double nu, bool ground, double* v) const {
-    incoming(order, rMuCell(g, r, mu, ground), sNuCell(g, muS, nu), nu, v);
-  }
-  /// The same at the cells of (r, mu) and (mu_s, nu), for a caller that reuses them.
+  /// L_{k-1}(r, mu, mu_s, nu) added into v, at the cells of (r, mu) (rMuCell) and (mu_s, nu)
+  /// (sNuCell), which the callers reuse: order 1 from the single tables (phases included),
+  /// else delta.
   void incoming(int order, const RMuCell& a, const SNuCell& c, double nu, double* v) const {
     if (order == 1) {
       // A buffer on the stack for up to 64 wavelengths (this runs a million times an order).
