@@ -848,8 +848,9 @@ TEST(Precompute, ASinkGetsEachBatchsTablesOnceFinished) {
     EXPECT_EQ(calls, expected) << orders;
     for (int q = 0; q < ns; ++q) EXPECT_EQ(put[q].values, all.singleScattering[q].values) << orders << " " << q;
     EXPECT_EQ(put[ns].values, all.multipleScattering.values) << orders;
-    if (orders == 1)
+    if (orders == 1) {
       EXPECT_TRUE(std::all_of(put[ns].values.begin(), put[ns].values.end(), [](float v) { return v == 0.0f; }));
+    }
     EXPECT_TRUE(sunk.singleScattering.empty());
     EXPECT_TRUE(sunk.multipleScattering.values.empty());
     EXPECT_EQ(sunk.transmittance.values, all.transmittance.values);

@@ -22,11 +22,11 @@ TEST(GaussLegendreRule, ExactToDegreeTwoNMinusOne) {
     ASSERT_EQ(q.x.size(), static_cast<std::size_t>(n));
     for (int k = 0; k <= 2 * n - 1; ++k)
       EXPECT_NEAR(integrate(q, k), k % 2 ? 0.0 : 2.0 / (k + 1), 1e-13) << "n " << n << " x^" << k;
-    if (n <= 8) EXPECT_GT(std::abs(integrate(q, 2 * n) - 2.0 / (2 * n + 1)), 1e-6) << n;  // degree 2n: not exact
+    if (n <= 8) { EXPECT_GT(std::abs(integrate(q, 2 * n) - 2.0 / (2 * n + 1)), 1e-6) << n; }  // degree 2n: not exact
     for (int i = 0; i < n; ++i) {
       EXPECT_GT(q.w[i], 0.0);
       EXPECT_LT(std::abs(q.x[i]), 1.0);
-      if (i > 0) EXPECT_LT(q.x[i], q.x[i - 1]);
+      if (i > 0) { EXPECT_LT(q.x[i], q.x[i - 1]); }
     }
   }
   const GaussLegendreRule two(2);

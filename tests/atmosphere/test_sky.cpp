@@ -240,7 +240,7 @@ TEST(EarthClearSky, RelativeLuminanceAgainstCieClearSkies) {
                 "12 %.3f, 13 %.3f; zenith %.0f cd/m^2\n",
                 zs, type11, type12, type13, g.at(0, 0).luminanceCdM2);
     EXPECT_LT(type12, 0.30) << zs;
-    if (zs == 30.0) EXPECT_GT(g.at(0, 0).luminanceCdM2, 3000.0);
+    if (zs == 30.0) { EXPECT_GT(g.at(0, 0).luminanceCdM2, 3000.0); }
   }
 }
 
@@ -289,7 +289,7 @@ TEST(EarthClearSky, LightOnTheGroundAgainstPublishedClearSkies) {
         EXPECT_NEAR(directNormal / iesDirectNormal, 1.0, 0.10) << zs;
         EXPECT_NEAR(sky / iesSky, 1.0, 0.20) << zs;
         EXPECT_NEAR((directNormal * muS + sky) / (iesDirectNormal * muS + iesSky), 1.0, 0.10) << zs;
-        if (zs <= 30.0) EXPECT_NEAR(zenith / preethamZenith, 1.0, 0.25) << zs;
+        if (zs <= 30.0) { EXPECT_NEAR(zenith / preethamZenith, 1.0, 0.25) << zs; }
       } else {  // Bruneton's thin haze: too little skylight, too much sunlight
         EXPECT_LT(sky, 0.7 * iesSky) << zs;
         EXPECT_GT(directNormal, 1.1 * iesDirectNormal) << zs;

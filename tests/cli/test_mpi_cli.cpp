@@ -132,12 +132,12 @@ TEST(PrecomputeMpi, LutsOverTwoRanksAreTheLutsOfOneProcessToTheByte) {
   const RunResult two = run(UMBRA_MPIEXEC, mpirunArgs(2, to(dir / "two")), {"UMBRA_CACHE_DIR=" + dir / "cache-two"});
   ASSERT_EQ(two.exitCode, 0) << two.err;
   EXPECT_EQ(std::count(two.out.begin(), two.out.end(), '\n'), 3) << two.out;  // rank 0's report alone
-  for (const std::string& f : {"eclipse-shadow-atmosphere.exr", "eclipse-limb-luminance.exr"}) {
+  for (const std::string f : {"eclipse-shadow-atmosphere.exr", "eclipse-limb-luminance.exr"}) {
     EXPECT_EQ(readAll(dir / ("one/" + f)), readAll(dir / ("two/" + f))) << f;
   }
   // The cache holds what one process stores, and a second run over the ranks reads it.
   for (const std::string& name : namesIn(dir / "cache-one"))
-    if (name.rfind("eclipse-", 0) == 0) EXPECT_EQ(readAll(dir / ("cache-one/" + name)), readAll(dir / ("cache-two/" + name)));
+    if (name.rfind("eclipse-", 0) == 0) { EXPECT_EQ(readAll(dir / ("cache-one/" + name)), readAll(dir / ("cache-two/" + name))); }
   const RunResult again = run(UMBRA_MPIEXEC, mpirunArgs(2, to(dir / "again")), {"UMBRA_CACHE_DIR=" + dir / "cache-two"});
   ASSERT_EQ(again.exitCode, 0) << again.err;
   EXPECT_NE(again.err.find("cache hit: "), std::string::npos) << again.err;

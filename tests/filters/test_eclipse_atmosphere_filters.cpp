@@ -386,7 +386,7 @@ TEST(EclipseAtmosphereFilters, ShadowLutSourceTakesTheTablesThroughItsInput) {
     lut->SetInputConnection(tables->GetOutputPort());
     lut->Update();
     EXPECT_EQ(tables->GetLastPrecomputeCalls(), run == 0 ? 1 : 0) << "run " << run;
-    if (run == 1) EXPECT_EQ(tables->GetLastComputed(), 0);
+    if (run == 1) { EXPECT_EQ(tables->GetLastComputed(), 0); }
     EXPECT_LT(maxRgbDifference(lut->GetOutput(), byProperty->GetOutput()), 1e-5) << "run " << run;
     EXPECT_NE(filters::fieldParameters(lut->GetOutput()).at("atmosphereTables").find("input:"), std::string::npos);
   }

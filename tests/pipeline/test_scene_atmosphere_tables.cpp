@@ -143,8 +143,8 @@ TEST(SceneAtmosphereTables, DISABLED_DefaultSizesAgainstTheSkyCommand) {
       std::printf("  Sun %2.0f deg down, ground irradiance, channel %d: 1024 cells %.3g; twilight tables %+.0f %%, "
                   "day tables %+.0f %%\n", depressionDeg, c, e[c], 100.0 * (et[c] / e[c] - 1.0), 100.0 * (ed[c] / e[c] - 1.0));
       EXPECT_LT(std::abs(et[c] / e[c] - 1.0), depressionDeg <= 10.0 ? 0.15 : 0.35) << depressionDeg << " deg, channel " << c;
-      if (depressionDeg <= 7.0) EXPECT_LT(std::abs(ed[c] / e[c] - 1.0), 0.1) << depressionDeg << " deg, channel " << c;
-      if (depressionDeg == 10.0) EXPECT_LT(std::abs(ed[c] / e[c] - 1.0), 0.25) << depressionDeg << " deg, channel " << c;
+      if (depressionDeg <= 7.0) { EXPECT_LT(std::abs(ed[c] / e[c] - 1.0), 0.1) << depressionDeg << " deg, channel " << c; }
+      if (depressionDeg == 10.0) { EXPECT_LT(std::abs(ed[c] / e[c] - 1.0), 0.25) << depressionDeg << " deg, channel " << c; }
     }
     for (double viewDeg : {0.0, 87.0}) {  // the zenith, the twilight arch
       const auto d = skyRadiance(day, z, viewDeg * kDeg), t = skyRadiance(twilight, z, viewDeg * kDeg), r = skyRadiance(reference, z, viewDeg * kDeg);

@@ -281,7 +281,7 @@ TEST(EclipseGlslRange, ReceiverShadowUvAgreesWithEquations3And4AtTheExtremes) {
             eclipse::lutCoords(eclipse::shadowAngles(p, g.sunM, g.sunRadiusM, g.occluderM, g.occluderRadiusM));
         const float* q = &px[4 * (static_cast<std::size_t>(j) * kSize + i)];
         if (c.v >= 1.0) {
-          if (c.v > 1.0 + 1e-5) EXPECT_GE(q[1], 1.0f) << g.name << " at (" << i << ", " << j << ")";
+          if (c.v > 1.0 + 1e-5) { EXPECT_GE(q[1], 1.0f) << g.name << " at (" << i << ", " << j << ")"; }
           continue;
         }
         ++shadowed;

@@ -478,10 +478,11 @@ TEST(MoonRender, FullMoonColourIsItsReflectanceSpectrum) {
 
   const SceneInputs in = sceneInputs(scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/full-moon-2026-10-26.json"));
   for (const SphereBody& b : in.bodies)
-    if (b.name == "Moon")
+    if (b.name == "Moon") {
       for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(b.albedoRgb[c] / b.albedoRgb.g, sky::reflectanceTint(reflectance)[c] / sky::reflectanceTint(reflectance).g,
                     1e-12);
+    }
 }
 
 // The glare around the Moon follows its light: the mean radiance on a ring 1.5 deg from

@@ -208,7 +208,7 @@ TEST(UmbraRenderPass, GlareKernelsAreNormalisedAndAngular) {
     const int r = static_cast<int>(k.weights.size() / 2);
     for (int j = -r; j <= r; ++j) sum += k.weights[j + r], second += j * j * k.weights[j + r];
     EXPECT_NEAR(sum, 1.0, 1e-6);
-    if (k.sigmaPx > 1.0) EXPECT_NEAR(std::sqrt(second), std::sqrt(k.sigmaPx * k.sigmaPx + 1.0 / 12.0), 0.03 * k.sigmaPx);
+    if (k.sigmaPx > 1.0) { EXPECT_NEAR(std::sqrt(second), std::sqrt(k.sigmaPx * k.sigmaPx + 1.0 / 12.0), 0.03 * k.sigmaPx); }
     fractions += k.energyFraction;
   }
   EXPECT_NEAR(fractions, 0.07, 1e-12);

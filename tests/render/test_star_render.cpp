@@ -353,8 +353,8 @@ TEST(StarRender, TwilightRevealsStarsInOrderOfBrightness) {
       std::printf("Sun %+5.1f deg: star V %+.1f, sky %.3e W m^-2 sr^-1: E / (L_sky Omega_pixel) %.3g, %s\n",
                   sunElevations[k], vMags[i], sky, contrast, shown ? "shown" : "hidden");
       if (shown && firstShown[i] < 0) firstShown[i] = k;
-      if (k == 0) EXPECT_FALSE(shown) << "V " << vMags[i] << " at noon";
-      if (k == n - 1) EXPECT_TRUE(shown) << "V " << vMags[i] << " at night";
+      if (k == 0) { EXPECT_FALSE(shown) << "V " << vMags[i] << " at noon"; }
+      if (k == n - 1) { EXPECT_TRUE(shown) << "V " << vMags[i] << " at night"; }
     }
   }
   EXPECT_GT(firstShown[0], 0);

@@ -586,9 +586,9 @@ TEST(SceneStars, MilkyWayOrItsFallback) {
   {
     const StellariumDataDir d(with.string());
     const Scene s = parseScene(sky + "}", kFile);
-    if (s.stars) EXPECT_EQ(s.stars->milkyWayPath, (with / "textures/milkyway.png").string());
+    if (s.stars) { EXPECT_EQ(s.stars->milkyWayPath, (with / "textures/milkyway.png").string()); }
     const Scene none = parseScene(sky + R"(, "stars": {"milkyWay": "none"}})", kFile);
-    if (none.stars) EXPECT_EQ(none.stars->milkyWayPath, "");
+    if (none.stars) { EXPECT_EQ(none.stars->milkyWayPath, ""); }
     EXPECT_FALSE(parseScene(sky + R"(, "stars": false})", kFile).stars.has_value());
   }
   {
