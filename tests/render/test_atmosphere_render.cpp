@@ -312,6 +312,74 @@ TEST(AtmosphereRender, RefractionLiftsAStar) {
   EXPECT_GT(deviationDeg, 0.1);
 }
 
+// Stars setting through refraction keep their light whatever their place within a pixel:
+// 20 stars from 1.5 to 3.5 degrees up (every phase across the pixel rows, 8 pixels apart
+// across) each come through with E T / J, T the transmittance along its refracted ray
+// (atmosphere::transmittanceToTop at its apparent elevation) and J = 1 + d(deviation) /
+// d(zenith angle) (rays traced on the CPU: refraction packs J rows of the sky into one,
+// and radiance is kept along a ray), within 3 %; and each image is where its ray's deviation
+// puts it, within 0.3 pixel. Read at the nearest pixel, a star whose light sat in a row that
+// refraction skips came through dim or not at all, and the others J too bright.
+TEST(AtmosphereRender, RefractionKeepsEveryStarsLight) {
+  const AtmosphereFixture& f = atmosphereFixture();
+  const RefractionFixture& rf = refractionFixture();
+  const double fovDeg = 2.5;
+  const ViewCamera cam = groundCamera(2.0, 2.7, fovDeg);
+  const int size = 200, count = 20;
+  std::vector<StarPoint> stars;
+  std::vector<double> elevationsDeg;
+  for (int k = 0; k < count; ++k) {
+    elevationsDeg.push_back(1.5 + 2.0 * k / (count - 1) + 0.0037 * k);  // a phase of its own in every row
+    stars.push_back({directionFromAngles(elevationsDeg.back(), -0.95 + 0.1 * k), glm::dvec3(1e-6)});
+  }
+  const glm::dvec3 sunDir = directionFromAngles(-40.0, 180.0);
+  const Frame with = renderRefracted(cam, sunDir, size, true, stars), without = renderRefracted(cam, sunDir, size, true);
+  const glm::dvec3 fwd = glm::normalize(cam.targetM - cam.positionM);
+  const glm::dvec3 right = glm::normalize(glm::cross(fwd, cam.up)), up = glm::cross(right, fwd);
+  const double t = std::tan(0.5 * fovDeg * kPi / 180.0), pxRad = 2.0 * t / size;
+  auto rayOf = [&](double col, double row) {  // at pixel coordinates (centres at i + 0.5)
+    return fwd + (2.0 * col / size - 1.0) * t * right + (1.0 - 2.0 * row / size) * t * up;
+  };
+  const atmosphere::RefractiveMedium medium =
+      atmosphere::refractiveMedium(f.model, f.model.refractivityReferenceWavelengthNm);
+  const double r = glm::length(cam.positionM);
+  auto deviationRad = [&](double elevationRad) { return atmosphere::traceRay(medium, r, std::sin(elevationRad)).deviationRad; };
+  double worst = 0.0, worstPlace = 0.0, lowestJ = 1e9, highestJ = 0.0;
+  for (int k = 0; k < count; ++k) {
+    const glm::dvec3 d = stars[k].direction;
+    const int col = static_cast<int>(std::floor((dot(d, right) / dot(d, fwd) / t + 1.0) * 0.5 * size));
+    glm::dvec3 flux(0.0);
+    double light = 0.0, rows = 0.0;
+    for (int j = 0; j < size; ++j)
+      for (int i = std::max(col - 3, 0); i <= std::min(col + 3, size - 1); ++i) {
+        const glm::dvec3 ray = rayOf(i + 0.5, j + 0.5);
+        const double omega = (2.0 * t / size) * (2.0 * t / size) / std::pow(glm::length(ray), 3.0);
+        const glm::dvec3 star = with.at(i, j) - without.at(i, j);
+        flux += star * omega;
+        light += star.g;
+        rows += star.g * (j + 0.5);
+      }
+    ASSERT_GT(light, 0.0) << "star " << k << " at " << elevationsDeg[k] << " deg: not drawn";
+    const glm::dvec3 seen = glm::normalize(rayOf(col + 0.5, rows / light));
+    const double apparentRad = std::asin(dot(seen, glm::normalize(cam.positionM)));
+    const double dz = 0.5 * pxRad;
+    const double J = 1.0 + (deviationRad(apparentRad - dz) - deviationRad(apparentRad + dz)) / (2.0 * dz);
+    const std::vector<double> T = atmosphere::transmittanceToTop(rf.tables, r, std::sin(apparentRad));
+    const double placePx = (apparentRad - deviationRad(apparentRad) - elevationsDeg[k] * kPi / 180.0) / pxRad;
+    for (int c = 0; c < 3; ++c) {
+      const double ratio = flux[c] / (1e-6 * T[c] / J);
+      if (std::abs(ratio - 1.0) > std::abs(worst)) worst = ratio - 1.0;
+      EXPECT_NEAR(ratio, 1.0, 0.03) << "star " << k << " at " << elevationsDeg[k] << " deg, channel " << c << ", J " << J;
+    }
+    worstPlace = std::max(worstPlace, std::abs(placePx));
+    lowestJ = std::min(lowestJ, J);
+    highestJ = std::max(highestJ, J);
+    EXPECT_NEAR(placePx, 0.0, 0.3) << "star " << k << " at " << elevationsDeg[k] << " deg";
+  }
+  std::printf("  %d stars from 1.5 to 3.5 deg (J %.3f to %.3f): light within %.2f %% of E T / J, place within %.3f px\n",
+              count, highestJ, lowestJ, 100.0 * worst, worstPlace);
+}
+
 // A solar eclipse seen from space: the Moon's shadow on the ground survives the
 // atmosphere (the direct sunlight there is dimmed by the frame's eclipse factor), and the
 // ground far from it is as without the Moon.

@@ -157,6 +157,29 @@ vec3 umbraLimbSun(vec3 centre, vec3 dir) {
   return sun / float(n);
 }
 
+// The frame's mean radiance over a footprint: the box of half-widths halfTexels (texels,
+// from 0.5 to 3.5: a longer box keeps its middle 7 texels) about at (texture coordinates),
+// each texel weighted by its overlap (a box over texels of constant value), texels holding
+// a body (depth < 1) or off the frame counting as black. A box of one texel is a bilinear
+// read; at a texel's centre, the texel.
+vec3 umbraFrameOverFootprint(vec2 at, vec2 halfTexels) {
+  ivec2 size = textureSize(umbraFrameColour, 0);
+  vec2 h = clamp(halfTexels, vec2(0.5), vec2(3.5));
+  vec2 lo = at * vec2(size) - h, hi = lo + 2.0 * h;
+  ivec2 first = ivec2(floor(lo)), last = ivec2(ceil(hi)) - ivec2(1);  // 8 texels at most
+  vec3 sum = vec3(0.0);
+  for (int j = first.y; j <= last.y; ++j) {
+    float wy = min(hi.y, float(j + 1)) - max(lo.y, float(j));
+    for (int i = first.x; i <= last.x; ++i) {
+      ivec2 t = ivec2(i, j);
+      if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(t, size)) || texelFetch(umbraFrameDepth, t, 0).r < 1.0)
+        continue;
+      sum += (wy * (min(hi.x, float(i + 1)) - max(lo.x, float(i)))) * texelFetch(umbraFrameColour, t, 0).rgb;
+    }
+  }
+  return sum / ((hi.x - lo.x) * (hi.y - lo.y));
+}
+
 // The background of a ray leaving the atmosphere from x (radius r, view cosine mu) with
 // refraction (eclipse paper, section 4.2), attenuated along the refracted path: a ray bent
 // into the ground sees black; else the exit ray (the view ray turned towards the planet's
@@ -166,14 +189,34 @@ vec3 umbraLimbSun(vec3 centre, vec3 dir) {
 // Sun's term is the mean of umbraLimbSubsamples rays across the pixel towards the centre:
 // the light of a ring seen from the shadow comes through a band of the limb much thinner
 // than a pixel until the ring is hundreds of pixels wide.
+// The frame is read over the pixel's footprint: the deviation grows towards the horizon,
+// so the exit rays of a pixel spread over J = 1 + d(deviation)/d(zenith angle) pixels
+// along u, the image of the vertical (J from the deviation of the ray turned one pixel's
+// angle further down at x: from inside the air, the next pixel's ray). The
+// footprint is the pixel stretched by J along u, taken as its box (half-widths
+// (1 + (J - 1) u_i^2) / 2): each texel's light reaches the pixels whose footprints cover
+// it, over J, so a star is neither dropped nor doubled, and it comes through dimmed by
+// J, as radiance is kept along a ray (refraction's dimming near the horizon).
 vec3 umbraRefractedBackground(vec3 x, float r, float mu, vec3 dir, vec3 centre, bool outside) {
   vec2 dc = umbraRefractionOf(r, mu);
   vec3 exitDir = umbraExitDirection(x, r, dir, dc.x);
   vec3 seen = vec3(0.0);
-  vec2 at = umbraImageOf(exitDir);
-  if (dc.y >= 0.0 && dot(exitDir, umbraRayForward) > 0.0 && all(greaterThanEqual(at, vec2(0.0))) &&
-      all(lessThanEqual(at, vec2(1.0))) && texture(umbraFrameDepth, at).r >= 1.0)
-    seen = texture(umbraFrameColour, at).rgb;
+  vec2 at = dot(exitDir, umbraRayForward) > 0.0 ? umbraImageOf(exitDir) : vec2(-1.0);
+  // Off the frame by more than any footprint: nothing to read (and no overflowing index).
+  if (dc.y >= 0.0 && all(greaterThan(at, vec2(-0.5))) && all(lessThan(at, vec2(1.5)))) {
+    vec3 toCentre = -x / r;
+    vec3 down = toCentre - dot(toCentre, exitDir) * exitDir;  // where the exit ray turns as the zenith angle grows
+    vec2 halfTexels = vec2(0.5);
+    if (dot(down, down) > 1e-12) {
+      float sinZ = sqrt(max(1.0 - mu * mu, 0.0)), step = max(umbraPixelAngle, 1e-7);
+      float muBelow = mu * cos(step) - sinZ * sin(step);
+      float stretch = max((umbraRefractionOf(r, muBelow).x - dc.x) / step, 0.0);  // J - 1
+      vec2 u = (umbraImageOf(normalize(exitDir + 1e-3 * normalize(down))) - at) * vec2(textureSize(umbraFrameColour, 0));
+      u = dot(u, u) > 0.0 ? normalize(u) : vec2(0.0, 1.0);
+      halfTexels += 0.5 * stretch * u * u;
+    }
+    seen = umbraFrameOverFootprint(at, halfTexels);
+  }
   seen *= umbraTerrainTransmission(dc.y) * umbraRefractedTransmittanceToTop(r, mu, dc.y);
   if (!outside || umbraLimbSubsamples <= 1) return seen + umbraRefractedSun(x, r, mu, dir);
   return seen + umbraLimbSun(centre, dir);
