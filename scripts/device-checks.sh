@@ -9,8 +9,9 @@
 #    with every window on the GPU (UMBRA_TEST_EGL=1).
 # 2. $OUT/frame-times.md: the frame-time ratios of paper Tables 1-2 with GL timer queries
 #    (whole frames, and the receivers' and atmosphere's stages as the paper times them),
-#    ROUNDS (3) runs of FRAMES (50) interleaved frames, at 1920x1080 and 3840x2160, and the
-#    sunset bench.
+#    ROUNDS (3) runs of FRAMES (50) interleaved frames, at 1920x1080 and 3840x2160, the
+#    sunset bench, and the Moon's photometry and maps against Lambert's law (the receivers'
+#    stage).
 # $OUT/environment.txt: what EGL finds (vendor file, loaders). Without $OUT the files go
 # to out/device/. Here (Mesa, no GPU) it runs on llvmpipe:
 # `FRAMES=2 ROUNDS=1 scripts/device-checks.sh`.
@@ -50,6 +51,8 @@ bin=$kit/kit/bin
 # kit was built in: point that path here (and the presets' own variable, in case /work
 # cannot be written).
 export UMBRA_ATMOSPHERE_PRESET_DIR=$PWD/atmosphere/presets
+# The Moon's maps from the kit (the machine has neither Debian package).
+export UMBRA_MARBLE_DATA_DIR=$kit/kit/data/marble UMBRA_STELLARIUM_DATA_DIR=$kit/kit/data/stellarium
 source_dir=$(cat "$kit/kit/source-dir")
 if [ ! -e "$source_dir/examples/scenes" ]; then
   mkdir -p "$(dirname "$source_dir")"
@@ -81,6 +84,9 @@ echo "== frame times =="
     echo
     echo "## round $r, 1920x1080: the sunset from 2 m (atmosphere, refraction, glare)"
     "$bin/umbra-bench-render-atmosphere" --egl --frames "$frames" --tables small || failed=1
+    echo
+    echo "## round $r, 1920x1080: the Moon, Hapke's photometry and its maps against Lambert's law"
+    "$bin/umbra-bench-render-moon" --egl --frames "$frames" || failed=1
   done
   exit "$failed"
 } 2>&1 | tee "$out/frame-times.md.part"
