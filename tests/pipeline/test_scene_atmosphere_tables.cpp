@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 using namespace umbra::pipeline;  // the scene glue (app/pipeline)
 
@@ -179,5 +180,53 @@ TEST(SceneAtmosphereTables, TwilightTablesCarryTheGroundIrradiance) {
       std::printf("  Sun %2.0f deg down, channel %d: E_ind day %.3g, twilight %.3g, reference %.3g\n", depressionDeg, c,
                   day[c], twilight[c], reference[c]);
     expectTwilightCloser(day, twilight, reference, 3.0, 2.0, std::to_string(depressionDeg) + " deg down");
+  }
+}
+
+// Deep twilight, 13 and 16 deg after sunset, the default sky from 2 m: the scene's
+// twilight tables (default sizes) and the sky command's against converged tables (R 32,
+// MU 128, MU_S 256, NU 32, 48 x 96 density directions, 100 samples a ray, irradiance 1024
+// cells; each of these doubled alone moves the zenith, the arch and the ground's light by
+// at most 5 %). The twilight tables are within x1.5 and nearer than the sky command's,
+// which its 8 radii make too bright there. About 4 min on 2 cores, so not in the suite
+// (--gtest_also_run_disabled_tests). UMBRA_TWILIGHT_REFERENCE="R MU_S NU DIRECTIONS
+// SAMPLES" gives the reference other sizes (docs/accuracy-vs-speed.md, "Deep twilight").
+TEST(SceneAtmosphereTables, DISABLED_DeepTwilightAgainstConvergedTables) {
+  const atmosphere::Atmosphere& model = atmosphereFixture().model;
+  int sizes[5] = {32, 256, 32, 48, 100};
+  if (const char* env = std::getenv("UMBRA_TWILIGHT_REFERENCE")) {
+    ASSERT_EQ(std::sscanf(env, "%d %d %d %d %d", &sizes[0], &sizes[1], &sizes[2], &sizes[3], &sizes[4]), 5) << env;
+  }
+  for (double depressionDeg : {13.0, 16.0}) {
+    const double z = (90.0 + depressionDeg) * kDeg;
+    const atmosphere::AtmosphereTables twilight =
+        sceneTables(groundScene(2.0, -depressionDeg), AtmosphereTableSizes::Default);
+    const atmosphere::AtmosphereTables sky = atmosphere::precompute(model, atmosphere::skyPrecomputeOptions(model, 4, z));
+    atmosphere::PrecomputeOptions o = atmosphere::skyPrecomputeOptions(model, 4, z);
+    o.scatteringR = sizes[0];
+    o.scatteringMu = 128;
+    o.scatteringMuS = sizes[1];
+    o.scatteringNu = sizes[2];
+    o.sphereSamples = sizes[3];
+    o.singleScatteringSamples = o.multipleScatteringSamples = sizes[4];
+    o.irradianceWidth = 1024;
+    const atmosphere::AtmosphereTables converged = atmosphere::precompute(model, o);
+    auto compare = [&](const char* what, const std::vector<double>& r, const std::vector<double>& t,
+                       const std::vector<double>& s) {
+      for (int c = 0; c < 3; ++c) {
+        std::printf("  Sun %2.0f deg down, %s, channel %d: converged %.3g; twilight tables %+.0f %%, sky command %+.0f %%\n",
+                    depressionDeg, what, c, r[c], 100.0 * (t[c] / r[c] - 1.0), 100.0 * (s[c] / r[c] - 1.0));
+        ASSERT_GT(r[c], 0.0);
+        EXPECT_LT(std::abs(std::log(t[c] / r[c])), std::log(1.5)) << depressionDeg << " deg, " << what << ", channel " << c;
+        EXPECT_LT(std::abs(std::log(t[c] / r[c])), std::abs(std::log(s[c] / r[c])))
+            << depressionDeg << " deg, " << what << ", channel " << c;
+      }
+    };
+    const double b = twilight.bottomRadiusM;
+    compare("ground irradiance", atmosphere::indirectIrradiance(converged, b, std::cos(z)),
+            atmosphere::indirectIrradiance(twilight, b, std::cos(z)), atmosphere::indirectIrradiance(sky, b, std::cos(z)));
+    compare("zenith", skyRadiance(converged, z, 0.0), skyRadiance(twilight, z, 0.0), skyRadiance(sky, z, 0.0));
+    compare("arch (87 deg)", skyRadiance(converged, z, 87.0 * kDeg), skyRadiance(twilight, z, 87.0 * kDeg),
+            skyRadiance(sky, z, 87.0 * kDeg));
   }
 }
