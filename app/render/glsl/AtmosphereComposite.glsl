@@ -204,18 +204,13 @@ vec3 umbraRefractedBackground(vec3 x, float r, float mu, vec3 dir, vec3 centre, 
   vec2 at = dot(exitDir, umbraRayForward) > 0.0 ? umbraImageOf(exitDir) : vec2(-1.0);
   // Off the frame by more than any footprint: nothing to read (and no overflowing index).
   if (dc.y >= 0.0 && all(greaterThan(at, vec2(-0.5))) && all(lessThan(at, vec2(1.5)))) {
-    vec3 toCentre = -x / r;
-    vec3 down = toCentre - dot(toCentre, exitDir) * exitDir;  // where the exit ray turns as the zenith angle grows
-    vec2 halfTexels = vec2(0.5);
-    if (dot(down, down) > 1e-12) {
-      float sinZ = sqrt(max(1.0 - mu * mu, 0.0)), step = max(umbraPixelAngle, 1e-7);
-      float muBelow = mu * cos(step) - sinZ * sin(step);
-      float stretch = max((umbraRefractionOf(r, muBelow).x - dc.x) / step, 0.0);  // J - 1
-      vec2 u = (umbraImageOf(normalize(exitDir + 1e-3 * normalize(down))) - at) * vec2(textureSize(umbraFrameColour, 0));
-      u = dot(u, u) > 0.0 ? normalize(u) : vec2(0.0, 1.0);
-      halfTexels += 0.5 * stretch * u * u;
-    }
-    seen = umbraFrameOverFootprint(at, halfTexels);
+    float sinZ = sqrt(max(1.0 - mu * mu, 0.0)), step = max(umbraPixelAngle, 1e-7);
+    float muBelow = mu * cos(step) - sinZ * sin(step);
+    float stretch = max((umbraRefractionOf(r, muBelow).x - dc.x) / step, 0.0);  // J - 1
+    // u: where the exit ray's image moves as it turns further down (none straight up or down).
+    vec2 u = (umbraImageOf(umbraExitDirection(x, r, exitDir, 1e-3)) - at) * vec2(textureSize(umbraFrameColour, 0));
+    u = dot(u, u) > 0.0 ? normalize(u) : vec2(0.0);
+    seen = umbraFrameOverFootprint(at, vec2(0.5) + 0.5 * stretch * u * u);
   }
   seen *= umbraTerrainTransmission(dc.y) * umbraRefractedTransmittanceToTop(r, mu, dc.y);
   if (!outside || umbraLimbSubsamples <= 1) return seen + umbraRefractedSun(x, r, mu, dir);
