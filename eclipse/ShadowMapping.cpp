@@ -1,4 +1,5 @@
 #include "ShadowMapping.hpp"
+#include "SolarDisc.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -58,6 +59,13 @@ ShadowAngles shadowAngles(const glm::dvec3& p, const glm::dvec3& sun, double sun
 
 bool occluderInFront(const glm::dvec3& p, const glm::dvec3& sun, const glm::dvec3& occ) {
   return glm::length(occ - p) < glm::length(sun - p);
+}
+
+double sunVisibleFraction(const glm::dvec3& p, const glm::dvec3& sun, double sunRadiusM, const glm::dvec3& occ,
+                          double occRadiusM, double limbDarkening, double relativeTolerance) {
+  if (!occluderInFront(p, sun, occ)) return 1.0;
+  const NormalisedDiscs n = normalisedDiscs(shadowAngles(p, sun, sunRadiusM, occ, occRadiusM));
+  return visibleFractionLimbDarkened(n.occluderRadius, n.separation, limbDarkening, relativeTolerance).value;
 }
 
 LutCoords lutCoords(const ShadowAngles& a) {
@@ -174,6 +182,10 @@ InverseMapping inverseLutCoords(const LutCoords& requested, const SunOccluderSys
                             {0.0, 0.0, 0.0}, sys.occluderRadiusM);
   out.reached = lutCoords(out.angles);
   return out;
+}
+
+double occluderDistanceForUmbraM(double D, double sunRadiusM, double occRadiusM, double r) {
+  return D * (occRadiusM - r) / (sunRadiusM - r);
 }
 
 ShadowConeRadii shadowConeRadii(const SunOccluderSystem& s, double x) {

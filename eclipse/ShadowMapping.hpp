@@ -63,6 +63,14 @@ ShadowAngles shadowAngles(const glm::dvec3& pointM, const glm::dvec3& sunM, doub
 bool occluderInFront(const glm::dvec3& pointM, const glm::dvec3& sunM,
                      const glm::dvec3& occluderM);
 
+/// The fraction of the limb-darkened Sun's flux (Eq. 1, coefficient `limbDarkening`) that
+/// reaches `pointM` past a spherical occluder: visibleFractionLimbDarkened of the angles
+/// seen from the point; 1 where the occluder is not in front. Positions in metres, any
+/// common origin (the Moon's shadow on the Earth's air and ground).
+double sunVisibleFraction(const glm::dvec3& pointM, const glm::dvec3& sunM, double sunRadiusM,
+                          const glm::dvec3& occluderM, double occluderRadiusM, double limbDarkening,
+                          double relativeTolerance = 1e-10);
+
 /// Eq. 4.
 LutCoords lutCoords(const ShadowAngles& angles);
 
@@ -113,5 +121,13 @@ struct ShadowConeRadii {
   double umbraLengthM = 0.0;     ///< from the occluder's centre to the umbra's tip
 };
 ShadowConeRadii shadowConeRadii(const SunOccluderSystem& system, double distanceBehindM);
+
+/// How far in front of a point, towards a Sun `sunDistanceM` away, an occluder's centre must
+/// stand on the line to the Sun for the umbra's cross-section through the point
+/// (perpendicular to the axis) to have radius `umbraRadiusM` (< occluderRadiusM; 0: the
+/// umbra's tip at the point). From the umbra's radius x behind the occluder,
+/// R_occ - x (R_sun - R_occ) / (D - x), solved for x:
+///   x = D (R_occ - r) / (R_sun - r).
+double occluderDistanceForUmbraM(double sunDistanceM, double sunRadiusM, double occluderRadiusM, double umbraRadiusM);
 
 } // namespace umbra::eclipse

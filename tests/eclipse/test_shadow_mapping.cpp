@@ -180,3 +180,39 @@ TEST(ShadowMapping, SmallAngleSeriesIsExactToFloatUpToItsLimit) {
     EXPECT_LE(std::abs(series - a), 0x1p-26 * a) << a;
   }
 }
+
+TEST(ShadowMapping, OccluderDistanceForAnUmbraGivesThatUmbraBack) {
+  // A point with the Sun D away and the occluder x in front of it on the same line: the
+  // umbra's cross-section through the point, from the cones' tangents (shadowConeRadii),
+  // is the radius asked for (to the tangent's cosine, 1e-5 of it for the Moon at 1 au).
+  for (const auto& [name, sys] : systems())
+    for (double fraction : {0.0, 0.01, 0.3, 0.9}) {
+      const double D = sys.sunOccluderDistanceM, r = fraction * sys.occluderRadiusM;
+      const double x = occluderDistanceForUmbraM(D, sys.sunRadiusM, sys.occluderRadiusM, r);
+      ASSERT_GT(x, 0.0);
+      const ShadowConeRadii cone = shadowConeRadii({sys.sunRadiusM, sys.occluderRadiusM, D - x}, x);
+      EXPECT_NEAR(cone.umbraRadiusM, r, 2e-5 * sys.occluderRadiusM) << name << " " << fraction;
+    }
+}
+
+TEST(ShadowMapping, SunVisibleFractionAtAPointIsTheDiscsOverlapSeenFromIt) {
+  // The Moon 360 000 km from a point towards a Sun 1 au away: the point in the umbra (0),
+  // outside the penumbra (1), in between as visibleFractionLimbDarkened of its angles; a
+  // Moon behind the point hides nothing; at 400 000 km on the axis the ring of an annular
+  // eclipse shows.
+  const glm::dvec3 sun(kAu, 0, 0), moonOnAxis(360000e3, 0, 0);
+  const double moonR = 1737.4e3;
+  EXPECT_EQ(sunVisibleFraction({0, 0, 0}, sun, kSunRadiusM, moonOnAxis, moonR, 0.6), 0.0);
+  EXPECT_EQ(sunVisibleFraction({0, 0, 0}, sun, kSunRadiusM, {380000e3, 8000e3, 0}, moonR, 0.6), 1.0);
+  EXPECT_EQ(sunVisibleFraction({0, 0, 0}, sun, kSunRadiusM, {-380000e3, 0, 0}, moonR, 0.6), 1.0);
+  const double ring = sunVisibleFraction({0, 0, 0}, sun, kSunRadiusM, {400000e3, 0, 0}, moonR, 0.6);
+  const double phiSun = std::asin(kSunRadiusM / kAu), phiMoon = std::asin(moonR / 400000e3);
+  EXPECT_NEAR(ring, 1.0 - limbDarkenedFluxInside(phiMoon / phiSun, 0.6), 1e-9);
+  EXPECT_GT(ring, 0.05);
+  const glm::dvec3 moon(380000e3, 2500e3, 0);
+  const NormalisedDiscs n = normalisedDiscs(shadowAngles({0, 0, 0}, sun, kSunRadiusM, moon, moonR));
+  const double expected = visibleFractionLimbDarkened(n.occluderRadius, n.separation, 0.6).value;
+  EXPECT_GT(expected, 0.05);
+  EXPECT_LT(expected, 0.95);
+  EXPECT_EQ(sunVisibleFraction({0, 0, 0}, sun, kSunRadiusM, moon, moonR, 0.6), expected);
+}

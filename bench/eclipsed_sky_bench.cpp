@@ -1,0 +1,122 @@
+// The eclipsed sky's Monte-Carlo reference (atmosphere/MonteCarloSky.hpp): its radiance
+// along the vertical through the Sun in totality and without the Moon, its statistical
+// error against its time, and the time of one image. The scene is built, not looked up: an
+// observer on the ground, the Sun at --sun-zenith-deg, the Moon on the line to the Sun at
+// the distance that makes the umbra --umbra-km across through the observer
+// (occluderDistanceForUmbraM), --offset-km off that line for a partial phase.
+// Prints Markdown for docs/accuracy-vs-speed.md ("The sky of a solar eclipse").
+//
+//   build/bench/umbra-bench-eclipsed-sky [--preset earth] [--sun-zenith-deg 26.3]
+//       [--umbra-km 114.7] [--paths 100000] [--image 320x180 --image-paths 64]
+#include "Atmosphere.hpp"
+#include "MonteCarloSky.hpp"
+#include "ShadowMapping.hpp"
+#include "SolarDisc.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <glm/geometric.hpp>
+
+#include <omp.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+using namespace umbra;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+constexpr double kMoonRadiusM = 1737.4e3;
+
+glm::dvec3 dir(double zenithRad, double azimuthRad) {
+  return {std::sin(zenithRad) * std::cos(azimuthRad), std::sin(zenithRad) * std::sin(azimuthRad), std::cos(zenithRad)};
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"The eclipsed sky by Monte-Carlo: radiance, statistical error and time"};
+  std::string preset = "earth";
+  double sunZenithDeg = 26.3, umbraKm = 114.7, offsetKm = 0.0, sunDistanceAu = 1.0105;
+  std::int64_t paths = 100000;
+  std::string image;
+  int imagePaths = 64;
+  app.add_option("--preset", preset)->capture_default_str();
+  app.add_option("--sun-zenith-deg", sunZenithDeg)->capture_default_str();
+  app.add_option("--umbra-km", umbraKm, "The umbra's width through the observer, across the axis")->capture_default_str();
+  app.add_option("--offset-km", offsetKm, "The Moon's offset from the observer-Sun line (a partial phase)")->capture_default_str();
+  app.add_option("--sun-distance-au", sunDistanceAu)->capture_default_str();
+  app.add_option("--paths", paths, "Paths per direction and wavelength")->capture_default_str();
+  app.add_option("--image", image, "Also time one image of WxH directions (a 90 x 50 degree field towards the Sun's azimuth)");
+  app.add_option("--image-paths", imagePaths, "Paths per pixel and wavelength of the image")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  const atmosphere::Atmosphere atm = atmosphere::loadAtmosphere(preset, {680.0, 550.0, 440.0});
+  const double sunDistanceM = sunDistanceAu * 149597870700.0;
+  const glm::dvec3 observer(0.0, 0.0, atm.bottomRadiusM), sunDirection = dir(sunZenithDeg * kDeg, 0.0);
+  const glm::dvec3 sunM = observer + sunDistanceM * sunDirection;
+  const double moonDistanceM =
+      eclipse::occluderDistanceForUmbraM(sunDistanceM, eclipse::kSunRadiusM, kMoonRadiusM, 0.5 * umbraKm * 1e3);
+  const glm::dvec3 across = dir(sunZenithDeg * kDeg - 0.5 * kPi, 0.0);
+  const glm::dvec3 moonM = observer + moonDistanceM * sunDirection + offsetKm * 1e3 * across;
+  const atmosphere::SunVisibility shadow = [&](const glm::dvec3& p) {
+    return eclipse::sunVisibleFraction(p, sunM, eclipse::kSunRadiusM, moonM, kMoonRadiusM,
+                                       eclipse::kDefaultLimbDarkening, 1e-8);
+  };
+  std::printf("%s, 680 / 550 / 440 nm, %d threads; the Sun %.1f deg from the zenith, umbra %.1f km, Moon offset %.0f km "
+              "(visible fraction at the observer %.4f)\n\n",
+              preset.c_str(), omp_get_max_threads(), sunZenithDeg, umbraKm, offsetKm, shadow(observer));
+
+  // The vertical through the Sun: signed zenith angle, positive towards the Sun.
+  std::vector<double> zenithDeg;
+  for (double z = -88.0; z <= 88.0 + 1e-9; z += (std::abs(z) >= 70.0 ? 4.0 : 10.0)) zenithDeg.push_back(z);
+  std::vector<glm::dvec3> views;
+  for (double z : zenithDeg) views.push_back(dir(std::abs(z) * kDeg, z >= 0.0 ? 0.0 : kPi));
+  atmosphere::MonteCarloSkyOptions o;
+  o.paths = paths;
+  const atmosphere::MonteCarloSky eclipsed = atmosphere::monteCarloSkyRadiance(atm, observer, views, sunDirection, shadow, o);
+  const atmosphere::MonteCarloSky clear = atmosphere::monteCarloSkyRadiance(atm, observer, views, sunDirection, {}, o);
+  std::printf("The vertical through the Sun (%lld paths a direction and wavelength: %.1f s eclipsed, %.1f s clear), "
+              "radiance per unit solar irradiance [1/sr] +- its standard error:\n\n",
+              static_cast<long long>(paths), eclipsed.seconds, clear.seconds);
+  std::printf("| zenith angle (+: the Sun's side) | 680 nm | 550 nm | 440 nm | clear / eclipsed at 550 nm |\n|---|---|---|---|---|\n");
+  for (std::size_t k = 0; k < views.size(); ++k) {
+    const auto& e = eclipsed.directions[k];
+    std::printf("| %+.0f |", zenithDeg[k]);
+    for (int w = 0; w < 3; ++w) std::printf(" %.3e +- %.0f %% |", e.radiance[w], 100.0 * e.standardError[w] / e.radiance[w]);
+    std::printf(" %.0f |\n", clear.directions[k].radiance[1] / e.radiance[1]);
+  }
+
+  // Error against time at the zenith.
+  std::printf("\nThe zenith's standard error against the paths (550 nm):\n\n| paths | time [s] | radiance | standard error |\n|---|---|---|---|\n");
+  for (std::int64_t n = 1000; n <= paths; n *= 4) {
+    o.paths = n;
+    const atmosphere::MonteCarloSky z = atmosphere::monteCarloSkyRadiance(atm, observer, {dir(0, 0)}, sunDirection, shadow, o);
+    std::printf("| %lld | %.3f | %.3e | %.1f %% |\n", static_cast<long long>(n), z.seconds, z.directions[0].radiance[1],
+                100.0 * z.directions[0].standardError[1] / z.directions[0].radiance[1]);
+  }
+
+  if (!image.empty()) {
+    int w = 0, h = 0;
+    if (std::sscanf(image.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1) {
+      std::fprintf(stderr, "--image: expected WxH, got '%s'\n", image.c_str());
+      return 2;
+    }
+    std::vector<glm::dvec3> pixels;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const double elevation = (y + 0.5) / h * 50.0 * kDeg, azimuth = ((x + 0.5) / w - 0.5) * 90.0 * kDeg;
+        pixels.push_back(dir(0.5 * kPi - elevation, azimuth));
+      }
+    o.paths = imagePaths;
+    const atmosphere::MonteCarloSky sky = atmosphere::monteCarloSkyRadiance(atm, observer, pixels, sunDirection, shadow, o);
+    double meanRelative = 0.0;
+    for (const auto& p : sky.directions)
+      meanRelative += p.radiance[1] > 0.0 ? p.standardError[1] / p.radiance[1] : 1.0;
+    std::printf("\nOne %dx%d image, %d paths a pixel and wavelength: %.1f s; mean standard error of a pixel at 550 nm %.0f %%\n",
+                w, h, imagePaths, sky.seconds, 100.0 * meanRelative / static_cast<double>(pixels.size()));
+  }
+  return 0;
+}
