@@ -6,7 +6,7 @@
 // (occluderDistanceForUmbraM), --offset-km off that line for a partial phase.
 // Prints Markdown for docs/accuracy-vs-speed.md ("The sky of a solar eclipse").
 //
-//   build/bench/umbra-bench-eclipsed-sky [--preset earth] [--sun-zenith-deg 26.3]
+//   build/bench/umbra-bench-eclipsed-sky [--preset earth] [--sun-zenith-deg 26.1]
 //       [--umbra-km 114.7] [--paths 100000] [--image 320x180 --image-paths 64]
 #include "Atmosphere.hpp"
 #include "MonteCarloSky.hpp"
@@ -39,7 +39,7 @@ glm::dvec3 dir(double zenithRad, double azimuthRad) {
 int main(int argc, char** argv) {
   CLI::App app{"The eclipsed sky by Monte-Carlo: radiance, statistical error and time"};
   std::string preset = "earth";
-  double sunZenithDeg = 26.3, umbraKm = 114.7, offsetKm = 0.0, sunDistanceAu = 1.0105;
+  double sunZenithDeg = 26.1, umbraKm = 114.7, offsetKm = 0.0, sunDistanceAu = 1.0105;
   std::int64_t paths = 100000;
   std::string image;
   int imagePaths = 64;

@@ -22,11 +22,12 @@ atmosphere::Atmosphere loadAtmosphereOption(const std::string& preset, const std
 }
 
 void addAtmosphereCommand(CLI::App& app, Action& action) {
-  CLI::App* atmosphereCmd = app.add_subcommand("atmosphere", "Atmosphere models: refraction, tables, sky");
+  CLI::App* atmosphereCmd = app.add_subcommand("atmosphere", "Atmosphere models: refraction, tables, sky, the sky of a solar eclipse");
   atmosphereCmd->require_subcommand(1);
   addAtmosphereRefractionCommand(*atmosphereCmd, action);
   addAtmospherePrecomputeCommand(*atmosphereCmd, action);
   addAtmosphereSkyCommand(*atmosphereCmd, action);
+  addAtmosphereEclipseSkyCommand(*atmosphereCmd, action);
 }
 
 void updateTablesSource(vtkAtmosphereTablesSource* source, const CacheOptions& cache, const std::string& what) {

@@ -28,5 +28,6 @@ void updateTablesSource(vtkAtmosphereTablesSource* source, const CacheOptions& c
 void addAtmosphereRefractionCommand(CLI::App& atmosphereCmd, Action& action);
 void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action);
 void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action);
+void addAtmosphereEclipseSkyCommand(CLI::App& atmosphereCmd, Action& action);
 
 } // namespace umbra::cli

@@ -14,34 +14,9 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <regex>
 
 namespace umbra::cli {
 namespace {
-
-scene::Observer parseObserver(const std::string& text) {
-  const std::string number = R"(\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*)";
-  std::smatch m;
-  if (!std::regex_match(text, m, std::regex(number + "," + number + "(?:,([^,]+))?")))
-    throw CommandError("--observer: expected LAT,LON[,ALT] (degrees north and east, an altitude such as 120m), got '" +
-                       text + "'");
-  scene::Observer o;
-  o.body = "Earth";
-  o.latDeg = std::stod(m[1]);
-  o.lonDeg = std::stod(m[2]);
-  if (!(o.latDeg >= -90.0 && o.latDeg <= 90.0))
-    throw CommandError("--observer: latitude must be within -90..90 deg, got '" + m[1].str() + "'");
-  if (!(o.lonDeg >= -360.0 && o.lonDeg <= 360.0))
-    throw CommandError("--observer: longitude must be within -360..360 deg, got '" + m[2].str() + "'");
-  if (m[3].matched) {
-    std::string alt = m[3].str();
-    if (std::regex_match(alt, std::regex(number))) alt += "m";  // a bare number: metres
-    o.altM = lengthOption("--observer (altitude)", alt);
-    if (!(o.altM >= -1.0e4 && o.altM <= 1.0e8))
-      throw CommandError("--observer: altitude must be within -10 km..100000 km, got '" + m[3].str() + "'");
-  }
-  return o;
-}
 
 scene::UtcTime now() {
   const double unixS = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();

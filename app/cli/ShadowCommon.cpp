@@ -18,6 +18,7 @@
 #include <vtkTable.h>
 
 #include <cstdio>
+#include <regex>
 #include <iostream>
 
 namespace umbra::cli {
@@ -235,6 +236,30 @@ vtkSmartPointer<vtkImageData> readShadowLut(const std::string& path) {
   auto image = filters::toImageData(filters::fromTable(table, path));
   filters::setFieldParameters(image, table.parameters);
   return image;
+}
+
+scene::Observer parseObserver(const std::string& text) {
+  const std::string number = R"(\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*)";
+  std::smatch m;
+  if (!std::regex_match(text, m, std::regex(number + "," + number + "(?:,([^,]+))?")))
+    throw CommandError("--observer: expected LAT,LON[,ALT] (degrees north and east, an altitude such as 120m), got '" +
+                       text + "'");
+  scene::Observer o;
+  o.body = "Earth";
+  o.latDeg = std::stod(m[1]);
+  o.lonDeg = std::stod(m[2]);
+  if (!(o.latDeg >= -90.0 && o.latDeg <= 90.0))
+    throw CommandError("--observer: latitude must be within -90..90 deg, got '" + m[1].str() + "'");
+  if (!(o.lonDeg >= -360.0 && o.lonDeg <= 360.0))
+    throw CommandError("--observer: longitude must be within -360..360 deg, got '" + m[2].str() + "'");
+  if (m[3].matched) {
+    std::string alt = m[3].str();
+    if (std::regex_match(alt, std::regex(number))) alt += "m";  // a bare number: metres
+    o.altM = lengthOption("--observer (altitude)", alt);
+    if (!(o.altM >= -1.0e4 && o.altM <= 1.0e8))
+      throw CommandError("--observer: altitude must be within -10 km..100000 km, got '" + m[3].str() + "'");
+  }
+  return o;
 }
 
 } // namespace umbra::cli

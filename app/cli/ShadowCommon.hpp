@@ -43,6 +43,10 @@ double lengthOption(const std::string& option, const std::string& text);
 /// from <min> to <max>, got <text>" (the physical limits: radii 1 m..1e12 m, distances up
 /// to 1e15 m, a hundred times Neptune's).
 double lengthOption(const std::string& option, const std::string& text, double minM, double maxM);
+/// --observer LAT,LON[,ALT]: an observer on the Earth (geodetic degrees north and east, an
+/// altitude with units, a bare number in metres); throws CommandError naming the option.
+scene::Observer parseObserver(const std::string& text);
+
 using scene::kMaxDistanceM;
 using scene::kMaxRadiusM;
 

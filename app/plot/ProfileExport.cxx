@@ -77,17 +77,18 @@ void writeSvg(vtkTable* t, const std::string& path, const std::string& title, co
   auto* x = column(t, style.xColumn.c_str());
   const vtkIdType n = x->GetNumberOfTuples();
   const double xMax = std::max(x->GetValue(n - 1), 1e-12);
-  const double xMin = style.xLogScale ? std::max(x->GetValue(0), 1e-300) : 0.0;
-  const double yLo = style.logScale ? logAxisMinimum(t) : 0.0;
+  const double xMin = style.xLogScale ? std::max(x->GetValue(0), 1e-300) : std::min(0.0, x->GetValue(0));
+  const double yLo = style.logScale ? logAxisMinimum(t) : 0.0, yHi = style.yMax;
   const auto px = [&](double v) {
-    const double f = style.xLogScale ? std::log(std::max(v, xMin) / xMin) / std::log(xMax / xMin) : v / xMax;
+    const double f = style.xLogScale ? std::log(std::max(v, xMin) / xMin) / std::log(xMax / xMin)
+                                     : (v - xMin) / (xMax - xMin);
     return left + (W - left - right) * f;
   };
-  // Linear: [0, 1.05]; log: [yLo, 1.05] in log10.
+  // Linear: [0, yHi]; log: [yLo, yHi] in log10.
   const auto yFraction = [&](double v) {
-    if (!style.logScale) return std::clamp(v, 0.0, 1.05) / 1.05;
-    const double l = std::log10(std::clamp(v, yLo, 1.05));
-    return (l - std::log10(yLo)) / (std::log10(1.05) - std::log10(yLo));
+    if (!style.logScale) return std::clamp(v, 0.0, yHi) / yHi;
+    const double l = std::log10(std::clamp(v, yLo, yHi));
+    return (l - std::log10(yLo)) / (std::log10(yHi) - std::log10(yLo));
   };
   const auto py = [&](double v) { return H - bottom - (H - top - bottom) * yFraction(v); };
 
@@ -100,27 +101,28 @@ void writeSvg(vtkTable* t, const std::string& path, const std::string& title, co
     s << "<text x=\"" << W / 2 << "\" y=\"36\" text-anchor=\"middle\" fill=\"#555\">" << xmlEscaped(style.subtitle)
       << "</text>\n";
   for (int k = 0; k <= 5; ++k) {  // axes and vertical grid
-    const double xv = style.xLogScale ? xMin * std::pow(xMax / xMin, k / 5.0) : xMax * k / 5;
-    s << "<line x1=\"" << px(xv) << "\" y1=\"" << py(yLo) << "\" x2=\"" << px(xv) << "\" y2=\"" << py(1.05)
+    const double xv = style.xLogScale ? xMin * std::pow(xMax / xMin, k / 5.0) : xMin + (xMax - xMin) * k / 5;
+    s << "<line x1=\"" << px(xv) << "\" y1=\"" << py(yLo) << "\" x2=\"" << px(xv) << "\" y2=\"" << py(yHi)
       << "\" stroke=\"#ddd\"/>\n<text x=\"" << px(xv) << "\" y=\"" << py(yLo) + 18 << "\" text-anchor=\"middle\">"
-      << tickText(xv, style.xLogScale ? xv : xMax) << "</text>\n";
+      << tickText(xv, style.xLogScale ? xv : xMax - xMin) << "</text>\n";
   }
   std::vector<double> yTicks;
   if (style.logScale)
-    for (double v = yLo; v <= 1.0 + 1e-9; v *= 10.0) yTicks.push_back(v);
+    for (double v = yLo; v <= yHi / 1.05 * (1.0 + 1e-9); v *= 10.0) yTicks.push_back(v);
   else
-    for (int k = 0; k <= 5; ++k) yTicks.push_back(0.2 * k);
+    for (int k = 0; k <= 5; ++k) yTicks.push_back(0.2 * k * yHi / 1.05);
   for (double yv : yTicks)
     s << "<line x1=\"" << px(xMin) << "\" y1=\"" << py(yv) << "\" x2=\"" << px(xMax) << "\" y2=\"" << py(yv)
       << "\" stroke=\"#ddd\"/>\n<text x=\"" << px(xMin) - 8 << "\" y=\"" << py(yv) + 4 << "\" text-anchor=\"end\">"
       << yv << "</text>\n";
   for (const auto& [km, label] : style.markersKm)
-    s << "<line x1=\"" << px(km) << "\" y1=\"" << py(yLo) << "\" x2=\"" << px(km) << "\" y2=\"" << py(1.05)
+    s << "<line x1=\"" << px(km) << "\" y1=\"" << py(yLo) << "\" x2=\"" << px(km) << "\" y2=\"" << py(yHi)
       << "\" stroke=\"#555\" stroke-dasharray=\"6,4\"/>\n<text x=\"" << px(km) + 4 << "\" y=\"" << top + 12
       << "\" fill=\"#555\">" << xmlEscaped(label) << "</text>\n";
   s << "<text x=\"" << (left + W - right) / 2 << "\" y=\"" << H - 15 << "\" text-anchor=\"middle\">"
     << xmlEscaped(style.xLabel) << "</text>\n"
-    << "<text transform=\"translate(18," << H / 2 << ") rotate(-90)\" text-anchor=\"middle\">I / I_sun</text>\n";
+    << "<text transform=\"translate(18," << H / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << xmlEscaped(style.yLabel)
+    << "</text>\n";
   int legend = 0;
   for (const Line& line : kLines) {
     auto* y = column(t, line.column);
@@ -183,17 +185,16 @@ void writePng(vtkTable* t, const std::string& path, const std::string& title, co
   chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
   chart->GetLegend()->SetVerticalAlignment(style.legendTop ? vtkChartLegend::TOP : vtkChartLegend::BOTTOM);
   const double yLo = style.logScale ? logAxisMinimum(t) : 0.0;
-  if (style.logScale) {
-    chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
-    chart->GetAxis(vtkAxis::LEFT)->SetRange(yLo, 1.05);
-  }
+  chart->GetAxis(vtkAxis::LEFT)->SetTitle(style.yLabel);
+  chart->GetAxis(vtkAxis::LEFT)->SetRange(yLo, style.yMax);
+  if (style.logScale) chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
   std::vector<vtkSmartPointer<vtkTable>> markers;  // kept alive until rendered
   for (const auto& [km, label] : style.markersKm) {
     auto m = vtkSmartPointer<vtkTable>::New();
     vtkNew<vtkDoubleArray> mx, my;
     mx->SetName(style.xColumn.c_str());
     my->SetName(label.c_str());
-    for (double yv : {std::max(yLo, 1e-12), 1.05}) mx->InsertNextValue(km), my->InsertNextValue(yv);
+    for (double yv : {std::max(yLo, 1e-12), style.yMax}) mx->InsertNextValue(km), my->InsertNextValue(yv);
     m->AddColumn(mx);
     m->AddColumn(my);
     vtkPlot* plot = chart->AddPlot(vtkChart::LINE);

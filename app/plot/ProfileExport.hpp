@@ -30,12 +30,17 @@ struct ProfilePlotStyle {
   std::string xColumn = "offset_km";
   std::string xLabel = "offset from the shadow axis [km]";
   bool xLogScale = false;  ///< (its values then > 0)
+  /// The vertical axis: its title and top (linear from 0, log from the decade below the
+  /// smallest value). The shadow's I / I_sun by default; a sky's radiance in its units.
+  std::string yLabel = "I / I_sun";
+  double yMax = 1.05;
   bool legendTop = false;  ///< the legend in the top right corner (curves that fall to the right)
   /// Lines of text beside the plot, on its right (e.g. the Danjon scale).
   std::vector<std::string> notes;
 };
 
-/// Plot r, g, b and luminance over the offset, the legend in the bottom right corner (the
+/// Plot r, g, b and luminance over the offset (or style.xColumn, from 0 or from its first
+/// value where that is negative), the legend in the bottom right corner (the
 /// curves rise to 1 away from the axis: that corner stays empty; or as the style says); the type follows the
 /// extension (.png or .svg). Throws std::runtime_error naming the path on failure.
 void writeProfilePlot(vtkTable* profile, const std::string& path, const std::string& title,

@@ -136,6 +136,26 @@ std::string describeMoon(const MoonNumbers& m) {
   return text;
 }
 
+SunAndMoonInHorizon sunAndMoonInHorizon(UtcTime time, const Observer& observer) {
+  if (observer.body != "Earth")
+    throw std::invalid_argument("the Sun and the Moon in the horizon are for an observer on the Earth, not on '" +
+                                observer.body + "'");
+  const Body earth = presetBody("Earth", time), sun = presetBody("Sun", time);
+  const glm::dvec3 eyeM = observerPositionM(earth, observer, time);
+  const double lightTimeS = glm::length(heliocentricPositionM("Moon", time) - eyeM) / ERFA_CMPS;
+  const Body moon = presetBody("Moon", addSeconds(time, -lightTimeS));
+  const glm::dvec3 east = horizontalDirection(earth, observer, {90.0, 0.0}, time);
+  const glm::dvec3 north = horizontalDirection(earth, observer, {0.0, 0.0}, time);
+  const glm::dvec3 up = horizontalDirection(earth, observer, {0.0, 90.0}, time);
+  const auto local = [&](const glm::dvec3& v) { return glm::dvec3(glm::dot(v, east), glm::dot(v, north), glm::dot(v, up)); };
+  SunAndMoonInHorizon out;
+  out.sunM = local(sun.positionM - eyeM);
+  out.moonM = local(moon.positionM - eyeM);
+  out.sunRadiusM = sun.radiusM;
+  out.moonRadiusM = moon.radiusM;
+  return out;
+}
+
 std::optional<std::string> describeMoonOf(const Scene& scene) {
   if (!scene.hasTime) return std::nullopt;
   bool hasMoon = false;

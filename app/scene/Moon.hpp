@@ -40,6 +40,18 @@ struct MoonNumbers {
 /// std::invalid_argument otherwise) or from the Earth's centre.
 MoonNumbers moonNumbers(UtcTime time, const std::optional<Observer>& observer);
 
+/// The Sun and the Moon seen from an observer on the Earth at an instant, in the
+/// observer's horizon frame: x east, y north, z up (the geodetic horizon), metres from the
+/// observer. The Moon where the light that reaches the observer at `time` passed it
+/// (its heliocentric place a light time, about 1.3 s, earlier: 40 km along the Earth's
+/// orbit, some 20 arcseconds, the aberration of the Sun's light), the Sun at rest at its
+/// centre. What the Moon's shadow on and over the observer is made from.
+struct SunAndMoonInHorizon {
+  glm::dvec3 sunM{0.0}, moonM{0.0};
+  double sunRadiusM = 0.0, moonRadiusM = 0.0;
+};
+SunAndMoonInHorizon sunAndMoonInHorizon(UtcTime time, const Observer& observer);
+
 /// describeMoon for a scene with the Moon (its preset) and a time, seen from the camera's
 /// observer when it stands on the Earth, else from the Earth's centre; nothing otherwise.
 std::optional<std::string> describeMoonOf(const Scene& scene);

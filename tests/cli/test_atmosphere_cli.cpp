@@ -213,3 +213,78 @@ TEST(AtmosphereSkyCli, BadInputIsOneLineAndLeavesNoFile) {
   }
   EXPECT_EQ(dir.fileCount(), 0);
 }
+
+// ---- umbra atmosphere eclipse-sky --------------------------------------------------------
+
+namespace {
+// NASA's greatest eclipse of 2017-08-21 (18:25:30 UT, 36 58.0' N, 87 40.3' W); few paths.
+std::vector<std::string> eclipseSkyArgs(const std::string& csv) {
+  return {"atmosphere", "eclipse-sky", "--preset", "earth-bruneton", "--time", "2017-08-21T18:25:30Z",
+          "--observer", "36.9667,-87.6717", "--paths", "4000", "--step-deg", "10", "--csv", csv};
+}
+}  // namespace
+
+TEST(AtmosphereEclipseSkyCli, TotalityAtTheGreatestEclipseOf2017) {
+  TempDir dir;
+  std::vector<std::string> args = eclipseSkyArgs(dir / "sky.csv");
+  args.insert(args.end(), {"--plot-vertical", dir / "v.svg", "--plot-almucantar", dir / "a.svg"});
+  const RunResult r = run(UMBRA_EXE, args);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("Sun 63.90 deg up"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0.0000 of its disc's light visible"), std::string::npos) << r.out;
+  std::ifstream f(dir / "sky.csv");
+  std::string header, line;
+  std::getline(f, header);
+  EXPECT_EQ(header,
+            "curve,position_deg,view_zenith_deg,view_azimuth_deg,luminance_cd_m2,luminance_se_cd_m2,r,g,b,"
+            "clear_luminance_cd_m2,radiance_680nm,se_680nm,radiance_550nm,se_550nm,radiance_440nm,se_440nm");
+  int vertical = 0, almucantar = 0;
+  double zenith = -1.0, zenithClear = -1.0, horizon = 0.0;
+  while (std::getline(f, line)) {
+    std::stringstream s(line);
+    std::string curve, cell;
+    std::getline(s, curve, ',');
+    std::vector<double> v;
+    while (std::getline(s, cell, ',')) v.push_back(std::stod(cell));
+    ASSERT_EQ(v.size(), 15u) << line;
+    for (double x : v) EXPECT_TRUE(std::isfinite(x)) << line;
+    if (curve == "vertical") {
+      ++vertical;
+      if (v[0] == 0.0) zenith = v[3], zenithClear = v[8];
+      if (std::abs(v[0]) == 80.0) horizon = std::max(horizon, v[3]);
+    } else {
+      EXPECT_EQ(curve, "almucantar");
+      EXPECT_NEAR(v[1], 90.0 - 63.9, 0.05);  // at the Sun's altitude
+      ++almucantar;
+    }
+  }
+  EXPECT_EQ(vertical, 19);    // -90..90 by 10
+  EXPECT_EQ(almucantar, 36);  // 0..350 by 10
+  // Totality: the zenith 3 to 4 orders of magnitude below the sky without the Moon, and
+  // darker than the sky 10 deg above the horizon.
+  EXPECT_GT(zenithClear / zenith, 1e3);
+  EXPECT_LT(zenithClear / zenith, 3e4);
+  EXPECT_GT(horizon, 3.0 * zenith);
+  EXPECT_EQ(readAll(dir / "v.svg").substr(0, 4), "<svg");
+  EXPECT_EQ(readAll(dir / "a.svg").substr(0, 4), "<svg");
+  EXPECT_EQ(dir.fileCount(), 3);
+}
+
+TEST(AtmosphereEclipseSkyCli, BadInputIsOneLineAndLeavesNoFile) {
+  TempDir dir;
+  const auto with = [&](int index, const std::string& value) {
+    std::vector<std::string> a = eclipseSkyArgs(dir / "a.csv");
+    a[static_cast<std::size_t>(index)] = value;
+    return a;
+  };
+  expectOneLineError(run(UMBRA_EXE, with(5, "2017-13-21T18:25:30Z")));   // the time
+  expectOneLineError(run(UMBRA_EXE, with(7, "95,0")));                   // the latitude
+  expectOneLineError(run(UMBRA_EXE, with(7, "36.9,-87.6,70km")));        // above half the atmosphere
+  expectOneLineError(run(UMBRA_EXE, with(9, "0")));                      // --paths
+  expectOneLineError(run(UMBRA_EXE, with(11, "45")));                    // --step-deg
+  expectOneLineError(run(UMBRA_EXE, with(13, dir / "missing-dir/a.csv")));
+  std::vector<std::string> badPlot = eclipseSkyArgs(dir / "b.csv");
+  badPlot.insert(badPlot.end(), {"--plot-vertical", dir / "b.pdf"});
+  expectOneLineError(run(UMBRA_EXE, badPlot));
+  EXPECT_EQ(dir.fileCount(), 0);
+}

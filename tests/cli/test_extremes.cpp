@@ -218,6 +218,10 @@ const std::vector<Command>& commands() {
        {{"--time", t}, {"--dem", "@/dem.tif"}, {"--body-radius", "1737.4km"}, {"--lat-deg", "-89.5"}, {"--lon-deg", "10"}, {"--spacing", "30m"}}},
       {{"sweep"}, {sourcePath("examples/sweeps/moon-in-totality-quick.json"), "--csv", "@/s.csv"},
        {{"--plot", "@/s.svg"}}},
+      {{"atmosphere", "eclipse-sky"},
+       {"--preset", "earth-bruneton", "--time", "2017-08-21T18:25:30Z", "--observer", "36.97,-87.67", "--paths", "20",
+        "--step-deg", "30", "--csv", "@/e.csv"},
+       {{"--wavelengths", "3"}, {"--seed", "1"}, {"--plot-vertical", "@/v.svg"}, {"--plot-almucantar", "@/a.svg"}}},
   };
   return list;
 }
@@ -368,6 +372,7 @@ TEST(Extremes, AtmosphereRefraction) { sweepCommand(commands()[7]); }
 TEST(Extremes, AtmosphereSky) { sweepCommand(commands()[8]); }
 TEST(Extremes, TerrainShadow) { sweepCommand(commands()[9]); }
 TEST(Extremes, Sweep) { sweepCommand(commands()[10]); }
+TEST(Extremes, AtmosphereEclipseSky) { sweepCommand(commands()[11]); }
 
 // Every number of a sweep file at the extremes.
 TEST(Extremes, SweepFields) {
