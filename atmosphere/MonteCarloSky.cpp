@@ -12,6 +12,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 
 namespace umbra::atmosphere {
@@ -334,6 +335,7 @@ MonteCarloSky monteCarloSkyRadiance(const Atmosphere& atmosphere, const glm::dve
   std::vector<double> sums(static_cast<std::size_t>(tasks)), squares(static_cast<std::size_t>(tasks));
   std::atomic<std::int64_t> done{0};
   std::atomic<bool> cancelled{false};
+  std::mutex progressLock;
   ParallelErrors errors;
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
@@ -354,8 +356,12 @@ MonteCarloSky monteCarloSkyRadiance(const Atmosphere& atmosphere, const glm::dve
       sums[static_cast<std::size_t>(task)] = s;
       squares[static_cast<std::size_t>(task)] = s2;
       const std::int64_t finished = ++done;
-      if (progress && omp_get_thread_num() == 0 && !progress(static_cast<double>(finished) / tasks))
-        cancelled = true;
+      // One report at a time, from whichever thread finished (a busy lock skips a report).
+      if (progress && progressLock.try_lock()) {
+        const bool goOn = progress(static_cast<double>(finished) / static_cast<double>(tasks));
+        progressLock.unlock();
+        if (!goOn) cancelled = true;
+      }
     });
   }
   errors.rethrow();

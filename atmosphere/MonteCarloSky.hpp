@@ -70,7 +70,8 @@ struct MonteCarloSky {
   double seconds = 0.0;                        ///< wall-clock time of the whole computation
 };
 
-/// Called with the fraction done; false stops the run (MonteCarloCancelled is thrown).
+/// Called with the fraction done, from any of the run's threads but one call at a time;
+/// false stops the run (MonteCarloCancelled is thrown).
 using MonteCarloProgress = std::function<bool(double)>;
 
 struct MonteCarloCancelled : std::runtime_error {

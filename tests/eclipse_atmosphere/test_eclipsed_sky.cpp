@@ -173,14 +173,16 @@ TEST(EclipsedSky, PartialPhasesDimTheSkyAsTheSunAtTheObserver) {
           ratio[k * 2 + w] = partial.directions[k].radiance[w] / clear.directions[k].radiance[w] / f;
           std::printf("offset %.0f km %s (visible %.4f), view %zu, %.0f nm: sky ratio / visible fraction %.3f\n",
                       offsetKm, across ? "across" : "along", f, k, atm.wavelengthsNm[w], ratio[k * 2 + w]);
-          if (f > 0.05 || k == 0)
+          if (f > 0.05 || k == 0) {
             EXPECT_NEAR(ratio[k * 2 + w], 1.0, f > 0.05 || across ? 0.05 : 0.1) << offsetKm << " " << k << " " << w;
+          }
         }
-      if (f < 0.05 && across)
+      if (f < 0.05 && across) {
         for (std::size_t w = 0; w < 2; ++w) {
           EXPECT_GT(ratio[2 * 2 + w], 1.1);  // away from the axis
           EXPECT_LT(ratio[1 * 2 + w], 1.0);  // towards it
         }
+      }
     }
 }
 
