@@ -40,7 +40,6 @@
 namespace umbra::render {
 namespace {
 
-constexpr double kAuM = 1.495978707e11;
 constexpr double kPi = 3.14159265358979323846;
 
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -478,7 +477,7 @@ vtkShaderProgram* readyQuad(vtkOpenGLRenderWindow* window, std::unique_ptr<vtkOp
     std::string fs = vtkOpenGLRenderUtilities::GetFullScreenQuadFragmentShaderTemplate();
     std::string decl = std::string(moonCode ? "#define UMBRA_MOON_LIGHT\n" : "") +
                        (cloudCode ? std::string("#define UMBRA_CLOUDS\n") + sky::kCloudsGlsl + "\n" : std::string()) +
-                       atmosphere::kAtmosphereGlsl + "\n" + glsl::kAtmosphereComposite + "\n";
+                       atmosphere::kAtmosphereGlsl + "\n" + glsl::kSunDisc + "\n" + glsl::kAtmosphereComposite + "\n";
     if (limbCode) decl += std::string(glsl::kLimbRing) + "\n";
     vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Decl", decl + "//VTK::FSQ::Decl");
     vtkShaderProgram::Substitute(fs, "//VTK::FSQ::Impl",
@@ -515,7 +514,7 @@ void AtmosphereRendering::Impl::setUniforms(vtkShaderProgram* p, const FrameView
 
   setVec3(p, "umbraSunDirection", f.toSun / f.dSun);
   p->SetUniformf("umbraSunAngularRadius", static_cast<float>(std::asin(std::min(1.0, sun.radiusM / f.dSun))));
-  p->SetUniformf("umbraSolarIrradiance", static_cast<float>(sun.irradianceAt1AuWm2 * (kAuM / f.dSun) * (kAuM / f.dSun)));
+  p->SetUniformf("umbraSolarIrradiance", static_cast<float>(sun.irradianceAtWm2(f.dSun)));
   p->SetUniformf("umbraLimbDarkening", static_cast<float>(limbDarkening));
   const glm::dvec3 toMoon = moonPositionM - centre;
   setVec3(p, "umbraMoonDirection", glm::length(toMoon) > 0.0 ? glm::normalize(toMoon) : glm::dvec3(0.0, 0.0, 1.0));

@@ -2,6 +2,8 @@
 
 #include "vtkUmbraRenderPass.h"
 
+#include "SolarDisc.hpp"
+
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkImageData.h>
@@ -135,6 +137,7 @@ void BodyView::SetBodies(const SunLight& sun, const std::vector<SphereBody>& bod
   m.shading.SetShadowLut(shadowLut);  // validates before it changes anything
   m.shading.SetSun(sun);
   m.atmosphere.SetSun(sun);
+  m.stars.SetSun(sun, eclipse::kDefaultLimbDarkening);
 
   m.shading.ClearReceivers();
   for (BodyProp& p : m.bodies) m.renderer->RemoveActor(p.actor);
@@ -210,6 +213,7 @@ void BodyView::SetCamera(const ViewCamera& c) {
   cam->SetClippingRange(m.nearM, m.farM);
   m.shading.SetOrigin(c.positionM);
   m.atmosphere.SetOrigin(c.positionM);
+  m.stars.SetOrigin(c.positionM);
 }
 
 const ViewCamera& BodyView::GetCamera() const { return impl_->camera; }

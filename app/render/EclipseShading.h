@@ -48,6 +48,11 @@ struct SunLight {
   glm::dvec3 positionM{0.0};
   double radiusM = 6.957e8;
   double irradianceAt1AuWm2 = 1361.0;
+  /// The irradiance at `distanceM` from the Sun's centre (the inverse square of it in au).
+  double irradianceAtWm2(double distanceM) const {
+    const double au = distanceM / 149597870700.0;
+    return irradianceAt1AuWm2 / (au * au);
+  }
 };
 
 struct SphereBody {

@@ -41,6 +41,11 @@ struct StarRendering::Impl {
   double milkyWayScale = 0.0;
   vtkSmartPointer<vtkTextureObject> milkyWayTexture;  // of milkyWay in context
   std::unique_ptr<vtkOpenGLQuadHelper> milkyWayQuad;
+  SunLight sun;
+  bool hasSun = false;
+  double limbDarkening = 0.6;
+  glm::dvec3 origin{0.0};
+  std::unique_ptr<vtkOpenGLQuadHelper> sunQuad;
 };
 
 StarRendering::StarRendering() : impl_(std::make_unique<Impl>()) {}
@@ -73,6 +78,16 @@ void StarRendering::SetMilkyWay(std::shared_ptr<const MapTexels> map, double rad
   m.milkyWayScale = radianceScale;
 }
 
+void StarRendering::SetSun(const SunLight& sun, double limbDarkening) {
+  if (!(limbDarkening >= 0.0 && limbDarkening <= 1.0))
+    throw std::invalid_argument("the Sun's limb darkening must be within [0, 1]");
+  impl_->sun = sun;
+  impl_->limbDarkening = limbDarkening;
+  impl_->hasSun = true;
+}
+
+void StarRendering::SetOrigin(const glm::dvec3& originM) { impl_->origin = originM; }
+
 namespace {
 
 // The additive blend into the frame where it holds nothing (depth 1), for this scope.
@@ -99,12 +114,32 @@ void setRayBasis(vtkShaderProgram* p, const CameraBasis& basis, int width, int h
   p->SetUniform2f("umbraViewportSize", size);
 }
 
+/// A full-screen quad at depth 1 (gl_Position.z = w: drawn where the frame holds nothing)
+/// whose fragments run `function` of StarSplat.glsl after `declarations`, bound; null when it
+/// does not compile. Its corners come from both of the helper's attributes (texCoordIn =
+/// (ndCoordIn + 1) / 2), so that neither is compiled away.
+vtkShaderProgram* readyBackgroundQuad(vtkOpenGLRenderWindow* window, std::unique_ptr<vtkOpenGLQuadHelper>& quad,
+                                      const std::string& declarations, const char* function) {
+  if (!quad) {
+    const char* vs = "//VTK::System::Dec\nin vec4 ndCoordIn;\nin vec2 texCoordIn;\n"
+                     "void main() { gl_Position = vec4(0.5 * (ndCoordIn.xy + 2.0 * texCoordIn - 1.0), 1.0, 1.0); }\n";
+    const std::string fs = "//VTK::System::Dec\n//VTK::Output::Dec\n" + declarations + "\n" + glsl::kStarSplat +
+                           "\nvoid main() { gl_FragData[0] = " + function + "(); }\n";
+    quad = std::make_unique<vtkOpenGLQuadHelper>(window, vs, fs.c_str(), "");
+  } else {
+    window->GetShaderCache()->ReadyShaderProgram(quad->Program);
+  }
+  vtkShaderProgram* p = quad->Program;
+  return p && p->GetCompiled() ? p : nullptr;
+}
+
 }  // namespace
 
-bool StarRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, int width, int height) {
+bool StarRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, int width, int height, bool withSun) {
   Impl& m = *impl_;
   vtkCamera* cam = renderer->GetActiveCamera();
-  if ((m.values.empty() && !m.milkyWay) || cam->GetParallelProjection()) return true;
+  const bool sun = withSun && m.hasSun;
+  if ((m.values.empty() && !m.milkyWay && !sun) || cam->GetParallelProjection()) return true;
   if (m.context != window) {
     ReleaseGraphicsResources(m.context);
     m.context = window;
@@ -113,6 +148,7 @@ bool StarRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, i
   // The perspective ray basis, as the atmosphere's composite takes it.
   const CameraBasis basis = cameraBasis(cam, width, height);
   if (m.milkyWay && !DrawMilkyWay(window, basis, width, height)) return false;
+  if (sun && !DrawSun(window, renderer, basis, width, height)) return false;
   if (m.values.empty()) return true;
   if (!m.program) {
     const std::string vs = std::string("//VTK::System::Dec\n#define UMBRA_STAR_VERTEX\n") + glsl::kStarSplat;
@@ -154,21 +190,9 @@ bool StarRendering::DrawMilkyWay(vtkOpenGLRenderWindow* window, const CameraBasi
     m.milkyWayTexture = mapTextureObjectOf(window, *m.milkyWay);
     if (!m.milkyWayTexture) return false;
   }
-  if (!m.milkyWayQuad) {
-    // The quad at depth 1 (gl_Position.z = w): drawn where the frame holds nothing. Its
-    // corners from both of the helper's attributes (texCoordIn = (ndCoordIn + 1) / 2), so
-    // that neither is compiled away.
-    const char* vs = "//VTK::System::Dec\nin vec4 ndCoordIn;\nin vec2 texCoordIn;\n"
-                     "void main() { gl_Position = vec4(0.5 * (ndCoordIn.xy + 2.0 * texCoordIn - 1.0), 1.0, 1.0); }\n";
-    const std::string fs = std::string("//VTK::System::Dec\n//VTK::Output::Dec\n#define UMBRA_MILKY_WAY\n") +
-                           sky::kMilkyWayGlsl + "\n" + glsl::kStarSplat +
-                           "\nvoid main() { gl_FragData[0] = umbraMilkyWay(); }\n";
-    m.milkyWayQuad = std::make_unique<vtkOpenGLQuadHelper>(window, vs, fs.c_str(), "");
-  } else {
-    window->GetShaderCache()->ReadyShaderProgram(m.milkyWayQuad->Program);
-  }
-  vtkShaderProgram* p = m.milkyWayQuad->Program;
-  if (!p || !p->GetCompiled()) return false;
+  vtkShaderProgram* p = readyBackgroundQuad(window, m.milkyWayQuad,
+                                            std::string("#define UMBRA_MILKY_WAY\n") + sky::kMilkyWayGlsl, "umbraMilkyWay");
+  if (!p) return false;
   setRayBasis(p, basis, width, height);
   m.milkyWayTexture->Activate();
   p->SetUniformi("umbraMilkyWayMap", m.milkyWayTexture->GetTextureUnit());
@@ -182,8 +206,47 @@ bool StarRendering::DrawMilkyWay(vtkOpenGLRenderWindow* window, const CameraBasi
   return true;
 }
 
+bool StarRendering::DrawSun(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, const CameraBasis& basis, int width,
+                            int height) {
+  Impl& m = *impl_;
+  glm::dvec3 position;
+  renderer->GetActiveCamera()->GetPosition(&position.x);
+  const glm::dvec3 toSun = m.sun.positionM - (m.origin + position);
+  const double distanceM = glm::length(toSun);
+  if (!(distanceM > m.sun.radiusM)) return true;  // inside the Sun: nothing to see
+  const glm::dvec3 d = toSun / distanceM;
+  const double f = glm::dot(d, basis.forward);
+  if (f <= 0.0) return true;  // behind the camera
+  // Where its centre falls (window coordinates) and how many pixels its radius spans there.
+  const glm::dvec3 x = basis.rayX(), y = basis.rayY();
+  const double ndcX = glm::dot(d, x) / glm::dot(x, x) / f, ndcY = glm::dot(d, y) / glm::dot(y, y) / f;
+  const double alpha = std::asin(std::min(1.0, m.sun.radiusM / distanceM));
+  // dir = F + ndc.x X + ndc.y Y: a pixel spans 2 |Y| / H of the image plane at distance
+  // |F| from the eye, foreshortened by f^2 = cos^2 of its angle off the axis.
+  const double pixelAngle = 2.0 * glm::length(y) / height * f * f / glm::length(basis.forward);
+  const double radiusPixels = alpha / pixelAngle;
+  if (std::abs(ndcX) > 1.0 + 2.0 * (radiusPixels + 2.0) / width ||
+      std::abs(ndcY) > 1.0 + 2.0 * (radiusPixels + 2.0) / height)
+    return true;  // off the image
+  vtkShaderProgram* p = readyBackgroundQuad(window, m.sunQuad, std::string("#define UMBRA_SUN_DISC\n") + glsl::kSunDisc,
+                                            "umbraSunDisc");
+  if (!p) return false;
+  setRayBasis(p, basis, width, height);
+  setVec3(p, "umbraSunFromCamera", d);
+  p->SetUniformf("umbraSunAngularRadius", static_cast<float>(alpha));
+  p->SetUniformf("umbraSolarIrradiance", static_cast<float>(m.sun.irradianceAtWm2(distanceM)));
+  p->SetUniformf("umbraLimbDarkening", static_cast<float>(m.limbDarkening));
+  const float pixel[2] = {static_cast<float>((0.5 * ndcX + 0.5) * width), static_cast<float>((0.5 * ndcY + 0.5) * height)};
+  p->SetUniform2f("umbraSunPixel", pixel);
+  p->SetUniformf("umbraSunRadiusPixels", static_cast<float>(radiusPixels));
+  const AddWhereEmpty add(window->GetState());
+  m.sunQuad->Render();
+  return true;
+}
+
 void StarRendering::ReleaseGraphicsResources(vtkOpenGLRenderWindow* window) {
   Impl& m = *impl_;
+  m.sunQuad = nullptr;
   if (m.milkyWayTexture) m.milkyWayTexture->ReleaseGraphicsResources(window);
   m.milkyWayTexture = nullptr;
   m.milkyWayQuad = nullptr;

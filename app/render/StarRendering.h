@@ -20,6 +20,15 @@
 // Behind them the Milky Way (SetMilkyWay, sky/MilkyWay.hpp): a full-screen quad at depth 1
 // writes the map's radiance in each empty pixel's direction (world axes are ICRS's), from a
 // mipmap level whose texel spans about the pixel's footprint.
+//
+// And the Sun (SetSun), where no atmosphere is composed over the frame (the composite
+// draws the Sun through the air itself): the same quad adds its limb-darkened disc
+// (glsl/SunDisc.glsl: Eq. 1 of the eclipse paper, mean radiance E / (pi alpha^2), white as
+// the frame's convention has it) to every empty pixel, as the pixel's mean over 4 x 4
+// subsamples; a disc less than 2 pixels in radius goes in as a star's splat of the whole
+// irradiance E. A body in front hides the part of the disc behind it, pixel by pixel.
+#include "EclipseShading.h"  // SunLight
+
 #include <glm/vec3.hpp>
 
 #include "MapTexels.h"
@@ -58,13 +67,22 @@ class StarRendering {
   /// for none. Throws std::invalid_argument for a negative or non-finite factor.
   void SetMilkyWay(std::shared_ptr<const MapTexels> map, double radianceScale);
 
-  /// Adds the stars to the bound framebuffer (the HDR frame, its depth attached) for the
-  /// renderer's camera; width x height its size. False when the program cannot be built.
-  bool Draw(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, int width, int height);
+  /// The Sun (its centre, radius and irradiance at 1 au) and its disc's linear limb
+  /// darkening; drawn by Draw when asked (withSun). Throws std::invalid_argument for a
+  /// coefficient outside [0, 1].
+  void SetSun(const SunLight& sun, double limbDarkening);
+  /// World position of the VTK scene's origin (BodyView: the camera's position).
+  void SetOrigin(const glm::dvec3& originM);
+
+  /// Adds the Milky Way, the Sun (withSun) and the stars to the bound framebuffer (the HDR
+  /// frame, its depth attached) for the renderer's camera; width x height its size. False
+  /// when a program cannot be built.
+  bool Draw(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, int width, int height, bool withSun = false);
   void ReleaseGraphicsResources(vtkOpenGLRenderWindow* window);
 
  private:
   bool DrawMilkyWay(vtkOpenGLRenderWindow* window, const CameraBasis& basis, int width, int height);
+  bool DrawSun(vtkOpenGLRenderWindow* window, vtkRenderer* renderer, const CameraBasis& basis, int width, int height);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -29,7 +29,6 @@
 namespace umbra::render {
 namespace {
 
-constexpr double kAuM = 1.495978707e11;
 constexpr int kLevels = 6;  // N' of the DP search, as terrain::ShadowOptions
 
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -101,10 +100,7 @@ struct TerrainRendering::Impl {
     disc.angularRadiusRad = std::asin(std::min(1.0, sun.radiusM / glm::length(toSun)));
     return disc;
   }
-  double irradiance() const {
-    const double dAu = glm::length(sun.positionM - tangentPointM()) / kAuM;
-    return sun.irradianceAt1AuWm2 / (dAu * dAu);
-  }
+  double irradiance() const { return sun.irradianceAtWm2(glm::length(sun.positionM - tangentPointM())); }
   void setUniforms(vtkShaderProgram& program) const {
     setTerrainShadowUniforms(program, textures, patch.field, *mip, sunDisc(), kLevels);
     const float albedo[3] = {float(patch.albedoRgb.r), float(patch.albedoRgb.g), float(patch.albedoRgb.b)};

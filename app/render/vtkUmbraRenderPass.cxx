@@ -159,7 +159,9 @@ bool vtkUmbraRenderPass::DrawScene(const vtkRenderState* s, vtkOpenGLRenderWindo
   this->MarkStage(1);
 
   // 1a. The stars behind it.
-  if (this->Stars && !this->Stars->Draw(renWin, r, w, h)) {
+  // The Sun with them where no atmosphere is composed (the composite draws it through the air).
+  const bool sunHere = !(this->Atmosphere && this->Atmosphere->HasAtmosphere());
+  if (this->Stars && !this->Stars->Draw(renWin, r, w, h, sunHere)) {
     ostate->PopFramebufferBindings();
     vtkErrorMacro("cannot draw the stars.");
     return false;

@@ -10,7 +10,8 @@
 // ReadHdrPixels (EXR output, tests).
 //
 // With stars (SetStars, StarRendering.h), they are added to the delegate's frame where it
-// holds nothing, before the atmosphere.
+// holds nothing, before the atmosphere; without an atmosphere the Sun's disc with them (the
+// atmosphere's composite draws it otherwise).
 //
 // With an atmosphere (SetAtmosphere), the frame is composed with it
 // (AtmosphereRendering::Draw) into a second float buffer between the delegate and the tone

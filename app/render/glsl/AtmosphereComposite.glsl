@@ -1,5 +1,5 @@
 // The atmosphere over the HDR frame (AtmosphereRendering, Algorithm 1 of the atmospheres
-// paper). Needs atmosphere/glsl/Atmosphere.glsl before it. Full-screen quad: texCoord in
+// paper). Needs atmosphere/glsl/Atmosphere.glsl and SunDisc.glsl before it. Full-screen quad: texCoord in
 // [0, 1]^2. Lengths in metres; every position relative to the camera (or to the ray's
 // origin for parallel views), computed in double on the CPU.
 
@@ -60,15 +60,10 @@ float umbraFrameDistance(float depth) {
   return umbraLogDepthMinM * exp2(depth * umbraLogDepthOctaves);
 }
 
-// The Sun's disc (linear limb darkening, mean radiance E / (pi alpha^2)) seen along dir.
+// The Sun's disc (SunDisc.glsl: linear limb darkening, mean radiance E / (pi alpha^2))
+// seen along dir.
 float umbraSunDisc(vec3 dir) {
-  vec3 a = normalize(dir), b = umbraSunDirection;
-  float angle = 2.0 * atan(length(a - b), length(a + b));
-  if (angle >= umbraSunAngularRadius) return 0.0;
-  float rho = angle / umbraSunAngularRadius;
-  float u = umbraLimbDarkening;
-  float profile = (1.0 - u * (1.0 - sqrt(max(1.0 - rho * rho, 0.0)))) / (1.0 - u / 3.0);
-  return profile * umbraSolarIrradiance / (3.14159265 * umbraSunAngularRadius * umbraSunAngularRadius);
+  return umbraLimbDarkenedSun(dir, umbraSunDirection, umbraSunAngularRadius, umbraSolarIrradiance, umbraLimbDarkening);
 }
 
 // The view ray's direction at ndc (perspective: through the pixel; parallel: forward,

@@ -4,6 +4,9 @@
 // the fragment stage writes E w / Omega.
 // With UMBRA_MILKY_WAY (after sky/glsl/MilkyWay.glsl), the fragment stage of a full-screen
 // quad at depth 1 instead: the Milky Way map's radiance in each empty pixel's direction.
+// With UMBRA_SUN_DISC (after SunDisc.glsl), the same quad: the Sun's disc, each pixel's
+// mean radiance over 4 x 4 subsamples, or for a disc less than 2 pixels in radius a splat
+// of the Sun's whole irradiance as a star's.
 
 uniform vec3 umbraRayForward;  // dir = F + x X + y Y at NDC (x, y)
 uniform vec3 umbraRayX;
@@ -28,7 +31,7 @@ void main() {
   umbraStarIrradianceOut = umbraStarIrradiance;
 }
 #else
-#ifndef UMBRA_MILKY_WAY
+#if !defined(UMBRA_MILKY_WAY) && !defined(UMBRA_SUN_DISC)
 flat in vec2 umbraStarPixel;
 flat in vec3 umbraStarIrradianceOut;
 #endif
@@ -54,6 +57,31 @@ vec4 umbraMilkyWay() {
   vec3 d = normalize(umbraRayForward + ndc.x * umbraRayX + ndc.y * umbraRayY);
   float lod = 0.5 * log2(umbraPixelSolidAngle(gl_FragCoord.xy)) - log2(3.14159265358979 / umbraMilkyWayRows);
   return vec4(umbraMilkyWayScale * textureLod(umbraMilkyWayMap, umbraMilkyWayCoord(d), max(lod, 0.0)).rgb, 0.0);
+}
+#elif defined(UMBRA_SUN_DISC)
+uniform vec3 umbraSunFromCamera;      // unit, world axes
+uniform float umbraSunAngularRadius;  // rad
+uniform float umbraSolarIrradiance;   // W m^-2 at the camera
+uniform float umbraLimbDarkening;
+uniform vec2 umbraSunPixel;           // window coordinates of the Sun's centre
+uniform float umbraSunRadiusPixels;   // the disc's radius in pixels, at its place
+const int umbraSunSubsamples = 4;
+
+vec4 umbraSunDisc() {
+  if (umbraSunRadiusPixels < 2.0) {
+    vec2 w = max(vec2(1.0) - abs(gl_FragCoord.xy - umbraSunPixel), vec2(0.0));
+    return vec4(vec3(umbraSolarIrradiance * w.x * w.y / umbraPixelSolidAngle(gl_FragCoord.xy)), 0.0);
+  }
+  if (length(gl_FragCoord.xy - umbraSunPixel) > umbraSunRadiusPixels + 2.0) return vec4(0.0);
+  float sum = 0.0;
+  for (int j = 0; j < umbraSunSubsamples; ++j)
+    for (int i = 0; i < umbraSunSubsamples; ++i) {
+      vec2 p = gl_FragCoord.xy + (vec2(float(i), float(j)) + vec2(0.5)) / float(umbraSunSubsamples) - vec2(0.5);
+      vec2 ndc = 2.0 * p / umbraViewportSize - vec2(1.0);
+      sum += umbraLimbDarkenedSun(umbraRayForward + ndc.x * umbraRayX + ndc.y * umbraRayY, umbraSunFromCamera,
+                                  umbraSunAngularRadius, umbraSolarIrradiance, umbraLimbDarkening);
+    }
+  return vec4(vec3(sum / float(umbraSunSubsamples * umbraSunSubsamples)), 0.0);
 }
 #else
 vec4 umbraStarSplat() {
