@@ -10,8 +10,7 @@
 //       [--umbra-km 114.7] [--paths 100000] [--image 320x180 --image-paths 64]
 #include "Atmosphere.hpp"
 #include "MonteCarloSky.hpp"
-#include "ShadowMapping.hpp"
-#include "SolarDisc.hpp"
+#include "ShadowLut.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -62,8 +61,7 @@ int main(int argc, char** argv) {
   const glm::dvec3 across = dir(sunZenithDeg * kDeg - 0.5 * kPi, 0.0);
   const glm::dvec3 moonM = observer + moonDistanceM * sunDirection + offsetKm * 1e3 * across;
   const atmosphere::SunVisibility shadow = [&](const glm::dvec3& p) {
-    return eclipse::sunVisibleFraction(p, sunM, eclipse::kSunRadiusM, moonM, kMoonRadiusM,
-                                       eclipse::kDefaultLimbDarkening, 1e-8);
+    return eclipse::eclipseFactor(p, sunM, eclipse::kSunRadiusM, {moonM, kMoonRadiusM}, nullptr).g;
   };
   std::printf("%s, 680 / 550 / 440 nm, %d threads; the Sun %.1f deg from the zenith, umbra %.1f km, Moon offset %.0f km "
               "(visible fraction at the observer %.4f)\n\n",

@@ -1,5 +1,4 @@
 #include "ShadowMapping.hpp"
-#include "SolarDisc.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -59,13 +58,6 @@ ShadowAngles shadowAngles(const glm::dvec3& p, const glm::dvec3& sun, double sun
 
 bool occluderInFront(const glm::dvec3& p, const glm::dvec3& sun, const glm::dvec3& occ) {
   return glm::length(occ - p) < glm::length(sun - p);
-}
-
-double sunVisibleFraction(const glm::dvec3& p, const glm::dvec3& sun, double sunRadiusM, const glm::dvec3& occ,
-                          double occRadiusM, double limbDarkening, double relativeTolerance) {
-  if (!occluderInFront(p, sun, occ)) return 1.0;
-  const NormalisedDiscs n = normalisedDiscs(shadowAngles(p, sun, sunRadiusM, occ, occRadiusM));
-  return visibleFractionLimbDarkened(n.occluderRadius, n.separation, limbDarkening, relativeTolerance).value;
 }
 
 LutCoords lutCoords(const ShadowAngles& a) {

@@ -63,14 +63,6 @@ ShadowAngles shadowAngles(const glm::dvec3& pointM, const glm::dvec3& sunM, doub
 bool occluderInFront(const glm::dvec3& pointM, const glm::dvec3& sunM,
                      const glm::dvec3& occluderM);
 
-/// The fraction of the limb-darkened Sun's flux (Eq. 1, coefficient `limbDarkening`) that
-/// reaches `pointM` past a spherical occluder: visibleFractionLimbDarkened of the angles
-/// seen from the point; 1 where the occluder is not in front. Positions in metres, any
-/// common origin (the Moon's shadow on the Earth's air and ground).
-double sunVisibleFraction(const glm::dvec3& pointM, const glm::dvec3& sunM, double sunRadiusM,
-                          const glm::dvec3& occluderM, double occluderRadiusM, double limbDarkening,
-                          double relativeTolerance = 1e-10);
-
 /// Eq. 4.
 LutCoords lutCoords(const ShadowAngles& angles);
 

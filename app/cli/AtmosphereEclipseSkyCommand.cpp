@@ -2,7 +2,7 @@
 //     [--plot-vertical FILE] [--plot-almucantar FILE]
 // The sky of a solar eclipse seen by an observer on the Earth: the Sun and the Moon from the
 // ephemerides (scene::sunAndMoonInHorizon), the Moon's shadow as the Sun's visible fraction
-// at every point of the air and the ground (eclipse::sunVisibleFraction), the radiance by
+// at every point of the air and the ground (eclipse::eclipseFactor, exact), the radiance by
 // the Monte-Carlo reference (atmosphere::monteCarloSkyRadiance) along the vertical through
 // the Sun and the almucantar at its altitude, beside the same sky without the Moon.
 #include "AtmosphereCommon.hpp"
@@ -12,8 +12,7 @@
 #include "ShadowCommon.hpp"  // parseObserver
 
 #include "MonteCarloSky.hpp"
-#include "ShadowMapping.hpp"
-#include "SolarDisc.hpp"
+#include "ShadowLut.hpp"
 #include "Spectrum.hpp"
 #include "scene/Moon.hpp"
 #include "scene/Time.hpp"
@@ -176,8 +175,7 @@ void addAtmosphereEclipseSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       const glm::dvec3 eye(0.0, 0.0, atm.bottomRadiusM + observer.altM);
       const glm::dvec3 sunM = eye + sky.sunM, moonM = eye + sky.moonM, toSun = glm::normalize(sky.sunM);
       const atmosphere::SunVisibility shadow = [&](const glm::dvec3& p) {
-        return eclipse::sunVisibleFraction(p, sunM, sky.sunRadiusM, moonM, sky.moonRadiusM,
-                                           eclipse::kDefaultLimbDarkening, 1e-8);
+        return eclipse::eclipseFactor(p, sunM, sky.sunRadiusM, {moonM, sky.moonRadiusM}, nullptr).g;
       };
       const double sunAltitude = std::asin(std::clamp(toSun.z, -1.0, 1.0));
       const double sunAzimuth = std::hypot(toSun.x, toSun.y) > 0.0 ? std::atan2(toSun.x, toSun.y) : 0.0;

@@ -1,11 +1,10 @@
 // The sky of a solar eclipse by the Monte-Carlo reference (atmosphere/MonteCarloSky.hpp)
-// with the Moon's shadow as the Sun's visible fraction at every point (sunVisibleFraction):
+// with the Moon's shadow as the Sun's visible fraction at every point (eclipseFactor, exact):
 // totality against what was measured (the zenith 3 to 4 orders of magnitude below the
 // uneclipsed zenith, the darkest point of the sky, the horizon brighter and redder), the
 // partial phases against the visible fraction, and the extremes.
 #include "MonteCarloSky.hpp"
-#include "ShadowMapping.hpp"
-#include "SolarDisc.hpp"
+#include "ShadowLut.hpp"
 
 #include <gtest/gtest.h>
 
@@ -38,6 +37,11 @@ struct EclipseScene {
   double visibleFractionAtObserver = 1.0;
 };
 
+/// The Sun's visible fraction at p (Eq. 1's limb-darkened disc, exact).
+double visibleFraction(const EclipseScene& s, const glm::dvec3& p) {
+  return eclipseFactor(p, s.sunM, kSunRadiusM, {s.moonM, kMoonRadiusM}, nullptr).g;
+}
+
 EclipseScene scene(const atmosphere::Atmosphere& atm, double sunZenithRad, double umbraDiameterM, double offsetM = 0.0,
                    bool offsetAcross = false) {
   EclipseScene s;
@@ -47,13 +51,13 @@ EclipseScene scene(const atmosphere::Atmosphere& atm, double sunZenithRad, doubl
   const double moonDistanceM = occluderDistanceForUmbraM(kSunDistanceM, kSunRadiusM, kMoonRadiusM, 0.5 * umbraDiameterM);
   const glm::dvec3 offset = offsetAcross ? glm::dvec3(0, 1, 0) : glm::dvec3(-std::cos(sunZenithRad), 0.0, std::sin(sunZenithRad));
   s.moonM = s.observer + moonDistanceM * s.sunDirection + offsetM * offset;
-  s.visibleFractionAtObserver = sunVisibleFraction(s.observer, s.sunM, kSunRadiusM, s.moonM, kMoonRadiusM, kDefaultLimbDarkening);
+  s.visibleFractionAtObserver = visibleFraction(s, s.observer);
   return s;
 }
 
 atmosphere::SunVisibility moonShadow(const EclipseScene& s) {
   return [s](const glm::dvec3& p) {
-    return sunVisibleFraction(p, s.sunM, kSunRadiusM, s.moonM, kMoonRadiusM, kDefaultLimbDarkening, 1e-8);
+    return visibleFraction(s, p);
   };
 }
 
@@ -64,7 +68,7 @@ TEST(EclipsedSky, TheSceneHasTheUmbraItWasBuiltFor) {
   // At the umbra's edge, across the axis, the Sun's last point shows.
   const glm::dvec3 across = glm::normalize(glm::cross(s.sunDirection, glm::dvec3(0, 1, 0)));
   const auto at = [&](double r) {
-    return sunVisibleFraction(s.observer + r * across, s.sunM, kSunRadiusM, s.moonM, kMoonRadiusM, kDefaultLimbDarkening);
+    return visibleFraction(s, s.observer + r * across);
   };
   EXPECT_EQ(at(0.5 * 114.7e3 - 50.0), 0.0);
   EXPECT_GT(at(0.5 * 114.7e3 + 50.0), 0.0);
