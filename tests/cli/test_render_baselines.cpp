@@ -139,6 +139,14 @@ TEST(RenderBaselines, PhobosInMarsShadow) {
   expectSceneMatches(cache, "phobos-in-mars-umbra-atmosphere", "phobos-in-mars-umbra-atmosphere");
 }
 
+// The Moon's shadow on Earth at the greatest eclipse of 2024-04-08: from 150 000 km over
+// it, and from 400 km up looking south at it (the umbra black, the penumbra soft).
+TEST(RenderBaselines, SolarEclipseFromSpace) {
+  TempDir cache;
+  expectSceneMatches(cache, "solar-eclipse-2024-04-08-from-space", "solar-eclipse-2024-04-08-from-space");
+  expectSceneMatches(cache, "solar-eclipse-2024-04-08-from-400km", "solar-eclipse-2024-04-08-from-400km");
+}
+
 // The terrain scene (crater field at the lunar south pole, Sun grazing the horizon).
 TEST(RenderBaselines, TerrainScene) {
   TempDir cache;

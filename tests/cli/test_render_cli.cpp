@@ -323,6 +323,40 @@ TEST(RenderCli, EarthFrom150000kmExampleShowsALitDisc) {
   }
 }
 
+// The Moon's shadow on Earth from 150 000 km over the greatest eclipse of 2024-04-08: the
+// umbra black at the image's centre, and the penumbra the view without the Moon times one
+// grey factor, the Sun's visible fraction, which dims the ground's direct light, its sky
+// light and the light its air scatters alike (with the direct light alone dimmed, the
+// umbra kept 26-37 % of the light, bluish).
+TEST(RenderCli, SolarEclipseFromSpaceHasABlackUmbraAndAGreyPenumbra) {
+  TempDir dir, withoutMoon, cache;
+  const std::string scene = UMBRA_SOURCE_DIR "/examples/scenes/solar-eclipse-2024-04-08-from-space.json";
+  std::string text = readAll(scene);
+  const std::string moon = ",\n    {\"preset\": \"Moon\"}";
+  ASSERT_NE(text.find(moon), std::string::npos);
+  text.replace(text.find(moon), moon.size(), "");
+  const std::string clearScene = withoutMoon / "clear.json";
+  std::ofstream(clearScene) << text;
+  const tables::Table eclipsed = renderExr(dir, scene, "64x64", {}, &cache);
+  const tables::Table clear = renderExr(withoutMoon, clearScene, "64x64", {}, &cache);
+  const glm::dvec3 centre = pixel(eclipsed, 32, 32), centreClear = pixel(clear, 32, 32);
+  for (int c = 0; c < 3; ++c) EXPECT_LT(centre[c], 1e-3 * centreClear[c]) << c;
+  int penumbra = 0;
+  double worst = 0.0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const glm::dvec3 e = pixel(eclipsed, x, y), c = pixel(clear, x, y);
+      const glm::dvec3 ratio = e / c;
+      if (!(ratio.g > 0.1 && ratio.g < 0.9)) continue;
+      ++penumbra;
+      worst = std::max({worst, std::abs(ratio.r - ratio.g), std::abs(ratio.b - ratio.g)});
+    }
+  std::printf("centre %.3g of the view without the Moon; %d penumbra pixels, R, G, B ratios within %.2g\n",
+              centre.g / centreClear.g, penumbra, worst);
+  EXPECT_GT(penumbra, 1000);
+  EXPECT_LT(worst, 0.01);
+}
+
 TEST(RenderCli, UnknownAtmosphereNamesTheFileAndField) {
   TempDir dir;
   const std::string scene = dir / "bad.json";

@@ -97,13 +97,7 @@ std::vector<float> renderPhobos(const SceneInputs& in, vtkImageData* airless,
   useSharedDisplay(view.GetRenderWindow());
   view.SetBodies(in.sun, in.bodies, airless);
   if (atmosphere) atmosphere(view.GetShading());
-  view.SetCamera(in.camera);
-  view.SetExposureEV(0.0);
-  view.Render();
-  std::vector<float> hdr;
-  int w = 0, h = 0;
-  view.ReadHdr(hdr, w, h);
-  return hdr;
+  return renderHdr(view, in.camera);
 }
 
 vtkSmartPointer<vtkImageData> airlessLut(const std::optional<eclipse::LutRange>& range) {

@@ -15,6 +15,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace umbra::render::test {
 
@@ -34,6 +35,18 @@ void useSharedDisplay(vtkRenderWindow* window);
 /// giving each one's RGB in 0..1 (clamped), and returns its path.
 std::string writeRgbPng(int width, int height, const std::function<glm::dvec3(int, int)>& texel,
                         const std::string& name);
+
+/// `view` rendered from `camera` at exposure 0: its linear radiance, 3 floats a pixel, row 0
+/// at the top (BodyView::ReadHdr).
+inline std::vector<float> renderHdr(BodyView& view, const ViewCamera& camera) {
+  view.SetCamera(camera);
+  view.SetExposureEV(0.0);
+  view.Render();
+  std::vector<float> hdr;
+  int w = 0, h = 0;
+  view.ReadHdr(hdr, w, h);
+  return hdr;
+}
 
 /// The 64x64 airless LuT of the tests (built once).
 inline const eclipse::ShadowLut& testLut() {

@@ -42,14 +42,9 @@ AgreementStats compareWithCpu(const SunLight& sun, const std::vector<SphereBody>
     light->SetLightTypeToHeadlight();
     view.GetRenderer()->AddLight(light);
   }
-  view.SetCamera(camera);
-  view.SetExposureEV(0.0);
-  view.Render();
-  std::vector<float> hdr;
-  int w = 0, h = 0;
-  view.ReadHdr(hdr, w, h);
-  EXPECT_EQ(w, size);
-  EXPECT_EQ(h, size);
+  const std::vector<float> hdr = renderHdr(view, camera);
+  const int w = size, h = size;
+  EXPECT_EQ(hdr.size(), 3u * static_cast<std::size_t>(w) * h);
 
   std::vector<eclipse::Occluder> occluders;
   for (const SphereBody& b : bodies) {

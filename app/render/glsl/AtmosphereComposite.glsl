@@ -425,8 +425,15 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
     float muSg = dot(normalize(y), umbraSunDirection);
     float rg = umbraAtmBottom;
     // The eclipse shadow of other bodies on the ground (EclipseShading lit the planet's
-    // pixel as its uniform albedo / pi E_sun cos i times that factor): it dims the direct
-    // sunlight. The ground's own albedo is that one, or its map's.
+    // pixel as its uniform albedo / pi E_sun cos i times that factor, the Sun's visible
+    // fraction there): it dims the direct sunlight, the sky's light on the ground and the
+    // light the air scatters along the ray, all lit by the same partly hidden Sun. (The
+    // Monte-Carlo sky of atmosphere/MonteCarloSky.hpp: the sky in the penumbra is the
+    // uneclipsed one times the visible fraction within 5 % up to 89 % obscuration; the
+    // column of air over a point shares its shadow to the penumbra's gradient over the
+    // column's height. Inside the umbra this leaves the ground and its air black, where
+    // light scattered in from the sunlit air around gives 1e-3 to 1e-4 of day.) The
+    // ground's own albedo is that one, or its map's.
     vec3 albedo = umbraGroundAlbedoAt(y, t0 + dEnd);
     vec3 eclipse = vec3(1.0);
     vec3 unshadowed = umbraGroundAlbedo * (0.31830988618 * umbraSolarIrradiance * muSg);
@@ -437,8 +444,8 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
 #else
     vec2 clouds = vec2(1.0);
 #endif
-    vec3 E = clouds.x * eclipse * umbraAtmDirectIrradiance(rg, muSg) + clouds.y * umbraAtmIndirectIrradiance(rg, muSg);
-    vec3 raw = T * albedo * 0.31830988618 * E + S;
+    vec3 E = eclipse * (clouds.x * umbraAtmDirectIrradiance(rg, muSg) + clouds.y * umbraAtmIndirectIrradiance(rg, muSg));
+    vec3 raw = T * albedo * 0.31830988618 * E + eclipse * S;
     vec3 moonRaw = moonS;
 #ifdef UMBRA_MOON_LIGHT
     float muMg = dot(normalize(y), umbraMoonDirection);
