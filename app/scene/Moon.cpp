@@ -136,14 +136,19 @@ std::string describeMoon(const MoonNumbers& m) {
   return text;
 }
 
+glm::dvec3 moonSeenFromM(UtcTime time, const glm::dvec3& observerM) {
+  const double lightTimeS = glm::length(heliocentricPositionM("Moon", time) - observerM) / ERFA_CMPS;
+  return heliocentricPositionM("Moon", addSeconds(time, -lightTimeS));
+}
+
 SunAndMoonInHorizon sunAndMoonInHorizon(UtcTime time, const Observer& observer) {
   if (observer.body != "Earth")
     throw std::invalid_argument("the Sun and the Moon in the horizon are for an observer on the Earth, not on '" +
                                 observer.body + "'");
   const Body earth = presetBody("Earth", time), sun = presetBody("Sun", time);
   const glm::dvec3 eyeM = observerPositionM(earth, observer, time);
-  const double lightTimeS = glm::length(heliocentricPositionM("Moon", time) - eyeM) / ERFA_CMPS;
-  const Body moon = presetBody("Moon", addSeconds(time, -lightTimeS));
+  Body moon = presetBody("Moon", time);
+  moon.positionM = moonSeenFromM(time, eyeM);
   const glm::dvec3 east = horizontalDirection(earth, observer, {90.0, 0.0}, time);
   const glm::dvec3 north = horizontalDirection(earth, observer, {0.0, 0.0}, time);
   const glm::dvec3 up = horizontalDirection(earth, observer, {0.0, 90.0}, time);

@@ -40,12 +40,17 @@ struct MoonNumbers {
 /// std::invalid_argument otherwise) or from the Earth's centre.
 MoonNumbers moonNumbers(UtcTime time, const std::optional<Observer>& observer);
 
+/// Where the Moon was (heliocentric, metres, ICRS axes) when the light that reaches
+/// `observerM` (heliocentric) at `time` passed it: its place one light time earlier (about
+/// 1.3 s from the Earth: some 40 km along the Earth's orbit, the 20 arcseconds of the
+/// aberration of the Sun's light). With the Sun at rest at the origin, the Moon's shadow at
+/// `observerM` is cast by the Moon there.
+glm::dvec3 moonSeenFromM(UtcTime time, const glm::dvec3& observerM);
+
 /// The Sun and the Moon seen from an observer on the Earth at an instant, in the
 /// observer's horizon frame: x east, y north, z up (the geodetic horizon), metres from the
-/// observer. The Moon where the light that reaches the observer at `time` passed it
-/// (its heliocentric place a light time, about 1.3 s, earlier: 40 km along the Earth's
-/// orbit, some 20 arcseconds, the aberration of the Sun's light), the Sun at rest at its
-/// centre. What the Moon's shadow on and over the observer is made from.
+/// observer. The Moon as moonSeenFromM places it, the Sun at rest at its centre. What the
+/// Moon's shadow on and over the observer is made from.
 struct SunAndMoonInHorizon {
   glm::dvec3 sunM{0.0}, moonM{0.0};
   double sunRadiusM = 0.0, moonRadiusM = 0.0;
