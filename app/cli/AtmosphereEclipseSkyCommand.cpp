@@ -272,9 +272,11 @@ void addAtmosphereEclipseSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       const std::size_t zenith = static_cast<std::size_t>(half);
       std::printf("%s: Sun %.2f deg up at azimuth %.2f deg, %.4f of its disc's light visible\n", where,
                   sunAltitude / kDeg, (sunAzimuth < 0.0 ? sunAzimuth + 2.0 * kPi : sunAzimuth) / kDeg, visible);
-      std::printf("zenith luminance %.4g +- %.2g cd/m^2 (without the Moon %.4g cd/m^2: %.3g times brighter)\n",
-                  colours[zenith].luminance, colours[zenith].luminanceError, clearColours[zenith].luminance,
-                  clearColours[zenith].luminance / std::max(colours[zenith].luminance, 1e-300));
+      const Colour& z = colours[zenith];
+      const double zClear = clearColours[zenith].luminance;
+      std::printf("zenith luminance %.4g +- %.2g cd/m^2 (without the Moon %.4g cd/m^2", z.luminance, z.luminanceError, zClear);
+      if (z.luminance > 0.0) std::printf(": %.3g times brighter", zClear / z.luminance);
+      std::printf(")\n");
       std::cout << "wrote " << o->csv << (o->plotVertical.empty() ? "" : ", " + o->plotVertical)
                 << (o->plotAlmucantar.empty() ? "" : ", " + o->plotAlmucantar) << " (" << atm.name << ", "
                 << rows.size() << " directions x " << set.size() << " wavelengths x " << o->paths << " paths, twice: "

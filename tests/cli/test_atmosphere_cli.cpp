@@ -288,3 +288,42 @@ TEST(AtmosphereEclipseSkyCli, BadInputIsOneLineAndLeavesNoFile) {
   expectOneLineError(run(UMBRA_EXE, badPlot));
   EXPECT_EQ(dir.fileCount(), 0);
 }
+
+// The extremes: the annular eclipse of 2023-10-14 at its greatest (11 22' N, 83 06' W: the
+// ring of the Sun left, a tenth of its light), the hybrid one of 2023-04-20 at its greatest
+// (9 36' S, 125 48' E: total, the umbra 49 km wide), and the North Pole during the partial
+// eclipse of 2026-08-12, the South Pole in its night then: finite skies, no error.
+TEST(AtmosphereEclipseSkyCli, ExtremesGiveFiniteSkies) {
+  struct Case {
+    const char *time, *observer;
+    double visibleMin, visibleMax;
+  };
+  for (const Case& c : {Case{"2023-10-14T17:59:39Z", "11.37,-83.10", 0.02, 0.2},
+                        Case{"2023-04-20T04:16:49Z", "-9.60,125.80", 0.0, 0.0},
+                        Case{"2026-08-12T17:46:00Z", "90,0", 0.05, 0.95}, Case{"2026-08-12T17:46:00Z", "-90,0", 0.0, 1.0}}) {
+    TempDir dir;
+    std::vector<std::string> args = eclipseSkyArgs(dir / "sky.csv");
+    args[5] = c.time;
+    args[7] = c.observer;
+    args[9] = "300";
+    args[11] = "30";
+    const RunResult r = run(UMBRA_EXE, args);
+    ASSERT_EQ(r.exitCode, 0) << c.time << " " << c.observer << ": " << r.err;
+    const std::size_t at = r.out.find(" of its disc's light visible");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    const double visible = std::stod(r.out.substr(r.out.rfind(", ", at) + 2));
+    EXPECT_GE(visible, c.visibleMin) << c.time << " " << c.observer;
+    EXPECT_LE(visible, c.visibleMax) << c.time << " " << c.observer;
+    std::ifstream f(dir / "sky.csv");
+    std::string line;
+    std::getline(f, line);
+    int rows = 0;
+    while (std::getline(f, line)) {
+      ++rows;
+      std::stringstream s(line.substr(line.find(',') + 1));
+      std::string cell;
+      while (std::getline(s, cell, ',')) EXPECT_TRUE(std::isfinite(std::stod(cell))) << line;
+    }
+    EXPECT_EQ(rows, 7 + 12);
+  }
+}
