@@ -644,6 +644,8 @@ void MainWindow::refresh() {
   QString text = qs(s.name) + " | " + (s.hasTime ? qs(scene::formatUtc(s.time)) : QString("no time"));
   if (const std::optional<double> sun = scene::sunElevationDeg(s))
     text += " | " + qs(scene::describeSunElevation(*sun));
+  if (const std::optional<double> visible = scene::sunVisibleFractionAtCamera(s))
+    text += " | " + qs(scene::describeSunVisible(*visible));
   if (const std::optional<std::string> moon = scene::describeMoonOf(s)) text += " | " + qs(*moon);
   if (this->shadow.valid) {
     text += " | " + qs(this->shadow.receiver) + " " + km(this->shadow.offsetM) + " from " + qs(this->shadow.occluder) +

@@ -4,6 +4,8 @@
 #include "JsonErrors.hpp"  // readJsonFileText
 #include "scene/Ephemeris.hpp"
 
+#include "ShadowLut.hpp"
+
 #include <GeographicLib/Geocentric.hpp>
 
 #include <algorithm>
@@ -142,6 +144,27 @@ std::optional<double> sunElevationDeg(const Scene& scene) {
   const glm::dvec3 up = horizontalDirection(*body, *scene.camera.observer, {0.0, 90.0}, scene.time);
   const glm::dvec3 toSun = glm::normalize(scene.sun().positionM - scene.camera.positionM);
   return std::asin(std::clamp(glm::dot(up, toSun), -1.0, 1.0)) / kDeg;
+}
+
+std::optional<double> sunVisibleFractionAtCamera(const Scene& scene) {
+  const Body& sun = scene.sun();
+  const std::string own = scene.camera.observer ? scene.camera.observer->body : std::string();
+  double least = 1.0;
+  for (const Body& b : scene.bodies) {
+    if (b.isSun() || b.name == own) continue;
+    const glm::dvec3 f = eclipse::eclipseFactor(scene.camera.positionM, sun.positionM, sun.radiusM,
+                                                {b.positionM, b.radiusM}, nullptr);
+    least = std::min(least, f.g);
+  }
+  if (!(least < 1.0)) return std::nullopt;
+  return least;
+}
+
+std::string describeSunVisible(double fraction) {
+  if (!(fraction > 0.0)) return "Sun hidden";
+  char text[48];
+  std::snprintf(text, sizeof text, "Sun %.1f %% visible", 100.0 * fraction);
+  return text;
 }
 
 bool nightAtCamera(const Scene& scene) {

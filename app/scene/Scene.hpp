@@ -156,6 +156,14 @@ glm::dvec3 observerPositionM(const Body& body, const Observer& observer, UtcTime
 /// The Sun's centre above the geodetic horizon of the camera's observer, degrees (geometric:
 /// no refraction; negative below it); nothing without an observer.
 std::optional<double> sunElevationDeg(const Scene& scene);
+/// The share of the Sun's light (Eq. 1's limb-darkened disc, eclipse::eclipseFactor
+/// computed exactly) that reaches the camera past the scene's bodies in front of the Sun
+/// (the least over them: exact for one occluder), the camera's own body left out; nothing
+/// when no body covers any of the Sun. The GUI's status line shows it.
+std::optional<double> sunVisibleFractionAtCamera(const Scene& scene);
+/// "Sun 37.2 % visible" (one decimal), or "Sun hidden" at 0.
+std::string describeSunVisible(double fraction);
+
 /// Whether the camera's observer has the Sun's centre below the geometric horizon: a night
 /// scene, which `umbra render` shows as the eye sees it in a PNG (night vision and glare).
 /// False without an observer.

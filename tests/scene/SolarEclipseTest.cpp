@@ -5,6 +5,7 @@
 // the path, from the exact visible fraction (eclipse::eclipseFactor).
 #include "scene/Ephemeris.hpp"
 #include "scene/Moon.hpp"
+#include "scene/Scene.hpp"
 
 #include "ShadowLut.hpp"
 #include "SolarDisc.hpp"
@@ -104,4 +105,19 @@ TEST(SolarEclipse2017, TheUmbrasWidthAcrossThePathIsNasas) {
   std::printf("  shadow over the ground at %.3f km/s; the umbra %.2f km wide across the path (NASA 114.7)\n",
               along / 20.0 / 1000.0, width);
   EXPECT_NEAR(width, 114.7, 0.02 * 114.7);
+}
+
+// The example scene from 400 km over the 2024-04-08 eclipse: the camera is in the
+// penumbra, north of the umbra; three hours later, past the eclipse, the Sun shows whole.
+TEST(SolarEclipse2024, TheSunsVisibleFractionAtTheCamera) {
+  Scene s = loadScene(UMBRA_SOURCE_DIR "/examples/scenes/solar-eclipse-2024-04-08-from-400km.json");
+  const std::optional<double> f = sunVisibleFractionAtCamera(s);
+  ASSERT_TRUE(f.has_value());
+  EXPECT_GT(*f, 0.001);
+  EXPECT_LT(*f, 0.3);
+  std::printf("  %s\n", describeSunVisible(*f).c_str());
+  EXPECT_NE(describeSunVisible(*f).find("% visible"), std::string::npos);
+  EXPECT_EQ(describeSunVisible(0.0), "Sun hidden");
+  setTime(s, addSeconds(s.time, 3.0 * 3600.0));
+  EXPECT_FALSE(sunVisibleFractionAtCamera(s).has_value());
 }
