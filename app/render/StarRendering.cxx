@@ -225,8 +225,8 @@ bool StarRendering::DrawSun(vtkOpenGLRenderWindow* window, vtkRenderer* renderer
   // |F| from the eye, foreshortened by f^2 = cos^2 of its angle off the axis.
   const double pixelAngle = 2.0 * glm::length(y) / height * f * f / glm::length(basis.forward);
   const double radiusPixels = alpha / pixelAngle;
-  if (std::abs(ndcX) > 1.0 + 2.0 * (radiusPixels + 2.0) / width ||
-      std::abs(ndcY) > 1.0 + 2.0 * (radiusPixels + 2.0) / height)
+  const double reachPixels = 16.0 * radiusPixels + 2.0;  // the corona's, as glsl/StarSplat.glsl draws it
+  if (std::abs(ndcX) > 1.0 + 2.0 * reachPixels / width || std::abs(ndcY) > 1.0 + 2.0 * reachPixels / height)
     return true;  // off the image
   vtkShaderProgram* p = readyBackgroundQuad(window, m.sunQuad, std::string("#define UMBRA_SUN_DISC\n") + glsl::kSunDisc,
                                             "umbraSunDisc");

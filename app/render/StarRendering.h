@@ -26,7 +26,9 @@
 // (glsl/SunDisc.glsl: Eq. 1 of the eclipse paper, mean radiance E / (pi alpha^2), white as
 // the frame's convention has it) to every empty pixel, as the pixel's mean over 4 x 4
 // subsamples; a disc less than 2 pixels in radius goes in as a star's splat of the whole
-// irradiance E. A body in front hides the part of the disc behind it, pixel by pixel.
+// irradiance E. Around the disc, out to 16 solar radii, its corona (sky/Corona.hpp:
+// Baumbach's K + F profile, 1e-6 of the disc's radiance and less), seen where the Moon or
+// another body covers the disc. A body in front hides what is behind it, pixel by pixel.
 #include "EclipseShading.h"  // SunLight
 
 #include <glm/vec3.hpp>

@@ -5,6 +5,7 @@
 // smaller than two pixels keeps its irradiance and its place.
 #include "RenderTestSupport.hpp"
 
+#include "Corona.hpp"
 #include "SolarDisc.hpp"
 
 #include <glm/geometric.hpp>
@@ -139,4 +140,32 @@ TEST(SunRender, NoSunBehindTheCamera) {
   ViewCamera camera = cameraOnTheSun(kAu, 30.0);
   camera.targetM = camera.positionM - glm::dvec3(1.0, 0.0, 0.0);
   EXPECT_EQ(renderSun(view, camera).irradiance, 0.0);
+}
+
+TEST(SunRender, TheCoronaAroundAHiddenDiscIsBaumbachs) {
+  // A dark sphere hides the disc whole (1.05 times its angular radius, centred), 1 au out:
+  // around it the corona at 1.5, 2 and 3 solar radii against sky/Corona.hpp times the
+  // disc's mean radiance E / (pi alpha^2).
+  BodyView view(kSize, kSize, true);
+  useSharedDisplay(view.GetRenderWindow());
+  const ViewCamera camera = cameraOnTheSun(kAu, 2.0);
+  const double alpha = std::asin(SunLight{}.radiusM / kAu);
+  const double bodyDistanceM = 1.0e9;
+  const SphereBody body{"Blocker", camera.positionM + glm::dvec3(bodyDistanceM, 0.0, 0.0),
+                        bodyDistanceM * std::tan(1.05 * alpha), {0.0, 0.0, 0.0}};
+  const SunImage image = renderSun(view, camera, {body});
+  const double mean = 1361.0 / (kPi * alpha * alpha);
+  const double pixelRad = 2.0 * std::tan(1.0 * kPi / 180.0) / kSize;  // at the centre
+  for (double rho : {1.5, 2.0, 3.0}) {
+    // The pixel whose centre lies nearest rho solar radii right of the Sun's centre.
+    const int i = static_cast<int>(std::lround(0.5 * kSize - 0.5 + std::tan(rho * alpha) / pixelRad));
+    const double x = (i + 0.5 - 0.5 * kSize) * pixelRad;
+    const double rhoAt = std::atan(x) / alpha;
+    const float* p = &image.rgb[(static_cast<std::size_t>(kSize / 2) * kSize + i) * 3];
+    const double expected = mean * sky::coronaRelativeRadiance(rhoAt);
+    std::printf("corona at %.3f solar radii: %.4e W m^-2 sr^-1 (Baumbach %.4e)\n", rhoAt, p[1], expected);
+    EXPECT_NEAR(p[1], expected, 0.02 * expected) << rho;
+  }
+  const float* centre = &image.rgb[(static_cast<std::size_t>(kSize / 2) * kSize + kSize / 2) * 3];
+  EXPECT_EQ(centre[1], 0.0f);  // the body
 }

@@ -4,9 +4,10 @@
 // the fragment stage writes E w / Omega.
 // With UMBRA_MILKY_WAY (after sky/glsl/MilkyWay.glsl), the fragment stage of a full-screen
 // quad at depth 1 instead: the Milky Way map's radiance in each empty pixel's direction.
-// With UMBRA_SUN_DISC (after SunDisc.glsl), the same quad: the Sun's disc, each pixel's
-// mean radiance over 4 x 4 subsamples, or for a disc less than 2 pixels in radius a splat
-// of the Sun's whole irradiance as a star's.
+// With UMBRA_SUN_DISC (after SunDisc.glsl), the same quad: the Sun's disc and its corona
+// out to 16 solar radii, each pixel's mean radiance over 4 x 4 subsamples near the disc (the
+// corona at the pixel's centre beyond), or for a disc less than 2 pixels in radius a splat
+// of the Sun's whole irradiance as a star's (no corona).
 
 uniform vec3 umbraRayForward;  // dir = F + x X + y Y at NDC (x, y)
 uniform vec3 umbraRayX;
@@ -66,20 +67,28 @@ uniform float umbraLimbDarkening;
 uniform vec2 umbraSunPixel;           // window coordinates of the Sun's centre
 uniform float umbraSunRadiusPixels;   // the disc's radius in pixels, at its place
 const int umbraSunSubsamples = 4;
+const float umbraSunCoronaRadii = 16.0;  // the corona drawn out to 16 solar radii (5e-11 of the disc there)
 
 vec4 umbraSunDisc() {
   if (umbraSunRadiusPixels < 2.0) {
     vec2 w = max(vec2(1.0) - abs(gl_FragCoord.xy - umbraSunPixel), vec2(0.0));
     return vec4(vec3(umbraSolarIrradiance * w.x * w.y / umbraPixelSolidAngle(gl_FragCoord.xy)), 0.0);
   }
-  if (length(gl_FragCoord.xy - umbraSunPixel) > umbraSunRadiusPixels + 2.0) return vec4(0.0);
+  float d = length(gl_FragCoord.xy - umbraSunPixel);
+  if (d > umbraSunCoronaRadii * umbraSunRadiusPixels + 2.0) return vec4(0.0);
+  if (d > umbraSunRadiusPixels + 2.0) {  // the corona alone, smooth over a pixel
+    vec2 ndc = 2.0 * gl_FragCoord.xy / umbraViewportSize - vec2(1.0);
+    return vec4(vec3(umbraCorona(umbraRayForward + ndc.x * umbraRayX + ndc.y * umbraRayY, umbraSunFromCamera,
+                                 umbraSunAngularRadius, umbraSolarIrradiance)), 0.0);
+  }
   float sum = 0.0;
   for (int j = 0; j < umbraSunSubsamples; ++j)
     for (int i = 0; i < umbraSunSubsamples; ++i) {
       vec2 p = gl_FragCoord.xy + (vec2(float(i), float(j)) + vec2(0.5)) / float(umbraSunSubsamples) - vec2(0.5);
       vec2 ndc = 2.0 * p / umbraViewportSize - vec2(1.0);
-      sum += umbraLimbDarkenedSun(umbraRayForward + ndc.x * umbraRayX + ndc.y * umbraRayY, umbraSunFromCamera,
-                                  umbraSunAngularRadius, umbraSolarIrradiance, umbraLimbDarkening);
+      vec3 dir = umbraRayForward + ndc.x * umbraRayX + ndc.y * umbraRayY;
+      sum += umbraLimbDarkenedSun(dir, umbraSunFromCamera, umbraSunAngularRadius, umbraSolarIrradiance, umbraLimbDarkening) +
+             umbraCorona(dir, umbraSunFromCamera, umbraSunAngularRadius, umbraSolarIrradiance);
     }
   return vec4(vec3(sum / float(umbraSunSubsamples * umbraSunSubsamples)), 0.0);
 }
