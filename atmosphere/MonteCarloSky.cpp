@@ -196,6 +196,7 @@ public:
           pick -= share;
           if (pick < 0.0) break;
         }
+        if (c == nc) break;  // (sigmaS > 0 leaves one: not reached)
         double q = 0.0;
         const double cosTheta = ch.samplers[c].sample(rng.next(), rng.next(), q);
         if (!(q > 0.0)) break;
