@@ -78,9 +78,21 @@ glm::dvec3 heliocentricPositionM(const std::string& body, UtcTime time) {
     eraMoon98(tt1, tt2, pv); // geocentric, GCRS-aligned
     return earthHeliocentricM(tt1, tt2) + auToM(pv[0]);
   }
+  return planetHeliocentricPositionM("Mars", time);
+}
+
+glm::dvec3 planetHeliocentricPositionM(const std::string& planet, UtcTime time) {
+  // eraPlan94's numbering; 3 is the Earth-Moon barycentre, not offered.
+  const char* const names[] = {"Mercury", "Venus", "", "Mars", "Jupiter", "Saturn", "Uranus", "Neptune"};
+  int number = 0;
+  for (int k = 0; k < 8; ++k)
+    if (planet == names[k] && k != 2) number = k + 1;
+  if (number == 0) throw std::invalid_argument("no planetary theory for '" + planet + "'");
+  double tt1 = 0.0, tt2 = 0.0;  // ERFA wants TDB; TT is within 2 ms of it
+  toTt(time, tt1, tt2);
   double pv[2][3];
-  if (eraPlan94(tt1, tt2, 4, pv) < 0) // heliocentric, J2000 equatorial
-    throw std::invalid_argument("Mars ephemeris failed at this date");
+  if (eraPlan94(tt1, tt2, number, pv) < 0)  // heliocentric, J2000 equatorial
+    throw std::invalid_argument(planet + " ephemeris failed at this date");
   return auToM(pv[0]);
 }
 

@@ -18,6 +18,12 @@ bool hasEphemeris(const std::string& body);
 /// eraMoon98), Mars (eraPlan94). Throws std::invalid_argument for other bodies.
 glm::dvec3 heliocentricPositionM(const std::string& body, UtcTime time);
 
+/// The planets' heliocentric positions in metres (ICRS axes) from ERFA's eraPlan94 (Simon
+/// et al. 1994: a few arcseconds over 1800-2050 for the inner planets, some tens for the
+/// outer ones): "Mercury", "Venus", "Mars", "Jupiter", "Saturn", "Uranus", "Neptune".
+/// Throws std::invalid_argument for other names.
+glm::dvec3 planetHeliocentricPositionM(const std::string& planet, UtcTime time);
+
 /// "" at times the ephemerides are made for, else a note that positions degrade there:
 /// ERFA's Earth ephemeris (eraEpv00, which the Moon's and every heliocentric place go
 /// through) is fitted to 1900-2100; outside, it still gives positions, less exact.

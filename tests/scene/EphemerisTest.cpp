@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 using namespace umbra::scene;
@@ -185,4 +186,29 @@ TEST(Ephemeris, SunFromBodyGivesDeclinationHourAngleAndDistance) {
     EXPECT_LT(std::abs(declinationDeg(sunFromBody("Moon", parseUtc(time)))), 1.6) << time;
   EXPECT_THROW(sunFromBody("Sun", parseUtc("2024-01-01T00:00Z")), std::invalid_argument);
   EXPECT_THROW(sunFromBody("Phobos", parseUtc("2024-01-01T00:00Z")), std::invalid_argument);
+}
+
+// Meeus, Astronomical Algorithms (2nd ed.), example 32.a: Venus on 1992-12-20 at 0h TD,
+// heliocentric on the mean ecliptic and equinox of date (VSOP87): L = 26.11428 deg,
+// B = -2.62070 deg, R = 0.724603 au. eraPlan94 rotated to that ecliptic (eraEcm06) agrees
+// within its documented few arcseconds.
+TEST(Ephemeris, VenusAgainstMeeus32a) {
+  const UtcTime t = fromTt(2448976.5, 0.0);
+  const glm::dvec3 p = planetHeliocentricPositionM("Venus", t) / kAuM;
+  double rm[3][3];
+  eraEcm06(2448976.5, 0.0, rm);
+  const glm::dvec3 e(rm[0][0] * p.x + rm[0][1] * p.y + rm[0][2] * p.z, rm[1][0] * p.x + rm[1][1] * p.y + rm[1][2] * p.z,
+                     rm[2][0] * p.x + rm[2][1] * p.y + rm[2][2] * p.z);
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  double L = std::atan2(e.y, e.x) / kDeg;
+  if (L < 0.0) L += 360.0;
+  const double B = std::atan2(e.z, std::hypot(e.x, e.y)) / kDeg, R = glm::length(e);
+  std::printf("  Venus L %.5f deg, B %.5f deg, R %.6f au\n", L, B, R);
+  EXPECT_NEAR(L, 26.11428, 5.0 / 3600.0);
+  EXPECT_NEAR(B, -2.62070, 5.0 / 3600.0);
+  EXPECT_NEAR(R, 0.724603, 2e-6);
+  EXPECT_THROW(planetHeliocentricPositionM("Pluto", t), std::invalid_argument);
+  EXPECT_THROW(planetHeliocentricPositionM("", t), std::invalid_argument);
+  // Mars through both routes.
+  EXPECT_EQ(planetHeliocentricPositionM("Mars", t), heliocentricPositionM("Mars", t));
 }
