@@ -225,7 +225,7 @@ bool StarRendering::DrawSun(vtkOpenGLRenderWindow* window, vtkRenderer* renderer
   // |F| from the eye, foreshortened by f^2 = cos^2 of its angle off the axis.
   const double pixelAngle = 2.0 * glm::length(y) / height * f * f / glm::length(basis.forward);
   const double radiusPixels = alpha / pixelAngle;
-  const double reachPixels = 16.0 * radiusPixels + 2.0;  // the corona's, as glsl/StarSplat.glsl draws it
+  const double reachPixels = kSunCoronaReachSolarRadii * radiusPixels + 2.0;  // the corona's
   if (std::abs(ndcX) > 1.0 + 2.0 * reachPixels / width || std::abs(ndcY) > 1.0 + 2.0 * reachPixels / height)
     return true;  // off the image
   vtkShaderProgram* p = readyBackgroundQuad(window, m.sunQuad, std::string("#define UMBRA_SUN_DISC\n") + glsl::kSunDisc,
@@ -239,6 +239,7 @@ bool StarRendering::DrawSun(vtkOpenGLRenderWindow* window, vtkRenderer* renderer
   const float pixel[2] = {static_cast<float>((0.5 * ndcX + 0.5) * width), static_cast<float>((0.5 * ndcY + 0.5) * height)};
   p->SetUniform2f("umbraSunPixel", pixel);
   p->SetUniformf("umbraSunRadiusPixels", static_cast<float>(radiusPixels));
+  p->SetUniformf("umbraSunCoronaRadii", static_cast<float>(kSunCoronaReachSolarRadii));
   const AddWhereEmpty add(window->GetState());
   m.sunQuad->Render();
   return true;

@@ -26,7 +26,7 @@
 // (glsl/SunDisc.glsl: Eq. 1 of the eclipse paper, mean radiance E / (pi alpha^2), white as
 // the frame's convention has it) to every empty pixel, as the pixel's mean over 4 x 4
 // subsamples; a disc less than 2 pixels in radius goes in as a star's splat of the whole
-// irradiance E. Around the disc, out to 16 solar radii, its corona (sky/Corona.hpp:
+// irradiance E. Around the disc, out to kSunCoronaReachSolarRadii, its corona (sky/Corona.hpp:
 // Baumbach's K + F profile, 1e-6 of the disc's radiance and less), seen where the Moon or
 // another body covers the disc. A body in front hides what is behind it, pixel by pixel.
 #include "EclipseShading.h"  // SunLight
@@ -44,6 +44,10 @@ class vtkRenderer;
 namespace umbra::render {
 
 struct CameraBasis;
+
+/// How far from the Sun's centre its corona is drawn, in solar radii: 16, where Baumbach's
+/// profile is 5e-11 of the disc's mean radiance.
+inline constexpr double kSunCoronaReachSolarRadii = 16.0;
 
 /// A star to draw: its apparent direction (unit, world axes) and its irradiance above any
 /// atmosphere (linear sRGB, W m^-2, white-balanced to the Sun).

@@ -5,7 +5,7 @@
 // With UMBRA_MILKY_WAY (after sky/glsl/MilkyWay.glsl), the fragment stage of a full-screen
 // quad at depth 1 instead: the Milky Way map's radiance in each empty pixel's direction.
 // With UMBRA_SUN_DISC (after SunDisc.glsl), the same quad: the Sun's disc and its corona
-// out to 16 solar radii, each pixel's mean radiance over 4 x 4 subsamples near the disc (the
+// out to kSunCoronaReachSolarRadii (StarRendering.h), each pixel's mean radiance over 4 x 4 subsamples near the disc (the
 // corona at the pixel's centre beyond), or for a disc less than 2 pixels in radius a splat
 // of the Sun's whole irradiance as a star's (no corona).
 
@@ -67,7 +67,7 @@ uniform float umbraLimbDarkening;
 uniform vec2 umbraSunPixel;           // window coordinates of the Sun's centre
 uniform float umbraSunRadiusPixels;   // the disc's radius in pixels, at its place
 const int umbraSunSubsamples = 4;
-const float umbraSunCoronaRadii = 16.0;  // the corona drawn out to 16 solar radii (5e-11 of the disc there)
+uniform float umbraSunCoronaRadii;    // the corona drawn out to this many solar radii (StarRendering.h)
 
 vec4 umbraSunDisc() {
   if (umbraSunRadiusPixels < 2.0) {
