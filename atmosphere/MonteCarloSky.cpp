@@ -139,7 +139,6 @@ double distanceToSphereFromOutside(const glm::dvec3& x, const glm::dvec3& d, dou
 
 /// One wavelength's optics and the state shared by its paths.
 struct Channel {
-  std::size_t wavelength = 0;
   double majorant = 0.0;
   std::vector<double> extinction;   ///< per component, at relative density 1
   std::vector<double> scattering;   ///< per component
@@ -316,7 +315,6 @@ MonteCarloSky monteCarloSkyRadiance(const Atmosphere& atmosphere, const glm::dve
   std::vector<Channel> channels(nw);
   for (std::size_t w = 0; w < nw; ++w) {
     Channel& ch = channels[w];
-    ch.wavelength = w;
     ch.majorant = std::max(majorants[w], 1e-30);
     ch.groundAlbedo = w < atmosphere.groundAlbedo.size() ? atmosphere.groundAlbedo[w] : 0.0;
     for (const Component& c : atmosphere.components) {
