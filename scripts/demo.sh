@@ -11,7 +11,11 @@
 #      eruption (refracted and scattered light in the umbra, R/G/B, log scale) as CSV and PNG,
 #   6. renders the sky around the Moon in a 40 degree field at the partial phase and at
 #      totality: the moonlit air hides the fainter stars, then the stars of kstars-data's
-#      catalogue come out as the Moon's light goes.
+#      catalogue come out as the Moon's light goes,
+#   7. renders the totality of the solar eclipse of 2027-08-02 from Luxor, Egypt: the sky of
+#      the Moon's umbra (dark overhead, the horizon orange all round), the corona round the
+#      Moon, the ground lit by that sky; and plots that sky's radiance along the vertical
+#      through the Sun and the almucantar (the quadrature, CSV and PNG).
 #   The atmosphere tables and the atmospheric shadow LuT are computed once (about a minute
 #   on 2 cores) and cached.
 # Output goes to out/ (or the folder given as the first argument).
@@ -44,12 +48,21 @@ echo "== the sky around the Moon, partial phase (01:30Z) and totality (02:47Z)"
 sky=examples/scenes/lunar-eclipse-2015-09-28-sky.json
 "${xvfb[@]}" "$umbra" render "$sky" --time 2015-09-28T01:30:00Z --output "$out/lunar-eclipse-2015-09-28-sky-partial.png"
 "${xvfb[@]}" "$umbra" render "$sky" --time 2015-09-28T02:47:00Z --output "$out/lunar-eclipse-2015-09-28-sky-totality.png"
+echo "== totality of the solar eclipse of 2027-08-02 from Luxor, and its sky along the vertical and the almucantar"
+"${xvfb[@]}" "$umbra" render examples/scenes/solar-eclipse-2027-08-02-luxor.json \
+  --output "$out/solar-eclipse-2027-08-02-luxor.png"
+"$umbra" atmosphere eclipse-sky --preset earth --time 2027-08-02T10:06:00Z --observer 25.6872,32.6396,80 \
+  --method fast --csv "$out/solar-eclipse-2027-08-02-luxor-sky.csv" \
+  --plot-vertical "$out/solar-eclipse-2027-08-02-luxor-vertical.png" \
+  --plot-almucantar "$out/solar-eclipse-2027-08-02-luxor-almucantar.png"
 
 echo
 echo "Files written:"
 for f in lunar-eclipse-2015-09-28-totality.png lunar-eclipse-2015-09-28-partial.png earth-shadow-lut.exr \
   earth-shadow-at-moon.csv earth-shadow-at-moon.png earth-shadow-at-moon-atmosphere.csv \
   earth-shadow-at-moon-atmosphere.png lunar-eclipse-2015-09-28-sky-partial.png \
-  lunar-eclipse-2015-09-28-sky-totality.png; do
+  lunar-eclipse-2015-09-28-sky-totality.png solar-eclipse-2027-08-02-luxor.png \
+  solar-eclipse-2027-08-02-luxor-sky.csv solar-eclipse-2027-08-02-luxor-vertical.png \
+  solar-eclipse-2027-08-02-luxor-almucantar.png; do
   echo "  $(cd "$out" && pwd)/$f"
 done

@@ -2,17 +2,21 @@
 //     [--plot-vertical FILE] [--plot-almucantar FILE]
 // The sky of a solar eclipse seen by an observer on the Earth: the Sun and the Moon from the
 // ephemerides (scene::sunAndMoonInHorizon), the Moon's shadow as the Sun's visible fraction
-// at every point of the air and the ground (eclipse::eclipseFactor, exact), the radiance by
-// the Monte-Carlo reference (atmosphere::monteCarloSkyRadiance) along the vertical through
-// the Sun and the almucantar at its altitude, beside the same sky without the Moon.
+// at every point of the air and the ground (eclipse::eclipseFactor: exact for the reference,
+// from a shadow LuT over the scene's distances for the quadrature), the radiance by the
+// Monte-Carlo reference (atmosphere::monteCarloSkyRadiance) or the quadrature
+// (atmosphere::eclipsedSkyRadiance, --method fast) along the vertical through the Sun and
+// the almucantar at its altitude, beside the same sky without the Moon.
 #include "AtmosphereCommon.hpp"
 #include "Commands.hpp"
 #include "OutputFile.hpp"
 #include "ProfileExport.hpp"
 #include "ShadowCommon.hpp"  // parseObserver
 
+#include "EclipsedSky.hpp"
 #include "MonteCarloSky.hpp"
 #include "ShadowLut.hpp"
+#include "Sky.hpp"
 #include "Spectrum.hpp"
 #include "scene/Moon.hpp"
 #include "scene/Time.hpp"
@@ -62,7 +66,12 @@ Colour colourOf(const atmosphere::WavelengthSet& set, const std::vector<double>&
   Colour c;
   c.luminance = atmosphere::luminanceCdM2(set, radiance);
   c.rgb = atmosphere::spectralRadianceToLinearSrgb(set, radiance);
-  // The wavelengths' paths are drawn independently: their errors add in quadrature.
+  // The wavelengths' paths are drawn independently: their errors add in quadrature. No
+  // errors (the quadrature): none.
+  if (error.empty()) {
+    c.luminanceError = NAN;
+    return c;
+  }
   double variance = 0.0;
   for (std::size_t i = 0; i < set.size(); ++i) {
     std::vector<double> unit(set.size(), 0.0);
@@ -118,7 +127,7 @@ void addAtmosphereEclipseSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       "luminance and colour along the vertical through the Sun and the almucantar at its altitude, with and without "
       "the Moon");
   struct Options {
-    std::string preset, config, time, observer, csv, plotVertical, plotAlmucantar;
+    std::string preset, config, time, observer, csv, plotVertical, plotAlmucantar, method = "reference";
     int wavelengths = 3;
     std::int64_t paths = 20000;
     std::uint64_t seed = 1;
@@ -137,11 +146,18 @@ void addAtmosphereEclipseSkyCommand(CLI::App& atmosphereCmd, Action& action) {
                   "Monte-Carlo paths per direction and wavelength (the standard error falls as 1/sqrt: "
                   "docs/accuracy-vs-speed.md, \"The sky of a solar eclipse\")")
       ->capture_default_str();
+  cmd->add_option("--method", o->method,
+                  "reference: Monte-Carlo, every order, with its standard error; fast: the quadrature (single and "
+                  "second order exact, higher orders from a light field around the observer; its error against the "
+                  "reference in docs/accuracy-vs-speed.md)")
+      ->check(CLI::IsMember({"reference", "fast"}))
+      ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Random seed (the same seed, the same numbers)")->capture_default_str();
   cmd->add_option("--step-deg", o->stepDeg, "Step along both curves in degrees (0.1-30)")->capture_default_str();
   cmd->add_option("--csv", o->csv,
                   "CSV file to write: curve,position_deg,view_zenith_deg,view_azimuth_deg,luminance_cd_m2,"
-                  "luminance_se_cd_m2,r,g,b,clear_luminance_cd_m2, then radiance_NNNnm,se_NNNnm per wavelength "
+                  "luminance_se_cd_m2,r,g,b,clear_luminance_cd_m2, then radiance_NNNnm,se_NNNnm per wavelength (the standard "
+                  "errors empty with --method fast) "
                   "[W m^-2 sr^-1 nm^-1]")
       ->required();
   cmd->add_option("--plot-vertical", o->plotVertical, "Plot of the vertical through the Sun (.png or .svg)");
@@ -196,17 +212,50 @@ void addAtmosphereEclipseSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       std::vector<glm::dvec3> directions;
       for (const Row& r : rows) directions.push_back(r.direction);
 
-      atmosphere::MonteCarloSkyOptions mc;
-      mc.paths = o->paths;
-      mc.seed = o->seed;
-      atmosphere::MonteCarloSky eclipsed, clear;
-      {
+      const bool fast = o->method == "fast";
+      // Per direction: radiance and standard error per unit solar irradiance (the quadrature
+      // has no statistical error: empty).
+      std::vector<atmosphere::MonteCarloRadiance> eclipsed, clear;
+      double seconds = 0.0;
+      if (!fast) {
+        atmosphere::MonteCarloSkyOptions mc;
+        mc.paths = o->paths;
+        mc.seed = o->seed;
         ProgressLine progress("eclipsed sky (Monte-Carlo)");
-        eclipsed = atmosphere::monteCarloSkyRadiance(atm, eye, directions, toSun, shadow, mc,
-                                                     [&](double f) { progress.update(0.5 * f); return true; });
-        clear = atmosphere::monteCarloSkyRadiance(atm, eye, directions, toSun, {}, mc,
-                                                  [&](double f) { progress.update(0.5 + 0.5 * f); return true; });
+        const atmosphere::MonteCarloSky e = atmosphere::monteCarloSkyRadiance(
+            atm, eye, directions, toSun, shadow, mc, [&](double f) { progress.update(0.5 * f); return true; });
+        const atmosphere::MonteCarloSky c = atmosphere::monteCarloSkyRadiance(
+            atm, eye, directions, toSun, {}, mc, [&](double f) { progress.update(0.5 + 0.5 * f); return true; });
         progress.update(1.0);
+        eclipsed = e.directions, clear = c.directions, seconds = e.seconds + c.seconds;
+      } else {
+        // The Sun's transmittance from the sky's tables (one order: the transmittance is all
+        // the quadrature reads); the Moon's shadow from an airless LuT over the distances
+        // from the Moon of the air within 3000 km of the observer.
+        const atmosphere::AtmosphereTables tables =
+            atmosphere::precompute(atm, atmosphere::skyPrecomputeOptions(atm, 1, 0.5 * kPi - sunAltitude));
+        const double moonDistance = glm::length(sky.moonM);
+        const eclipse::SunOccluderSystem system{sky.sunRadiusM, sky.moonRadiusM, glm::length(sunM - moonM)};
+        const eclipse::LutRange range =
+            eclipse::lutRangeForDistances(system, std::max(0.5 * moonDistance, moonDistance - 3e6), moonDistance + 3e6, true);
+        eclipse::ShadowLutParams lp;
+        lp.uMin = range.uMin, lp.uMax = range.uMax, lp.vMin = range.vMin, lp.vMax = range.vMax;
+        lp.vLowFraction = range.vLowFraction;
+        const eclipse::ShadowLut lut = eclipse::buildAirlessShadowLut(lp);
+        const atmosphere::SunVisibility tabulated = [&](const glm::dvec3& p) {
+          return eclipse::eclipseFactor(p, sunM, sky.sunRadiusM, {moonM, sky.moonRadiusM}, &lut).g;
+        };
+        ProgressLine progress("eclipsed sky (quadrature)");
+        const atmosphere::EclipsedSky e = atmosphere::eclipsedSkyRadiance(
+            tables, atm, eye, directions, toSun, tabulated, {}, [&](double f) { progress.update(0.5 * f); return true; });
+        const atmosphere::EclipsedSky c = atmosphere::eclipsedSkyRadiance(
+            tables, atm, eye, directions, toSun, {}, {}, [&](double f) { progress.update(0.5 + 0.5 * f); return true; });
+        progress.update(1.0);
+        for (std::size_t i = 0; i < directions.size(); ++i) {
+          eclipsed.push_back({e.radiance[i], {}});
+          clear.push_back({c.radiance[i], {}});
+        }
+        seconds = e.seconds + c.seconds;
       }
 
       // Per unit solar irradiance to W m^-2 sr^-1 nm^-1: the Sun's spectrum at its distance.
@@ -220,8 +269,8 @@ void addAtmosphereEclipseSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       };
       std::vector<Colour> colours, clearColours;
       for (std::size_t i = 0; i < rows.size(); ++i) {
-        colours.push_back(colourOf(set, spectral(eclipsed.directions[i].radiance), spectral(eclipsed.directions[i].standardError)));
-        clearColours.push_back(colourOf(set, spectral(clear.directions[i].radiance), spectral(clear.directions[i].standardError)));
+        colours.push_back(colourOf(set, spectral(eclipsed[i].radiance), spectral(eclipsed[i].standardError)));
+        clearColours.push_back(colourOf(set, spectral(clear[i].radiance), spectral(clear[i].standardError)));
       }
 
       output::OutputFile out(o->csv);
@@ -237,15 +286,20 @@ void addAtmosphereEclipseSkyCommand(CLI::App& atmosphereCmd, Action& action) {
           double azimuth = std::atan2(d.x, d.y) / kDeg;
           if (azimuth < 0.0) azimuth += 360.0;
           const Colour& c = colours[i];
-          std::snprintf(line, sizeof line, "%s,%.4f,%.4f,%.4f,%.6g,%.3g,%.6g,%.6g,%.6g,%.6g", rows[i].curve.c_str(),
+          // (an empty standard error: the quadrature's, which has none)
+          const auto error = [](double e) {
+            char text[32] = "";
+            if (std::isfinite(e)) std::snprintf(text, sizeof text, "%.3g", e);
+            return std::string(text);
+          };
+          std::snprintf(line, sizeof line, "%s,%.4f,%.4f,%.4f,%.6g,%s,%.6g,%.6g,%.6g,%.6g", rows[i].curve.c_str(),
                         rows[i].positionDeg, std::acos(std::clamp(d.z, -1.0, 1.0)) / kDeg, azimuth, c.luminance,
-                        c.luminanceError, std::max(c.rgb.r, 0.0), std::max(c.rgb.g, 0.0), std::max(c.rgb.b, 0.0),
-                        clearColours[i].luminance);
+                        error(c.luminanceError).c_str(), std::max(c.rgb.r, 0.0), std::max(c.rgb.g, 0.0),
+                        std::max(c.rgb.b, 0.0), clearColours[i].luminance);
           f << line;
-          const std::vector<double> L = spectral(eclipsed.directions[i].radiance),
-                                    se = spectral(eclipsed.directions[i].standardError);
+          const std::vector<double> L = spectral(eclipsed[i].radiance), se = spectral(eclipsed[i].standardError);
           for (std::size_t w = 0; w < L.size(); ++w) {
-            std::snprintf(line, sizeof line, ",%.6g,%.3g", L[w], se[w]);
+            std::snprintf(line, sizeof line, ",%.6g,%s", L[w], se.empty() ? "" : error(se[w]).c_str());
             f << line;
           }
           f << "\n";
@@ -258,9 +312,10 @@ void addAtmosphereEclipseSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       std::snprintf(where, sizeof where, "%s, %.4f %s %.4f %s", scene::formatUtc(time).c_str(), std::abs(observer.latDeg),
                     observer.latDeg >= 0 ? "N" : "S", std::abs(observer.lonDeg), observer.lonDeg >= 0 ? "E" : "W");
       char subtitle[200];
-      std::snprintf(subtitle, sizeof subtitle,
-                    "%s; Sun %.1f deg up, %.4f of it visible; Monte-Carlo, %lld paths a direction and wavelength",
-                    atm.name.c_str(), sunAltitude / kDeg, visible, static_cast<long long>(o->paths));
+      const std::string method = fast ? std::string("quadrature")
+                                      : "Monte-Carlo, " + std::to_string(o->paths) + " paths a direction and wavelength";
+      std::snprintf(subtitle, sizeof subtitle, "%s; Sun %.1f deg up, %.4f of it visible; %s", atm.name.c_str(),
+                    sunAltitude / kDeg, visible, method.c_str());
       if (!o->plotVertical.empty())
         writePlot(o->plotVertical, rows, colours, "vertical", std::string("The vertical through the Sun: ") + where,
                   subtitle, "zenith angle [deg] (+: towards the Sun)");
@@ -274,13 +329,17 @@ void addAtmosphereEclipseSkyCommand(CLI::App& atmosphereCmd, Action& action) {
                   sunAltitude / kDeg, (sunAzimuth < 0.0 ? sunAzimuth + 2.0 * kPi : sunAzimuth) / kDeg, visible);
       const Colour& z = colours[zenith];
       const double zClear = clearColours[zenith].luminance;
-      std::printf("zenith luminance %.4g +- %.2g cd/m^2 (without the Moon %.4g cd/m^2", z.luminance, z.luminanceError, zClear);
+      if (fast)
+        std::printf("zenith luminance %.4g cd/m^2 (without the Moon %.4g cd/m^2", z.luminance, zClear);
+      else
+        std::printf("zenith luminance %.4g +- %.2g cd/m^2 (without the Moon %.4g cd/m^2", z.luminance, z.luminanceError, zClear);
       if (z.luminance > 0.0) std::printf(": %.3g times brighter", zClear / z.luminance);
       std::printf(")\n");
       std::cout << "wrote " << o->csv << (o->plotVertical.empty() ? "" : ", " + o->plotVertical)
                 << (o->plotAlmucantar.empty() ? "" : ", " + o->plotAlmucantar) << " (" << atm.name << ", "
-                << rows.size() << " directions x " << set.size() << " wavelengths x " << o->paths << " paths, twice: "
-                << std::lround(eclipsed.seconds + clear.seconds) << " s)\n";
+                << rows.size() << " directions x " << set.size() << " wavelengths, "
+                << (fast ? std::string("quadrature") : std::to_string(o->paths) + " paths") << ", twice: "
+                << std::lround(seconds) << " s)\n";
       return 0;
     };
   });

@@ -172,6 +172,8 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
                       });
   const auto limbSize = sizeOf(this->newLimbLuminanceSource());
   atmosphere.SetLimbRingThresholdPixels(impl->ringThresholdPx);
+  // The sky of a solar eclipse at interactive rates: the quadrature's quick knobs.
+  atmosphere.SetEclipsedSkyOptions(umbra::atmosphere::draftEclipsedSkyOptions());
   impl->limb.follow(drawn ? pipeline::sceneLimbLuminanceRequest(in, limbSize[0], limbSize[1], impl->ringThresholdPx)
                           : std::nullopt,
                     [&](vtkImageData* lut) { atmosphere.SetLimbLuminance(lut); });

@@ -10,6 +10,7 @@
 #include "ShadowLutData.h"
 #include "ShadowMapping.hpp"
 #include "Spectrum.hpp"
+#include "StarRendering.h"  // kSunCoronaReachSolarRadii
 
 #include <vtkCamera.h>
 #include <vtkCompositeDataSet.h>
@@ -47,12 +48,13 @@ bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.
 /// A float texture, linear, clamped to the edges. Three-channel data go up as RGBA32F
 /// (padded): Mesa's llvmpipe samples four-channel float textures much faster than RGB32F.
 vtkSmartPointer<vtkTextureObject> floatTexture(vtkOpenGLRenderWindow* window, int w, int h, int d,
-                                               const std::vector<float>& values, int components = 3) {
+                                               const std::vector<float>& values, int components = 3,
+                                               bool repeatS = false) {
   auto t = vtkSmartPointer<vtkTextureObject>::New();
   t->SetContext(window);
   t->SetMinificationFilter(vtkTextureObject::Linear);
   t->SetMagnificationFilter(vtkTextureObject::Linear);
-  t->SetWrapS(vtkTextureObject::ClampToEdge);
+  t->SetWrapS(repeatS ? vtkTextureObject::Repeat : vtkTextureObject::ClampToEdge);
   t->SetWrapT(vtkTextureObject::ClampToEdge);
   t->SetWrapR(vtkTextureObject::ClampToEdge);
   std::vector<float> data = values;
@@ -214,6 +216,20 @@ struct AtmosphereRendering::Impl {
   std::unique_ptr<vtkOpenGLQuadHelper> variantQuads[3];
   std::unique_ptr<vtkOpenGLQuadHelper> backgroundQuad;  // umbraAtmosphereBackground
   double limbThresholdPx = 5.0;
+  // The eclipsed sky (SetEclipsingBodies): the bodies, the LuT, the knobs; the grid (per unit
+  // irradiance, table channels) for `eclipsedKey` (camera, Sun and bodies relative to the
+  // centre), its frame, its texture (a 1x1 black one when unused keeps the sampler valid).
+  std::vector<eclipse::Occluder> eclipsingBodies;
+  std::shared_ptr<const eclipse::ShadowLut> eclipsingLut;
+  atmosphere::EclipsedSkyOptions eclipsedOptions;
+  std::vector<float> eclipsedValues;
+  std::vector<double> eclipsedKey;
+  glm::dvec3 eclipsedE1{1.0, 0.0, 0.0}, eclipsedE2{0.0, 1.0, 0.0};
+  glm::dvec3 eclipsedIrradiance{0.0};  // the grid's sky on level ground, per unit irradiance
+  vtkSmartPointer<vtkTextureObject> eclipsedTexture;
+  bool eclipsedTextureStale = true, lastUsedEclipsedSky = false;
+  double cameraSunVisible = 1.0;  // the Sun's visible fraction at the camera (this frame)
+  double lastEclipsedSkySeconds = 0.0;
   double terrainMeanElevationM = 0.0;
   int lastLimbSubsamples = 1;
   double lastRingWidthPx = 0.0;
@@ -248,7 +264,24 @@ struct AtmosphereRendering::Impl {
                               : floatTexture(window, 1, 1, 1, std::vector<float>{1.0f, 1.0f, 1.0f}, 3);
     if (!groundTexture) throw std::runtime_error("cannot create the ground's albedo map texture");
     texturesStale = false;
+    uploadEclipsedSky(window);
   }
+  void uploadEclipsedSky(vtkOpenGLRenderWindow* window) {
+    const bool on = !eclipsedValues.empty();
+    eclipsedTexture = floatTexture(window, on ? kEclipsedSkyWidth : 1, on ? kEclipsedSkyHeight : 1, 1,
+                                   on ? eclipsedValues : std::vector<float>{0.0f, 0.0f, 0.0f}, 3, true);
+    eclipsedTextureStale = false;
+  }
+  /// The Sun's visible fraction at world point p past the eclipsing bodies.
+  double sunVisibleAt(const glm::dvec3& p) const {
+    double v = 1.0;
+    for (const eclipse::Occluder& b : eclipsingBodies)
+      if (glm::length(b.centreM - centre) > 1.0e3) v *= eclipse::eclipseFactor(p, sun.positionM, sun.radiusM, b, eclipsingLut.get()).g;
+    return v;
+  }
+  /// The eclipsed sky's grid for a camera at cameraWorld (inside the atmosphere): computed
+  /// again only when the camera, the Sun or a body has moved.
+  void updateEclipsedSky(const glm::dvec3& cameraWorld);
 };
 
 AtmosphereRendering::AtmosphereRendering() : impl_(std::make_unique<Impl>()) {}
@@ -293,6 +326,7 @@ void AtmosphereRendering::SetAtmosphere(const atmosphere::Atmosphere& model, atm
   m.albedo = groundAlbedoRgb;
   m.has = true;
   m.texturesStale = true;
+  m.eclipsedKey.clear();  // another atmosphere: its eclipsed sky again
 }
 
 bool AtmosphereRendering::HasAtmosphere() const { return impl_->has; }
@@ -373,6 +407,84 @@ bool AtmosphereRendering::HasRefraction() const { return !impl_->refractionValue
 
 void AtmosphereRendering::SetOrigin(const glm::dvec3& originM) { impl_->origin = originM; }
 void AtmosphereRendering::SetColourMatrix(const glm::dmat3& m) { impl_->colour = m; }
+void AtmosphereRendering::SetEclipsingBodies(const std::vector<eclipse::Occluder>& bodies,
+                                             std::shared_ptr<const eclipse::ShadowLut> lut) {
+  for (const eclipse::Occluder& b : bodies)
+    if (!finite(b.centreM) || !(b.radiusM > 0.0) || !std::isfinite(b.radiusM))
+      throw std::invalid_argument("an eclipsing body needs a finite centre and a positive radius");
+  if (!bodies.empty() && (!lut || lut->rgb.empty()))
+    throw std::invalid_argument("the eclipsing bodies need a shadow LuT with texels");
+  impl_->eclipsingBodies = bodies;
+  impl_->eclipsingLut = bodies.empty() ? nullptr : std::move(lut);
+  impl_->eclipsedKey.clear();
+}
+
+void AtmosphereRendering::SetEclipsedSkyOptions(const atmosphere::EclipsedSkyOptions& options) {
+  if (const std::string problem = options.validate(); !problem.empty())
+    throw std::invalid_argument("eclipsed sky: " + problem);
+  if (options == impl_->eclipsedOptions) return;
+  impl_->eclipsedOptions = options;
+  impl_->eclipsedKey.clear();
+}
+
+bool AtmosphereRendering::GetLastDrawUsedEclipsedSky() const { return impl_->lastUsedEclipsedSky; }
+double AtmosphereRendering::GetLastEclipsedSkySeconds() const { return impl_->lastEclipsedSkySeconds; }
+
+std::vector<glm::dvec3> AtmosphereRendering::eclipsedSkyDirections(const glm::dvec3& up, const glm::dvec3& e1) {
+  const glm::dvec3 e2 = glm::cross(up, e1);
+  std::vector<glm::dvec3> directions;
+  directions.reserve(static_cast<std::size_t>(kEclipsedSkyWidth) * kEclipsedSkyHeight);
+  for (int j = 0; j < kEclipsedSkyHeight; ++j) {
+    const double t = -1.0 + 2.0 * (j + 0.5) / kEclipsedSkyHeight;
+    const double e = 0.5 * kPi * (t < 0.0 ? -t * t : t * t);
+    for (int i = 0; i < kEclipsedSkyWidth; ++i) {
+      const double a = -kPi + 2.0 * kPi * (i + 0.5) / kEclipsedSkyWidth;
+      directions.push_back(glm::normalize(std::cos(e) * (std::cos(a) * e1 + std::sin(a) * e2) + std::sin(e) * up));
+    }
+  }
+  return directions;
+}
+
+void AtmosphereRendering::Impl::updateEclipsedSky(const glm::dvec3& cameraWorld) {
+  const glm::dvec3 camera = cameraWorld - centre, toSun = sun.positionM - centre;
+  std::vector<double> key{camera.x, camera.y, camera.z, toSun.x, toSun.y, toSun.z};
+  for (const eclipse::Occluder& b : eclipsingBodies)
+    for (double c : {b.centreM.x - centre.x, b.centreM.y - centre.y, b.centreM.z - centre.z, b.radiusM}) key.push_back(c);
+  bool same = key.size() == eclipsedKey.size();
+  for (std::size_t i = 0; same && i < key.size(); ++i) same = std::abs(key[i] - eclipsedKey[i]) <= 1.0;  // 1 m
+  lastEclipsedSkySeconds = 0.0;
+  if (same && !eclipsedValues.empty()) return;
+  const glm::dvec3 up = glm::normalize(camera), sunDirection = glm::normalize(toSun);
+  glm::dvec3 e1 = sunDirection - glm::dot(sunDirection, up) * up;
+  if (glm::length(e1) < 1e-6) e1 = glm::cross(up, std::abs(up.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0));
+  e1 = glm::normalize(e1);
+  const std::vector<glm::dvec3> directions = eclipsedSkyDirections(up, e1);
+  const glm::dvec3 c = centre;
+  const atmosphere::SunVisibility visibility = [this, c](const glm::dvec3& p) { return sunVisibleAt(p + c); };
+  const atmosphere::EclipsedSky sky =
+      atmosphere::eclipsedSkyRadiance(tables, model, camera, directions, sunDirection, visibility, eclipsedOptions);
+  eclipsedValues.assign(directions.size() * 3, 0.0f);
+  for (std::size_t k = 0; k < directions.size(); ++k)
+    for (std::size_t w = 0; w < 3; ++w) eclipsedValues[3 * k + w] = static_cast<float>(sky.radiance[k][w]);
+  // Its irradiance on level ground: sum of L sin e cos e de da over the rows above the
+  // horizon, each row's (sin^2 e_hi - sin^2 e_lo) / 2 times its azimuth step.
+  eclipsedIrradiance = glm::dvec3(0.0);
+  for (int j = kEclipsedSkyHeight / 2; j < kEclipsedSkyHeight; ++j) {
+    const auto elevation = [](double t) { return 0.5 * kPi * (t < 0.0 ? -t * t : t * t); };
+    const double lo = std::sin(elevation(std::max(0.0, -1.0 + 2.0 * j / kEclipsedSkyHeight)));
+    const double hi = std::sin(elevation(-1.0 + 2.0 * (j + 1.0) / kEclipsedSkyHeight));
+    const double weight = 0.5 * (hi * hi - lo * lo) * 2.0 * kPi / kEclipsedSkyWidth;
+    for (int i = 0; i < kEclipsedSkyWidth; ++i)
+      for (int w = 0; w < 3; ++w)
+        eclipsedIrradiance[w] += weight * sky.radiance[static_cast<std::size_t>(j) * kEclipsedSkyWidth + i][static_cast<std::size_t>(w)];
+  }
+  eclipsedE1 = e1;
+  eclipsedE2 = glm::cross(up, e1);
+  eclipsedKey = key;
+  eclipsedTextureStale = true;
+  lastEclipsedSkySeconds = sky.seconds;
+}
+
 void AtmosphereRendering::SetLimbDarkening(double u) { impl_->limbDarkening = u; }
 
 void AtmosphereRendering::SetMoonLight(const glm::dvec3& moonPositionM, const glm::dvec3& irradianceWm2) {
@@ -557,6 +669,13 @@ void AtmosphereRendering::Impl::setUniforms(vtkShaderProgram* p, const FrameView
   p->SetUniformi("umbraAtmTransmittanceTable", transmittance->GetTextureUnit());
   p->SetUniformi("umbraAtmScatteringTable", scattering->GetTextureUnit());
   p->SetUniformi("umbraAtmIrradianceTable", irradiance->GetTextureUnit());
+  p->SetUniformf("umbraSunCoronaRadii", static_cast<float>(kSunCoronaReachSolarRadii));
+  p->SetUniformf("umbraCameraSunVisible", static_cast<float>(cameraSunVisible));
+  p->SetUniformi("umbraEclipsedSkyOn", lastUsedEclipsedSky ? 1 : 0);
+  p->SetUniformi("umbraEclipsedSky", eclipsedTexture->GetTextureUnit());
+  setVec3(p, "umbraEclipsedSkyE1", eclipsedE1);
+  setVec3(p, "umbraEclipsedSkyE2", eclipsedE2);
+  setVec3(p, "umbraEclipsedSkyIrradiance", eclipsedIrradiance);
   if (lastUsedLimb) {
     // The camera's (u, v) of Eq. 4 for this occluder (its ground), in double.
     // ... as the texture coordinate through the LuT's ranges (in double: a ranged LuT may
@@ -603,7 +722,8 @@ void AtmosphereRendering::Impl::setCloudUniforms(vtkShaderProgram* p) const {
 
 void AtmosphereRendering::Impl::activate(vtkTextureObject* colour, vtkTextureObject* depth, bool on) {
   for (vtkTextureObject* texture : {colour, depth, transmittance.Get(), scattering.Get(), irradiance.Get(), refraction.Get(),
-                                    phaseTexture.Get(), groundTexture.Get(), lastUsedLimb ? limb.Get() : nullptr})
+                                    phaseTexture.Get(), groundTexture.Get(), eclipsedTexture.Get(),
+                                    lastUsedLimb ? limb.Get() : nullptr})
     if (texture) on ? texture->Activate() : texture->Deactivate();
 }
 
@@ -632,6 +752,16 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
                              ? 1
                              : static_cast<int>(std::clamp(std::ceil(limbExtentM / kLimbSubsampleSpacingM), 1.0,
                                                            double(kMaxLimbSubsamples)));
+
+  // The eclipsed sky: a camera inside the atmosphere, part of the Sun hidden from it.
+  m.lastUsedEclipsedSky = false;
+  m.lastEclipsedSkySeconds = 0.0;
+  m.cameraSunVisible = m.sunVisibleAt(f.cameraWorld);
+  if (!m.eclipsingBodies.empty() && !f.parallel && f.camRadius < t.topRadiusM && m.cameraSunVisible < kEclipsedSkyBelow) {
+    m.updateEclipsedSky(f.cameraWorld);
+    m.lastUsedEclipsedSky = true;
+  }
+  if (m.eclipsedTextureStale) m.uploadEclipsedSky(window);
 
   m.activate(colour, depth, true);
   // Every ray outside the atmosphere's rectangle on screen misses it and sees the
@@ -680,7 +810,8 @@ void AtmosphereRendering::ReleaseGraphicsResources(vtkOpenGLRenderWindow* window
       q->reset();
     }
   }
-  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.refraction, &m.phaseTexture, &m.limb, &m.groundTexture}) {
+  for (auto* t : {&m.transmittance, &m.scattering, &m.irradiance, &m.refraction, &m.phaseTexture, &m.limb, &m.groundTexture,
+                  &m.eclipsedTexture}) {
     if (*t && window) (*t)->ReleaseGraphicsResources(window);
     *t = nullptr;
   }

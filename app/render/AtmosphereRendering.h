@@ -15,9 +15,10 @@
 // planet (which EclipseShading lit without air) wherever the frame's depth lies within 1 %
 // of the ground hit (from 2 km up, the float camera matrices move grazing ground hits by
 // a few tenths of a percent). f is the eclipse factor of other bodies there, read back
-// from the frame (its colour over albedo / pi E_sun cos i; 1 where the Sun is within 3
-// degrees of the horizon or the frame shows nothing): it dims the direct sunlight, not
-// the sky light (E_ind).
+// from the frame (its colour over albedo / pi E_sun cos i; where the Sun is within 3
+// degrees of the horizon or the frame shows nothing, the Sun's visible fraction at the
+// camera past the eclipsing bodies, SetEclipsingBodies, or 1): it dims the direct
+// sunlight, the sky light (E_ind) and the air light S.
 //
 // Colour. The tables hold one channel per wavelength (680, 550, 440 nm: the R, G, B mode of
 // vtkAtmosphereTablesSource) per unit solar irradiance. The HDR frame holds linear sRGB
@@ -50,7 +51,9 @@
 #include "Clouds.hpp"
 
 #include "Atmosphere.hpp"
+#include "EclipsedSky.hpp"
 #include "Precompute.hpp"
+#include "ShadowLut.hpp"
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
@@ -180,6 +183,34 @@ class AtmosphereRendering {
   void SetGroundAlbedoMap(const std::string& path, const glm::dmat3& bodyFixedToWorld = glm::dmat3(1.0));
   void SetClouds(const std::vector<CloudLayerView>& layers, const glm::dvec3& sunFactor = glm::dvec3(1.0));
   int GetNumberOfCloudLayers() const;
+
+  /// The bodies that may hide the Sun from inside this atmosphere (a scene's bodies: the
+  /// atmosphere's own, centred within 1 km of its centre, is left out), and the airless
+  /// shadow LuT their visible fraction of the Sun is read from (the receivers' LuT). When
+  /// the camera is inside the atmosphere and they hide part of the Sun from it (a visible
+  /// fraction below kEclipsedSkyBelow), the sky (every ray that leaves the atmosphere) comes
+  /// from the eclipsed-sky quadrature (atmosphere/EclipsedSky.hpp: the Sun's visible
+  /// fraction at every point of the air, every order of scattering) on a sky-view grid of
+  /// kEclipsedSkyWidth azimuths x kEclipsedSkyHeight elevations (dense at the horizon),
+  /// computed on the CPU when the camera, the Sun or a body has moved, and looked up per
+  /// pixel; the ground and objects in the air keep the tables' light dimmed by the
+  /// eclipse at their point. No bodies: the tables' sky always (the default). Throws
+  /// std::invalid_argument for a non-finite body or a LuT without texels.
+  void SetEclipsingBodies(const std::vector<eclipse::Occluder>& bodies, std::shared_ptr<const eclipse::ShadowLut> lut);
+  static constexpr double kEclipsedSkyBelow = 0.999;
+  static constexpr int kEclipsedSkyWidth = 256, kEclipsedSkyHeight = 128;
+  /// The quadrature's knobs for that grid (default: EclipsedSkyOptions{}; draft knobs for
+  /// interactive use). Throws std::invalid_argument for invalid ones.
+  void SetEclipsedSkyOptions(const atmosphere::EclipsedSkyOptions& options);
+  /// After Draw: whether the eclipsed sky drew the sky, and the seconds its grid took when
+  /// it was computed for that frame (0 when the grid was reused or not used).
+  bool GetLastDrawUsedEclipsedSky() const;
+  double GetLastEclipsedSkySeconds() const;
+  /// The sky-view grid's directions around a camera at `up` (unit, from the planet's
+  /// centre) with `e1` the azimuths' origin (unit, horizontal): row-major, azimuth
+  /// fastest: azimuth -pi + 2 pi (i + 1/2) / W from e1 towards up x e1, elevation
+  /// (pi / 2) sign(t) t^2 with t = -1 + 2 (j + 1/2) / H. The composite's lookup inverts it.
+  static std::vector<glm::dvec3> eclipsedSkyDirections(const glm::dvec3& up, const glm::dvec3& e1);
 
   /// Limb darkening of the Sun's disc (eclipse/SolarDisc.hpp's Eq. 1 coefficient).
   void SetLimbDarkening(double u);

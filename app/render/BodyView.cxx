@@ -2,6 +2,7 @@
 
 #include "vtkUmbraRenderPass.h"
 
+#include "ShadowLutData.h"
 #include "SolarDisc.hpp"
 
 #include <vtkActor.h>
@@ -137,6 +138,9 @@ void BodyView::SetBodies(const SunLight& sun, const std::vector<SphereBody>& bod
   m.shading.SetShadowLut(shadowLut);  // validates before it changes anything
   m.shading.SetSun(sun);
   m.atmosphere.SetSun(sun);
+  std::vector<eclipse::Occluder> occluders;
+  for (const SphereBody& b : bodies) occluders.push_back({b.centreM, b.radiusM});
+  m.atmosphere.SetEclipsingBodies(occluders, std::make_shared<const eclipse::ShadowLut>(filters::fromImageData(shadowLut)));
   m.stars.SetSun(sun, eclipse::kDefaultLimbDarkening);
 
   m.shading.ClearReceivers();

@@ -270,6 +270,41 @@ TEST(AtmosphereEclipseSkyCli, TotalityAtTheGreatestEclipseOf2017) {
   EXPECT_EQ(dir.fileCount(), 3);
 }
 
+TEST(AtmosphereEclipseSkyCli, TheQuadratureGivesTheSameTotalityWithoutStandardErrors) {
+  // --method fast: the same rows, the standard-error cells empty, the zenith again 3 to 4
+  // orders of magnitude below the sky without the Moon and darker than 10 deg above the
+  // horizon (the quadrature against the reference: tests/eclipse_atmosphere).
+  TempDir dir;
+  std::vector<std::string> args = eclipseSkyArgs(dir / "sky.csv");
+  args.insert(args.end(), {"--method", "fast"});
+  const RunResult r = run(UMBRA_EXE, args);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("quadrature"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("+-"), std::string::npos) << r.out;
+  std::ifstream f(dir / "sky.csv");
+  std::string line;
+  std::getline(f, line);
+  int rows = 0;
+  double zenith = -1.0, zenithClear = -1.0, horizon = 0.0;
+  while (std::getline(f, line)) {
+    ++rows;
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    std::string cell;
+    while (std::getline(s, cell, ',')) cells.push_back(cell);
+    if (line.back() == ',') cells.emplace_back();
+    ASSERT_EQ(cells.size(), 16u) << line;
+    for (std::size_t i : {5u, 11u, 13u, 15u}) EXPECT_EQ(cells[i], "") << line;
+    for (std::size_t i : {1u, 2u, 3u, 4u, 6u, 7u, 8u, 9u, 10u, 12u, 14u}) EXPECT_TRUE(std::isfinite(std::stod(cells[i]))) << line;
+    if (cells[0] == "vertical" && std::stod(cells[1]) == 0.0) zenith = std::stod(cells[4]), zenithClear = std::stod(cells[9]);
+    if (cells[0] == "vertical" && std::abs(std::stod(cells[1])) == 80.0) horizon = std::max(horizon, std::stod(cells[4]));
+  }
+  EXPECT_EQ(rows, 19 + 36);
+  EXPECT_GT(zenithClear / zenith, 1e3);
+  EXPECT_LT(zenithClear / zenith, 3e4);
+  EXPECT_GT(horizon, 3.0 * zenith);
+}
+
 TEST(AtmosphereEclipseSkyCli, BadInputIsOneLineAndLeavesNoFile) {
   TempDir dir;
   const auto with = [&](int index, const std::string& value) {
@@ -286,6 +321,9 @@ TEST(AtmosphereEclipseSkyCli, BadInputIsOneLineAndLeavesNoFile) {
   std::vector<std::string> badPlot = eclipseSkyArgs(dir / "b.csv");
   badPlot.insert(badPlot.end(), {"--plot-vertical", dir / "b.pdf"});
   expectOneLineError(run(UMBRA_EXE, badPlot));
+  std::vector<std::string> badMethod = eclipseSkyArgs(dir / "c.csv");
+  badMethod.insert(badMethod.end(), {"--method", "exact"});
+  expectOneLineError(run(UMBRA_EXE, badMethod));
   EXPECT_EQ(dir.fileCount(), 0);
 }
 

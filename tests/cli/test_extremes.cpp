@@ -221,7 +221,8 @@ const std::vector<Command>& commands() {
       {{"atmosphere", "eclipse-sky"},
        {"--preset", "earth-bruneton", "--time", "2017-08-21T18:25:30Z", "--observer", "36.97,-87.67", "--paths", "20",
         "--step-deg", "30", "--csv", "@/e.csv"},
-       {{"--wavelengths", "3"}, {"--seed", "1"}, {"--plot-vertical", "@/v.svg"}, {"--plot-almucantar", "@/a.svg"}}},
+       {{"--wavelengths", "3"}, {"--seed", "1"}, {"--plot-vertical", "@/v.svg"}, {"--plot-almucantar", "@/a.svg"},
+        {"--method", "fast"}}},
   };
   return list;
 }

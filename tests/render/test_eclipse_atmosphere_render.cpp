@@ -6,6 +6,7 @@
 // the umbra: copper (R > G > B).
 #include "AtmosphereShadow.h"
 #include "AtmosphericShadow.hpp"
+#include "Corona.hpp"
 #include "EclipseAtmosphere.hpp"
 #include "Precompute.hpp"
 #include "SolarDisc.hpp"
@@ -392,20 +393,39 @@ TEST(EclipseAtmosphereRender, ThinRingFromTheLimbLuminanceLut) {
   ASSERT_TRUE(f.usedLut);
   EXPECT_LT(f.ringWidthPx, 1.0);
   int lit = 0;
-  glm::dvec3 sum(0.0);
+  glm::dvec3 sum(0.0), ringFlux(0.0);
   for (std::size_t k = 0; k < f.rgb.size(); ++k) ASSERT_TRUE(std::isfinite(f.rgb[k]));
+  // Off the ring the Sun's corona shows round Earth (sky/Corona.hpp, out to 16 solar radii):
+  // no brighter than its profile at the pixel's centre, grey.
+  const SunLight sunLight;
+  const double dSun = kAu + glm::length(camera), alpha = std::asin(sunLight.radiusM / dSun);
+  const double discMean = sunLight.irradianceAtWm2(dSun) / (kPi * alpha * alpha);
+  const double pixelRad = 2.0 * std::tan(0.5 * 2.6 * kPi / 180.0) / f.h;
+  const double rPx = std::asin(ringFixture().tables.bottomRadiusM / glm::length(camera)) / pixelRad;
+  // The Sun's centre lies off the view's centre (the camera is off the shadow's axis): the
+  // bound takes a pixel that much nearer the Sun.
+  const glm::dvec3 toSun = glm::normalize(glm::dvec3(-kAu, 0.0, 0.0) - camera), forward = glm::normalize(-camera);
+  const double sunOffsetPx = std::acos(std::min(1.0, glm::dot(toSun, forward))) / pixelRad;
+  int corona = 0;
   for (int j = 0; j < f.h; ++j)
     for (int i = 0; i < f.w; ++i) {
       const float* p = &f.rgb[3 * (static_cast<std::size_t>(j) * f.w + i)];
       if (p[0] <= 0.0f) continue;
+      const double x = i + 0.5 - 0.5 * f.w, y = j + 0.5 - 0.5 * f.h;
+      if (std::abs(std::hypot(x, y) - rPx) > 1.5) {
+        const double rho = std::atan(std::max(0.0, std::hypot(x, y) - sunOffsetPx - 0.5) * pixelRad) / alpha;
+        EXPECT_LE(p[0], 1.01 * sky::coronaRelativeRadiance(rho) * discMean) << "pixel " << i << ", " << j;
+        EXPECT_NEAR(p[0], p[2], 1e-3 * p[0]) << "pixel " << i << ", " << j;
+        ++corona;
+        continue;
+      }
+      // Every other lit pixel lies on the ring: at Earth's angular radius from the centre.
       ++lit;
       sum += glm::dvec3(p[0], p[1], p[2]);
-      // Every lit pixel lies on the ring: at Earth's angular radius from the centre.
-      const double x = i + 0.5 - 0.5 * f.w, y = j + 0.5 - 0.5 * f.h;
-      const double rPx = std::asin(f.h == 0 ? 0.0 : ringFixture().tables.bottomRadiusM / glm::length(camera)) /
-                         (2.0 * std::tan(0.5 * 2.6 * kPi / 180.0) / f.h);
-      EXPECT_NEAR(std::hypot(x, y), rPx, 1.5) << "pixel " << i << ", " << j;
     }
+  ringFlux = sum * f.pixelSolidAngleSr;
+  std::printf("  %d pixels of corona round the ring\n", corona);
+  EXPECT_GT(corona, 1000);
   std::printf("  %d ring pixels, summed R G B = %.3g %.3g %.3g\n", lit, sum.r, sum.g, sum.b);
   EXPECT_GT(lit, 300);  // a closed ring: ~ 2 pi 60 px
   EXPECT_GT(sum.r, sum.g);
@@ -422,7 +442,7 @@ TEST(EclipseAtmosphereRender, ThinRingFromTheLimbLuminanceLut) {
   const int texel[6] = {1, 1, 0, 0, 0, 0};
   shadow->UpdateExtent(texel);
   vtkDataArray* iOverSun = shadow->GetOutput()->GetPointData()->GetScalars();
-  const glm::dvec3 ringOverSun = f.flux() / SunLight().irradianceAt1AuWm2;
+  const glm::dvec3 ringOverSun = ringFlux / SunLight().irradianceAt1AuWm2;
   std::printf("  ring flux / E_sun R G = %.3g %.3g, shadow LuT I / I_sun = %.3g %.3g\n", ringOverSun.r, ringOverSun.g,
               iOverSun->GetComponent(0, 0), iOverSun->GetComponent(0, 1));
   EXPECT_NEAR(ringOverSun.r / iOverSun->GetComponent(0, 0), 1.0, 0.02);  // measured 0.2 %

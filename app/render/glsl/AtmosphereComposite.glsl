@@ -35,6 +35,13 @@ uniform vec3 umbraMoonDirection;      // unit, from the planet towards the Moon 
 uniform vec3 umbraMoonIrradiance;     // per table channel, W m^-2 (the Sun's light: E_sun each)
 uniform float umbraNightGlow;         // zenith radiance of the glow above the air, W m^-2 sr^-1 (0: none)
 uniform float umbraGlowLayerRatio;    // the camera's radius over the glow layer's (< 1)
+uniform float umbraCameraSunVisible;  // the Sun's visible fraction at the camera past the eclipsing bodies
+uniform int umbraEclipsedSkyOn;       // 1: the sky from the eclipsed-sky grid (AtmosphereRendering)
+uniform sampler2D umbraEclipsedSky;   // per unit irradiance, table channels, over (azimuth, elevation)
+uniform vec3 umbraEclipsedSkyE1;      // the grid's azimuth origin at the camera (horizontal, unit)
+uniform vec3 umbraEclipsedSkyE2;      // umbraCameraUp x umbraEclipsedSkyE1
+uniform vec3 umbraEclipsedSkyIrradiance;  // its irradiance on level ground at the camera, per unit solar irradiance
+uniform float umbraSunCoronaRadii;    // the corona's reach in solar radii (StarRendering.h)
 #ifdef UMBRA_CLOUDS
 // Cloud layers (sky/Clouds.hpp; needs sky/glsl/Clouds.glsl before this file).
 uniform int umbraCloudCount;
@@ -63,7 +70,22 @@ float umbraFrameDistance(float depth) {
 // The Sun's disc (SunDisc.glsl: linear limb darkening, mean radiance E / (pi alpha^2))
 // seen along dir.
 float umbraSunDisc(vec3 dir) {
-  return umbraLimbDarkenedSun(dir, umbraSunDirection, umbraSunAngularRadius, umbraSolarIrradiance, umbraLimbDarkening);
+  float corona = umbraCorona(dir, umbraSunDirection, umbraSunAngularRadius, umbraSolarIrradiance);
+  vec3 a = normalize(dir);
+  bool near = 2.0 * atan(length(a - umbraSunDirection), length(a + umbraSunDirection)) <
+              umbraSunCoronaRadii * umbraSunAngularRadius;
+  return umbraLimbDarkenedSun(dir, umbraSunDirection, umbraSunAngularRadius, umbraSolarIrradiance, umbraLimbDarkening) +
+         (near ? corona : 0.0);
+}
+
+// The eclipsed sky's radiance along dir seen from the camera (AtmosphereRendering::
+// eclipsedSkyDirections: azimuth from E1 towards E2 across the width, elevation
+// (pi / 2) sign(t) t^2 with t from -1 to 1 up the height).
+vec3 umbraEclipsedSkyRadiance(vec3 dir) {
+  float e = asin(clamp(dot(dir, umbraCameraUp), -1.0, 1.0));
+  float t = sign(e) * sqrt(abs(e) / 1.57079633);
+  float a = atan(dot(dir, umbraEclipsedSkyE2), dot(dir, umbraEclipsedSkyE1));
+  return texture(umbraEclipsedSky, vec2(a / 6.28318531 + 0.5, 0.5 * (t + 1.0))).rgb;
 }
 
 // The view ray's direction at ndc (perspective: through the pixel; parallel: forward,
@@ -435,7 +457,9 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
     // light scattered in from the sunlit air around gives 1e-3 to 1e-4 of day.) The
     // ground's own albedo is that one, or its map's.
     vec3 albedo = umbraGroundAlbedoAt(y, t0 + dEnd);
-    vec3 eclipse = vec3(1.0);
+    // (where the frame cannot tell, the Sun low or the ground's mesh missed at grazing
+    // incidence, the eclipse at the camera stands for it)
+    vec3 eclipse = vec3(umbraCameraSunVisible);
     vec3 unshadowed = umbraGroundAlbedo * (0.31830988618 * umbraSolarIrradiance * muSg);
     if (dFrame < umbraFarAway && muSg > 0.05 && all(greaterThan(unshadowed, vec3(0.0))))
       eclipse = clamp(frame / unshadowed, vec3(0.0), vec3(1.0));
@@ -444,7 +468,10 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
 #else
     vec2 clouds = vec2(1.0);
 #endif
-    vec3 E = eclipse * (clouds.x * umbraAtmDirectIrradiance(rg, muSg) + clouds.y * umbraAtmIndirectIrradiance(rg, muSg));
+    // The sky's light on the ground: under an eclipsed sky, that sky's (its irradiance at
+    // the camera), else the tables' dimmed by the eclipse there.
+    vec3 skyLight = umbraEclipsedSkyOn == 1 ? umbraEclipsedSkyIrradiance : eclipse * umbraAtmIndirectIrradiance(rg, muSg);
+    vec3 E = clouds.x * eclipse * umbraAtmDirectIrradiance(rg, muSg) + clouds.y * skyLight;
     vec3 raw = T * albedo * 0.31830988618 * E + eclipse * S;
     vec3 moonRaw = moonS;
 #ifdef UMBRA_MOON_LIGHT
@@ -464,6 +491,9 @@ vec3 umbraAtmosphereComposite(vec2 uv) {
                        ? umbraLimbSun(centre, dir) : vec3(0.0);
     return umbraWithClouds(umbraAtmToDisplay * (raw * umbraSolarIrradiance + moonRaw) + limbSun, S, T, moonS);
   }
+  // From inside the air during a solar eclipse the sky is the eclipsed one: the light of the
+  // air lit by a partly hidden Sun, point by point, every order (no scattering table holds it).
+  if (umbraEclipsedSkyOn == 1 && inside) sx = umbraEclipsedSkyRadiance(dir);
   vec3 sky = umbraAtmToDisplay * (sx * umbraSolarIrradiance + sxMoon * umbraMoonIrradiance);
   vec3 glow = inside && dFrame >= umbraFarAway ? umbraAtmTransmittanceToTop(r, mu) * umbraGlow(mu) : vec3(0.0);
   vec3 T = umbraAtmTransmittanceToTop(r, mu);
