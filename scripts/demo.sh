@@ -14,7 +14,7 @@
 #      catalogue come out as the Moon's light goes,
 #   7. renders the totality of the solar eclipse of 2027-08-02 from Luxor, Egypt: the sky of
 #      the Moon's umbra (dark overhead, the horizon orange all round), the corona round the
-#      Moon, the ground lit by that sky; and plots that sky's radiance along the vertical
+#      Moon, Venus, Mercury and Jupiter, the ground lit by that sky; and plots that sky's radiance along the vertical
 #      through the Sun and the almucantar (the quadrature, CSV and PNG).
 #   The atmosphere tables and the atmospheric shadow LuT are computed once (about a minute
 #   on 2 cores) and cached.

@@ -17,6 +17,7 @@ void addCommands(CLI::App& app, Action& action) {
   });
   addRenderCommand(app, action);
   addMoonCommand(app, action);
+  addPlanetsCommand(app, action);
   addPrecomputeCommand(app, action);
   addProfileCommand(app, action);
   addInspectCommand(app, action);

@@ -33,6 +33,10 @@ struct CacheOptions {
   void addTo(CLI::App* command);
 };
 
+/// --time's instant (ISO 8601 UTC), or now (to the second) when it is empty. Throws
+/// CommandError naming --time.
+scene::UtcTime timeOption(const std::string& text);
+
 /// The instants from --from to --to (inclusive) every --step (a duration such as 30min:
 /// units s, min, h, d), at most 100 000 of them. Throws CommandError naming the option.
 std::vector<scene::UtcTime> timeSteps(const std::string& from, const std::string& to, const std::string& step);
@@ -64,6 +68,7 @@ void refuseEmptyAndNonFinite(CLI::App& app);
 
 void addRenderCommand(CLI::App& app, Action& action);
 void addMoonCommand(CLI::App& app, Action& action);
+void addPlanetsCommand(CLI::App& app, Action& action);
 void addPrecomputeCommand(CLI::App& app, Action& action);
 void addProfileCommand(CLI::App& app, Action& action);
 void addInspectCommand(CLI::App& app, Action& action);

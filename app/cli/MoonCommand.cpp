@@ -8,7 +8,6 @@
 #include "scene/Moon.hpp"
 #include "scene/Time.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -17,14 +16,6 @@
 
 namespace umbra::cli {
 namespace {
-
-scene::UtcTime now() {
-  const double unixS = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-  char text[32];
-  const std::time_t whole = static_cast<std::time_t>(unixS);
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&whole));
-  return scene::parseUtc(text);
-}
 
 constexpr const char* kCsvHeader =
     "time_utc,ra_deg,dec_deg,altitude_deg,azimuth_deg,distance_km,angular_diameter_arcmin,phase_angle_deg,"
@@ -101,11 +92,7 @@ void addMoonCommand(CLI::App& app, Action& action) {
       if (series) {
         times = timeSteps(o->from, o->to, o->step);
       } else {
-        try {
-          times.push_back(o->time.empty() ? now() : scene::parseUtc(o->time));
-        } catch (const std::invalid_argument& e) {
-          throw CommandError(std::string("--time: ") + e.what());
-        }
+        times.push_back(timeOption(o->time));
       }
       noteTimesBeyondEphemeris(times);
       std::vector<std::string> rows;

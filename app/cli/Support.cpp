@@ -17,9 +17,24 @@
 
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <iostream>
 
 namespace umbra::cli {
+
+scene::UtcTime timeOption(const std::string& text) {
+  if (text.empty()) {
+    const std::time_t whole = std::time(nullptr);
+    char now[32];
+    std::strftime(now, sizeof now, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&whole));
+    return scene::parseUtc(now);
+  }
+  try {
+    return scene::parseUtc(text);
+  } catch (const std::invalid_argument& e) {
+    throw CommandError(std::string("--time: ") + e.what());
+  }
+}
 
 std::vector<scene::UtcTime> timeSteps(const std::string& from, const std::string& to, const std::string& step) {
   if (from.empty() || to.empty() || step.empty())

@@ -13,6 +13,7 @@
 #include "AtmosphericShadow.hpp"  // defaultTerrain()
 #include "ShadowLut.hpp"  // luminance()
 #include "scene/Ephemeris.hpp"
+#include "scene/Planets.hpp"
 #include "scene/Scene.hpp"
 #include "scene/Stars.hpp"
 #include "MilkyWay.hpp"
@@ -82,7 +83,9 @@ glm::dvec3 earthshineOn(const scene::Body& body, const scene::Body& earth, const
 }
 
 // The scene's stars to its limiting magnitude, seen from its camera; with scintillation
-// when the camera is in an atmosphere (`air`: the planet's centre and top radius).
+// when the camera is in an atmosphere (`air`: the planet's centre and top radius). Then the
+// planets as bright as that (scene/Planets.hpp: astrometric places, reflected sunlight
+// taken with the Sun's colour), when the scene has a time.
 std::vector<StarPoint> sceneStars(const scene::Scene& s, const glm::dvec3& cameraM, double sunIrradianceAt1AuWm2,
                                   const std::optional<std::pair<glm::dvec3, double>>& air) {
   const auto all = render::starCatalogue(s.stars->cataloguePath);
@@ -106,6 +109,10 @@ std::vector<StarPoint> sceneStars(const scene::Scene& s, const glm::dvec3& camer
       stars[i].irradianceWm2 *= sky::scintillationFactor(s.stars->scintillation, airMass, seed, i);
     }
   }
+  if (s.hasTime)
+    for (const scene::PlanetSeen& p : scene::planetsSeenFrom(cameraM, s.time))
+      if (p.magnitudeV <= s.stars->limitingMagnitude)
+        stars.push_back({p.directionIcrs, glm::dvec3(sunIrradianceAt1AuWm2 * sky::irradianceRelativeToSun(p.magnitudeV))});
   return stars;
 }
 

@@ -34,19 +34,6 @@ void lonLat(const glm::dvec3& v, double& lonDeg, double& latDeg) {
   latDeg = std::atan2(v.z, std::hypot(v.x, v.y)) / kDeg;
 }
 
-Body presetBody(const std::string& name, UtcTime time) {
-  const BodyPreset& p = *findPreset(name);
-  Body b;
-  b.name = b.preset = p.name;
-  b.radiusM = p.meanRadiusM;
-  b.equatorialRadiusM = p.equatorialRadiusM;
-  b.polarRadiusM = p.polarRadiusM;
-  b.albedo = p.geometricAlbedo;
-  b.photometry = p.photometry;
-  b.positionM = heliocentricPositionM(name, time);
-  return b;
-}
-
 // The Moon's heliocentric velocity over the speed of light (eraEpv00 + eraMoon98).
 glm::dvec3 moonVelocityOverC(double tt1, double tt2) {
   double earth[2][3], barycentric[2][3], moon[2][3];

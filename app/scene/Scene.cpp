@@ -2,6 +2,7 @@
 
 #include "SceneDetail.hpp"
 #include "JsonErrors.hpp"  // readJsonFileText
+#include "scene/Bodies.hpp"
 #include "scene/Ephemeris.hpp"
 
 #include "ShadowLut.hpp"
@@ -113,6 +114,21 @@ const Body* Scene::find(const std::string& bodyName) const {
   for (const Body& body : bodies)
     if (body.name == bodyName) return &body;
   return nullptr;
+}
+
+Body presetBody(const std::string& name, UtcTime time) {
+  const BodyPreset* preset = findPreset(name);
+  if (!preset) throw std::invalid_argument("no body preset '" + name + "'");
+  const BodyPreset& p = *preset;
+  Body b;
+  b.name = b.preset = p.name;
+  b.radiusM = p.meanRadiusM;
+  b.equatorialRadiusM = p.equatorialRadiusM;
+  b.polarRadiusM = p.polarRadiusM;
+  b.albedo = p.geometricAlbedo;
+  b.photometry = p.photometry;
+  b.positionM = heliocentricPositionM(name, time);
+  return b;
 }
 
 glm::dvec3 observerPositionM(const Body& body, const Observer& observer, UtcTime time) {

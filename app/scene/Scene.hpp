@@ -153,6 +153,10 @@ void setTime(Scene& scene, UtcTime time);
 /// Heliocentric position (metres, ICRS axes) of an observer on a scene body.
 glm::dvec3 observerPositionM(const Body& body, const Observer& observer, UtcTime time);
 
+/// The body of preset `name` (its radii, albedo, photometry) where it is at `time`
+/// (heliocentricPositionM). Throws std::invalid_argument for a preset without an ephemeris.
+Body presetBody(const std::string& name, UtcTime time);
+
 /// The Sun's centre above the geodetic horizon of the camera's observer, degrees (geometric:
 /// no refraction; negative below it); nothing without an observer.
 std::optional<double> sunElevationDeg(const Scene& scene);

@@ -189,6 +189,7 @@ const std::vector<Command>& commands() {
        {sourcePath("examples/scenes/lunar-eclipse-2015-09-28.json"), "--size", "32x24", "-o", "@/r.png"},
        {{"--time", t}, {"--from", t}, {"--to", "2015-09-28T03:17:00Z"}, {"--step", "30min"},
         {"--exposure", "-5"}, {"--glare", "1"}}},
+      {{"planets"}, {"--time", "2027-08-02T10:06:00Z", "--csv", "@/p.csv"}, {{"--observer", "25.6872,32.6396,80"}}},
       {{"moon"}, {"--time", "2026-10-26T04:00:00Z", "--observer", "18.47,-66.11,10"},
        {{"--from", "2026-10-01T00:00:00Z"}, {"--to", "2026-10-03T00:00:00Z"}, {"--step", "1d"}, {"--csv", "@/m.csv"}}},
       {{"precompute", "shadow"}, {"--occluder", "Earth", "--size", "16", "--no-cache", "-o", "@/s.exr"},

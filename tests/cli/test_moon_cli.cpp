@@ -1,5 +1,6 @@
 // umbra moon: the Moon's numbers for one time and as a table over time (CSV), against
-// the library (scene::moonNumbers) and Meeus; bad input gets one line and no file.
+// the library (scene::moonNumbers) and Meeus; umbra planets; bad input gets one line and
+// no file.
 #include "CliRunner.hpp"
 
 #include <gtest/gtest.h>
@@ -101,6 +102,49 @@ TEST(MoonCli, BadInput) {
     EXPECT_NE(r.exitCode, 0) << message;
     EXPECT_NE(r.err.find(message), std::string::npos) << "stderr: " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_EQ(dir.fileCount(), 0);
+}
+
+// ---- umbra planets ------------------------------------------------------------------------
+
+// Totality at Luxor, 2027-08-02: the four planets in the CSV with finite numbers, their
+// altitudes from the horizon frame (Venus next to the Sun, 81.7 deg up: within 10 deg of
+// it), magnitudes within Mallama & Hilton's extremes; the printed table the same rows.
+TEST(PlanetsCli, TheSkyOfTotalityAtLuxor) {
+  TempDir dir;
+  const RunResult r = run(UMBRA_EXE, {"planets", "--time", "2027-08-02T10:06:00Z", "--observer", "25.6872,32.6396,80",
+                                      "--csv", dir / "p.csv"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = csvCells(dir / "p.csv");
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_EQ(rows[0][0], "planet");
+  const std::vector<std::string> names{"Mercury", "Venus", "Mars", "Jupiter"};
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    ASSERT_EQ(rows[k].size(), 10u);
+    EXPECT_EQ(rows[k][0], names[k - 1]);
+    for (std::size_t c = 1; c < 10; ++c) EXPECT_TRUE(std::isfinite(std::stod(rows[k][c]))) << rows[k][0] << " " << c;
+    EXPECT_NE(r.out.find(names[k - 1]), std::string::npos);
+  }
+  EXPECT_NEAR(std::stod(rows[2][3]), 81.7, 10.0);  // Venus, near the Sun in the sky
+  EXPECT_LT(std::stod(rows[2][9]), -3.8);
+  EXPECT_GT(std::stod(rows[2][9]), -4.92);
+  EXPECT_EQ(dir.fileCount(), 1);
+}
+
+TEST(PlanetsCli, GeocentricWithoutAnObserverAndBadInputIsOneLine) {
+  const RunResult r = run(UMBRA_EXE, {"planets", "--time", "1992-12-20T00:00:00Z"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("the Earth's centre"), std::string::npos);
+  TempDir dir;
+  for (const auto& [args, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"planets", "--time", "1992-13-20T00:00:00Z", "--csv", dir / "a.csv"}, "--time: "},
+           {{"planets", "--observer", "95,0", "--csv", dir / "a.csv"}, "--observer: latitude must be within -90..90 deg"},
+           {{"planets", "--csv", dir / "missing/a.csv"}, "missing"}}) {
+    const RunResult bad = run(UMBRA_EXE, args);
+    EXPECT_NE(bad.exitCode, 0) << message;
+    EXPECT_NE(bad.err.find(message), std::string::npos) << "stderr: " << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
   }
   EXPECT_EQ(dir.fileCount(), 0);
 }

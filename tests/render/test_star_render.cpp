@@ -8,6 +8,7 @@
 #include "StarCatalogueCache.h"
 #include "Photometry.hpp"
 #include "StarLight.hpp"
+#include "scene/Planets.hpp"
 #include "scene/Scene.hpp"
 #include "scene/Stars.hpp"
 
@@ -15,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -217,7 +219,16 @@ TEST(StarRender, SceneStarsAtTheirApparentPlaces) {
   const glm::dvec3 aim = glm::normalize(sirius + std::tan(0.2 * kPi / 180.0) * right + std::tan(0.1 * kPi / 180.0) * up);
   s.camera.targetM = s.camera.positionM + 1.0e9 * aim;
   const SceneInputs in = sceneInputs(s);
-  ASSERT_EQ(in.stars.size(), 2u);
+  // The catalogue's two, then the planets (all brighter than V 9), at their places, grey
+  // (reflected sunlight, white-balanced to the Sun), as bright as their magnitudes.
+  const std::vector<scene::PlanetSeen> planets = scene::planetsSeenFrom(in.camera.positionM, s.time);
+  ASSERT_EQ(in.stars.size(), 2u + planets.size());
+  for (std::size_t k = 0; k < planets.size(); ++k) {
+    const StarPoint& p = in.stars[2 + k];
+    EXPECT_NEAR(glm::dot(p.direction, planets[k].directionIcrs), 1.0, 1e-12) << planets[k].name;
+    const double e = in.sun.irradianceAt1AuWm2 * sky::irradianceRelativeToSun(planets[k].magnitudeV);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(p.irradianceWm2[c], e, 1e-12 * e) << planets[k].name;
+  }
 
   BodyView view(kWidth, kHeight, true);
   useSharedDisplay(view.GetRenderWindow());
@@ -242,8 +253,9 @@ TEST(StarRender, SceneStarsAtTheirApparentPlaces) {
   EXPECT_NEAR(m.y, py, 1.0);
   EXPECT_GT(m.irradiance.g, 0.0);
 
-  s.stars->limitingMagnitude = -1.0;
-  EXPECT_EQ(sceneInputs(s).stars.size(), 1u);
+  s.stars->limitingMagnitude = -1.0;  // Sirius, and the planets as bright
+  const auto brighter = std::count_if(planets.begin(), planets.end(), [](const scene::PlanetSeen& p) { return p.magnitudeV <= -1.0; });
+  EXPECT_EQ(sceneInputs(s).stars.size(), 1u + static_cast<std::size_t>(brighter));
   std::filesystem::remove(catalogue);
 }
 
@@ -485,7 +497,7 @@ TEST(StarRender, SceneScintillation) {
   const SceneInputs still = sceneInputs(sceneWith(t0, 0.0, true));
   const SceneInputs a = sceneInputs(sceneWith(t0, 0.3, true)), b = sceneInputs(sceneWith(t0, 0.3, true));
   const SceneInputs later = sceneInputs(sceneWith(t1, 0.3, true));
-  ASSERT_EQ(a.stars.size(), 2u);
+  ASSERT_GE(a.stars.size(), 2u);  // the catalogue's two, then the planets
   EXPECT_NE(a.stars[0].irradianceWm2, still.stars[0].irradianceWm2);  // Sirius, 40 deg up
   EXPECT_EQ(a.stars[0].irradianceWm2, b.stars[0].irradianceWm2);
   EXPECT_NE(a.stars[0].irradianceWm2, later.stars[0].irradianceWm2);
