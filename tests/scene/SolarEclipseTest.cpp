@@ -121,3 +121,23 @@ TEST(SolarEclipse2024, TheSunsVisibleFractionAtTheCamera) {
   setTime(s, addSeconds(s.time, 3.0 * 3600.0));
   EXPECT_FALSE(sunVisibleFractionAtCamera(s).has_value());
 }
+
+// The example scenes from the ground: at their instants the camera is in the umbra
+// (Mazatlan 2024, Burgos 2026, Luxor 2027: the Sun hidden) or in the antumbra of the
+// annular eclipse of 2023 (the ring: a sixteenth of the Sun's light; NASA's magnitude
+// 0.952 leaves 1 - 0.952^2 = 9 % of the disc's area, less of its limb-darkened light).
+TEST(SolarEclipseScenes, TheGroundScenesAreInTotalityOrInTheRing) {
+  for (const char* name : {"solar-eclipse-2024-04-08-mazatlan", "solar-eclipse-2026-08-12-burgos",
+                           "solar-eclipse-2027-08-02-luxor"}) {
+    const Scene s = loadScene(std::string(UMBRA_SOURCE_DIR "/examples/scenes/") + name + ".json");
+    const std::optional<double> f = sunVisibleFractionAtCamera(s);
+    ASSERT_TRUE(f.has_value()) << name;
+    EXPECT_EQ(*f, 0.0) << name;
+  }
+  const Scene ring = loadScene(UMBRA_SOURCE_DIR "/examples/scenes/annular-eclipse-2023-10-14.json");
+  const std::optional<double> f = sunVisibleFractionAtCamera(ring);
+  ASSERT_TRUE(f.has_value());
+  std::printf("  the ring: %.4f of the Sun's light\n", *f);
+  EXPECT_GT(*f, 0.04);
+  EXPECT_LT(*f, 0.09);
+}
