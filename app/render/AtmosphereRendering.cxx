@@ -430,13 +430,17 @@ void AtmosphereRendering::SetEclipsedSkyOptions(const atmosphere::EclipsedSkyOpt
 bool AtmosphereRendering::GetLastDrawUsedEclipsedSky() const { return impl_->lastUsedEclipsedSky; }
 double AtmosphereRendering::GetLastEclipsedSkySeconds() const { return impl_->lastEclipsedSkySeconds; }
 
+namespace {
+/// The eclipsed sky grid's elevation at t in [-1, 1]: (pi / 2) sign(t) t^2.
+double gridElevation(double t) { return 0.5 * kPi * (t < 0.0 ? -t * t : t * t); }
+}  // namespace
+
 std::vector<glm::dvec3> AtmosphereRendering::eclipsedSkyDirections(const glm::dvec3& up, const glm::dvec3& e1) {
   const glm::dvec3 e2 = glm::cross(up, e1);
   std::vector<glm::dvec3> directions;
   directions.reserve(static_cast<std::size_t>(kEclipsedSkyWidth) * kEclipsedSkyHeight);
   for (int j = 0; j < kEclipsedSkyHeight; ++j) {
-    const double t = -1.0 + 2.0 * (j + 0.5) / kEclipsedSkyHeight;
-    const double e = 0.5 * kPi * (t < 0.0 ? -t * t : t * t);
+    const double e = gridElevation(-1.0 + 2.0 * (j + 0.5) / kEclipsedSkyHeight);
     for (int i = 0; i < kEclipsedSkyWidth; ++i) {
       const double a = -kPi + 2.0 * kPi * (i + 0.5) / kEclipsedSkyWidth;
       directions.push_back(glm::normalize(std::cos(e) * (std::cos(a) * e1 + std::sin(a) * e2) + std::sin(e) * up));
@@ -470,9 +474,8 @@ void AtmosphereRendering::Impl::updateEclipsedSky(const glm::dvec3& cameraWorld)
   // horizon, each row's (sin^2 e_hi - sin^2 e_lo) / 2 times its azimuth step.
   eclipsedIrradiance = glm::dvec3(0.0);
   for (int j = kEclipsedSkyHeight / 2; j < kEclipsedSkyHeight; ++j) {
-    const auto elevation = [](double t) { return 0.5 * kPi * (t < 0.0 ? -t * t : t * t); };
-    const double lo = std::sin(elevation(std::max(0.0, -1.0 + 2.0 * j / kEclipsedSkyHeight)));
-    const double hi = std::sin(elevation(-1.0 + 2.0 * (j + 1.0) / kEclipsedSkyHeight));
+    const double lo = std::sin(gridElevation(std::max(0.0, -1.0 + 2.0 * j / kEclipsedSkyHeight)));
+    const double hi = std::sin(gridElevation(-1.0 + 2.0 * (j + 1.0) / kEclipsedSkyHeight));
     const double weight = 0.5 * (hi * hi - lo * lo) * 2.0 * kPi / kEclipsedSkyWidth;
     for (int i = 0; i < kEclipsedSkyWidth; ++i)
       for (int w = 0; w < 3; ++w)
