@@ -141,3 +141,19 @@ TEST(SolarEclipseScenes, TheGroundScenesAreInTotalityOrInTheRing) {
   EXPECT_GT(*f, 0.04);
   EXPECT_LT(*f, 0.09);
 }
+
+// From L1 as EPIC: the camera 1.5 million km out, 4 to 15 degrees off the Sun-Earth line,
+// so that the Moon, near that line in the eclipse, lies outside the 0.62 degree field.
+TEST(SolarEclipseScenes, FromL1TheMoonStandsOutsideTheField) {
+  const Scene s = loadScene(UMBRA_SOURCE_DIR "/examples/scenes/solar-eclipse-2024-04-08-from-l1.json");
+  const glm::dvec3 earth = s.find("Earth")->positionM, moon = s.find("Moon")->positionM, cam = s.camera.positionM;
+  const double off = std::acos(glm::dot(glm::normalize(cam - earth), glm::normalize(-earth))) / (3.14159265358979 / 180.0);
+  const double moonFromCentre =
+      std::acos(std::min(1.0, glm::dot(glm::normalize(moon - cam), glm::normalize(earth - cam)))) / (3.14159265358979 / 180.0);
+  const double moonRadiusDeg = std::asin(kMoonRadiusM / glm::length(moon - cam)) / (3.14159265358979 / 180.0);
+  std::printf("  %.1f deg off the Sun-Earth line, the Moon %.2f deg from the view's centre\n", off, moonFromCentre);
+  EXPECT_GT(off, 4.0);
+  EXPECT_LT(off, 15.0);
+  EXPECT_NEAR(glm::length(cam - earth), 1.5e9, 0.02e9);
+  EXPECT_GT(moonFromCentre - moonRadiusDeg, 0.5 * 0.62 * std::sqrt(2.0));
+}
