@@ -371,16 +371,7 @@ EclipsedSky eclipsedSkyRadiance(const AtmosphereTables& tables, const Atmosphere
   if (tables.wavelengthsNm != atmosphere.wavelengthsNm || tables.bottomRadiusM != atmosphere.bottomRadiusM ||
       tables.topRadiusM != atmosphere.topRadiusM)
     throw std::invalid_argument("eclipsed sky: the tables are not the atmosphere's (radii or wavelengths differ)");
-  const double r0 = glm::length(observerM);
-  if (!(r0 >= atmosphere.bottomRadiusM * (1.0 - 1e-12) && r0 <= atmosphere.topRadiusM))
-    throw std::invalid_argument("eclipsed sky: the observer is " + std::to_string(r0 - atmosphere.bottomRadiusM) +
-                                " m above the ground, outside the atmosphere (0 to " +
-                                std::to_string(atmosphere.thicknessM()) + " m)");
-  const auto unit = [](const glm::dvec3& v) { return std::abs(glm::length(v) - 1.0) < 1e-9; };
-  if (!unit(sunDirection)) throw std::invalid_argument("eclipsed sky: the Sun's direction is not a unit vector");
-  for (const glm::dvec3& v : viewDirections)
-    if (!unit(v)) throw std::invalid_argument("eclipsed sky: a view direction is not a unit vector");
-  const glm::dvec3 observer = r0 < atmosphere.bottomRadiusM ? observerM * (atmosphere.bottomRadiusM / r0) : observerM;
+  const glm::dvec3 observer = checkedSkyObserver("eclipsed sky", atmosphere, observerM, viewDirections, sunDirection);
 
   const auto start = std::chrono::steady_clock::now();
   const Integrator integrator(tables, atmosphere, sunDirection, visibility);

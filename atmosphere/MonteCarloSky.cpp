@@ -276,6 +276,20 @@ std::string MonteCarloSkyOptions::validate() const {
   return {};
 }
 
+glm::dvec3 checkedSkyObserver(const char* what, const Atmosphere& atmosphere, const glm::dvec3& observerM,
+                              const std::vector<glm::dvec3>& viewDirections, const glm::dvec3& sunDirection) {
+  const double r = glm::length(observerM);
+  if (!(r >= atmosphere.bottomRadiusM * (1.0 - 1e-12) && r <= atmosphere.topRadiusM))
+    throw std::invalid_argument(std::string(what) + ": the observer is " + std::to_string(r - atmosphere.bottomRadiusM) +
+                                " m above the ground, outside the atmosphere (0 to " +
+                                std::to_string(atmosphere.thicknessM()) + " m)");
+  const auto unit = [](const glm::dvec3& v) { return std::abs(glm::length(v) - 1.0) < 1e-9; };
+  if (!unit(sunDirection)) throw std::invalid_argument(std::string(what) + ": the Sun's direction is not a unit vector");
+  for (const glm::dvec3& v : viewDirections)
+    if (!unit(v)) throw std::invalid_argument(std::string(what) + ": a view direction is not a unit vector");
+  return r < atmosphere.bottomRadiusM ? observerM * (atmosphere.bottomRadiusM / r) : observerM;
+}
+
 std::vector<double> extinctionMajorantPerM(const Atmosphere& atmosphere) {
   const double top = atmosphere.thicknessM();
   std::vector<double> majorant(atmosphere.wavelengthsNm.size(), 0.0);
@@ -297,17 +311,7 @@ MonteCarloSky monteCarloSkyRadiance(const Atmosphere& atmosphere, const glm::dve
                                     const MonteCarloProgress& progress) {
   if (const std::string problem = options.validate(); !problem.empty())
     throw std::invalid_argument("Monte-Carlo sky: " + problem);
-  const double r = glm::length(observerM);
-  if (!(r >= atmosphere.bottomRadiusM * (1.0 - 1e-12) && r <= atmosphere.topRadiusM))
-    throw std::invalid_argument("Monte-Carlo sky: the observer is " + std::to_string(r - atmosphere.bottomRadiusM) +
-                                " m above the ground, outside the atmosphere (0 to " +
-                                std::to_string(atmosphere.thicknessM()) + " m)");
-  const auto unit = [](const glm::dvec3& v) { return std::abs(glm::length(v) - 1.0) < 1e-9; };
-  if (!unit(sunDirection)) throw std::invalid_argument("Monte-Carlo sky: the Sun's direction is not a unit vector");
-  for (const glm::dvec3& v : viewDirections)
-    if (!unit(v)) throw std::invalid_argument("Monte-Carlo sky: a view direction is not a unit vector");
-  // An observer a hair below the ground (rounding) stands on it.
-  const glm::dvec3 observer = r < atmosphere.bottomRadiusM ? observerM * (atmosphere.bottomRadiusM / r) : observerM;
+  const glm::dvec3 observer = checkedSkyObserver("Monte-Carlo sky", atmosphere, observerM, viewDirections, sunDirection);
 
   const auto start = std::chrono::steady_clock::now();
   const std::size_t nw = atmosphere.wavelengthsNm.size();

@@ -89,6 +89,13 @@ MonteCarloSky monteCarloSkyRadiance(const Atmosphere& atmosphere, const glm::dve
                                     const MonteCarloSkyOptions& options = {},
                                     const MonteCarloProgress& progress = {});
 
+/// The observer of a sky computed point by point (this reference, EclipsedSky.hpp's
+/// quadrature), checked: planet-centred, from the ground to the atmosphere's top (a hair
+/// below the ground, rounding, is put on it), with unit Sun and view directions. Returns the
+/// observer; throws std::invalid_argument starting with `what` otherwise.
+glm::dvec3 checkedSkyObserver(const char* what, const Atmosphere& atmosphere, const glm::dvec3& observerM,
+                              const std::vector<glm::dvec3>& viewDirections, const glm::dvec3& sunDirection);
+
 /// An upper bound of each wavelength's extinction coefficient over the shell [1/m] (the
 /// majorant of delta tracking): each component's largest relative density, found on a 10 m
 /// grid and at its profile's kinks, times its extinction at relative density 1, summed over
