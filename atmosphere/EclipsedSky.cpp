@@ -216,8 +216,6 @@ public:
       : tables_(tables), optics_(atm), sun_(sun), visibility_(visibility), rb_(atm.bottomRadiusM), rt_(atm.topRadiusM) {}
 
   const Optics& optics() const { return optics_; }
-  double bottomRadius() const { return rb_; }
-  const glm::dvec3& sun() const { return sun_; }
 
   /// The radiance arriving at x from direction d (the light travelling along -d):
   /// the integral of T(x, y) source(y) ds plus T(x, g) ground(g) where the ray ends on the
