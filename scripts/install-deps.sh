@@ -10,7 +10,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libvtk9-dev libvtk9-qt-dev qtbase5-dev
-  libopenexr-dev libgeographiclib-dev libglm-dev liberfa-dev libboost-dev
+  libopenexr-dev libgeographiclib-dev libglm-dev liberfa-dev libnova-dev libboost-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev libgdal-dev
   openmpi-bin libopenmpi-dev
   xvfb xauth libgl1-mesa-dri libegl-dev libegl-mesa0

@@ -18,6 +18,8 @@ void addCommands(CLI::App& app, Action& action) {
   addRenderCommand(app, action);
   addMoonCommand(app, action);
   addPlanetsCommand(app, action);
+  addEclipsesCommand(app, action);
+  addEclipseCommand(app, action);
   addPrecomputeCommand(app, action);
   addProfileCommand(app, action);
   addInspectCommand(app, action);
@@ -25,6 +27,20 @@ void addCommands(CLI::App& app, Action& action) {
   addTerrainCommand(app, action);
   addSweepCommand(app, action);
   refuseEmptyAndNonFinite(app);
+}
+
+std::string unknownCommandMessage(const CLI::App& app, int argc, const char* const* argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (word.empty() || word[0] == '-') continue;
+    std::string names;
+    for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; })) {
+      if (command->get_name() == word) return "";
+      names += (names.empty() ? "" : ", ") + command->get_name();
+    }
+    return "umbra: error: unknown command '" + word + "'; the commands are: " + names + " (see --help)";
+  }
+  return "";
 }
 
 bool spreadsOverRanks(const CLI::App& app) {

@@ -17,7 +17,6 @@
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
-#include <vtkPNGWriter.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkPointData.h>
 
@@ -93,13 +92,7 @@ void writeFisheye(const std::string& path, int size, const atmosphere::Atmospher
   }
   image->GetPointData()->SetScalars(pixels);
 
-  output::OutputFile out(path);
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetInputData(image);
-  writer->SetFileName(out.tempPath().c_str());
-  writer->Write();
-  if (writer->GetErrorCode() != 0) throw CommandError(path + ": cannot write");
-  out.commit();
+  writePng(image, path);
 }
 
 } // namespace

@@ -5,6 +5,7 @@
 
 #include "scene/Time.hpp"
 
+class vtkImageData;
 class vtkObject;
 
 #include <chrono>
@@ -41,6 +42,10 @@ scene::UtcTime timeOption(const std::string& text);
 /// units s, min, h, d), at most 100 000 of them. Throws CommandError naming the option.
 std::vector<scene::UtcTime> timeSteps(const std::string& from, const std::string& to, const std::string& step);
 
+/// Writes `image` as a PNG under a temporary name and renames it to `path` (VTK's first row
+/// is the picture's bottom). Throws CommandError naming the path.
+void writePng(vtkImageData* image, const std::string& path);
+
 /// One "umbra: note:" line on stderr when the first or the last of `times` lies beyond
 /// the years the ephemerides are fitted to (scene::ephemerisRangeNote).
 void noteTimesBeyondEphemeris(const std::vector<scene::UtcTime>& times);
@@ -48,6 +53,10 @@ void noteTimesBeyondEphemeris(const std::vector<scene::UtcTime>& times);
 /// The whole command line on `app`: its description, version flag, one-line parse
 /// errors, every command and the number checks; `action` is set by the command parsed.
 void addCommands(CLI::App& app, Action& action);
+
+/// "" when the command line's first word that is not an option names one of `app`'s
+/// commands (or there is none), else a one-line error naming the word and listing them.
+std::string unknownCommandMessage(const CLI::App& app, int argc, const char* const* argv);
 
 /// Whether the command parsed on `app` spreads its work over MPI ranks (the others run on
 /// rank 0 alone): render (an animation's frames), precompute shadow and eclipse (the LuTs'
@@ -69,6 +78,8 @@ void refuseEmptyAndNonFinite(CLI::App& app);
 void addRenderCommand(CLI::App& app, Action& action);
 void addMoonCommand(CLI::App& app, Action& action);
 void addPlanetsCommand(CLI::App& app, Action& action);
+void addEclipsesCommand(CLI::App& app, Action& action);
+void addEclipseCommand(CLI::App& app, Action& action);
 void addPrecomputeCommand(CLI::App& app, Action& action);
 void addProfileCommand(CLI::App& app, Action& action);
 void addInspectCommand(CLI::App& app, Action& action);

@@ -1,4 +1,5 @@
 #include "Commands.hpp"
+#include "OutputFile.hpp"
 #include "Ranks.hpp"
 
 #include "scene/Ephemeris.hpp"
@@ -8,6 +9,9 @@
 #include <unistd.h>
 
 #include <vtkCommand.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
 #include <vtkObject.h>
 
 #include <algorithm>
@@ -21,6 +25,16 @@
 #include <iostream>
 
 namespace umbra::cli {
+
+void writePng(vtkImageData* image, const std::string& path) {
+  output::OutputFile out(path);
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetInputData(image);
+  writer->SetFileName(out.tempPath().c_str());
+  writer->Write();
+  if (writer->GetErrorCode() != 0) throw CommandError(path + ": cannot write");
+  out.commit();
+}
 
 scene::UtcTime timeOption(const std::string& text) {
   if (text.empty()) {

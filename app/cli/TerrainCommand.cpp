@@ -18,7 +18,6 @@
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
-#include <vtkPNGWriter.h>
 #include <vtkPointData.h>
 #include <vtkUnsignedShortArray.h>
 #include <vtkXMLImageDataWriter.h>
@@ -66,13 +65,8 @@ void writePng(const std::string& path, vtkImageData* result) {
   for (vtkIdType k = 0; k < fraction->GetNumberOfTuples(); ++k)
     gray->SetValue(k, static_cast<unsigned short>(std::lround(65535.0 * fraction->GetTuple1(k))));
   image->GetPointData()->SetScalars(gray);
-  output::OutputFile out(path);
-  vtkNew<vtkPNGWriter> writer;  // VTK's first row is the bottom of the picture: north up
-  writer->SetInputData(image);
-  writer->SetFileName(out.tempPath().c_str());
-  writer->Write();
-  if (writer->GetErrorCode() != 0) throw CommandError(path + ": cannot write");
-  out.commit();
+  // VTK's first row is the bottom of the picture: north up
+  umbra::cli::writePng(image, path);
 }
 
 void writeVti(const std::string& path, vtkImageData* result) {

@@ -14,6 +14,10 @@ int main(int argc, char** argv) {
   umbra::cli::Action action;
   umbra::cli::addCommands(app, action);
   umbra::filters::keepMieOpticsInCache("");  // a command's --cache-dir / --no-cache changes it
+  if (const std::string unknown = umbra::cli::unknownCommandMessage(app, argc, argv); !unknown.empty()) {
+    if (ranks.root()) std::cerr << unknown << std::endl;
+    return static_cast<int>(CLI::ExitCodes::ExtrasError);
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,4 +1,5 @@
 #include "MainWindow.hpp"
+#include "EclipseList.hpp"
 
 #include "AtmosphereEditor.hpp"
 #include "OutputFile.hpp"
@@ -99,6 +100,29 @@ void MainWindow::buildMenu() {
   QAction* quit = file->addAction("&Quit");
   quit->setShortcut(QKeySequence::Quit);
   connect(quit, &QAction::triggered, this, [this] { this->close(); });
+  // Eclipses menu: the list whose rows set the scene's time to a contact.
+  QMenu* eclipsesMenu = this->menuBar()->addMenu("&Eclipses");
+  QAction* listEclipses = eclipsesMenu->addAction("&List eclipses...");
+  connect(listEclipses, &QAction::triggered, this, [this] { this->showEclipseList(); });
+  this->eclipses = new EclipseList([this](double ut1Jd) {
+    if (!this->current || !this->current->hasTime) {
+      this->setStatus("eclipses: the scene has no time to set (no ephemeris bodies)");
+      return;
+    }
+    try {
+      scene::UtcTime t;  // UT1, which UTC follows to 0.9 s
+      t.jd1 = std::floor(ut1Jd);
+      t.jd2 = ut1Jd - t.jd1;
+      this->showTime(t);
+    } catch (const std::exception& e) {
+      this->setStatus(QString("error: ") + e.what());
+    }
+  });
+  this->eclipseDock = new QDockWidget("Eclipses", this);
+  this->eclipseDock->setWidget(this->eclipses);
+  this->eclipseDock->setObjectName("eclipses");
+  this->addDockWidget(Qt::RightDockWidgetArea, this->eclipseDock);
+  this->eclipseDock->hide();
 }
 
 // The two views side by side.
@@ -485,6 +509,21 @@ void MainWindow::atmosphereFailed(const std::string& why) {
 void MainWindow::showAtmosphereEditor() {
   this->editorDock->show();
   this->editorDock->raise();
+}
+
+void MainWindow::showEclipseList() {
+  if (this->eclipses->rowCount() == 0) {
+    int year = 2024;
+    if (this->current && this->current->hasTime)
+      year = std::stoi(scene::formatUtc(this->current->time).substr(0, 4));
+    try {
+      this->eclipses->list(year, year + 3);
+    } catch (const std::exception& e) {
+      this->setStatus(QString("eclipses: ") + e.what());
+    }
+  }
+  this->eclipseDock->show();
+  this->eclipseDock->raise();
 }
 
 void MainWindow::saveAtmosphereJson(const std::string& path) const { this->editor->saveJson(path); }

@@ -44,6 +44,7 @@ class QVTKOpenGLNativeWidget;
 namespace umbra::gui {
 
 class AtmosphereEditor;
+class EclipseList;
 class ProfilePanel;
 class SceneView;
 
@@ -95,6 +96,10 @@ public:
   const ProfilePanel& profilePanel() const { return *this->plot; }
   /// Shows the editor's dock (the "Edit..." button).
   void showAtmosphereEditor();
+  /// Shows the "Eclipses" dock (menu Eclipses > List eclipses), listing the eclipses of the
+  /// scene's year and the three after it the first time; choosing one moves the time there.
+  void showEclipseList();
+  EclipseList& eclipseList() const { return *this->eclipses; }
   /// Writes the edited atmosphere as JSON (atomically). Throws std::runtime_error naming the path.
   void saveAtmosphereJson(const std::string& path) const;
   /// Small tables (useSmallAtmosphereTables) for the next setAtmosphere: quick looks, tests.
@@ -178,6 +183,8 @@ private:
   QCheckBox* refractionBox = nullptr;
   QDockWidget* editorDock = nullptr;
   AtmosphereEditor* editor = nullptr;
+  QDockWidget* eclipseDock = nullptr;
+  EclipseList* eclipses = nullptr;
 
   std::unique_ptr<SceneView> view;
   std::unique_ptr<ProfilePanel> plot;

@@ -6,8 +6,10 @@
 
 #include <erfa.h>
 #include <erfam.h>
+#include <libnova/lunar.h>
 
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 
 namespace umbra::scene {
@@ -80,6 +82,26 @@ glm::dvec3 heliocentricPositionM(const std::string& body, UtcTime time) {
   }
   return planetHeliocentricPositionM("Mars", time);
 }
+
+glm::dvec3 moonGeocentricElpM(double ttJd) {
+  // libnova's lunar theory keeps its last result in static variables: one caller at a time.
+  static std::mutex libnovaLunar;
+  ln_rect_posn p{};
+  {
+    const std::lock_guard<std::mutex> lock(libnovaLunar);
+    ln_get_lunar_geo_posn(ttJd, &p, 0.0);
+  }  // km, mean ecliptic and equinox of J2000; 0: every term
+  const double c = std::cos(kObliquityJ2000Rad), s = std::sin(kObliquityJ2000Rad);
+  return glm::dvec3(p.X, c * p.Y - s * p.Z, s * p.Y + c * p.Z) * 1000.0;
+}
+
+glm::dvec3 moonGeocentricMeeusM(double ttJd) {
+  double pv[2][3];
+  eraMoon98(ttJd, 0.0, pv);
+  return auToM(pv[0]);
+}
+
+glm::dvec3 earthHeliocentricM(double ttJd) { return earthHeliocentricM(ttJd, 0.0); }
 
 glm::dvec3 planetHeliocentricPositionM(const std::string& planet, UtcTime time) {
   // eraPlan94's numbering; 3 is the Earth-Moon barycentre, not offered.

@@ -18,8 +18,6 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 constexpr double kAuM = 149597870700.0;
 constexpr double kLightSpeedMs = 299792458.0;
-/// The mean obliquity of the ecliptic at J2000 (IAU 2006: 84381.406 arcseconds).
-constexpr double kObliquityJ2000Rad = 84381.406 / 3600.0 * kDeg;
 
 /// A longitude in [0, 360) degrees.
 double wrapDeg(double deg) {

@@ -4,6 +4,7 @@
 #include "Spectrum.hpp"
 #include "StarCatalogue.hpp"
 #include "scene/Scene.hpp"
+#include "scene/Eclipses.hpp"
 
 #include "SceneDetail.hpp"
 #include "scene/Bodies.hpp"
@@ -555,8 +556,19 @@ Scene parseScene(const std::string& jsonText, const std::string& pathForMessages
   scene.name = root.contains("name") ? in.string(root["name"], "name")
                                      : std::filesystem::path(pathForMessages).stem().string();
   if (root.contains("time")) {
+    const json& time = root["time"];
     try {
-      scene.time = parseUtc(in.string(root["time"], "time"));
+      if (time.is_object()) {
+        // {"eclipse": "2015-09-28", "at": "U2+10min"}: UT1, which UTC follows to 0.9 s.
+        in.object(time, "time", {"eclipse", "at"});
+        if (!time.contains("eclipse") || !time.contains("at"))
+          in.fail("time", "an eclipse's instant needs both \"eclipse\" (its date) and \"at\" (greatest, P1, U2+10min...)");
+        const double ut1 = eclipseInstantUt(in.string(time["eclipse"], "time.eclipse"), in.string(time["at"], "time.at"));
+        scene.time.jd1 = std::floor(ut1);
+        scene.time.jd2 = ut1 - scene.time.jd1;
+      } else {
+        scene.time = parseUtc(in.string(time, "time"));
+      }
     } catch (const std::invalid_argument& e) {
       in.fail("time", e.what());
     }

@@ -28,6 +28,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 using namespace umbra::test;
 namespace fs = std::filesystem;
@@ -224,6 +225,12 @@ const std::vector<Command>& commands() {
         "--step-deg", "30", "--csv", "@/e.csv"},
        {{"--wavelengths", "3"}, {"--seed", "1"}, {"--plot-vertical", "@/v.svg"}, {"--plot-almucantar", "@/a.svg"},
         {"--method", "fast"}}},
+      {{"eclipses"}, {"--from", "2017-08-20", "--to", "2017-08-22", "--kind", "solar", "--csv", "@/e.csv"},
+       {{"--delta-t", "70.3"}, {"--lunar-shadow", "chauvenet"}}},
+      {{"eclipse", "local"}, {"--date", "2017-08-21", "--observer", "36.97,-87.67", "--csv", "@/l.csv"},
+       {{"--delta-t", "70.3"}}},
+      {{"eclipse", "path"}, {"--date", "2017-08-21", "--step", "900", "--geojson", "@/p.geojson"},
+       {{"--png", "@/p.png"}, {"--delta-t", "70.3"}}},
   };
   return list;
 }
@@ -363,18 +370,29 @@ void expectFiniteExr(const TempDir& dir, const std::string& name) {
 
 }  // namespace
 
-TEST(Extremes, Render) { sweepCommand(commands()[0]); }
-TEST(Extremes, Moon) { sweepCommand(commands()[1]); }
-TEST(Extremes, PrecomputeShadow) { sweepCommand(commands()[2]); }
-TEST(Extremes, PrecomputeEclipse) { sweepCommand(commands()[3]); }
-TEST(Extremes, ProfileShadow) { sweepCommand(commands()[4]); }
-TEST(Extremes, Inspect) { sweepCommand(commands()[5]); }
-TEST(Extremes, AtmospherePrecompute) { sweepCommand(commands()[6]); }
-TEST(Extremes, AtmosphereRefraction) { sweepCommand(commands()[7]); }
-TEST(Extremes, AtmosphereSky) { sweepCommand(commands()[8]); }
-TEST(Extremes, TerrainShadow) { sweepCommand(commands()[9]); }
-TEST(Extremes, Sweep) { sweepCommand(commands()[10]); }
-TEST(Extremes, AtmosphereEclipseSky) { sweepCommand(commands()[11]); }
+/// The command of the sweep at `path` (e.g. {"atmosphere", "sky"}).
+const Command& command(const std::vector<std::string>& path) {
+  for (const Command& c : commands())
+    if (c.path == path) return c;
+  throw std::invalid_argument("no command " + path.front() + " in the sweep");
+}
+
+TEST(Extremes, Render) { sweepCommand(command({"render"})); }
+TEST(Extremes, Planets) { sweepCommand(command({"planets"})); }
+TEST(Extremes, Moon) { sweepCommand(command({"moon"})); }
+TEST(Extremes, PrecomputeShadow) { sweepCommand(command({"precompute", "shadow"})); }
+TEST(Extremes, PrecomputeEclipse) { sweepCommand(command({"precompute", "eclipse"})); }
+TEST(Extremes, ProfileShadow) { sweepCommand(command({"profile", "shadow"})); }
+TEST(Extremes, Inspect) { sweepCommand(command({"inspect"})); }
+TEST(Extremes, AtmospherePrecompute) { sweepCommand(command({"atmosphere", "precompute"})); }
+TEST(Extremes, AtmosphereRefraction) { sweepCommand(command({"atmosphere", "refraction"})); }
+TEST(Extremes, AtmosphereSky) { sweepCommand(command({"atmosphere", "sky"})); }
+TEST(Extremes, TerrainShadow) { sweepCommand(command({"terrain", "shadow"})); }
+TEST(Extremes, Sweep) { sweepCommand(command({"sweep"})); }
+TEST(Extremes, AtmosphereEclipseSky) { sweepCommand(command({"atmosphere", "eclipse-sky"})); }
+TEST(Extremes, Eclipses) { sweepCommand(command({"eclipses"})); }
+TEST(Extremes, EclipseLocal) { sweepCommand(command({"eclipse", "local"})); }
+TEST(Extremes, EclipsePath) { sweepCommand(command({"eclipse", "path"})); }
 
 // Every number of a sweep file at the extremes.
 TEST(Extremes, SweepFields) {

@@ -4,6 +4,7 @@
 // component and field and leaves the tables; Save/Load JSON round-trips every field; the
 // time slider moves the Sun under the same tables.
 #include "AtmosphereEditor.hpp"
+#include "EclipseList.hpp"
 #include "MainWindow.hpp"
 #include "ProfilePanel.hpp"
 #include "SceneView.hpp"
@@ -12,6 +13,7 @@
 #include "Atmosphere.hpp"
 #include "Describe.hpp"
 #include "Spectrum.hpp"
+#include "scene/Eclipses.hpp"
 #include "scene/Time.hpp"
 
 #include "CliRunner.hpp"
@@ -360,6 +362,31 @@ TEST(GuiEditor, TimeSliderMakesTwilightTablesAndDarkensTheSky) {
   settle(win.w);
   EXPECT_DOUBLE_EQ(win.w.sceneView().atmosphereTables()->GetMuSMin(), day->GetMuSMin());
   EXPECT_GT(win.w.sceneView().atmosphereTables()->GetLastCacheHits(), 0);
+}
+
+// The Eclipses list: the 2015 lunar eclipse's second contact sets the scene's time to the
+// catalogue's U2 (scene::eclipseInstantUt, as a scene file's {"eclipse", "at"} does); a
+// contact the eclipse lacks is refused.
+TEST(GuiEditor, EclipseListSetsTheTimeToAContact) {
+  Window win(std::nullopt, std::string(UMBRA_SOURCE_DIR) + "/examples/scenes/lunar-eclipse-2015-09-28.json",
+             std::nullopt, false);
+  win.w.showEclipseList();
+  umbra::gui::EclipseList& list = win.w.eclipseList();
+  EXPECT_GE(list.rowCount(), 12);  // 2015-2018: four years of two to five of each kind
+  const auto row = list.rowOn("2015-09-28");
+  ASSERT_TRUE(row);
+  ASSERT_TRUE(list.choose(*row, "U2"));
+  const double u2 = umbra::scene::eclipseInstantUt("2015-09-28", "U2");
+  umbra::scene::UtcTime expected;
+  expected.jd1 = std::floor(u2);
+  expected.jd2 = u2 - expected.jd1;
+  EXPECT_NE(win.w.statusText().indexOf(QString::fromStdString(umbra::scene::formatUtc(expected))), -1)
+      << win.w.statusText().toStdString();
+  EXPECT_NE(win.w.statusText().indexOf("2015-09-28T02:11:"), -1) << win.w.statusText().toStdString();
+  const auto penumbral = list.rowOn("2016-03-23");  // a penumbral eclipse: no umbra
+  ASSERT_TRUE(penumbral);
+  EXPECT_FALSE(list.choose(*penumbral, "U2"));
+  settle(win.w);
 }
 
 // The GPU time of the 3D view's last frame, per render-pass stage (GL

@@ -1,3 +1,4 @@
+#include "scene/Eclipses.hpp"
 #include "scene/Ephemeris.hpp"
 #include "scene/Scene.hpp"
 
@@ -693,5 +694,30 @@ TEST(SceneClouds, LayersParseAndNameTheirFields) {
   EXPECT_NE(errorFor(fixedScene(earth + R"("clouds": [{"wind": 3}]})")).find("bodies[1].clouds[0].wind: expected [east, north]"),
             std::string::npos);
   EXPECT_NE(errorFor(fixedScene(earth + R"("clouds": [{"altitde": 3}]})")).find("bodies[1].clouds[0].altitde: unknown key"),
+            std::string::npos);
+}
+
+// A scene's time as an eclipse's instant: the catalogue's contact plus the offset; errors
+// name the field and what is missing.
+TEST(Scene, TimeFromAnEclipseContact) {
+  const auto sceneAt = [](const std::string& time) {
+    return fixedScene(kSunAndRock, R"(, "time": )" + time);
+  };
+  const Scene s = parseScene(sceneAt(R"({"eclipse": "2015-09-28", "at": "U2+10min"})"), kFile);
+  ASSERT_TRUE(s.hasTime);
+  const double u2 = eclipseInstantUt("2015-09-28", "U2");
+  EXPECT_NEAR((s.time.jd1 + s.time.jd2 - u2) * 86400.0, 600.0, 1e-3);
+  EXPECT_EQ(formatUtc(s.time), "2015-09-28T02:21:11Z");  // U2 at 02:11:11 UT (NASA: 02:11:11)
+  const Scene g = parseScene(sceneAt(R"({"eclipse": "2017-08-21", "at": "greatest"})"), kFile);
+  EXPECT_EQ(formatUtc(g.time).substr(0, 16), "2017-08-21T18:25");
+  EXPECT_NE(errorFor(sceneAt(R"({"eclipse": "2017-08-07", "at": "U2"})")).find("time: the partial lunar eclipse of 2017-08-07 has no U2"),
+            std::string::npos);
+  EXPECT_NE(errorFor(sceneAt(R"({"eclipse": "2017-08-08", "at": "U1"})")).find("time: no eclipse on 2017-08-08"),
+            std::string::npos);
+  EXPECT_NE(errorFor(sceneAt(R"({"eclipse": "2015-09-28"})")).find("time: an eclipse's instant needs both"),
+            std::string::npos);
+  EXPECT_NE(errorFor(sceneAt(R"({"eclipse": "2015-09-28", "at": "U5"})")).find("time: eclipse instant 'U5'"),
+            std::string::npos);
+  EXPECT_NE(errorFor(sceneAt(R"({"eclipse": "2015-09-28", "at": "U2", "when": 1})")).find("time.when: unknown key"),
             std::string::npos);
 }

@@ -1,0 +1,121 @@
+// umbra eclipses: the catalogue as a user runs it (CSV against NASA's figures, a thousand
+// years without a hang, bad input as one line and no file); an unknown command named.
+#include "CliRunner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+using namespace umbra::test;
+
+namespace {
+
+/// The CSV's rows as maps from the header's names to the cells.
+std::vector<std::map<std::string, std::string>> csvRows(const std::string& path) {
+  std::ifstream f(path);
+  std::vector<std::string> header;
+  std::vector<std::map<std::string, std::string>> rows;
+  std::string line;
+  while (std::getline(f, line)) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    std::string cell;
+    while (std::getline(s, cell, ',')) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.push_back("");
+    if (header.empty()) {
+      header = cells;
+      continue;
+    }
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
+    EXPECT_EQ(cells.size(), header.size()) << line;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// 2017: NASA's total eclipse of 08-21 (gamma 0.4367, magnitude 1.0306, 2 m 40 s, 114.7 km;
+// Saros 145) and its partial lunar eclipse of 08-07 (umbral magnitude 0.2464, Saros 119),
+// with NASA's Delta T of 70.3 s.
+TEST(EclipsesCli, A2017CatalogueAgainstNasa) {
+  TempDir dir;
+  const RunResult r = run(UMBRA_EXE, {"eclipses", "--from", "2017-08-01", "--to", "2017-08-31", "--delta-t", "70.3",
+                                      "--csv", dir / "e.csv"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = csvRows(dir / "e.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  const auto& lunar = rows[0];
+  EXPECT_EQ(lunar.at("kind"), "lunar");
+  EXPECT_EQ(lunar.at("type"), "partial");
+  EXPECT_NEAR(std::stod(lunar.at("magnitude")), 0.2464, 0.002);
+  EXPECT_EQ(lunar.at("saros"), "119");
+  const auto& solar = rows[1];
+  EXPECT_EQ(solar.at("kind"), "solar");
+  EXPECT_EQ(solar.at("type"), "total");
+  EXPECT_EQ(solar.at("greatest_ut").substr(0, 19), "2017-08-21T18:25:29");
+  EXPECT_EQ(solar.at("greatest_tt").substr(0, 16), "2017-08-21T18:26");
+  EXPECT_EQ(solar.at("delta_t_s"), "70.3");
+  EXPECT_NEAR(std::stod(solar.at("gamma")), 0.4367, 0.0005);
+  EXPECT_NEAR(std::stod(solar.at("magnitude")), 1.0306, 0.0005);
+  EXPECT_NEAR(std::stod(solar.at("central_duration_s")), 160.0, 1.0);
+  EXPECT_NEAR(std::stod(solar.at("path_width_km")), 114.7, 1.2);
+  EXPECT_EQ(solar.at("saros"), "145");
+  EXPECT_EQ(solar.at("p2_ut"), "");  // no interior contact of the penumbra
+  EXPECT_EQ(solar.at("p1_ut").substr(0, 13), "2017-08-21T15");
+  EXPECT_NE(r.out.find("2 eclipses"), std::string::npos) << r.out;
+  EXPECT_EQ(dir.fileCount(), 1);
+}
+
+// A thousand years (1000-1999): no hang, no NaN, and about as many eclipses as NASA's
+// canons give a millennium (2.38 solar and 2.41 lunar a year over -1999..+3000); the note
+// on Delta T's uncertainty before 1600.
+TEST(EclipsesCli, AThousandYears) {
+  TempDir dir;
+  const RunResult r = run(UMBRA_EXE, {"eclipses", "--from", "1000-01-01", "--to", "1999-12-31", "--csv", dir / "e.csv"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("Delta T is uncertain"), std::string::npos) << r.err;
+  int solar = 0, lunar = 0;
+  for (const auto& row : csvRows(dir / "e.csv")) {
+    (row.at("kind") == "solar" ? solar : lunar) += 1;
+    for (const char* c : {"gamma", "magnitude", "delta_t_s"}) EXPECT_TRUE(std::isfinite(std::stod(row.at(c))));
+  }
+  EXPECT_NEAR(solar, 2380, 60);
+  EXPECT_NEAR(lunar, 2410, 60);
+}
+
+TEST(EclipsesCli, BadInputIsOneLineAndNoFile) {
+  TempDir dir;
+  for (const auto& [args, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"eclipses", "--from", "2017-13-01", "--to", "2018-01-01", "--csv", dir / "a.csv"}, "--from/--to: invalid date '2017-13-01'"},
+           {{"eclipses", "--from", "2018-01-01", "--to", "2017-01-01", "--csv", dir / "a.csv"}, "--to (2017-01-01) is before --from"},
+           {{"eclipses", "--from", "-4000-01-01", "--to", "2017-01-01", "--csv", dir / "a.csv"}, "-3000..+5000"},
+           {{"eclipses", "--from", "2017-01-01", "--to", "2018-01-01", "--kind", "stellar"}, "--kind"},
+           {{"eclipses", "--from", "2017-01-01", "--to", "2018-01-01", "--csv", dir / "missing/a.csv"}, "missing"}}) {
+    const RunResult bad = run(UMBRA_EXE, args);
+    EXPECT_NE(bad.exitCode, 0) << message;
+    EXPECT_NE(bad.err.find(message), std::string::npos) << "stderr: " << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  }
+  EXPECT_EQ(dir.fileCount(), 0);
+}
+
+// An unknown command names itself and lists the commands.
+TEST(EclipsesCli, AnUnknownCommandIsNamed) {
+  for (const std::vector<std::string>& args : {std::vector<std::string>{"foo"}, {"--verbose", "foo", "--bar"}}) {
+    const RunResult r = run(UMBRA_EXE, args);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("unknown command 'foo'"), std::string::npos) << r.err;
+    for (const char* command : {"render", "eclipses", "atmosphere", "terrain"})
+      EXPECT_NE(r.err.find(command), std::string::npos) << command;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  const RunResult none = run(UMBRA_EXE, {});
+  EXPECT_NE(none.exitCode, 0);
+  EXPECT_NE(none.err.find("subcommand is required"), std::string::npos) << none.err;
+}
+
+}  // namespace
