@@ -9,6 +9,10 @@
 #include "OutputFile.hpp"
 #include "ShadowCommon.hpp"  // parseObserver
 
+#include "EclipsedMoon.hpp"
+#include "Photometry.hpp"
+#include "ShadowLut.hpp"
+#include "ShadowMapping.hpp"
 #include "scene/Bodies.hpp"
 #include "scene/DeltaT.hpp"
 #include "scene/Eclipses.hpp"
@@ -19,6 +23,8 @@
 #include <vtkImageReader2Factory.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
+#include <vtkTable.h>
+#include <vtkVariant.h>
 
 #include <algorithm>
 #include <cmath>
@@ -41,9 +47,10 @@ struct DateOptions {
   }
 };
 
-/// The solar eclipse whose greatest eclipse falls on --date (UT). Throws CommandError naming
-/// the next one when there is none.
-scene::SolarEclipse solarEclipseOn(const DateOptions& o) {
+/// The eclipse (`find`: scene::findSolarEclipses or findLunarEclipses) whose greatest eclipse
+/// falls on --date (UT). Throws CommandError naming the next one when there is none.
+template <class Find>
+auto eclipseOn(const DateOptions& o, const char* kind, Find find) -> typename decltype(find(scene::EclipseSearch{}))::value_type {
   double day = 0.0;
   try {
     day = scene::parseUtDate(o.date);
@@ -57,19 +64,22 @@ scene::SolarEclipse solarEclipseOn(const DateOptions& o) {
   search.fromTt = tt(day);
   search.toTt = tt(day + 1.0);
   try {
-    const auto found = scene::findSolarEclipses(search);
+    const auto found = find(search);
     if (!found.empty()) return found.front();
     search.toTt = search.fromTt + 200.0;
-    const auto later = scene::findSolarEclipses(search);
+    const auto later = find(search);
     std::string next;
     if (!later.empty())
       next = "; the next is the " + std::string(scene::typeName(later.front().type)) + " eclipse of " +
              scene::formatJulianDate(later.front().greatestTt - later.front().deltaTSeconds / kDayS).substr(0, 10);
-    throw CommandError("--date: no solar eclipse on " + o.date + next);
+    throw CommandError("--date: no " + std::string(kind) + " eclipse on " + o.date + next);
   } catch (const std::invalid_argument& e) {
     throw CommandError(std::string("--date: ") + e.what());
   }
 }
+
+scene::SolarEclipse solarEclipseOn(const DateOptions& o) { return eclipseOn(o, "solar", scene::findSolarEclipses); }
+scene::LunarEclipse lunarEclipseOn(const DateOptions& o) { return eclipseOn(o, "lunar", scene::findLunarEclipses); }
 
 std::string utOf(double tt, double deltaTSeconds) { return scene::formatJulianDate(tt - deltaTSeconds / kDayS); }
 
@@ -258,6 +268,97 @@ void addEclipseCommand(CLI::App& app, Action& action) {
         }
         out.commit();
         std::printf("wrote %s\n", localCsv->c_str());
+      }
+      return 0;
+    };
+  });
+
+  CLI::App* brightness = eclipse->add_subcommand(
+      "brightness", "How dark the lunar eclipse of --date is at greatest eclipse through --atmosphere: the Moon's "
+                    "integrated V, its surface brightness at the centre and the limbs, and the Danjon L");
+  struct BrightnessOptions {
+    DateOptions date;
+    EclipseAtmosphereChoice atmosphere;
+    std::string csv;
+    int samples = 801;
+    bool spherical = false;
+  };
+  auto bo = std::make_shared<BrightnessOptions>();
+  bo->date.addTo(brightness);
+  bo->atmosphere.addTo(brightness);
+  brightness->get_option("--atmosphere")->required();
+  brightness->add_option("--samples", bo->samples, "Samples of the shadow's cross-section, axis to past the penumbra")
+      ->check(CLI::Range(16, 100000))
+      ->capture_default_str();
+  brightness->add_flag("--spherical", bo->spherical, "A spherical Earth (default: its oblate outline as seen from the Moon)");
+  brightness->add_option("--csv", bo->csv, "Also write CSV: quantity,value,unit");
+  brightness->callback([&action, bo] {
+    action = [bo] {
+      if (!bo->csv.empty()) output::checkWritable(bo->csv, {".csv"});
+      const scene::LunarEclipse e = lunarEclipseOn(bo->date);
+      const scene::LunarShadowGeometry g = scene::lunarShadowGeometry(e.greatestTt);
+      bo->atmosphere.bottomRadiusM();  // a one-line error for a bad atmosphere
+      OccluderChoice earth = chooseOccluder("Earth", "", "");
+      earth.sunDistanceM = g.sunDistanceM;
+      const scene::Body moonBody = scene::presetBody("Moon", scene::fromTt(e.greatestTt, 0.0));
+      const double moonRadiusM = moonBody.radiusM;
+      // From the axis to past the penumbra's edge on the far side of the Moon.
+      const double reachM = std::hypot(g.moonOffsetXM, g.moonOffsetYM) + moonRadiusM;
+      const double maxOffsetM = std::max(reachM, 1.05 * eclipse::shadowConeRadii(
+          {eclipse::kSunRadiusM, earth.radiusM, earth.sunDistanceM}, g.moonDistanceM).penumbraRadiusM) + 100e3;
+      vtkSmartPointer<vtkTable> table =
+          atmosphericProfile(bo->atmosphere, earth, g.moonDistanceM, maxOffsetM, bo->samples, eclipse::kDefaultLimbDarkening);
+      std::vector<eclipse::ProfileSample> profile(static_cast<size_t>(table->GetNumberOfRows()));
+      for (vtkIdType i = 0; i < table->GetNumberOfRows(); ++i) {
+        profile[static_cast<size_t>(i)].offsetM = 1000.0 * table->GetValueByName(i, "offset_km").ToDouble();
+        profile[static_cast<size_t>(i)].luminance = table->GetValueByName(i, "luminance").ToDouble();
+      }
+      const scene::EclipseConstants k;
+      const eclipse::EarthOutline outline =
+          bo->spherical ? eclipse::EarthOutline{earth.radiusM, earth.radiusM, earth.radiusM}
+                        : eclipse::earthOutline(k.earthEquatorialRadiusM, k.earthFlattening, g.axisDeclinationRad, earth.radiusM);
+      const eclipse::EclipsedMoonLight light =
+          eclipse::eclipsedMoonLight(profile, {g.moonOffsetXM, g.moonOffsetYM}, moonRadiusM, outline);
+      // The Moon outside the shadow, lit from the Earth's limb as the shadow's light comes:
+      // the phase angle is the limb's angular radius seen from the Moon (its opposition surge).
+      const double phaseRad = std::asin(k.earthEquatorialRadiusM / g.moonDistanceM);
+      const double fullV = sky::apparentMagnitudeV(moonBody.albedo, moonBody.photometry.hapke, phaseRad, moonRadiusM,
+                                                   g.sunDistanceM, g.moonDistanceM);
+      const double discArcsec2 = 3.14159265358979 * std::pow(std::asin(moonRadiusM / g.moonDistanceM) * 206264.806, 2.0);
+      const double fullSurface = fullV + 2.5 * std::log10(discArcsec2);
+      const auto mag = [](double factor) { return -2.5 * std::log10(std::max(factor, 1e-30)); };
+      const double v = fullV + mag(light.mean);
+      // Danjon L from V: Vital's correlation m = 4.2 - 3 L + (L/2)^2, inverted, within 0..4.
+      const double danjon = std::clamp(2.0 * (3.0 - std::sqrt(std::max(0.0, 4.8 + v))), 0.0, 4.0);
+      for (double x : {v, light.centre, light.nearLimb, light.farLimb})
+        if (!std::isfinite(x)) throw CommandError("the eclipse's brightness is not finite (the shadow profile has no value there)");
+      std::printf("The %s lunar eclipse of %s, greatest at %s UT (gamma %+.4f, umbral magnitude %.4f), through %s%s\n",
+                  scene::typeName(e.type), bo->date.date.c_str(), utOf(e.greatestTt, e.deltaTSeconds).c_str(), e.gamma,
+                  e.umbralMagnitude, bo->atmosphere.atmosphere.c_str(), bo->spherical ? " (a spherical Earth)" : "");
+      std::printf("the Moon %.0f km away, its centre %.0f km from the shadow's axis\n", g.moonDistanceM / 1000.0,
+                  std::hypot(g.moonOffsetXM, g.moonOffsetYM) / 1000.0);
+      std::printf("V outside the shadow %.2f; in it %.2f (%.2f magnitudes dimmer), Danjon L %.1f\n", fullV, v, mag(light.mean), danjon);
+      std::printf("surface brightness, mag/arcsec^2: centre %.2f, limb nearest the axis %.2f, farthest %.2f (full Moon %.2f)\n",
+                  fullSurface + mag(light.centre), fullSurface + mag(light.nearLimb), fullSurface + mag(light.farLimb),
+                  fullSurface);
+      if (!bo->csv.empty()) {
+        output::OutputFile out(bo->csv);
+        {
+          std::ofstream f(out.tempPath());
+          char b[512];
+          std::snprintf(b, sizeof b,
+                        "quantity,value,unit\ngreatest_ut,%s,\nmoon_distance,%.1f,km\naxis_offset,%.1f,km\n"
+                        "v_outside_shadow,%.3f,mag\nv,%.3f,mag\nshadow_factor_mean,%.6g,\ndanjon_l,%.2f,\n"
+                        "surface_brightness_centre,%.3f,mag/arcsec2\nsurface_brightness_near_limb,%.3f,mag/arcsec2\n"
+                        "surface_brightness_far_limb,%.3f,mag/arcsec2\n",
+                        utOf(e.greatestTt, e.deltaTSeconds).c_str(), g.moonDistanceM / 1000.0,
+                        std::hypot(g.moonOffsetXM, g.moonOffsetYM) / 1000.0, fullV, v, light.mean, danjon,
+                        fullSurface + mag(light.centre), fullSurface + mag(light.nearLimb), fullSurface + mag(light.farLimb));
+          f << b;
+          if (!f.flush()) throw CommandError(bo->csv + ": cannot write");
+        }
+        out.commit();
+        std::printf("wrote %s\n", bo->csv.c_str());
       }
       return 0;
     };

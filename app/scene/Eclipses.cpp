@@ -85,6 +85,12 @@ struct Ephemerides {
   Interpolated earth, elpCorrection;
 };
 
+/// ELP's Moon summed at every call and ERFA's Earth: for a single instant.
+struct PreciseEphemerides {
+  static glm::dvec3 moonGeocentricM(double tt) { return moonGeocentricElpM(tt); }
+  static glm::dvec3 earthHeliocentricM(double tt) { return scene::earthHeliocentricM(tt); }
+};
+
 /// Meeus' Moon and ERFA's Earth, for the quick screen of every syzygy.
 struct QuickEphemerides {
   static glm::dvec3 moonGeocentricM(double tt) { return moonGeocentricMeeusM(tt); }
@@ -710,6 +716,23 @@ SolarEclipsePath solarEclipsePath(const SolarEclipse& eclipse, double stepSecond
     if (s.southPenumbra) path.southernPenumbralLimit.push_back(place(*s.southPenumbra));
   }
   return path;
+}
+
+LunarShadowGeometry lunarShadowGeometry(double tt) {
+  const Apparent a = apparentAt(PreciseEphemerides{}, tt);
+  const glm::dvec3 axis = -glm::normalize(a.sunM);
+  double npb[3][3];
+  eraPnm06a(tt, 0.0, npb);  // GCRS -> true equator and equinox of date: its third row is the pole
+  const glm::dvec3 pole(npb[2][0], npb[2][1], npb[2][2]);
+  const glm::dvec3 ey = glm::normalize(pole - glm::dot(pole, axis) * axis);
+  const glm::dvec3 ex = glm::cross(ey, axis);
+  LunarShadowGeometry g;
+  g.moonDistanceM = glm::dot(a.moonM, axis);
+  g.sunDistanceM = glm::length(a.sunM);
+  g.moonOffsetXM = glm::dot(a.moonM, ex);
+  g.moonOffsetYM = glm::dot(a.moonM, ey);
+  g.axisDeclinationRad = std::asin(std::clamp(glm::dot(axis, pole), -1.0, 1.0));
+  return g;
 }
 
 double eclipseInstantUt(const std::string& date, const std::string& at) {

@@ -70,6 +70,18 @@ struct LunarEclipse {
   int saros = 0;
 };
 
+/// The Earth's shadow where the Moon is, at a TT instant (apparent places, as the search's):
+/// the Moon's centre on the shadow's cross-section, x towards the projected east and y along
+/// the Earth's projected north pole, from the axis.
+struct LunarShadowGeometry {
+  double moonDistanceM = 0.0;      ///< along the shadow's axis, from the Earth's centre
+  double sunDistanceM = 0.0;
+  double moonOffsetXM = 0.0, moonOffsetYM = 0.0;
+  double axisDeclinationRad = 0.0;  ///< of the shadow's axis (the antisolar point), true equator of date
+};
+
+LunarShadowGeometry lunarShadowGeometry(double tt);
+
 struct EclipseSearch {
   double fromTt = 0.0, toTt = 0.0;  ///< greatest eclipses in [from, to]
   std::optional<double> deltaTSeconds;  ///< fixed Delta T (s); otherwise deltaTAtYear

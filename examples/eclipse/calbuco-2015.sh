@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The lunar eclipse of 2015-09-28 (eclipse paper, 6.1, Figures 11-12): Earth's shadow at the
-# Moon's mean distance with the clear atmosphere and with the Calbuco aerosols (twice the
-# aerosols, 3 km scale height), as CSV and Figure 12 style plots (log I/I_sun, R G B).
+# Moon's mean distance with the clear atmosphere and with Calbuco's stratospheric sulphate
+# (three times the background), as CSV and Figure 12 style plots (log I/I_sun, R G B).
 # Usage: examples/eclipse/calbuco-2015.sh [OUTPUT_DIR]   (plots as SVG; PNG needs xvfb-run -a)
 source "$(dirname "$0")/common.sh"
 for atmosphere in earth earth-2015-calbuco; do

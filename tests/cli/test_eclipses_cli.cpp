@@ -87,6 +87,50 @@ TEST(EclipsesCli, AThousandYears) {
   EXPECT_NEAR(lunar, 2410, 60);
 }
 
+/// The quantity column of `eclipse brightness --csv`.
+double quantity(const std::string& csv, const std::string& name) {
+  std::ifstream f(csv);
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind(name + ",", 0) == 0) return std::stod(line.substr(name.size() + 1));
+  ADD_FAILURE() << name << " not in " << csv;
+  return std::nan("");
+}
+
+// How dark: the deep central eclipse of 2018-07-27 (gamma 0.117) through the clear `earth`
+// atmosphere within the V that photometry measured at the total eclipses of 2000-2025
+// (-2.8, 2008-02-21, to -0.35, 2011-06-15: docs/eclipse-predictions.md), and 0.2-0.6
+// magnitudes dimmer through Calbuco's sulphate (Keen: the 2015 Moon 0.4 mag dimmer than a
+// clean stratosphere gives).
+TEST(EclipsesCli, HowDarkTheMoonIs) {
+  TempDir dir;
+  double v[2] = {0.0, 0.0};
+  const char* atmospheres[2] = {"earth", "earth-2015-calbuco"};
+  for (int i = 0; i < 2; ++i) {
+    const std::string csv = dir / (std::string(atmospheres[i]) + ".csv");
+    const RunResult r = run(UMBRA_EXE, {"eclipse", "brightness", "--date", "2018-07-27", "--atmosphere", atmospheres[i],
+                                        "--samples", "401", "--csv", csv});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("Danjon L"), std::string::npos) << r.out;
+    v[i] = quantity(csv, "v");
+    const double full = quantity(csv, "v_outside_shadow");
+    EXPECT_NEAR(full, -12.8, 0.3);  // the full Moon near perigee
+    EXPECT_GT(quantity(csv, "danjon_l"), 0.0);
+    EXPECT_LE(quantity(csv, "danjon_l"), 4.0);
+    for (const char* where : {"surface_brightness_centre", "surface_brightness_near_limb", "surface_brightness_far_limb"})
+      EXPECT_GT(quantity(csv, where), 3.4 + 8.0) << where;  // more than 8 magnitudes below the full Moon's 3.4
+  }
+  EXPECT_GT(v[0], -2.8);
+  EXPECT_LT(v[0], -0.35);
+  EXPECT_GT(v[1] - v[0], 0.2);
+  EXPECT_LT(v[1] - v[0], 0.6);
+  const RunResult bad = run(UMBRA_EXE, {"eclipse", "brightness", "--date", "2017-08-21", "--atmosphere", "earth"});
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_NE(bad.err.find("--date: no lunar eclipse on 2017-08-21; the next is the total eclipse of 2018-01-31"),
+            std::string::npos)
+      << bad.err;
+}
+
 TEST(EclipsesCli, BadInputIsOneLineAndNoFile) {
   TempDir dir;
   for (const auto& [args, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{

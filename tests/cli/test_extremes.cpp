@@ -231,6 +231,10 @@ const std::vector<Command>& commands() {
        {{"--delta-t", "70.3"}}},
       {{"eclipse", "path"}, {"--date", "2017-08-21", "--step", "900", "--geojson", "@/p.geojson"},
        {{"--png", "@/p.png"}, {"--delta-t", "70.3"}}},
+      {{"eclipse", "brightness"},
+       {"--date", "2018-07-27", "--atmosphere", "earth", "--draft-tables", "--orders", "1", "--limb-size", "16",
+        "--scattering-cells", "2", "--samples", "64", "--csv", "@/b.csv"},
+       {{"--delta-t", "70.8"}, {"--scattering-nu", "8"}}},
   };
   return list;
 }
@@ -393,6 +397,7 @@ TEST(Extremes, AtmosphereEclipseSky) { sweepCommand(command({"atmosphere", "ecli
 TEST(Extremes, Eclipses) { sweepCommand(command({"eclipses"})); }
 TEST(Extremes, EclipseLocal) { sweepCommand(command({"eclipse", "local"})); }
 TEST(Extremes, EclipsePath) { sweepCommand(command({"eclipse", "path"})); }
+TEST(Extremes, EclipseBrightness) { sweepCommand(command({"eclipse", "brightness"})); }
 
 // Every number of a sweep file at the extremes.
 TEST(Extremes, SweepFields) {

@@ -786,9 +786,9 @@ TEST(GuiEditor, LimbRingFromTheLutAsTheCliDrawsIt) {
   w.renderViews();
   EXPECT_TRUE(w.sceneView().lastDrawUsedLimbLuminance());
 
-  // Another atmosphere (the preset without Calbuco's aerosols): its tables, then its LuTs
-  // in the worker; less extinction along the limb, a brighter ring (measured R 243 vs 218,
-  // G 157 vs 117).
+  // Another atmosphere (Bruneton's thin haze, without earth's troposphere or Calbuco's sulphate): its tables, then its LuTs
+  // in the worker; less extinction along the limb, a brighter ring (measured R 243 vs 170,
+  // G 157 vs 96).
   w.setAtmosphere("earth-bruneton");
   ASSERT_TRUE(untilShadowJob(w));
   EXPECT_TRUE(w.limbLuminanceBusy());
@@ -798,7 +798,7 @@ TEST(GuiEditor, LimbRingFromTheLutAsTheCliDrawsIt) {
   w.saveScreenshot(clearPng);
   EXPECT_TRUE(w.sceneView().lastDrawUsedLimbLuminance());
   const Ring clear = ringOf(gui, read(clearPng, v), 8);
-  std::printf("  earth (no Calbuco aerosols): mean R G B %.1f %.1f %.1f over %d pixels\n", clear.b[0], clear.b[1],
+  std::printf("  earth-bruneton: mean R G B %.1f %.1f %.1f over %d pixels\n", clear.b[0], clear.b[1],
               clear.b[2], clear.pixels);
   EXPECT_GT(clear.b[0], ring.a[0]);
   EXPECT_GT(clear.b[1], 1.1 * ring.a[1]);

@@ -1,0 +1,67 @@
+#include "EclipsedMoon.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace umbra::eclipse {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+double EarthOutline::radiusM(double fromEquatorRad) const {
+  const double c = std::cos(fromEquatorRad) / equatorialRadiusM, s = std::sin(fromEquatorRad) / projectedPolarRadiusM;
+  return 1.0 / std::sqrt(c * c + s * s);
+}
+
+EarthOutline earthOutline(double a, double f, double declinationRad, double profileRadiusM) {
+  const double e2 = f * (2.0 - f), c = std::cos(declinationRad);
+  return {a, a * std::sqrt(1.0 - e2 * c * c), profileRadiusM};
+}
+
+double profileLuminanceAt(const std::vector<ProfileSample>& profile, double offsetM) {
+  if (offsetM <= profile.front().offsetM) return profile.front().luminance;
+  if (offsetM >= profile.back().offsetM) return profile.back().luminance;
+  const auto above = std::upper_bound(profile.begin(), profile.end(), offsetM,
+                                      [](double r, const ProfileSample& s) { return r < s.offsetM; });
+  const ProfileSample& hi = *above;
+  const ProfileSample& lo = *(above - 1);
+  const double w = (offsetM - lo.offsetM) / (hi.offsetM - lo.offsetM);
+  return lo.luminance + w * (hi.luminance - lo.luminance);
+}
+
+EclipsedMoonLight eclipsedMoonLight(const std::vector<ProfileSample>& profile, glm::dvec2 moonCentreM,
+                                    double moonRadiusM, const EarthOutline& outline, int rings) {
+  if (profile.size() < 2) throw std::invalid_argument("eclipsed Moon: the shadow profile has fewer than 2 samples");
+  for (size_t i = 1; i < profile.size(); ++i)
+    if (!(profile[i].offsetM > profile[i - 1].offsetM))
+      throw std::invalid_argument("eclipsed Moon: the shadow profile's offsets do not increase");
+  if (!(moonRadiusM > 0.0) || !(rings >= 1) || !std::isfinite(moonCentreM.x) || !std::isfinite(moonCentreM.y))
+    throw std::invalid_argument("eclipsed Moon: the disc needs a radius > 0, a finite centre and rings >= 1");
+  const auto at = [&](glm::dvec2 p) {
+    const double r = glm::length(p);
+    const double theta = r > 0.0 ? std::atan2(p.y, p.x) : 0.0;
+    return profileLuminanceAt(profile, std::max(0.0, r - (outline.radiusM(theta) - outline.profileRadiusM)));
+  };
+  EclipsedMoonLight light;
+  double sum = 0.0, area = 0.0;
+  const int sectors = 4 * rings;
+  for (int i = 0; i < rings; ++i) {
+    const double r = (i + 0.5) / rings * moonRadiusM;
+    const double ringArea = 2.0 * kPi * r * (moonRadiusM / rings) / sectors;
+    for (int j = 0; j < sectors; ++j) {
+      const double phi = (j + 0.5) / sectors * 2.0 * kPi;
+      sum += ringArea * at(moonCentreM + r * glm::dvec2(std::cos(phi), std::sin(phi)));
+      area += ringArea;
+    }
+  }
+  light.mean = sum / area;
+  light.centre = at(moonCentreM);
+  const double d = glm::length(moonCentreM);
+  const glm::dvec2 out = d > 0.0 ? moonCentreM / d : glm::dvec2(0.0, 1.0);
+  light.nearLimb = at(moonCentreM - moonRadiusM * out);
+  light.farLimb = at(moonCentreM + moonRadiusM * out);
+  return light;
+}
+
+}  // namespace umbra::eclipse

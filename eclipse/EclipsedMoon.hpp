@@ -1,0 +1,47 @@
+#pragma once
+// The eclipsed Moon's light: the Earth's shadow (a cross-section I/I_sun against the offset
+// from the axis, shadowProfile or atmosphericShadowProfile) averaged over the Moon's disc,
+// with the Earth's outline an ellipse (its oblateness as the Moon sees it).
+#include "ShadowLut.hpp"  // ProfileSample
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+namespace umbra::eclipse {
+
+/// The Earth's limb seen along the shadow's axis: an ellipse with the equatorial radius
+/// across the projected pole and equatorialRadiusM sqrt(1 - e^2 cos^2 delta) along it
+/// (delta the axis' declination); the profile was computed for a sphere of profileRadiusM.
+struct EarthOutline {
+  double equatorialRadiusM = 6378137.0;
+  double projectedPolarRadiusM = 6378137.0;
+  double profileRadiusM = 6378137.0;
+  /// The outline's radius in the direction at angle `fromEquatorRad` from the projected equator.
+  double radiusM(double fromEquatorRad) const;
+};
+
+/// The outline for an Earth of equatorial radius `a` and flattening `f` seen along an axis
+/// of declination `declinationRad`, the profile computed for radius `profileRadiusM`.
+EarthOutline earthOutline(double a, double f, double declinationRad, double profileRadiusM);
+
+/// I / I_sun (luminance) on the Moon's disc: its mean over the disc (a uniform disc, as the
+/// full Moon nearly is), and at its centre and its two limbs on the line through the axis.
+struct EclipsedMoonLight {
+  double mean = 1.0, centre = 1.0, nearLimb = 1.0, farLimb = 1.0;
+};
+
+/// The profile (offsets from 0 up, increasing) at offset r: linear between samples, its
+/// last value beyond them.
+double profileLuminanceAt(const std::vector<ProfileSample>& profile, double offsetM);
+
+/// The Moon's disc of radius `moonRadiusM` centred at `moonCentreM` on the shadow's
+/// cross-section (x along the projected equator, y along the projected north pole, from the
+/// axis). A point at offset r in direction theta sees the profile at r minus the outline's
+/// excess over the profile's sphere there (the shadow's edges move with the limb). The
+/// disc is summed over `rings` rings of equal width, each in 4 x rings sectors.
+/// Throws std::invalid_argument for an empty or non-increasing profile or a radius <= 0.
+EclipsedMoonLight eclipsedMoonLight(const std::vector<ProfileSample>& profile, glm::dvec2 moonCentreM,
+                                    double moonRadiusM, const EarthOutline& outline, int rings = 96);
+
+}  // namespace umbra::eclipse
