@@ -64,4 +64,23 @@ EclipsedMoonLight eclipsedMoonLight(const std::vector<ProfileSample>& profile, g
   return light;
 }
 
+double steepestLogRiseOffsetM(const std::vector<ProfileSample>& profile) {
+  if (profile.size() < 2) throw std::invalid_argument("umbra's edge: the shadow profile has fewer than 2 samples");
+  double best = -1.0, at = profile.front().offsetM;
+  for (size_t i = 1; i < profile.size(); ++i) {
+    const ProfileSample &a = profile[i - 1], &b = profile[i];
+    if (!(a.luminance > 0.0 && b.luminance > 0.0 && b.offsetM > a.offsetM))
+      throw std::invalid_argument("umbra's edge: the shadow profile needs luminances > 0 at increasing offsets");
+    const double rise = std::log(b.luminance / a.luminance) / (b.offsetM - a.offsetM);
+    if (rise > best) best = rise, at = 0.5 * (a.offsetM + b.offsetM);
+  }
+  return at;
+}
+
+double umbraEdgeEnlargementM(const std::vector<ProfileSample>& profile, const SunOccluderSystem& system,
+                             double distanceBehindM) {
+  const double geometric = shadowConeRadii(system, distanceBehindM).umbraRadiusM;
+  return (steepestLogRiseOffsetM(profile) - geometric) / (1.0 + distanceBehindM / system.sunOccluderDistanceM);
+}
+
 }  // namespace umbra::eclipse

@@ -3,6 +3,7 @@
 // from the axis, shadowProfile or atmosphericShadowProfile) averaged over the Moon's disc,
 // with the Earth's outline an ellipse (its oblateness as the Moon sees it).
 #include "ShadowLut.hpp"  // ProfileSample
+#include "ShadowMapping.hpp"  // SunOccluderSystem
 
 #include <glm/glm.hpp>
 
@@ -43,5 +44,17 @@ double profileLuminanceAt(const std::vector<ProfileSample>& profile, double offs
 /// Throws std::invalid_argument for an empty or non-increasing profile or a radius <= 0.
 EclipsedMoonLight eclipsedMoonLight(const std::vector<ProfileSample>& profile, glm::dvec2 moonCentreM,
                                     double moonRadiusM, const EarthOutline& outline, int rings = 96);
+
+/// The umbra's edge as an atmosphere draws it: the offset where the profile's logarithm
+/// rises steepest (between the samples where it does). Throws std::invalid_argument for a
+/// profile of fewer than 2 samples or with a value <= 0.
+double steepestLogRiseOffsetM(const std::vector<ProfileSample>& profile);
+
+/// How much that edge enlarges the occluder: the radius to add to `system`'s occluder for its
+/// geometric umbra, `distanceBehindM` behind it, to reach the profile's edge (the umbra's
+/// radius grows by 1 + distance / sun distance per metre of radius). The "physical" rule
+/// of the lunar shadow, against Danjon's 1/85 and Chauvenet's 1/50.
+double umbraEdgeEnlargementM(const std::vector<ProfileSample>& profile, const SunOccluderSystem& system,
+                             double distanceBehindM);
 
 }  // namespace umbra::eclipse

@@ -23,8 +23,6 @@
 #include <vtkImageReader2Factory.h>
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
-#include <vtkTable.h>
-#include <vtkVariant.h>
 
 #include <algorithm>
 #include <cmath>
@@ -306,13 +304,8 @@ void addEclipseCommand(CLI::App& app, Action& action) {
       const double reachM = std::hypot(g.moonOffsetXM, g.moonOffsetYM) + moonRadiusM;
       const double maxOffsetM = std::max(reachM, 1.05 * eclipse::shadowConeRadii(
           {eclipse::kSunRadiusM, earth.radiusM, earth.sunDistanceM}, g.moonDistanceM).penumbraRadiusM) + 100e3;
-      vtkSmartPointer<vtkTable> table =
-          atmosphericProfile(bo->atmosphere, earth, g.moonDistanceM, maxOffsetM, bo->samples, eclipse::kDefaultLimbDarkening);
-      std::vector<eclipse::ProfileSample> profile(static_cast<size_t>(table->GetNumberOfRows()));
-      for (vtkIdType i = 0; i < table->GetNumberOfRows(); ++i) {
-        profile[static_cast<size_t>(i)].offsetM = 1000.0 * table->GetValueByName(i, "offset_km").ToDouble();
-        profile[static_cast<size_t>(i)].luminance = table->GetValueByName(i, "luminance").ToDouble();
-      }
+      const std::vector<eclipse::ProfileSample> profile = atmosphericProfileSamples(
+          bo->atmosphere, earth, g.moonDistanceM, maxOffsetM, bo->samples, eclipse::kDefaultLimbDarkening);
       const scene::EclipseConstants k;
       const eclipse::EarthOutline outline =
           bo->spherical ? eclipse::EarthOutline{earth.radiusM, earth.radiusM, earth.radiusM}

@@ -4,7 +4,9 @@
 //   Saros series; for solar eclipses the point of greatest eclipse, and the duration and
 //   path width there for central ones.
 #include "Commands.hpp"
+#include "EclipsedMoon.hpp"
 #include "OutputFile.hpp"
+#include "ShadowCommon.hpp"
 
 #include "scene/DeltaT.hpp"
 #include "scene/Eclipses.hpp"
@@ -82,8 +84,9 @@ void addEclipsesCommand(CLI::App& app, Action& action) {
       "eclipses", "Every solar and lunar eclipse between two dates: type, greatest eclipse (UT and TT, with Delta T), "
                   "gamma, magnitudes, contacts and Saros series (positions: ELP 2000-82B and ERFA; NASA's constants)");
   struct Options {
-    std::string from, to, kind = "both", csv, lunarShadow = "danjon";
+    std::string from, to, kind = "both", csv, lunarShadow = "danjon", atmosphere = "earth";
     std::optional<double> deltaT;
+    bool oblate = false;
   };
   auto o = std::make_shared<Options>();
   cmd->add_option("--from", o->from, "First date, UT: YYYY-MM-DD[THH:MM[:SS]] (proleptic Gregorian; -0584-05-28 for 585 BC)")
@@ -101,9 +104,15 @@ void addEclipsesCommand(CLI::App& app, Action& action) {
       ->check(CLI::Range(-1e6, 1e6));
   cmd->add_option("--lunar-shadow", o->lunarShadow,
                   "How the atmosphere enlarges the Earth's shadow: danjon (the Earth's radius + 1/85, as NASA's "
-                  "canon) or chauvenet (the shadow + 1/50, as the Astronomical Almanac)")
-      ->check(CLI::IsMember({"danjon", "chauvenet"}))
+                  "canon), chauvenet (the shadow + 1/50, as the Astronomical Almanac) or physical (the umbra's edge "
+                  "where --atmosphere's shadow profile is steepest)")
+      ->check(CLI::IsMember({"danjon", "chauvenet", "physical"}))
       ->capture_default_str();
+  cmd->add_option("--atmosphere", o->atmosphere, "With --lunar-shadow physical: the atmosphere preset or file")
+      ->capture_default_str();
+  cmd->add_flag("--oblate-shadow", o->oblate,
+                "The Earth's outline an ellipse (flattening 1/298.257) as the Moon sees it, in the lunar contacts and "
+                "magnitudes (default: a sphere, as the rules are published)");
 
   cmd->callback([&action, o] {
     action = [o] {
@@ -121,7 +130,25 @@ void addEclipsesCommand(CLI::App& app, Action& action) {
       }
       if (search.toTt < search.fromTt) throw CommandError("--to (" + o->to + ") is before --from (" + o->from + ")");
       search.deltaTSeconds = o->deltaT;
-      search.lunarRule = o->lunarShadow == "chauvenet" ? scene::LunarShadowRule::Chauvenet : scene::LunarShadowRule::Danjon;
+      search.lunarRule = o->lunarShadow == "chauvenet" ? scene::LunarShadowRule::Chauvenet
+                         : o->lunarShadow == "physical" ? scene::LunarShadowRule::Physical
+                                                        : scene::LunarShadowRule::Danjon;
+      search.oblateShadow = o->oblate;
+      if (search.lunarRule == scene::LunarShadowRule::Physical && o->kind != "solar") {
+        // The edge of the shadow through the atmosphere at the Moon's mean distance, 1 au from the Sun.
+        EclipseAtmosphereChoice atmosphere;
+        atmosphere.atmosphere = o->atmosphere;
+        atmosphere.bottomRadiusM();  // one line naming --atmosphere when it is bad
+        const OccluderChoice earth = chooseOccluder("Earth", "", "1au");
+        const double distanceM = 384400e3;
+        std::vector<eclipse::ProfileSample> profile =
+            atmosphericProfileSamples(atmosphere, earth, distanceM, 0.0, 2001, eclipse::kDefaultLimbDarkening);
+        for (auto& p : profile) p.luminance = std::max(p.luminance, 1e-300);
+        search.physicalEnlargementM =
+            eclipse::umbraEdgeEnlargementM(profile, {eclipse::kSunRadiusM, earth.radiusM, earth.sunDistanceM}, distanceM);
+        std::fprintf(stderr, "umbra: note: the umbra's edge through %s: the Earth's radius enlarged by %.1f km (1/%.0f)\n",
+                     o->atmosphere.c_str(), search.physicalEnlargementM / 1000.0, earth.radiusM / search.physicalEnlargementM);
+      }
       std::vector<Row> rows;
       try {
         if (o->kind != "lunar") {

@@ -152,6 +152,12 @@ void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& 
 
 vtkSmartPointer<vtkTable> atmosphericProfile(const EclipseAtmosphereChoice& atmosphere, const OccluderChoice& occ,
                                              double distanceM, double maxOffsetM, int samples, double limbDarkening) {
+  return filters::profileTable(atmosphericProfileSamples(atmosphere, occ, distanceM, maxOffsetM, samples, limbDarkening));
+}
+
+std::vector<eclipse::ProfileSample> atmosphericProfileSamples(const EclipseAtmosphereChoice& atmosphere,
+                                                              const OccluderChoice& occ, double distanceM,
+                                                              double maxOffsetM, int samples, double limbDarkening) {
   auto source = vtkSmartPointer<vtkEclipseShadowLutSource>::New();
   atmosphere.configure(source, occ);
   ProgressLine progress("atmosphere tables " + atmosphere.atmosphere, source);
@@ -166,7 +172,7 @@ vtkSmartPointer<vtkTable> atmosphericProfile(const EclipseAtmosphereChoice& atmo
   if (!(maxOffsetM > 0.0)) maxOffsetM = 1.25 * eclipse::shadowConeRadii(model.system, distanceM).penumbraRadiusM;
   const eclipse::LimbViewParams limb{atmosphere.limbSize, atmosphere.limbSize, atmosphere.scatteringCells,
                                      atmosphere.scatteringCells};
-  return filters::profileTable(eclipse::atmosphericShadowProfile(model, distanceM, maxOffsetM, samples, nullptr, limb));
+  return eclipse::atmosphericShadowProfile(model, distanceM, maxOffsetM, samples, nullptr, limb);
 }
 
 eclipse::LutRange distanceRangeOption(const std::string& text, const OccluderChoice& occ, bool darkUmbra, int size) {

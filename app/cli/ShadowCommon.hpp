@@ -91,6 +91,10 @@ vtkSmartPointer<vtkEclipseShadowLutSource> updateShadowLut(int size, double limb
 /// maxOffsetM 0: 1.25 x the penumbra's radius.
 vtkSmartPointer<vtkTable> atmosphericProfile(const EclipseAtmosphereChoice& atmosphere, const OccluderChoice& occluder,
                                              double distanceM, double maxOffsetM, int samples, double limbDarkening);
+/// The same cross-section as samples (offset, R G B, luminance).
+std::vector<eclipse::ProfileSample> atmosphericProfileSamples(const EclipseAtmosphereChoice& atmosphere,
+                                                              const OccluderChoice& occluder, double distanceM,
+                                                              double maxOffsetM, int samples, double limbDarkening);
 
 /// `umbra precompute eclipse` (PrecomputeCommand.cpp).
 void addPrecomputeEclipseCommand(CLI::App& precompute, Action& action);

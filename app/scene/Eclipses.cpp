@@ -364,26 +364,53 @@ struct LunarAt {
   double axisDistance = 0.0;      ///< the Moon's centre from the axis, Earth radii; + north
 };
 
+/// The Earth's shadow at the Moon. With a pole (the true pole, GCRS) the Earth's outline is
+/// the ellipse the Moon sees, its radius taken towards the Moon's centre, where the contacts
+/// and the magnitudes are measured; without, a sphere as the rules are published.
 template <class E>
-LunarAt lunarAt(const E& ephemerides, double tt, const EclipseSearch& s) {
+LunarAt lunarAt(const E& ephemerides, double tt, const EclipseSearch& s, const glm::dvec3* pole = nullptr) {
   const Apparent a = apparentAt(ephemerides, tt);
   const EclipseConstants& k = s.constants;
   const double re = k.earthEquatorialRadiusM;
   const double moonDistance = glm::length(a.moonM), sunDistance = glm::length(a.sunM);
   const glm::dvec3 axis = -a.sunM / sunDistance, m = a.moonM / moonDistance;
+  const glm::dvec3 offset = a.moonM - glm::dot(a.moonM, axis) * axis;
   LunarAt l;
   l.separation = std::atan2(glm::length(glm::cross(m, axis)), glm::dot(m, axis));
   const double moonParallax = std::asin(re / moonDistance), sunParallax = std::asin(re / sunDistance);
   const double sunRadius = std::atan(k.sunRadiusArcsecAt1Au * kArcsec * kAuM / sunDistance);
-  if (s.lunarRule == LunarShadowRule::Danjon) {
-    l.penumbra = 1.01 * moonParallax + sunRadius + sunParallax;
-    l.umbra = 1.01 * moonParallax - sunRadius + sunParallax;
-  } else {
-    l.penumbra = 1.02 * (0.998340 * moonParallax + sunRadius + sunParallax);
-    l.umbra = 1.02 * (0.998340 * moonParallax - sunRadius + sunParallax);
+  // The outline's radius towards the Moon over the equatorial radius (1 at the equator,
+  // 1 - f cos^2(delta) or so towards the projected pole).
+  double outline = 0.0;
+  if (pole) {
+    const glm::dvec3 ey = glm::normalize(*pole - glm::dot(*pole, axis) * axis), ex = glm::cross(ey, axis);
+    const double theta = std::atan2(glm::dot(offset, ey), glm::dot(offset, ex));
+    const double cosDelta2 = 1.0 - std::pow(glm::dot(axis, *pole), 2.0);
+    const double e2 = k.earthFlattening * (2.0 - k.earthFlattening);
+    outline = 1.0 / std::sqrt(std::pow(std::cos(theta), 2.0) + std::pow(std::sin(theta), 2.0) / (1.0 - e2 * cosDelta2));
+  }
+  switch (s.lunarRule) {
+  case LunarShadowRule::Danjon: {
+    const double f = pole ? (1.0 + 1.0 / 85.0) * outline : 1.01;
+    l.penumbra = f * moonParallax + sunRadius + sunParallax;
+    l.umbra = f * moonParallax - sunRadius + sunParallax;
+    break;
+  }
+  case LunarShadowRule::Chauvenet: {
+    const double f = pole ? outline : 0.998340;
+    l.penumbra = 1.02 * (f * moonParallax + sunRadius + sunParallax);
+    l.umbra = 1.02 * (f * moonParallax - sunRadius + sunParallax);
+    break;
+  }
+  case LunarShadowRule::Physical: {
+    const double meanRadius = re * (1.0 - k.earthFlattening / 3.0);  // the sphere of equal volume, nearly
+    const double f = (pole ? outline : meanRadius / re) + s.physicalEnlargementM / re;
+    l.penumbra = f * moonParallax + sunRadius + sunParallax;
+    l.umbra = f * moonParallax - sunRadius + sunParallax;
+    break;
+  }
   }
   l.moonRadius = std::asin(k.moonRadiusPenumbral * re / moonDistance);
-  const glm::dvec3 offset = a.moonM - glm::dot(a.moonM, axis) * axis;
   l.axisDistance = glm::length(offset) / re * (offset.z < 0.0 ? -1.0 : 1.0);
   return l;
 }
@@ -429,6 +456,8 @@ long lunationIndex(double tt, double offsetMonths) {
 }
 
 void checkSpan(const EclipseSearch& s) {
+  if (s.lunarRule == LunarShadowRule::Physical && !(s.physicalEnlargementM >= 0.0 && s.physicalEnlargementM < 1e6))
+    throw std::invalid_argument("eclipse search: the physical edge's enlargement must be within 0..1000 km");
   if (!(std::isfinite(s.fromTt) && std::isfinite(s.toTt)))
     throw std::invalid_argument("eclipse search: the span's ends are not finite");
   if (!(s.toTt >= s.fromTt))
@@ -570,7 +599,10 @@ std::vector<LunarEclipse> findLunarEclipses(const EclipseSearch& s) {
   const long referenceIndex = lunationIndex(2458327.3492, 0.5);  // 2018-07-27, Saros 129
   const auto analyse = [&](double seed) -> std::optional<LunarEclipse> {
     const Ephemerides ephemerides(seed, 0.35);
-    const auto at = [&](double t) { return lunarAt(ephemerides, t, s); };
+    double npb[3][3];
+    eraPnm06a(seed, 0.0, npb);  // its third row: the true pole of date in GCRS
+    const glm::dvec3 pole(npb[2][0], npb[2][1], npb[2][2]);
+    const auto at = [&](double t) { return lunarAt(ephemerides, t, s, s.oblateShadow ? &pole : nullptr); };
     const double tg = argMin([&](double t) { return at(t).separation; }, seed - 0.2, seed + 0.2);
     const LunarAt l = at(tg);
     LunarEclipse e;

@@ -31,6 +31,8 @@ struct EclipseConstants {
 enum class LunarShadowRule {
   Danjon,     ///< the Earth's radius enlarged by 1/85 (NASA's canon, the Connaissance des Temps)
   Chauvenet,  ///< the shadow's radii enlarged by 1/50, the oblate Earth's mean radius (the Astronomical Almanac)
+  Physical,   ///< the Earth's radius enlarged by EclipseSearch::physicalEnlargementM: the umbra's edge
+              ///< where an atmosphere's shadow profile is steepest (umbraEdgeEnlargementM)
 };
 
 enum class SolarEclipseType { Partial, Annular, Total, Hybrid };
@@ -86,6 +88,10 @@ struct EclipseSearch {
   double fromTt = 0.0, toTt = 0.0;  ///< greatest eclipses in [from, to]
   std::optional<double> deltaTSeconds;  ///< fixed Delta T (s); otherwise deltaTAtYear
   LunarShadowRule lunarRule = LunarShadowRule::Danjon;
+  double physicalEnlargementM = 0.0;  ///< LunarShadowRule::Physical: added to the Earth's mean radius
+  /// The Earth's outline an ellipse, as the Moon sees it (flattening, the axis' declination),
+  /// in every rule; false: a sphere (the rules as published, 1.01 and 0.998340 standing for it).
+  bool oblateShadow = false;
   EclipseConstants constants;
   std::function<void(double)> progress;  ///< fraction done, from the calling thread
 };

@@ -141,13 +141,13 @@ TEST(Fields, ATypeSwitchKeepsWhatBothTypesShare) {
 
 TEST(Fields, ResolvedPresetIsTheMergedDocument) {
   // earth-2015-calbuco extends earth: its resolved text has no "extends", earth's ozone
-  // and its own aerosol scale height, and it loads as the same atmosphere.
+  // and its own stratospheric density scale, and it loads as the same atmosphere.
   const json doc = json::parse(resolvedAtmosphereJson("earth-2015-calbuco"));
   EXPECT_FALSE(doc.contains("extends"));
   EXPECT_TRUE(doc["components"].contains("ozone"));
-  EXPECT_EQ(doc["components"]["aerosols"]["density"]["scaleHeightM"].get<double>(), 3000.0);
+  EXPECT_EQ(doc["components"]["stratosphere"]["densityScale"].get<double>(), 3.0);
   const Atmosphere a = parseAtmosphere(doc.dump(), "x.json", kRgb), b = loadAtmosphere("earth-2015-calbuco", kRgb);
   EXPECT_EQ(a.components.size(), b.components.size());
-  EXPECT_EQ(a.component("aerosols").scatteringPerM, b.component("aerosols").scatteringPerM);
+  EXPECT_EQ(a.component("stratosphere").scatteringPerM, b.component("stratosphere").scatteringPerM);
   EXPECT_THROW(resolvedAtmosphereJson("venus"), AtmosphereError);
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 
 using namespace umbra::test;
@@ -129,6 +130,38 @@ TEST(EclipsesCli, HowDarkTheMoonIs) {
   EXPECT_NE(bad.err.find("--date: no lunar eclipse on 2017-08-21; the next is the total eclipse of 2018-01-31"),
             std::string::npos)
       << bad.err;
+}
+
+// The three shadow rules at 2018-07-27: the physical edge through `earth` (the umbra's
+// edge where its shadow profile is steepest) enlarges the Earth by 60-110 km, between
+// Danjon's 1/85 (75 km) and Chauvenet's 1/50 of the shadow (92 km); its magnitude lies
+// within 0.006 of both.
+TEST(EclipsesCli, ThePhysicalEdgeOfTheShadow) {
+  TempDir dir;
+  std::map<std::string, double> magnitude;
+  for (const char* rule : {"danjon", "chauvenet", "physical"}) {
+    const std::string csv = dir / (std::string(rule) + ".csv");
+    const RunResult r = run(UMBRA_EXE, {"eclipses", "--from", "2018-07-27", "--to", "2018-07-27T23:59", "--kind", "lunar",
+                                        "--lunar-shadow", rule, "--csv", csv});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto rows = csvRows(csv);
+    ASSERT_EQ(rows.size(), 1u);
+    magnitude[rule] = std::stod(rows[0].at("magnitude"));
+    if (std::string(rule) == "physical") {
+      const std::smatch m = [&] {
+        std::smatch match;
+        std::regex_search(r.err, match, std::regex(R"(enlarged by ([0-9.]+) km)"));
+        return match;
+      }();
+      ASSERT_EQ(m.size(), 2u) << r.err;
+      EXPECT_GT(std::stod(m[1]), 60.0);
+      EXPECT_LT(std::stod(m[1]), 110.0);
+    }
+  }
+  EXPECT_NEAR(magnitude["danjon"], 1.6087, 0.002);
+  EXPECT_NEAR(magnitude["chauvenet"] - magnitude["danjon"], 0.005, 0.003);
+  EXPECT_NEAR(magnitude["physical"], magnitude["danjon"], 0.006);
+  EXPECT_NEAR(magnitude["physical"], magnitude["chauvenet"], 0.006);
 }
 
 TEST(EclipsesCli, BadInputIsOneLineAndNoFile) {

@@ -59,6 +59,27 @@ TEST(EclipsedMoon, TheOblateOutlineShiftsTheProfileAlongThePole) {
   EXPECT_NEAR(equator.centre, (y - (a - 6371e3)) / scale, 1e-9);
 }
 
+// The umbra's edge: a profile whose logarithm steps up 100 km outside the geometric umbra
+// enlarges the occluder by 100 km / (1 + D / D_sun); the steepest rise of exp(r / H) + a
+// step is the step.
+TEST(EclipsedMoon, TheUmbrasEdgeIsWhereTheLogarithmRisesSteepest) {
+  const SunOccluderSystem earth{696342e3, 6371e3, 1.495978707e11};
+  const double distance = 384400e3;
+  const double geometric = shadowConeRadii(earth, distance).umbraRadiusM;
+  std::vector<ProfileSample> p;
+  for (double r = 0.0; r < 9e6; r += 1000.0) {
+    const double l = 1e-4 * std::exp(r / 2e6) * (r > geometric + 100e3 ? 100.0 : 1.0);
+    p.push_back({r, glm::dvec3(l), l});
+  }
+  const double edge = steepestLogRiseOffsetM(p);
+  EXPECT_NEAR(edge, geometric + 100e3, 1000.0);
+  EXPECT_NEAR(umbraEdgeEnlargementM(p, earth, distance), (edge - geometric) / (1.0 + distance / earth.sunOccluderDistanceM),
+              1e-6);
+  EXPECT_NEAR(umbraEdgeEnlargementM(p, earth, distance), 100e3 / 1.00257, 1000.0);
+  p[5].luminance = 0.0;
+  EXPECT_THROW(steepestLogRiseOffsetM(p), std::invalid_argument);
+}
+
 TEST(EclipsedMoon, InterpolationAndBadInput) {
   const std::vector<ProfileSample> p{{0.0, glm::dvec3(0.0), 0.0}, {10.0, glm::dvec3(1.0), 1.0}, {20.0, glm::dvec3(3.0), 3.0}};
   EXPECT_DOUBLE_EQ(profileLuminanceAt(p, 5.0), 0.5);

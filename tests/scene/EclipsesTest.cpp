@@ -116,6 +116,34 @@ TEST(Eclipses, Lunar2018AgainstNasa) {
   EXPECT_NEAR(chauvenet[0].penumbralMagnitude - e.penumbralMagnitude, 0.026, 0.006);
 }
 
+// The shadow's shape: the physical rule with the enlargement that gives Danjon's 1.01 is
+// Danjon's; the oblate outline, seen with the Moon north of the axis (towards the projected
+// pole, where the outline is shorter by f cos^2 delta), makes the umbra smaller than the
+// sphere's 1.01 standing in for the mean radius: the magnitudes 0.0005-0.005 smaller.
+TEST(Eclipses, LunarShadowShapes) {
+  const EclipseSearch danjon = around("2018-07-27", 70.8);
+  const LunarEclipse sphere = findLunarEclipses(danjon).at(0);
+  EclipseSearch physical = danjon;
+  physical.lunarRule = LunarShadowRule::Physical;
+  const EclipseConstants k;
+  physical.physicalEnlargementM = 1.01 * k.earthEquatorialRadiusM - k.earthEquatorialRadiusM * (1.0 - k.earthFlattening / 3.0);
+  const LunarEclipse same = findLunarEclipses(physical).at(0);
+  EXPECT_NEAR(same.umbralMagnitude, sphere.umbralMagnitude, 1e-9);
+  EXPECT_NEAR(same.penumbralMagnitude, sphere.penumbralMagnitude, 1e-9);
+  EXPECT_NEAR((*same.u2 - *sphere.u2) * kDayS, 0.0, 1e-3);
+  EclipseSearch oblate = danjon;
+  oblate.oblateShadow = true;
+  const LunarEclipse ellipse = findLunarEclipses(oblate).at(0);
+  EXPECT_GT(sphere.umbralMagnitude - ellipse.umbralMagnitude, 0.0005);
+  EXPECT_LT(sphere.umbralMagnitude - ellipse.umbralMagnitude, 0.005);
+  EXPECT_GT(sphere.penumbralMagnitude - ellipse.penumbralMagnitude, 0.0005);
+  EXPECT_NEAR(ellipse.gamma, sphere.gamma, 1e-9);  // the geometry of the Moon is the same
+  EclipseSearch bad = danjon;
+  bad.lunarRule = LunarShadowRule::Physical;
+  bad.physicalEnlargementM = std::nan("");
+  EXPECT_THROW(findLunarEclipses(bad), std::invalid_argument);
+}
+
 // NASA's catalogues of 2001-2100 (Espenak): 224 solar eclipses, 77 partial, 72 annular, 68
 // total, 7 hybrid; 228 lunar eclipses, 86 penumbral, 57 partial, 85 total. And the Saros
 // series of some (NASA's catalogues).
