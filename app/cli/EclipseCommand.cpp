@@ -280,6 +280,7 @@ void addEclipseCommand(CLI::App& app, Action& action) {
     std::string csv;
     int samples = 801;
     bool spherical = false;
+    std::string cloudTop = "10km";
   };
   auto bo = std::make_shared<BrightnessOptions>();
   bo->date.addTo(brightness);
@@ -289,10 +290,16 @@ void addEclipseCommand(CLI::App& app, Action& action) {
       ->check(CLI::Range(16, 100000))
       ->capture_default_str();
   brightness->add_flag("--spherical", bo->spherical, "A spherical Earth (default: its oblate outline as seen from the Moon)");
+  brightness->add_option("--cloud-cover", bo->atmosphere.cloudCover,
+                         "The fraction of the Earth's limb under opaque clouds (default 0: a clear sky)")
+      ->check(CLI::Range(0.0, 1.0));
+  brightness->add_option("--cloud-top", bo->cloudTop, "Their tops' altitude (m, km): rays passing lower are stopped")
+      ->capture_default_str();
   brightness->add_option("--csv", bo->csv, "Also write CSV: quantity,value,unit");
   brightness->callback([&action, bo] {
     action = [bo] {
       if (!bo->csv.empty()) output::checkWritable(bo->csv, {".csv"});
+      bo->atmosphere.cloudTopM = lengthOption("--cloud-top", bo->cloudTop, 0.0, 30e3);
       const scene::LunarEclipse e = lunarEclipseOn(bo->date);
       const scene::LunarShadowGeometry g = scene::lunarShadowGeometry(e.greatestTt);
       bo->atmosphere.bottomRadiusM();  // a one-line error for a bad atmosphere
@@ -325,9 +332,17 @@ void addEclipseCommand(CLI::App& app, Action& action) {
       const double danjon = std::clamp(2.0 * (3.0 - std::sqrt(std::max(0.0, 4.8 + v))), 0.0, 4.0);
       for (double x : {v, light.centre, light.nearLimb, light.farLimb})
         if (!std::isfinite(x)) throw CommandError("the eclipse's brightness is not finite (the shadow profile has no value there)");
-      std::printf("The %s lunar eclipse of %s, greatest at %s UT (gamma %+.4f, umbral magnitude %.4f), through %s%s\n",
+      std::string clouds;
+      if (bo->atmosphere.cloudCover > 0.0) {
+        char b[96];
+        std::snprintf(b, sizeof b, ", clouds to %.1f km over %.0f %% of the limb", bo->atmosphere.cloudTopM / 1000.0,
+                      100.0 * bo->atmosphere.cloudCover);
+        clouds = b;
+      }
+      std::printf("The %s lunar eclipse of %s, greatest at %s UT (gamma %+.4f, umbral magnitude %.4f), through %s%s%s\n",
                   scene::typeName(e.type), bo->date.date.c_str(), utOf(e.greatestTt, e.deltaTSeconds).c_str(), e.gamma,
-                  e.umbralMagnitude, bo->atmosphere.atmosphere.c_str(), bo->spherical ? " (a spherical Earth)" : "");
+                  e.umbralMagnitude, bo->atmosphere.atmosphere.c_str(), clouds.c_str(),
+                  bo->spherical ? " (a spherical Earth)" : "");
       std::printf("the Moon %.0f km away, its centre %.0f km from the shadow's axis\n", g.moonDistanceM / 1000.0,
                   std::hypot(g.moonOffsetXM, g.moonOffsetYM) / 1000.0);
       std::printf("V outside the shadow %.2f; in it %.2f (%.2f magnitudes dimmer), Danjon L %.1f\n", fullV, v, mag(light.mean), danjon);

@@ -169,6 +169,7 @@ std::vector<eclipse::ProfileSample> atmosphericProfileSamples(const EclipseAtmos
   }
   eclipse::AtmosphericShadowModel model = prepared->model;
   model.limbDarkening = limbDarkening;
+  if (atmosphere.cloudCover > 0.0) eclipse::screenByClouds(model.rays, atmosphere.cloudTopM, atmosphere.cloudCover);
   if (!(maxOffsetM > 0.0)) maxOffsetM = 1.25 * eclipse::shadowConeRadii(model.system, distanceM).penumbraRadiusM;
   const eclipse::LimbViewParams limb{atmosphere.limbSize, atmosphere.limbSize, atmosphere.scatteringCells,
                                      atmosphere.scatteringCells};

@@ -67,6 +67,9 @@ struct EclipseAtmosphereChoice {
   int orders = 4;
   bool draftTables = false;
   int scatteringNu = 0;  ///< cells in nu (view-sun cosine) of the scattering tables; 0: the tables' default
+  /// A cloud deck on the limb for the directly computed profiles (eclipse::screenByClouds);
+  /// not an option of every command: cover 0, none.
+  double cloudTopM = 0.0, cloudCover = 0.0;
   void addTo(CLI::App* command);
   /// Checks the atmosphere file (one-line error) and returns its bottom radius [m].
   double bottomRadiusM() const;

@@ -360,6 +360,14 @@ void refractedTransmittanceToTop(const atmosphere::AtmosphereTables& tables, dou
   for (int c = 0; c < n; ++c) T[c] = std::min(T[c] * T[c] / std::max(above[c], 1e-30), 1.0);
 }
 
+void screenByClouds(LimbRayProfile& rays, double cloudTopM, double cover) {
+  if (!(cloudTopM >= 0.0) || !(cover >= 0.0 && cover <= 1.0))
+    throw std::invalid_argument("clouds: the top must be >= 0 m and the cover within 0..1");
+  for (int k = 0; k < rays.samples(); ++k)
+    if (rays.contactAltitudeM[k] < cloudTopM)
+      for (int c = 0; c < rays.channels; ++c) rays.transmittance[static_cast<std::size_t>(k) * rays.channels + c] *= 1.0 - cover;
+}
+
 LimbRayProfile limbRayProfile(const atmosphere::AtmosphereTables& tables,
                               const atmosphere::RefractionTable* refraction, int samples) {
   if (samples < 2) throw std::invalid_argument("limb ray profile needs at least 2 samples");

@@ -86,6 +86,11 @@ struct LimbRayProfile {
   void indexDeviations();
 };
 
+/// A cloud deck along the limb: the rays whose lowest point lies below `cloudTopM` keep
+/// 1 - `cover` of their transmittance (clouds opaque where they are, `cover` of the limb
+/// under them). Throws std::invalid_argument for a top < 0 or a cover outside 0..1.
+void screenByClouds(LimbRayProfile& rays, double cloudTopM, double cover);
+
 /// T along a refracted ray from (r, mu) to the top (per channel into `out`), given its contact
 /// altitude from the deviation / contact table: rising rays (mu >= 0) T(r, mu); descending
 /// ones pass their periapsis r_p = r_occ + contact (symmetric about it), so

@@ -125,6 +125,15 @@ TEST(EclipsesCli, HowDarkTheMoonIs) {
   EXPECT_LT(v[0], -0.35);
   EXPECT_GT(v[1] - v[0], 0.2);
   EXPECT_LT(v[1] - v[0], 0.6);
+  // Clouds to 10 km on half the limb stop half the low rays: dimmer, by less than the
+  // 0.75 magnitudes that would halve all the light.
+  const std::string cloudy = dir / "cloudy.csv";
+  const RunResult c = run(UMBRA_EXE, {"eclipse", "brightness", "--date", "2018-07-27", "--atmosphere", "earth",
+                                      "--samples", "401", "--cloud-cover", "0.5", "--cloud-top", "10km", "--csv", cloudy});
+  ASSERT_EQ(c.exitCode, 0) << c.err;
+  EXPECT_NE(c.out.find("clouds to 10.0 km over 50 % of the limb"), std::string::npos) << c.out;
+  EXPECT_GT(quantity(cloudy, "v") - v[0], 0.1);
+  EXPECT_LT(quantity(cloudy, "v") - v[0], 0.76);
   const RunResult bad = run(UMBRA_EXE, {"eclipse", "brightness", "--date", "2017-08-21", "--atmosphere", "earth"});
   EXPECT_NE(bad.exitCode, 0);
   EXPECT_NE(bad.err.find("--date: no lunar eclipse on 2017-08-21; the next is the total eclipse of 2018-01-31"),

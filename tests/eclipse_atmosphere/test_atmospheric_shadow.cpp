@@ -474,3 +474,24 @@ TEST(AtmosphericShadow, TransmittanceThroughThePeriapsisMatchesTheStraightChord)
     EXPECT_EQ(ground[c], 0.0);
   }
 }
+
+// A cloud deck on the limb: the rays whose lowest point lies under the tops keep 1 - cover
+// of their light, the others all of it; and the umbra's centre, lit by rays grazing a few
+// km up, darkens by at most -2.5 log10(1 - cover).
+TEST(AtmosphericShadow, CloudsScreenTheLowRays) {
+  eclipse::LimbRayProfile rays = eclipse::transparentLimbProfile(6371e3, 6471e3, {680.0, 550.0, 440.0});
+  ASSERT_EQ(rays.samples(), 2);  // contacts 0 and 100 km
+  eclipse::screenByClouds(rays, 10e3, 0.4);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_DOUBLE_EQ(rays.transmittance[c], 0.6);
+    EXPECT_DOUBLE_EQ(rays.transmittance[3 + c], 1.0);
+  }
+  EXPECT_THROW(eclipse::screenByClouds(rays, -1.0, 0.5), std::invalid_argument);
+  EXPECT_THROW(eclipse::screenByClouds(rays, 10e3, 1.5), std::invalid_argument);
+
+  eclipse::AtmosphericShadowModel clear = body("earth").model, cloudy = clear;
+  eclipse::screenByClouds(cloudy.rays, 10e3, 0.5);
+  const double ratio = eclipse::luminance(rgbAt(cloudy, kMoonDistanceM, 0.0)) / eclipse::luminance(rgbAt(clear, kMoonDistanceM, 0.0));
+  EXPECT_LT(ratio, 0.95);
+  EXPECT_GE(ratio, 0.5 - 1e-9);
+}
