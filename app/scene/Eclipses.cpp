@@ -1,6 +1,7 @@
 #include "scene/Eclipses.hpp"
 
 #include "scene/DeltaT.hpp"
+#include "scene/EclipseEphemerides.hpp"
 #include "scene/Ephemeris.hpp"
 
 #include "SolarDisc.hpp"  // visibleFractionUniform
@@ -36,54 +37,6 @@ constexpr double kNewMoonJd = 2451550.09766;  ///< the mean new moon of 2000-01-
 /// extrapolated (and the Saros numbering holds) within a few thousand years of today.
 constexpr double kFirstJd = 625673.5;   // -3000-01-01
 constexpr double kLastJd = 3547272.5;   // +5000-01-01
-
-// ---------------------------------------------------------------------------------------
-// The ephemerides over one eclipse (hours), interpolated: a cubic through four Chebyshev
-// nodes keeps within a metre of the series at a fraction of their cost.
-
-/// A vector function of time through its values at four Chebyshev nodes of a window.
-class Interpolated {
-public:
-  template <class F>
-  Interpolated(double centreTt, double halfWidthDays, F f) : centre(centreTt), half(halfWidthDays) {
-    for (int i = 0; i < kNodes; ++i) {
-      nodes[i] = std::cos((2.0 * i + 1.0) * kPi / (2.0 * kNodes));  // in [-1, 1]
-      values[i] = f(centre + half * nodes[i]);
-    }
-  }
-  glm::dvec3 operator()(double tt) const {
-    const double u = (tt - centre) / half;
-    glm::dvec3 v(0.0);
-    for (int i = 0; i < kNodes; ++i) {
-      double w = 1.0;
-      for (int j = 0; j < kNodes; ++j)
-        if (j != i) w *= (u - nodes[j]) / (nodes[i] - nodes[j]);
-      v += w * values[i];
-    }
-    return v;
-  }
-
-private:
-  static constexpr int kNodes = 4;
-  double centre, half;
-  double nodes[kNodes];
-  glm::dvec3 values[kNodes];
-};
-
-/// The Sun and the Moon over one eclipse: the Earth from epv00 and the Moon from Meeus'
-/// series plus ELP's difference from it (no term of which is shorter than days), both
-/// interpolated over the window (0.35 day either side: the Moon within 1 m of ELP, against
-/// 17 m with three nodes): ELP is summed four times an eclipse, not thousands.
-struct Ephemerides {
-  Ephemerides(double centreTt, double halfWidthDays)
-      : earth(centreTt, halfWidthDays, [](double t) { return scene::earthHeliocentricM(t); }),
-        elpCorrection(centreTt, halfWidthDays,
-                      [](double t) { return moonGeocentricElpM(t) - moonGeocentricMeeusM(t); }) {}
-  glm::dvec3 moonGeocentricM(double tt) const { return moonGeocentricMeeusM(tt) + elpCorrection(tt); }
-  glm::dvec3 earthHeliocentricM(double tt) const { return earth(tt); }
-
-  Interpolated earth, elpCorrection;
-};
 
 /// ELP's Moon summed at every call and ERFA's Earth: for a single instant.
 struct PreciseEphemerides {
@@ -198,7 +151,7 @@ struct Fundamental {
 
 struct SolarContext {
   const EclipseConstants& k;
-  Ephemerides ephemerides;
+  EclipseEphemerides<> ephemerides;
   EarthOrientation earth;
   double sunRadiusM;
 
@@ -242,7 +195,7 @@ double sunRadiusM(const EclipseConstants& k) { return std::tan(k.sunRadiusArcsec
 
 /// The fundamental plane over the 0.35 day either side of `tt`.
 SolarContext solarContext(const EclipseConstants& k, double tt, double deltaTSeconds) {
-  return SolarContext{k, Ephemerides(tt, 0.35), EarthOrientation(tt, deltaTSeconds), sunRadiusM(k)};
+  return SolarContext{k, EclipseEphemerides<>(tt, 0.35), EarthOrientation(tt, deltaTSeconds), sunRadiusM(k)};
 }
 
 /// An observer's place against the shadow: distance from the axis (delta), the penumbra's
@@ -598,7 +551,7 @@ std::vector<LunarEclipse> findLunarEclipses(const EclipseSearch& s) {
   };
   const long referenceIndex = lunationIndex(2458327.3492, 0.5);  // 2018-07-27, Saros 129
   const auto analyse = [&](double seed) -> std::optional<LunarEclipse> {
-    const Ephemerides ephemerides(seed, 0.35);
+    const EclipseEphemerides<> ephemerides(seed, 0.35);
     double npb[3][3];
     eraPnm06a(seed, 0.0, npb);  // its third row: the true pole of date in GCRS
     const glm::dvec3 pole(npb[2][0], npb[2][1], npb[2][2]);

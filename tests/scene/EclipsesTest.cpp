@@ -1,6 +1,7 @@
 // Eclipse predictions against NASA's (Espenak & Meeus' Five Millennium Canons and NASA's
 // eclipse pages), and at the extremes.
 #include "scene/DeltaT.hpp"
+#include "scene/EclipseEphemerides.hpp"
 #include "scene/Eclipses.hpp"
 #include "scene/Ephemeris.hpp"
 
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <string>
 
@@ -230,6 +232,34 @@ TEST(Eclipses, ElpMoonAgreesWithMeeus) {
     EXPECT_GT(glm::length(a), 356e6);
     EXPECT_LT(glm::length(a), 407e6);
   }
+}
+
+// The Moon interpolated over an eclipse's window (0.35 day either side) against ELP summed
+// at every instant, over 40 windows of 2000-2030: four nodes within 1 m, three within
+// tens of metres, five within centimetres; the Earth within 5 m (2e-11 rad of the Sun's
+// direction, all it is used for).
+TEST(Eclipses, InterpolatedMoon) {
+  double worst[3] = {0.0, 0.0, 0.0}, earthWorst = 0.0;
+  for (int w = 0; w < 40; ++w) {
+    const double centre = jd("2000-01-01") + w * 277.3;
+    const EclipseEphemerides<3> three(centre, 0.35);
+    const EclipseEphemerides<4> four(centre, 0.35);
+    const EclipseEphemerides<5> five(centre, 0.35);
+    for (double u = -1.0; u <= 1.0; u += 0.25) {
+      const double t = centre + 0.35 * u;
+      const glm::dvec3 elp = moonGeocentricElpM(t);
+      worst[0] = std::max(worst[0], glm::length(three.moonGeocentricM(t) - elp));
+      worst[1] = std::max(worst[1], glm::length(four.moonGeocentricM(t) - elp));
+      worst[2] = std::max(worst[2], glm::length(five.moonGeocentricM(t) - elp));
+      earthWorst = std::max(earthWorst, glm::length(four.earthHeliocentricM(t) - earthHeliocentricM(t)));
+    }
+  }
+  std::printf("  the Moon interpolated, worst: 3 nodes %.3f m, 4 nodes %.3f m, 5 nodes %.3f m; the Earth %.3f m\n",
+              worst[0], worst[1], worst[2], earthWorst);
+  EXPECT_LT(worst[1], 1.0);
+  EXPECT_GT(worst[0], 5.0 * worst[1]);
+  EXPECT_LT(worst[2], worst[1]);
+  EXPECT_LT(earthWorst, 5.0);
 }
 
 // Extremes: a span of one second (the eclipse whose greatest falls in it, or none); a
