@@ -92,13 +92,19 @@ std::vector<std::vector<scene::GeoPlace>> splitAtAntimeridian(const std::vector<
   return parts;
 }
 
-void writeLineFeature(std::ostream& f, const std::string& name, const std::vector<scene::GeoPlace>& line, bool& first) {
-  if (line.size() < 2) return;
+/// A feature of one or more lines (each split at the antimeridian) as a MultiLineString.
+void writeLinesFeature(std::ostream& f, const std::string& name, const std::vector<std::vector<scene::GeoPlace>>& lines,
+                       bool& first) {
+  std::vector<std::vector<scene::GeoPlace>> parts;
+  for (const auto& line : lines)
+    for (auto& part : splitAtAntimeridian(line))
+      if (part.size() >= 2) parts.push_back(std::move(part));
+  if (parts.empty()) return;
   f << (first ? "" : ",\n") << R"(  {"type": "Feature", "properties": {"name": ")" << name
     << R"("}, "geometry": {"type": "MultiLineString", "coordinates": [)";
   first = false;
   bool firstPart = true;
-  for (const auto& part : splitAtAntimeridian(line)) {
+  for (const auto& part : parts) {
     f << (firstPart ? "" : ", ") << "[";
     firstPart = false;
     char b[64];
@@ -111,7 +117,12 @@ void writeLineFeature(std::ostream& f, const std::string& name, const std::vecto
   f << "]}}";
 }
 
-void writeGeoJson(const std::string& path, const scene::SolarEclipse& e, const scene::SolarEclipsePath& p) {
+void writeLineFeature(std::ostream& f, const std::string& name, const std::vector<scene::GeoPlace>& line, bool& first) {
+  writeLinesFeature(f, name, {line}, first);
+}
+
+void writeGeoJson(const std::string& path, const scene::SolarEclipse& e, const scene::SolarEclipsePath& p,
+                  const std::vector<std::vector<scene::GeoPlace>>& outline) {
   output::OutputFile out(path);
   {
     std::ofstream f(out.tempPath());
@@ -124,6 +135,7 @@ void writeGeoJson(const std::string& path, const scene::SolarEclipse& e, const s
     writeLineFeature(f, "southern limit", p.southernLimit, first);
     writeLineFeature(f, "northern limit of the partial eclipse", p.northernPenumbralLimit, first);
     writeLineFeature(f, "southern limit of the partial eclipse", p.southernPenumbralLimit, first);
+    writeLinesFeature(f, "outline of the partial eclipse", outline, first);
     char b[320];
     for (const auto& c : p.centralLine) {
       std::snprintf(b, sizeof b,
@@ -143,7 +155,8 @@ void writeGeoJson(const std::string& path, const scene::SolarEclipse& e, const s
 }
 
 /// The path drawn on the Blue Marble (equirectangular, from marble-qt-data).
-void writeMapPng(const std::string& path, const scene::SolarEclipsePath& p) {
+void writeMapPng(const std::string& path, const scene::SolarEclipsePath& p,
+                 const std::vector<std::vector<scene::GeoPlace>>& outline) {
   const auto map = scene::findNamedAlbedoMap("bluemarble");
   vtkSmartPointer<vtkImageReader2> reader;
   if (map) reader.TakeReference(vtkImageReader2Factory::CreateImageReader2(map->file.c_str()));
@@ -183,8 +196,7 @@ void writeMapPng(const std::string& path, const scene::SolarEclipsePath& p) {
     }
   };
   const unsigned char red[3] = {255, 40, 40}, yellow[3] = {255, 220, 0}, white[3] = {235, 235, 235};
-  line(p.northernPenumbralLimit, white);
-  line(p.southernPenumbralLimit, white);
+  for (const auto& piece : outline) line(piece, white);
   line(p.northernLimit, yellow);
   line(p.southernLimit, yellow);
   std::vector<scene::GeoPlace> central;
@@ -373,8 +385,9 @@ void addEclipseCommand(CLI::App& app, Action& action) {
   });
 
   CLI::App* path = eclipse->add_subcommand(
-      "path", "The path of the central solar eclipse of --date: central line (with the duration along it), the northern "
-              "and southern limits of the umbra or antumbra and of the partial eclipse, as GeoJSON and on a map");
+      "path", "The solar eclipse of --date on the map: the outline of where the partial eclipse is seen; for a central "
+              "one the central line (with the duration along it) and the limits of the umbra or antumbra, as GeoJSON "
+              "and on a map");
   struct PathOptions {
     DateOptions date;
     std::string geojson, png;
@@ -392,15 +405,18 @@ void addEclipseCommand(CLI::App& app, Action& action) {
       output::checkWritable(po->geojson, {".geojson", ".json"});
       if (!po->png.empty()) output::checkWritable(po->png, {".png"});
       const scene::SolarEclipse e = solarEclipseOn(po->date);
+      const auto outline = scene::partialEclipseOutline(e);
       scene::SolarEclipsePath p;
-      try {
-        p = scene::solarEclipsePath(e, po->stepSeconds);
-      } catch (const std::invalid_argument& error) {
-        throw CommandError(std::string("--date: ") + error.what());
+      if (e.central) p = scene::solarEclipsePath(e, po->stepSeconds);
+      if (e.central && p.centralLine.empty()) throw CommandError("--date: the central line has no point on the ground");
+      writeGeoJson(po->geojson, e, p, outline);
+      if (!po->png.empty()) writeMapPng(po->png, p, outline);
+      if (!e.central) {
+        std::printf("The %s solar eclipse of %s: no central line; the outline of the partial eclipse in %zu line%s\n",
+                    scene::typeName(e.type), po->date.date.c_str(), outline.size(), outline.size() == 1 ? "" : "s");
+        std::printf("wrote %s%s%s\n", po->geojson.c_str(), po->png.empty() ? "" : " and ", po->png.c_str());
+        return 0;
       }
-      if (p.centralLine.empty()) throw CommandError("--date: the central line has no point on the ground");
-      writeGeoJson(po->geojson, e, p);
-      if (!po->png.empty()) writeMapPng(po->png, p);
       const auto longest = std::max_element(p.centralLine.begin(), p.centralLine.end(),
                                             [](const auto& a, const auto& b) { return a.durationS < b.durationS; });
       std::printf("The %s solar eclipse of %s: the central line from %s to %s UT, %zu points; the longest %s at "

@@ -21,6 +21,7 @@
 #include <limits>
 #include <map>
 #include <regex>
+#include <set>
 #include <stdexcept>
 
 namespace umbra::scene {
@@ -758,6 +759,107 @@ double eclipseInstantUt(const std::string& date, const std::string& at) {
     offsetS = (m[2] == "-" ? -1.0 : 1.0) * std::stod(m[3]) * unit;
   }
   return *instant - deltaT / kDayS + offsetS / kDayS;
+}
+
+std::vector<std::vector<GeoPlace>> partialEclipseOutline(const SolarEclipse& eclipse, double stepDeg,
+                                                         const EclipseConstants& k) {
+  if (!(stepDeg >= 0.1 && stepDeg <= 10.0)) throw std::invalid_argument("eclipse outline: the step must be within 0.1..10 deg");
+  const SolarContext c = solarContext(k, eclipse.greatestTt, eclipse.deltaTSeconds);
+  // The plane every 30 s over the penumbra's time on the Earth (or 3 h either side of greatest):
+  // near its least, a place's depth is flat, and 30 s moves it by 0.2 km at most.
+  const double from = eclipse.p1.value_or(eclipse.greatestTt - 0.125) - 0.002;
+  const double to = eclipse.p4.value_or(eclipse.greatestTt + 0.125) + 0.002;
+  std::vector<Fundamental> planes;
+  for (double t = from; t <= to; t += 30.0 / kDayS) planes.push_back(c.at(t));
+  const double re = k.earthEquatorialRadiusM, deg = kPi / 180.0;
+  // The place's least depth in the penumbra while the Sun is up (1 when it never is): < 0
+  // where the partial eclipse is seen.
+  const auto depth = [&](double latDeg, double lonDeg) {
+    double xyz[3];
+    eraGd2gce(re, k.earthFlattening, lonDeg * deg, latDeg * deg, 0.0, xyz);
+    const glm::dvec3 p = glm::dvec3(xyz[0], xyz[1], xyz[2]) / re;
+    const glm::dvec3 up(std::cos(latDeg * deg) * std::cos(lonDeg * deg), std::cos(latDeg * deg) * std::sin(lonDeg * deg),
+                        std::sin(latDeg * deg));
+    double least = 1.0;
+    for (const Fundamental& f : planes)
+      if (glm::dot(up, f.ez) >= 0.0) {
+        const Local l = localAt(f, p);
+        least = std::min(least, l.delta - l.L1);
+      }
+    return least;
+  };
+  const int nLat = static_cast<int>(std::lround(180.0 / stepDeg)) + 1, nLon = static_cast<int>(std::lround(360.0 / stepDeg));
+  const double dLat = 180.0 / (nLat - 1), dLon = 360.0 / nLon;
+  const auto latOf = [&](int i) { return -90.0 + i * dLat; };
+  const auto lonOf = [&](int j) { return -180.0 + ((j % nLon + nLon) % nLon) * dLon; };
+  std::vector<double> v(static_cast<size_t>(nLat) * nLon);
+#pragma omp parallel for schedule(dynamic)
+  for (int i = 0; i < nLat; ++i)
+    for (int j = 0; j < nLon; ++j) v[static_cast<size_t>(i) * nLon + j] = depth(latOf(i), lonOf(j));
+  const auto at = [&](int i, int j) { return v[static_cast<size_t>(i) * nLon + (j % nLon + nLon) % nLon]; };
+  // Marching squares. An edge's id: 2 (i nLon + j) for (i,j)-(i,j+1), + 1 for (i,j)-(i+1,j).
+  const auto hEdge = [&](int i, int j) { return 2L * (static_cast<long>(i) * nLon + (j % nLon + nLon) % nLon); };
+  const auto vEdge = [&](int i, int j) { return hEdge(i, j) + 1; };
+  std::map<long, std::vector<long>> links;  // edge -> the edges it is joined to
+  const auto join = [&](long a, long b) { links[a].push_back(b), links[b].push_back(a); };
+  for (int i = 0; i + 1 < nLat; ++i)
+    for (int j = 0; j < nLon; ++j) {
+      const bool a = at(i, j) < 0.0, b = at(i, j + 1) < 0.0, cc = at(i + 1, j + 1) < 0.0, d = at(i + 1, j) < 0.0;
+      const int mask = a | (b << 1) | (cc << 2) | (d << 3);
+      if (mask == 0 || mask == 15) continue;
+      const long south = hEdge(i, j), east = vEdge(i, j + 1), north = hEdge(i + 1, j), west = vEdge(i, j);
+      std::vector<long> cut;
+      if (a != b) cut.push_back(south);
+      if (b != cc) cut.push_back(east);
+      if (cc != d) cut.push_back(north);
+      if (d != a) cut.push_back(west);
+      if (cut.size() == 2) {
+        join(cut[0], cut[1]);
+      } else {  // a saddle: the cell's centre decides which corners connect
+        const bool centre = depth(latOf(i) + 0.5 * dLat, lonOf(j) + 0.5 * dLon) < 0.0;
+        if (centre == a) join(south, east), join(north, west);
+        else join(south, west), join(north, east);
+      }
+    }
+  // Where the contour crosses an edge: bisection along it.
+  const auto crossing = [&](long edge) {
+    const long cell = edge / 2;
+    const int i = static_cast<int>(cell / nLon), j = static_cast<int>(cell % nLon);
+    double lat0 = latOf(i), lon0 = -180.0 + j * dLon;
+    double lat1 = (edge % 2) ? lat0 + dLat : lat0, lon1 = (edge % 2) ? lon0 : lon0 + dLon;
+    const bool inside0 = depth(lat0, lon0) < 0.0;
+    for (int n = 0; n < 24 && (std::abs(lat1 - lat0) + std::abs(lon1 - lon0)) > 1e-3; ++n) {
+      const double lat = 0.5 * (lat0 + lat1), lon = 0.5 * (lon0 + lon1);
+      if ((depth(lat, lon) < 0.0) == inside0) lat0 = lat, lon0 = lon;
+      else lat1 = lat, lon1 = lon;
+    }
+    GeoPlace g;
+    g.latitudeDeg = 0.5 * (lat0 + lat1);
+    g.longitudeDeg = std::remainder(0.5 * (lon0 + lon1), 360.0);
+    return g;
+  };
+  std::vector<std::vector<GeoPlace>> lines;
+  std::set<long> done;
+  const auto walk = [&](long start) {
+    std::vector<GeoPlace> line;
+    long previous = -1, edge = start;
+    while (edge >= 0 && !done.count(edge)) {
+      done.insert(edge);
+      line.push_back(crossing(edge));
+      long next = -1;
+      for (long e : links[edge])
+        if (e != previous && !done.count(e)) next = e;
+      if (next < 0 && line.size() > 2 && std::find(links[edge].begin(), links[edge].end(), start) != links[edge].end())
+        line.push_back(line.front());  // a closed line
+      previous = edge, edge = next;
+    }
+    if (line.size() >= 2) lines.push_back(line);
+  };
+  for (const auto& [edge, to] : links)
+    if (to.size() == 1 && !done.count(edge)) walk(edge);  // open lines first, from an end
+  for (const auto& [edge, to] : links)
+    if (!done.count(edge)) walk(edge);                     // then the closed ones
+  return lines;
 }
 
 std::string formatJulianDate(double jd, int secondDecimals) {

@@ -166,6 +166,16 @@ SolarEclipsePath solarEclipsePath(const SolarEclipse& eclipse, double stepSecond
 /// the date or the contact that is missing.
 double eclipseInstantUt(const std::string& date, const std::string& at);
 
+/// The outline of where a solar eclipse is seen at all (any partial phase with the Sun up):
+/// the contour where the greatest local eclipse, over the Sun-up part of the eclipse, just
+/// reaches the Sun's limb. It joins the northern and southern limits of the partial eclipse
+/// and the curves where it begins or ends at sunrise or sunset. Found on a latitude-longitude
+/// grid of `stepDeg`, each crossing placed along its cell's edge to 0.001 deg; the lines
+/// come in pieces where the grid's edges cut them (the poles' rows). For any eclipse, central
+/// or not. Throws std::invalid_argument for a step outside 0.1..10 deg.
+std::vector<std::vector<GeoPlace>> partialEclipseOutline(const SolarEclipse& eclipse, double stepDeg = 1.0,
+                                                         const EclipseConstants& constants = {});
+
 /// A TT (or UT1) Julian date as "2017-08-21T18:25:29.9" (proleptic Gregorian calendar;
 /// years before 1 as astronomers count them: 0 is 1 BC).
 std::string formatJulianDate(double jd, int secondDecimals = 1);

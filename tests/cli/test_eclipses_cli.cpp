@@ -173,6 +173,26 @@ TEST(EclipsesCli, ThePhysicalEdgeOfTheShadow) {
   EXPECT_NEAR(magnitude["physical"], magnitude["chauvenet"], 0.006);
 }
 
+// eclipse path: a central eclipse gets its central line, limits and the outline of the
+// partial eclipse; a partial one the outline alone.
+TEST(EclipsesCli, PathsOnTheMap) {
+  TempDir dir;
+  const auto text = [](const std::string& path) {
+    std::ifstream f(path);
+    return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  };
+  const RunResult total = run(UMBRA_EXE, {"eclipse", "path", "--date", "2017-08-21", "--step", "600", "--geojson", dir / "t.geojson"});
+  ASSERT_EQ(total.exitCode, 0) << total.err;
+  for (const char* name : {"\"central line\"", "\"northern limit\"", "\"southern limit\"", "\"outline of the partial eclipse\""})
+    EXPECT_NE(text(dir / "t.geojson").find(name), std::string::npos) << name;
+  const RunResult partial = run(UMBRA_EXE, {"eclipse", "path", "--date", "2025-03-29", "--geojson", dir / "p.geojson"});
+  ASSERT_EQ(partial.exitCode, 0) << partial.err;
+  EXPECT_NE(partial.out.find("no central line"), std::string::npos) << partial.out;
+  EXPECT_NE(text(dir / "p.geojson").find("\"outline of the partial eclipse\""), std::string::npos);
+  EXPECT_EQ(text(dir / "p.geojson").find("\"central line\""), std::string::npos);
+  EXPECT_EQ(dir.fileCount(), 2);
+}
+
 TEST(EclipsesCli, BadInputIsOneLineAndNoFile) {
   TempDir dir;
   for (const auto& [args, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{

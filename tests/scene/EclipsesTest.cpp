@@ -381,6 +381,30 @@ TEST(Eclipses, Path2017) {
   EXPECT_THROW(solarEclipsePath(partial), std::invalid_argument);
 }
 
+// The outline of where the partial eclipse is seen: at each of its points the eclipse just
+// touches the Sun (magnitude ~0, a limit) or the Sun stands on the horizon at a contact or
+// at greatest eclipse (a sunrise or sunset curve, or near the pole the Sun skimming the
+// horizon through the eclipse); for the central 2017 eclipse and the partial one of 2025.
+TEST(Eclipses, PartialEclipseOutline) {
+  for (const auto& [day, deltaT] : {std::pair{"2017-08-21", 70.3}, {"2025-03-29", 69.2}}) {
+    const SolarEclipse e = findSolarEclipses(around(day, deltaT)).at(0);
+    const auto outline = partialEclipseOutline(e, 2.0);
+    ASSERT_FALSE(outline.empty()) << day;
+    size_t checked = 0;
+    for (const auto& line : outline)
+      for (size_t i = 0; i < line.size(); i += 7, ++checked) {
+        const LocalSolarEclipse l = localSolarEclipse(e, line[i]);
+        const auto onHorizon = [](const std::optional<LocalInstant>& c) { return c && std::abs(c->sunAltitudeDeg) < 1.5; };
+        EXPECT_TRUE(!l.eclipsed || l.magnitude < 0.02 || onHorizon(l.c1) || onHorizon(l.c4) ||
+                    std::abs(l.greatest.sunAltitudeDeg) < 1.5)
+            << day << " at " << line[i].latitudeDeg << ", " << line[i].longitudeDeg << ": magnitude " << l.magnitude;
+      }
+    EXPECT_GT(checked, 20u) << day;
+  }
+  const SolarEclipse e = findSolarEclipses(around("2017-08-21", 70.3)).at(0);
+  EXPECT_THROW(partialEclipseOutline(e, 0.0), std::invalid_argument);
+}
+
 // Dates: the calendar round trip, negative years, seconds that round up into the next day.
 TEST(Eclipses, Dates) {
   EXPECT_EQ(formatJulianDate(jd("2017-08-21T18:26:40.2")), "2017-08-21T18:26:40.2");
