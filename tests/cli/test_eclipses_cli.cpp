@@ -177,10 +177,7 @@ TEST(EclipsesCli, ThePhysicalEdgeOfTheShadow) {
 // partial eclipse; a partial one the outline alone.
 TEST(EclipsesCli, PathsOnTheMap) {
   TempDir dir;
-  const auto text = [](const std::string& path) {
-    std::ifstream f(path);
-    return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  };
+  const auto text = [](const std::string& path) { return readAll(path); };
   const RunResult total = run(UMBRA_EXE, {"eclipse", "path", "--date", "2017-08-21", "--step", "600", "--geojson", dir / "t.geojson"});
   ASSERT_EQ(total.exitCode, 0) << total.err;
   for (const char* name : {"\"central line\"", "\"northern limit\"", "\"southern limit\"", "\"outline of the partial eclipse\""})
