@@ -64,6 +64,18 @@ EclipsedMoonLight eclipsedMoonLight(const std::vector<ProfileSample>& profile, g
   return light;
 }
 
+double danjonMagnitude(double danjonL) { return 4.2 - 3.0 * danjonL + 0.25 * danjonL * danjonL; }
+
+double danjonLFromMagnitude(double magnitudeV) {
+  // L^2 / 4 - 3 L + (4.2 - V) = 0, the root below the parabola's vertex (L = 6).
+  return std::clamp(2.0 * (3.0 - std::sqrt(std::max(0.0, 4.8 + magnitudeV))), 0.0, 4.0);
+}
+
+double meanSurfaceBrightness(double magnitude, double angularRadiusRad) {
+  const double radiusArcsec = angularRadiusRad * 180.0 / kPi * 3600.0;
+  return magnitude + 2.5 * std::log10(kPi * radiusArcsec * radiusArcsec);
+}
+
 double steepestLogRiseOffsetM(const std::vector<ProfileSample>& profile) {
   if (profile.size() < 2) throw std::invalid_argument("umbra's edge: the shadow profile has fewer than 2 samples");
   double best = -1.0, at = profile.front().offsetM;

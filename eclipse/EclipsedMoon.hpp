@@ -45,6 +45,17 @@ double profileLuminanceAt(const std::vector<ProfileSample>& profile, double offs
 EclipsedMoonLight eclipsedMoonLight(const std::vector<ProfileSample>& profile, glm::dvec2 moonCentreM,
                                     double moonRadiusM, const EarthOutline& outline, int rings = 96);
 
+/// The eclipsed Moon's integrated V for a Danjon L, by Vital's correlation of the two over
+/// the eclipses of 2004-2019: V = 4.2 - 3 L + (L / 2)^2.
+double danjonMagnitude(double danjonL);
+/// Its inverse on 0..4 (the scale's range; a V brighter than L 4's or fainter than L 0's
+/// gives 4 or 0).
+double danjonLFromMagnitude(double magnitudeV);
+
+/// A disc's mean surface brightness (mag/arcsec^2) for its integrated magnitude and
+/// angular radius.
+double meanSurfaceBrightness(double magnitude, double angularRadiusRad);
+
 /// The umbra's edge as an atmosphere draws it: the offset where the profile's logarithm
 /// rises steepest (between the samples where it does). Throws std::invalid_argument for a
 /// profile of fewer than 2 samples or with a value <= 0.

@@ -336,12 +336,10 @@ void addEclipseCommand(CLI::App& app, Action& action) {
       const double phaseRad = std::asin(k.earthEquatorialRadiusM / g.moonDistanceM);
       const double fullV = sky::apparentMagnitudeV(moonBody.albedo, moonBody.photometry.hapke, phaseRad, moonRadiusM,
                                                    g.sunDistanceM, g.moonDistanceM);
-      const double discArcsec2 = 3.14159265358979 * std::pow(std::asin(moonRadiusM / g.moonDistanceM) * 206264.806, 2.0);
-      const double fullSurface = fullV + 2.5 * std::log10(discArcsec2);
+      const double fullSurface = eclipse::meanSurfaceBrightness(fullV, std::asin(moonRadiusM / g.moonDistanceM));
       const auto mag = [](double factor) { return -2.5 * std::log10(std::max(factor, 1e-30)); };
       const double v = fullV + mag(light.mean);
-      // Danjon L from V: Vital's correlation m = 4.2 - 3 L + (L/2)^2, inverted, within 0..4.
-      const double danjon = std::clamp(2.0 * (3.0 - std::sqrt(std::max(0.0, 4.8 + v))), 0.0, 4.0);
+      const double danjon = eclipse::danjonLFromMagnitude(v);
       for (double x : {v, light.centre, light.nearLimb, light.farLimb})
         if (!std::isfinite(x)) throw CommandError("the eclipse's brightness is not finite (the shadow profile has no value there)");
       std::string clouds;

@@ -80,6 +80,17 @@ TEST(EclipsedMoon, TheUmbrasEdgeIsWhereTheLogarithmRisesSteepest) {
   EXPECT_THROW(steepestLogRiseOffsetM(p), std::invalid_argument);
 }
 
+// Vital's correlation: his own pairs (L 2.4 -> -1.56, L 3.0 -> -2.55), the round trip,
+// and the scale's ends; the full Moon's mean surface brightness (V -12.73, 932.6") 3.36.
+TEST(EclipsedMoon, DanjonScaleAndSurfaceBrightness) {
+  EXPECT_NEAR(danjonMagnitude(2.4), -1.56, 1e-12);
+  EXPECT_NEAR(danjonMagnitude(3.0), -2.55, 1e-12);
+  for (double l = 0.0; l <= 4.0; l += 0.25) EXPECT_NEAR(danjonLFromMagnitude(danjonMagnitude(l)), l, 1e-12) << l;
+  EXPECT_EQ(danjonLFromMagnitude(-6.0), 4.0);
+  EXPECT_EQ(danjonLFromMagnitude(6.0), 0.0);
+  EXPECT_NEAR(meanSurfaceBrightness(-12.73, 932.6 / 206264.806), 3.36, 0.01);
+}
+
 TEST(EclipsedMoon, InterpolationAndBadInput) {
   const std::vector<ProfileSample> p{{0.0, glm::dvec3(0.0), 0.0}, {10.0, glm::dvec3(1.0), 1.0}, {20.0, glm::dvec3(3.0), 3.0}};
   EXPECT_DOUBLE_EQ(profileLuminanceAt(p, 5.0), 0.5);
