@@ -151,7 +151,7 @@ ShadowLut buildAirlessShadowLut(const ShadowLutParams& p, const Progress& progre
 glm::dvec3 eclipseFactor(const glm::dvec3& p, const glm::dvec3& sun, double sunRadiusM,
                          const Occluder& occ, const ShadowLut* lut, double limbDarkening) {
   if (!occluderInFront(p, sun, occ.centreM)) return glm::dvec3(1.0);
-  const LutCoords c = lutCoords(shadowAngles(p, sun, sunRadiusM, occ.centreM, occ.radiusM));
+  const LutCoords c = lutCoords(shadowAngles(p, sun, sunRadiusM, occ.centreM, occ.radiusM, occ.figure));
   if (c.v >= 1.0) return glm::dvec3(1.0);
   return lut ? lut->sample(c) : glm::dvec3(airlessShadow(c, limbDarkening));
 }

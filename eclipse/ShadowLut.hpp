@@ -127,7 +127,8 @@ bool rangedLutPays(const LutRange& range, int height);
 /// One occluder as the shadow sees it.
 struct Occluder {
   glm::dvec3 centreM{0.0};
-  double radiusM = 0.0;
+  double radiusM = 0.0;  ///< the mean radius
+  Oblateness figure{};   ///< a sphere unless its flattening is set
 };
 
 /// Fraction of sunlight (per channel) reaching `pointM` past `occluder`: 1 where the

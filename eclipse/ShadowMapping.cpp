@@ -1,5 +1,7 @@
 #include "ShadowMapping.hpp"
 
+#include "SolarDisc.hpp"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -54,6 +56,64 @@ ShadowAngles shadowAngles(const glm::dvec3& p, const glm::dvec3& sun, double sun
                           const glm::dvec3& occ, double occRadiusM) {
   return {angularRadiusRad(sunRadiusM, glm::length(sun - p)),
           angularRadiusRad(occRadiusM, glm::length(occ - p)), angleBetweenRad(sun - p, occ - p)};
+}
+
+double equatorialRadiusM(double meanRadiusM, const Oblateness& figure) {
+  return figure.flattening == 0.0 ? meanRadiusM : meanRadiusM / std::cbrt(1.0 - figure.flattening);
+}
+
+double outlineRadiusFactor(const glm::dvec3& viewDir, const glm::dvec3& towards, const Oblateness& figure) {
+  const double e2 = figure.flattening * (2.0 - figure.flattening);
+  const double cosView = glm::dot(viewDir, figure.pole);
+  const double q2 = 1.0 - e2 * (1.0 - cosView * cosView);
+  const glm::dvec3 across = towards - glm::dot(towards, viewDir) * viewDir;
+  const double acrossSq = glm::dot(across, across);
+  const double tp = glm::dot(across, figure.pole);
+  const double alongPoleSq = acrossSq > 0.0 ? tp * tp / acrossSq : 0.0;
+  return std::sqrt(q2 / (q2 + e2 * alongPoleSq));
+}
+
+double outlineRadiusTowardsSunM(const glm::dvec3& p, const glm::dvec3& sun, const glm::dvec3& occ,
+                                double meanRadiusM, const Oblateness& figure) {
+  if (figure.flattening == 0.0) return meanRadiusM;
+  return equatorialRadiusM(meanRadiusM, figure) * outlineRadiusFactor(glm::normalize(occ - p), sun - p, figure);
+}
+
+ShadowAngles shadowAngles(const glm::dvec3& p, const glm::dvec3& sun, double sunRadiusM, const glm::dvec3& occ,
+                          double meanRadiusM, const Oblateness& figure) {
+  return shadowAngles(p, sun, sunRadiusM, occ, outlineRadiusTowardsSunM(p, sun, occ, meanRadiusM, figure));
+}
+
+double visibleFractionPastSpheroid(const glm::dvec3& p, const glm::dvec3& sun, double sunRadiusM,
+                                   const glm::dvec3& occ, double meanRadiusM, const Oblateness& figure,
+                                   double limbDarkening, int n) {
+  // The spheroid stretched along its pole by a / b is the sphere of radius a, and a ray
+  // meets the one where its stretched image meets the other.
+  const double f = figure.flattening;
+  const double a = equatorialRadiusM(meanRadiusM, figure), stretch = 1.0 / (1.0 - f);
+  const auto stretched = [&](const glm::dvec3& v) { return v + (stretch - 1.0) * glm::dot(v, figure.pole) * figure.pole; };
+  const glm::dvec3 toSun = sun - p;
+  const double phiSun = angularRadiusRad(sunRadiusM, glm::length(toSun));
+  const glm::dvec3 s = glm::normalize(toSun);
+  const glm::dvec3 e1 = glm::normalize(std::abs(s.x) < 0.9 ? glm::cross(s, glm::dvec3(1, 0, 0)) : glm::cross(s, glm::dvec3(0, 1, 0)));
+  const glm::dvec3 e2 = glm::cross(s, e1);
+  const glm::dvec3 origin = stretched(p - occ);
+  double total = 0.0, seen = 0.0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double x = -1.0 + (2.0 * i + 1.0) / n, y = -1.0 + (2.0 * j + 1.0) / n, rho2 = x * x + y * y;
+      if (rho2 > 1.0) continue;
+      const double w = limbDarkenedLuminanceAtSquare(rho2, limbDarkening);
+      total += w;
+      const double rho = std::sqrt(rho2), angle = rho * phiSun;
+      const glm::dvec3 across = rho > 0.0 ? (x * e1 + y * e2) / rho : e1;
+      const glm::dvec3 d = stretched(std::cos(angle) * s + std::sin(angle) * across);
+      // |origin + t d| = a for some t > 0 (the occluder nearer than the Sun).
+      const double b = glm::dot(origin, d), c = glm::dot(origin, origin) - a * a, dd = glm::dot(d, d);
+      const bool hit = b * b - dd * c >= 0.0 && (c < 0.0 || b < 0.0);
+      if (!hit) seen += w;
+    }
+  return total > 0.0 ? seen / total : 1.0;
 }
 
 bool occluderInFront(const glm::dvec3& p, const glm::dvec3& sun, const glm::dvec3& occ) {

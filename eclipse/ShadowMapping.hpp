@@ -59,6 +59,46 @@ double angleBetweenRad(const glm::dvec3& a, const glm::dvec3& b);
 ShadowAngles shadowAngles(const glm::dvec3& pointM, const glm::dvec3& sunM, double sunRadiusM,
                           const glm::dvec3& occluderM, double occluderRadiusM);
 
+/// An occluder's figure: a sphere (flattening 0), or an oblate spheroid of flattening f
+/// about the unit axis `pole`, of the same volume as the sphere of the body's mean radius
+/// (equatorial radius R (1 - f)^(-1/3), polar R (1 - f)^(2/3)). The Earth's f is 1/298.257.
+struct Oblateness {
+  glm::dvec3 pole{0.0, 0.0, 1.0};
+  double flattening = 0.0;
+};
+
+/// The equatorial radius of that spheroid: meanRadiusM (1 - f)^(-1/3).
+double equatorialRadiusM(double meanRadiusM, const Oblateness& figure);
+
+/// A spheroid seen along `viewDir` (unit) shows an ellipse, of semi-axes a across the
+/// projected pole and a q along it, q^2 = 1 - e^2 (1 - (view . pole)^2), e^2 = f (2 - f).
+/// Its radius towards `towards` (the part of it across the view, unit t) over a:
+/// q / sqrt(q^2 + e^2 (t . pole)^2). 1 across the pole, q along it; for `towards` along the
+/// view (no direction across it), 1.
+double outlineRadiusFactor(const glm::dvec3& viewDir, const glm::dvec3& towards, const Oblateness& figure);
+
+/// The radius of an occluder's outline, seen from `pointM`, in the direction of the Sun
+/// from its centre: `meanRadiusM` for a sphere; for a spheroid, its equatorial radius times
+/// outlineRadiusFactor. The shadow of the ellipse is taken, at each point, as that of the
+/// circle of this radius: the circle that meets the ellipse where the line of centres
+/// does (docs/eclipse-shadows.md, "Oblate occluders", gives its error against the
+/// spheroid sampled ray by ray).
+double outlineRadiusTowardsSunM(const glm::dvec3& pointM, const glm::dvec3& sunM, const glm::dvec3& occluderM,
+                                double meanRadiusM, const Oblateness& figure);
+
+/// shadowAngles with an oblate occluder: its angular radius that of outlineRadiusTowardsSunM.
+ShadowAngles shadowAngles(const glm::dvec3& pointM, const glm::dvec3& sunM, double sunRadiusM,
+                          const glm::dvec3& occluderM, double meanRadiusM, const Oblateness& figure);
+
+/// The fraction of the limb-darkened Sun (coefficient `limbDarkening`, Eq. 1) seen from
+/// `pointM` past a spheroid occluder, by brute force: the solar disc sampled on `n` x `n`
+/// cells of its bounding square (cell centres inside it), each ray tested against the
+/// spheroid itself. The reference for the oblate shadow; its error is about the disc's
+/// edge cells, a few 1 / n^1.5.
+double visibleFractionPastSpheroid(const glm::dvec3& pointM, const glm::dvec3& sunM, double sunRadiusM,
+                                   const glm::dvec3& occluderM, double meanRadiusM, const Oblateness& figure,
+                                   double limbDarkening, int n);
+
 /// True when the occluder is nearer than the Sun, i.e. can cast a shadow on the point.
 bool occluderInFront(const glm::dvec3& pointM, const glm::dvec3& sunM,
                      const glm::dvec3& occluderM);

@@ -83,18 +83,28 @@ vtkAlgorithm* setUpTable(Source* source, const EclipseTableRequest& r, const std
   }
 }
 
-// Adds to `u` (min, max) the u range of the points at [lo, hi] from `occluder`'s centre;
-// false when they reach the Sun.
+// The least and the largest radius of an occluder's outline: its radius for a sphere; for a
+// spheroid the polar and equatorial radii (the outline's towards the Sun lies between).
+std::array<double, 2> outlineRadiiM(const SphereBody& occluder) {
+  const eclipse::Occluder o = occluderOf(occluder);
+  const double a = eclipse::equatorialRadiusM(o.radiusM, o.figure);
+  return {a * (1.0 - o.figure.flattening), a};
+}
+
+// Adds to `u` (min, max) the u range of the points at [lo, hi] from `occluder`'s centre
+// (for each radius its outline can have); false when they reach the Sun.
 bool addDistances(const SunLight& sun, const SphereBody& occluder, double lo, double hi, bool darkUmbra, int height,
                   std::array<double, 2>& u) {
-  const eclipse::SunOccluderSystem system{sun.radiusM, occluder.radiusM, glm::length(occluder.centreM - sun.positionM)};
-  try {
-    const eclipse::LutRange r = eclipse::lutRangeForDistances(system, lo, hi, darkUmbra, height);
-    u = {std::min(u[0], r.uMin), std::max(u[1], r.uMax)};
-    return true;
-  } catch (const std::invalid_argument&) {
-    return false;
+  for (const double radiusM : outlineRadiiM(occluder)) {
+    const eclipse::SunOccluderSystem system{sun.radiusM, radiusM, glm::length(occluder.centreM - sun.positionM)};
+    try {
+      const eclipse::LutRange r = eclipse::lutRangeForDistances(system, lo, hi, darkUmbra, height);
+      u = {std::min(u[0], r.uMin), std::max(u[1], r.uMax)};
+    } catch (const std::invalid_argument&) {
+      return false;
+    }
   }
+  return true;
 }
 
 // The ranges for the u range `u` (none when empty or when a whole LuT resolves it).
@@ -166,8 +176,9 @@ std::array<int, 2> shadowLutColumns(const SunLight& sun, const SphereBody& occlu
   const double dOcc = glm::length(receiver.centreM - occluder.centreM);
   const double dSun = glm::length(receiver.centreM - sun.positionM);
   const double r = receiver.radiusM;
-  const double uMin = lutU(sun.radiusM, dSun + r, occluder.radiusM, std::max(dOcc - r, 0.0));
-  const double uMax = lutU(sun.radiusM, std::max(dSun - r, sun.radiusM), occluder.radiusM, dOcc + r);
+  const auto outline = outlineRadiiM(occluder);
+  const double uMin = lutU(sun.radiusM, dSun + r, outline[1], std::max(dOcc - r, 0.0));
+  const double uMax = lutU(sun.radiusM, std::max(dSun - r, sun.radiusM), outline[0], dOcc + r);
   // Texel i's centre is at (i + 0.5) / width; a lookup at u reads floor(u w - 0.5) and the next.
   const int first = static_cast<int>(std::floor(uMin * width - 0.5));
   const int last = static_cast<int>(std::floor(uMax * width - 0.5)) + 1;

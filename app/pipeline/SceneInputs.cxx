@@ -141,7 +141,8 @@ void nightLights(const scene::Scene& s, SceneInputs& in) {
     const double v = sky::apparentMagnitudeV(b.albedo, hapke, sky::angleBetween(toSun, toCamera), b.radiusM,
                                              glm::length(toSun), glm::length(toCamera));
     const glm::dvec3 shadow = eclipse::eclipseFactor(b.positionM, in.sun.positionM, in.sun.radiusM,
-                                                     {planet->positionM, a.bottomRadiusM}, nullptr);
+                                                     {planet->positionM, a.bottomRadiusM, scene::shadowFigure(s, *planet)},
+                                                     nullptr);
     a.moonPositionM = b.positionM;
     a.moonIrradianceWm2 = in.sun.irradianceAt1AuWm2 * sky::irradianceRelativeToSun(v) * bodyTint(b) * shadow;
     return;
@@ -160,8 +161,8 @@ void sceneClouds(const scene::Scene& s, SceneInputs& in) {
     a.clouds.push_back({l, sky::cloudDrift(l, foot, a.bottomRadiusM + l.altitudeM, 0.0, seconds) * toBody});
   for (const SphereBody& b : in.bodies)
     if (b.name != a.body)
-      a.cloudSunFactor *= eclipse::eclipseFactor(in.camera.positionM, in.sun.positionM, in.sun.radiusM,
-                                                 {b.centreM, b.radiusM}, nullptr);
+      a.cloudSunFactor *= eclipse::eclipseFactor(in.camera.positionM, in.sun.positionM, in.sun.radiusM, occluderOf(b),
+                                                 nullptr);
 }
 } // namespace
 
@@ -184,6 +185,7 @@ SceneInputs sceneInputs(const scene::Scene& s) {
     body.reliefStrength = b.reliefStrength;
     if (!b.preset.empty() && scene::hasRotationModel(b.preset) && s.hasTime)
       body.bodyFixedToInertial = scene::bodyFixedToInertial(b.preset, s.time);
+    body.flattening = scene::shadowFigure(s, b).flattening;  // about bodyFixedToInertial's z
     if (earth && earth != &b && b.photometry.law == sky::Photometry::Law::Hapke) {
       body.earthCentreM = earth->positionM;
       body.earthshineWm2 = earthshineOn(b, *earth, sun.positionM);

@@ -139,7 +139,7 @@ void BodyView::SetBodies(const SunLight& sun, const std::vector<SphereBody>& bod
   m.shading.SetSun(sun);
   m.atmosphere.SetSun(sun);
   std::vector<eclipse::Occluder> occluders;
-  for (const SphereBody& b : bodies) occluders.push_back({b.centreM, b.radiusM});
+  for (const SphereBody& b : bodies) occluders.push_back(occluderOf(b));
   m.atmosphere.SetEclipsingBodies(occluders, std::make_shared<const eclipse::ShadowLut>(filters::fromImageData(shadowLut)));
   m.stars.SetSun(sun, eclipse::kDefaultLimbDarkening);
 

@@ -103,11 +103,17 @@ void validateBody(const SphereBody& b) {
   if (!std::isfinite(glm::determinant(b.bodyFixedToInertial)) ||
         std::abs(glm::determinant(b.bodyFixedToInertial) - 1.0) > 1e-6)
       throw std::invalid_argument(who + " needs a rotation as its body-fixed frame");
+  if (!(std::isfinite(b.flattening) && b.flattening >= 0.0 && b.flattening < 0.5))
+    throw std::invalid_argument(who + " needs a flattening in [0, 0.5)");
   if (!(std::isfinite(b.reliefStrength) && b.reliefStrength >= 0.0 && b.reliefStrength <= 4.0))
     throw std::invalid_argument(who + " needs a relief strength in [0, 4]");
   if (!finite(b.earthshineWm2) || b.earthshineWm2.r < 0 || b.earthshineWm2.g < 0 || b.earthshineWm2.b < 0 ||
       !finite(b.earthCentreM))
     throw std::invalid_argument(who + " needs a finite earthshine >= 0 from a finite Earth position");
+}
+
+eclipse::Occluder occluderOf(const SphereBody& b) {
+  return {b.centreM, b.radiusM, {b.bodyFixedToInertial[2], b.flattening}};
 }
 
 struct Receiver {
@@ -176,6 +182,23 @@ struct EclipseShading::Impl {
     return -1;
   }
 
+  // The radius the receivers' shader takes for an occluder: its equatorial radius when
+  // oblate (the shader scales it to the outline's towards the Sun), else its own.
+  static double shadowRadiusM(const SphereBody& o) {
+    return eclipse::equatorialRadiusM(o.radiusM, occluderOf(o).figure);
+  }
+
+  // UMBRA_OBLATE_SHADOW: bit i for an oblate occluder.
+  int oblateShadowsOf(const SphereBody& receiver) const {
+    int mask = 0, k = 0;
+    for (const SphereBody* o : occludersOf(receiver)) {
+      if (k == kMaxOccluders) break;
+      if (o->flattening > 0.0) mask |= 1 << k;
+      ++k;
+    }
+    return mask;
+  }
+
   // The angular radii (Eq. 3) of the Sun ([kMaxOccluders]) and of the receiver's
   // occluders over the receiver's surface, expanded about its centre
   // (umbraSunAngularRadius, umbraOccluderAngularRadius).
@@ -186,7 +209,7 @@ struct EclipseShading::Impl {
     int n = 0;
     for (const SphereBody* o : occludersOf(receiver)) {
       if (n == kMaxOccluders) break;
-      x[n++] = eclipse::angularRadiusExpansion(o->radiusM, glm::length(o->centreM - receiver.centreM), h);
+      x[n++] = eclipse::angularRadiusExpansion(shadowRadiusM(*o), glm::length(o->centreM - receiver.centreM), h);
     }
     return x;
   }
@@ -213,7 +236,8 @@ struct EclipseShading::Impl {
     const bool earthshine = hapke && glm::length(receiver.earthshineWm2) > 0.0;
     return "#define UMBRA_OCCLUDER_COUNT " + std::to_string(n) + "\n#define UMBRA_ATMOSPHERE_OCCLUDER " +
            std::to_string(atmosphereIndexOf(receiver)) + "\n#define UMBRA_EXACT_SHADOW " +
-           std::to_string(exactShadowsOf(receiver)) + "\n#define UMBRA_PHOTOMETRY " + (hapke ? "1" : "0") +
+           std::to_string(exactShadowsOf(receiver)) + "\n#define UMBRA_OBLATE_SHADOW " +
+           std::to_string(oblateShadowsOf(receiver)) + "\n#define UMBRA_PHOTOMETRY " + (hapke ? "1" : "0") +
            "\n#define UMBRA_ALBEDO_MAP " + (receiver.albedoMapPath.empty() ? "0" : receiver.albedoMapReflectance ? "2" : "1") +
            "\n#define UMBRA_EARTHSHINE " + (earthshine ? "1" : "0") +
            "\n#define UMBRA_NORMAL_MAP " + (receiver.normalMapPath.empty() ? "0" : "1") + "\n" +
@@ -261,7 +285,7 @@ struct EclipseShading::Impl {
     program.SetUniform3f("umbraSunPos", sunPos);
     program.SetUniformf("umbraSunRadius", float(sun.radiusM));
     program.SetUniformf("umbraSunIrradiance", float(sun.irradianceAt1AuWm2));
-    float occ[kMaxOccluders][4] = {};
+    float occ[kMaxOccluders][4] = {}, figure[kMaxOccluders][4] = {};
     int n = 0;
     for (const SphereBody* o : occludersOf(b)) {
       if (n == kMaxOccluders) break;  // checked when set; never silently reached
@@ -269,10 +293,16 @@ struct EclipseShading::Impl {
       occ[n][0] = float(rel.x);
       occ[n][1] = float(rel.y);
       occ[n][2] = float(rel.z);
-      occ[n][3] = float(o->radiusM);
+      occ[n][3] = float(shadowRadiusM(*o));
+      const eclipse::Oblateness f = occluderOf(*o).figure;
+      figure[n][0] = float(f.pole.x);
+      figure[n][1] = float(f.pole.y);
+      figure[n][2] = float(f.pole.z);
+      figure[n][3] = float(f.flattening * (2.0 - f.flattening));
       ++n;
     }
     program.SetUniform4fv("umbraOccluders", kMaxOccluders, occ);
+    program.SetUniform4fv("umbraOccluderFigure", kMaxOccluders, figure);
     const auto radii = angularRadiiOver(b);
     float phi[kMaxOccluders + 1][4];
     for (int k = 0; k <= kMaxOccluders; ++k) {

@@ -30,6 +30,7 @@
 // (vertices on the sphere). EclipseShading owns that actor's position/orientation/scale,
 // its back-face culling, its "umbraShadowLut" texture and its shader replacements.
 #include "Photometry.hpp"
+#include "ShadowLut.hpp"  // Occluder
 
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
@@ -75,6 +76,10 @@ struct SphereBody {
   std::string normalMapPath{};
   double reliefStrength = 1.0;
   glm::dmat3 bodyFixedToInertial{1.0};
+  /// Its shadow is cast by the spheroid of this flattening (0 <= f < 0.5) about its
+  /// body-fixed z axis, of the sphere's volume (eclipse::Oblateness); 0: by the sphere.
+  /// The body itself is drawn as the sphere.
+  double flattening = 0.0;
   /// Earthshine (sky/Earthshine.hpp): the irradiance the Earth at earthCentreM sends to
   /// this body, W m^-2 per channel; zero for none.
   glm::dvec3 earthshineWm2{0.0};
@@ -138,6 +143,9 @@ class EclipseShading {
  private:
   std::unique_ptr<Impl> impl_;
 };
+
+/// The body as an occluder: its centre, mean radius and figure (the pole its body-fixed z).
+eclipse::Occluder occluderOf(const SphereBody& body);
 
 /// Validates a body (finite centre, radius > 0, finite albedo >= 0); throws
 /// std::invalid_argument naming the body.

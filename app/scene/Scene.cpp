@@ -162,6 +162,12 @@ std::optional<double> sunElevationDeg(const Scene& scene) {
   return std::asin(std::clamp(glm::dot(up, toSun), -1.0, 1.0)) / kDeg;
 }
 
+eclipse::Oblateness shadowFigure(const Scene& scene, const Body& b) {
+  if (!scene.hasTime || b.preset.empty() || !hasRotationModel(b.preset) || !(b.equatorialRadiusM > b.polarRadiusM))
+    return {};
+  return {bodyFixedToInertial(b.preset, scene.time)[2], (b.equatorialRadiusM - b.polarRadiusM) / b.equatorialRadiusM};
+}
+
 std::optional<double> sunVisibleFractionAtCamera(const Scene& scene) {
   const Body& sun = scene.sun();
   const std::string own = scene.camera.observer ? scene.camera.observer->body : std::string();
@@ -169,7 +175,7 @@ std::optional<double> sunVisibleFractionAtCamera(const Scene& scene) {
   for (const Body& b : scene.bodies) {
     if (b.isSun() || b.name == own) continue;
     const glm::dvec3 f = eclipse::eclipseFactor(scene.camera.positionM, sun.positionM, sun.radiusM,
-                                                {b.positionM, b.radiusM}, nullptr);
+                                                {b.positionM, b.radiusM, shadowFigure(scene, b)}, nullptr);
     least = std::min(least, f.g);
   }
   if (!(least < 1.0)) return std::nullopt;

@@ -5,6 +5,7 @@
 
 #include "Clouds.hpp"
 #include "Photometry.hpp"
+#include "ShadowMapping.hpp"  // Oblateness
 
 #include <glm/glm.hpp>
 
@@ -160,6 +161,11 @@ Body presetBody(const std::string& name, UtcTime time);
 /// The Sun's centre above the geodetic horizon of the camera's observer, degrees (geometric:
 /// no refraction; negative below it); nothing without an observer.
 std::optional<double> sunElevationDeg(const Scene& scene);
+/// The figure a body's shadow is cast by: the spheroid of its equatorial and polar radii
+/// about its pole (eclipse::Oblateness; the Earth's flattening 1/298.257) when the scene
+/// has a time and the body a rotation model (hasRotationModel), else its sphere. The body
+/// is drawn as the sphere of its mean radius.
+eclipse::Oblateness shadowFigure(const Scene& scene, const Body& body);
 /// The share of the Sun's light (Eq. 1's limb-darkened disc, eclipse::eclipseFactor
 /// computed exactly) that reaches the camera past the scene's bodies in front of the Sun
 /// (the least over them: exact for one occluder), the camera's own body left out; nothing

@@ -54,6 +54,19 @@ float umbraSmallAngleBetween(vec3 a, vec3 b) {
   return dot(a, b) > 0.0 ? delta : 4.0;
 }
 
+// eclipse::outlineRadiusFactor: a spheroid seen along viewDir (unit) shows an ellipse; its
+// radius towards `towards` over the equatorial radius. figure: the pole (unit) and e^2 =
+// f (2 - f).
+float umbraOutlineRadiusFactor(vec3 viewDir, vec3 towards, vec4 figure) {
+  float cosView = dot(viewDir, figure.xyz);
+  float q2 = 1.0 - figure.w * (1.0 - cosView * cosView);
+  vec3 across = towards - dot(towards, viewDir) * viewDir;
+  float acrossSq = dot(across, across);
+  float tp = dot(across, figure.xyz);
+  float alongPoleSq = acrossSq > 0.0 ? tp * tp / acrossSq : 0.0;
+  return sqrt(q2 / (q2 + figure.w * alongPoleSq));
+}
+
 // Eq. 3-4 at a point of a receiver, as the receiver's shader has it: toOcc from the point
 // to the occluder; sunDir and invSun the unit vector and inverse distance to the Sun.
 // Unless `exact` (a constant: the other branch compiles away; eclipse::
@@ -62,18 +75,23 @@ float umbraSmallAngleBetween(vec3 a, vec3 b) {
 // angle between the directions from umbraSmallAngleBetween. With `exact`: Eq. 3-4 as
 // umbraShadowUv (the Sun's radius sunRadius, the occluder's radius), where the atan's
 // errors cancel in the ratios. v >= 1 where the point gets all the light (the occluder
-// behind the Sun too).
+// behind the Sun too). With `oblate` (a constant too) the occluder is a spheroid of
+// `figure` (umbraOutlineRadiusFactor) and equatorial radius `radius` (x expands that
+// sphere's angular radius): its angular radius is scaled to its outline's towards the Sun
+// (eclipse::outlineRadiusTowardsSunM).
 vec2 umbraReceiverShadowUv(vec3 sunDir, float invSun, vec4 sunX, float sunRadius, vec3 toOcc, vec4 x, float radius,
-                           bool exact) {
+                           bool exact, vec4 figure, bool oblate) {
   float invOcc = inversesqrt(dot(toOcc, toOcc));
   vec3 occDir = toOcc * invOcc;
+  float outline = oblate ? umbraOutlineRadiusFactor(occDir, sunDir, figure) : 1.0;
   vec2 uv;
   if (exact) {
     uv = umbraShadowUvFrom(sunDir, umbraAngularRadius(sunRadius, 1.0 / invSun), occDir,
-                           umbraAngularRadius(radius, 1.0 / invOcc));
+                           umbraAngularRadius(outline * radius, 1.0 / invOcc));
   } else {
     float phiSun = umbraAngularRadiusNear(sunX, invSun);
-    uv = vec2(phiSun, umbraSmallAngleBetween(sunDir, occDir)) * (1.0 / (phiSun + umbraAngularRadiusNear(x, invOcc)));
+    uv = vec2(phiSun, umbraSmallAngleBetween(sunDir, occDir)) *
+         (1.0 / (phiSun + outline * umbraAngularRadiusNear(x, invOcc)));
   }
   return invOcc <= invSun ? vec2(0.0, 2.0) : uv;
 }

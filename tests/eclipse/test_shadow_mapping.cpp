@@ -2,6 +2,7 @@
 #include "SolarDisc.hpp"
 #include "ShadowLut.hpp"
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -208,4 +209,78 @@ TEST(ShadowMapping, AnAnnularEclipseLeavesTheRingOutsideTheOccludersDisc) {
   EXPECT_GT(ring, 0.05);
   EXPECT_EQ(eclipseFactor({0, 0, 0}, sun, kSunRadiusM, {{360000e3, 0, 0}, moonR}, nullptr).g, 0.0);
   EXPECT_EQ(eclipseFactor({0, 0, 0}, sun, kSunRadiusM, {{-380000e3, 0, 0}, moonR}, nullptr).g, 1.0);
+}
+
+namespace {
+// Where the line through `centre + s t` along `view` meets a spheroid (centre 0, mean
+// radius R, figure `o`): the stretched line meets the sphere of the equatorial radius.
+bool lineMeetsSpheroid(const glm::dvec3& through, const glm::dvec3& view, double meanRadiusM, const Oblateness& o) {
+  const double a = meanRadiusM / std::cbrt(1.0 - o.flattening), k = 1.0 / (1.0 - o.flattening);
+  const auto st = [&](const glm::dvec3& v) { return v + (k - 1.0) * glm::dot(v, o.pole) * o.pole; };
+  const glm::dvec3 p = st(through), d = st(view);
+  const double b = glm::dot(p, d), dd = glm::dot(d, d), c = glm::dot(p, p) - a * a;
+  return b * b - dd * c >= 0.0;
+}
+} // namespace
+
+// The outline's radius (outlineRadiusFactor) against the spheroid's own: the farthest line
+// of sight along t that still meets it, found by bisection, for poles at every tilt to the
+// view and directions at every angle to the projected pole, flattening up to Saturn's.
+TEST(ShadowMapping, OutlineRadiusIsTheSpheroidsOwn) {
+  const double meanR = 6371.0e3;
+  for (double f : {1.0 / 298.257, 1.0 / 170.0, 0.0980}) {
+    for (double tilt : {0.0, 0.3, 0.9, 1.5707963267948966}) {
+      const Oblateness o{{std::sin(tilt), 0.0, std::cos(tilt)}, f};
+      const glm::dvec3 view(1.0, 0.0, 0.0);
+      for (double th = 0.0; th < 3.2; th += 0.4) {
+        const glm::dvec3 t(0.0, std::sin(th), std::cos(th));
+        double lo = 0.0, hi = 2.0 * meanR;
+        for (int i = 0; i < 200; ++i) {
+          const double mid = 0.5 * (lo + hi);
+          (lineMeetsSpheroid(mid * t, view, meanR, o) ? lo : hi) = mid;
+        }
+        const double a = meanR / std::cbrt(1.0 - f);
+        EXPECT_NEAR(outlineRadiusFactor(view, t + 0.3 * view, o), lo / a, 1e-12) << f << " " << tilt << " " << th;
+      }
+    }
+  }
+  // A sphere's outline is its radius; along the view the factor is 1; along the pole seen
+  // from the equator's plane it is 1 - f.
+  const Oblateness earth{{0.0, 0.0, 1.0}, 1.0 / 298.257};
+  EXPECT_EQ(outlineRadiusTowardsSunM({0, 0, 0}, {1, 2, 3}, {4, 5, 6}, 7.0, {}), 7.0);
+  EXPECT_EQ(outlineRadiusFactor({1, 0, 0}, {2, 0, 0}, earth), 1.0);
+  EXPECT_NEAR(outlineRadiusFactor({1, 0, 0}, {0, 0, 1}, earth), 1.0 - 1.0 / 298.257, 1e-15);
+}
+
+// The Earth's shadow at the Moon's distance cast by the oblate Earth (eclipseFactor with
+// its figure: the circle of the outline's radius towards the Sun) against the spheroid
+// sampled ray by ray over the limb-darkened Sun (visibleFractionPastSpheroid), across the
+// penumbra towards the projected pole, the equator and between: within 3.5e-4 everywhere,
+// where the sphere of the mean radius errs by 2.5e-3 to 4e-3 towards the pole and the
+// equator (the circle is rounder than the ellipse at the pole, which lets more light by).
+TEST(ShadowMapping, OblateEarthsPenumbraAgreesWithTheSpheroidRayByRay) {
+  const double meanR = 6371.0084e3, f = 1.0 / 298.257, eps = 0.4091;
+  const glm::dvec3 sun(-kAu, 0.0, 0.0);
+  const Oblateness earth{{-std::sin(eps), 0.0, std::cos(eps)}, f};
+  for (double th : {0.0, 0.7853981633974483, 1.5707963267948966}) {
+    double maxOblate = 0.0, maxSphere = 0.0;
+    for (double r = 4300e3; r <= 8300e3; r += 250e3) {
+      const glm::dvec3 p(384400e3, r * std::sin(th), r * std::cos(th));
+      const double ref = visibleFractionPastSpheroid(p, sun, kSunRadiusM, {0, 0, 0}, meanR, earth, kDefaultLimbDarkening, 1500);
+      const double oblate = eclipseFactor(p, sun, kSunRadiusM, {{0, 0, 0}, meanR, earth}, nullptr).g;
+      const double sphere = eclipseFactor(p, sun, kSunRadiusM, {{0, 0, 0}, meanR}, nullptr).g;
+      // The rays themselves, against the sphere's exact value.
+      EXPECT_NEAR(visibleFractionPastSpheroid(p, sun, kSunRadiusM, {0, 0, 0}, meanR, {}, kDefaultLimbDarkening, 1500),
+                  sphere, 2e-5);
+      maxOblate = std::max(maxOblate, std::abs(oblate - ref));
+      maxSphere = std::max(maxSphere, std::abs(sphere - ref));
+    }
+    std::printf("  %.0f deg from the projected pole: max |oblate - rays| %.2e, |sphere - rays| %.2e\n",
+                th * 57.29577951308232, maxOblate, maxSphere);
+    EXPECT_LT(maxOblate, 3.5e-4) << th;
+    if (th != 0.7853981633974483) {
+      EXPECT_GT(maxSphere, 2.5e-3) << th;
+      EXPECT_LT(maxOblate, 0.1 * maxSphere) << th;
+    }
+  }
 }

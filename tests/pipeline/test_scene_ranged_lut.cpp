@@ -353,3 +353,34 @@ TEST(SceneRangedLut, LimbLuminanceLutOnTheSunDistanceGrid) {
   EXPECT_GT(std::abs(otherM / gridM - 1.0), 1e-6);
   EXPECT_LT(worst, 1e-3);
 }
+
+// A scene with a time casts the Earth's shadow from its spheroid (scene::shadowFigure):
+// the flattening of its radii about its pole of date, and the LuT's u range holds every
+// point of the Moon for the outline's radius towards the Sun, which lies between the
+// polar and the equatorial radius.
+TEST(SceneRangedLut, TheOblateEarthsRangeHoldsTheMoon) {
+  const scene::Scene s = scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/lunar-eclipse-2015-09-28.json");
+  const SceneInputs in = sceneInputs(s);
+  const SphereBody &earth = body(in, "Earth"), &moon = body(in, "Moon");
+  EXPECT_NEAR(earth.flattening, 1.0 / 298.257, 1e-6);
+  EXPECT_EQ(moon.flattening, 0.0);
+  const eclipse::Occluder occ = occluderOf(earth);
+  EXPECT_GT(occ.figure.pole.z, 0.9999);  // the pole of date, 0.1 deg from the ICRS pole in 2015
+  const auto r = sceneLutRange(in.sun, {earth}, {moon}, true, 32);
+  ASSERT_TRUE(r);
+  double least = 1.0, most = 0.0;
+  for (const glm::dvec3 dir : {glm::dvec3(1, 0, 0), glm::dvec3(-1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, -1, 0),
+                               glm::dvec3(0, 0, 1), glm::dvec3(0, 0, -1)}) {
+    const glm::dvec3 p = moon.centreM + moon.radiusM * dir;
+    const double u = eclipse::lutCoords(eclipse::shadowAngles(p, in.sun.positionM, in.sun.radiusM, occ.centreM,
+                                                              occ.radiusM, occ.figure)).u;
+    least = std::min(least, u), most = std::max(most, u);
+    EXPECT_GE(u, r->uMin);
+    EXPECT_LE(u, r->uMax);
+  }
+  // For comparison, the sphere's u at the Moon's centre.
+  const double sphereU = eclipse::lutCoords(eclipse::shadowAngles(moon.centreM, in.sun.positionM, in.sun.radiusM,
+                                                                  earth.centreM, earth.radiusM)).u;
+  std::printf("  u over the Moon %.6f..%.6f (sphere at its centre %.6f); range %.6f..%.6f\n", least, most, sphereU,
+              r->uMin, r->uMax);
+}

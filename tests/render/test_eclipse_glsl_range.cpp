@@ -224,6 +224,31 @@ void setVec4(vtkShaderProgram& program, const char* name, const eclipse::Angular
   program.SetUniform4f(name, v);
 }
 
+// The receiver's uniforms and the GLSL that puts p on it at the pixel (receiverPoint's
+// formula), with toSun and invSun from there.
+const char* const kReceiverUniforms =
+    "uniform vec3 sunPos, occPos; uniform float receiverRadius, sunRadius, occRadius; uniform vec4 sunX, occX;\n";
+std::string receiverPointGlsl() {
+  return "  vec2 ij = floor(gl_FragCoord.xy);\n"
+         "  float th = 3.14159265 * (ij.y + 0.5) / float(" + std::to_string(kSize) + ");\n"
+         "  float ph = 6.28318531 * (ij.x + 0.5) / float(" + std::to_string(kSize) + ");\n"
+         "  vec3 p = receiverRadius * vec3(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));\n"
+         "  vec3 toSun = sunPos - p;\n"
+         "  float invSun = 1.0 / length(toSun);\n";
+}
+void setReceiverUniforms(vtkShaderProgram& program, const ReceiverGeometry& g, double occRadiusM,
+                         const eclipse::AngularRadiusExpansion& sunX, const eclipse::AngularRadiusExpansion& occX) {
+  const float sun[3] = {float(g.sunM.x), float(g.sunM.y), float(g.sunM.z)};
+  const float occ[3] = {float(g.occluderM.x), float(g.occluderM.y), float(g.occluderM.z)};
+  program.SetUniform3f("sunPos", sun);
+  program.SetUniform3f("occPos", occ);
+  program.SetUniformf("receiverRadius", float(g.receiverRadiusM));
+  program.SetUniformf("sunRadius", float(g.sunRadiusM));
+  program.SetUniformf("occRadius", float(occRadiusM));
+  setVec4(program, "sunX", sunX);
+  setVec4(program, "occX", occX);
+}
+
 } // namespace
 
 // The receiver's (u, v) (umbraReceiverShadowUv: both angular radii expanded about the
@@ -248,27 +273,13 @@ TEST(EclipseGlslRange, ReceiverShadowUvAgreesWithEquations3And4AtTheExtremes) {
     EXPECT_EQ(expands, g.expands) << g.name;
     auto window = quadWindow();
     const std::vector<float> px = quadPixels(
-        window, "uniform vec3 sunPos, occPos; uniform float receiverRadius, sunRadius, occRadius; uniform vec4 sunX, occX;\n"
-        "uniform int exact;",
-        "  vec2 ij = floor(gl_FragCoord.xy);\n"
-        "  float th = 3.14159265 * (ij.y + 0.5) / float(" + std::to_string(kSize) + ");\n"
-        "  float ph = 6.28318531 * (ij.x + 0.5) / float(" + std::to_string(kSize) + ");\n"
-        "  vec3 p = receiverRadius * vec3(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));\n"
-        "  vec3 toSun = sunPos - p;\n"
-        "  float invSun = 1.0 / length(toSun);\n"
+        window, std::string(kReceiverUniforms) + "uniform int exact;",
+        receiverPointGlsl() +
         "  vec2 near = umbraReceiverShadowUv(toSun * invSun, invSun, sunX, sunRadius, occPos - p, occX, occRadius,\n"
-        "                                    exact != 0);\n"
+        "                                    exact != 0, vec4(0.0, 0.0, 1.0, 0.0), false);\n"
         "  gl_FragData[0] = vec4(near, umbraShadowUv(p, sunPos, sunRadius, occPos, occRadius));",
         [&](vtkShaderProgram& program) {
-          const float sun[3] = {float(g.sunM.x), float(g.sunM.y), float(g.sunM.z)};
-          const float occ[3] = {float(g.occluderM.x), float(g.occluderM.y), float(g.occluderM.z)};
-          program.SetUniform3f("sunPos", sun);
-          program.SetUniform3f("occPos", occ);
-          program.SetUniformf("receiverRadius", float(g.receiverRadiusM));
-          program.SetUniformf("sunRadius", float(g.sunRadiusM));
-          program.SetUniformf("occRadius", float(g.occluderRadiusM));
-          setVec4(program, "sunX", sunX);
-          setVec4(program, "occX", occX);
+          setReceiverUniforms(program, g, g.occluderRadiusM, sunX, occX);
           program.SetUniformi("exact", expands ? 0 : 1);
         });
     ASSERT_EQ(px.size(), 4u * kSize * kSize) << g.name;
@@ -296,5 +307,66 @@ TEST(EclipseGlslRange, ReceiverShadowUvAgreesWithEquations3And4AtTheExtremes) {
     EXPECT_GT(shadowed, kSize) << g.name;
     EXPECT_LE(nearU, 1.5 * exactU + 1e-7) << g.name;
     EXPECT_LE(nearV, 1.5 * exactV + 1e-7) << g.name;
+  }
+}
+
+// The oblate occluder in the receiver's shader (umbraReceiverShadowUv with a figure,
+// expanded and exact) against eclipse::shadowAngles with the same figure in double: the
+// Moon in the Earth's penumbra, the Earth's pole tilted 23.4 deg towards the Sun and 20
+// deg across. The outline moves (u, v) by about 1e-3 from the sphere's; float keeps them
+// within 2e-6.
+TEST(EclipseGlslRange, OblateOccluderAgreesWithTheCpu) {
+  constexpr double au = 1.495978707e11, sunR = eclipse::kSunRadiusM, meanR = 6371.0084e3, moonR = 1737.4e3;
+  const eclipse::Oblateness figure{glm::normalize(glm::dvec3(-0.3978, 0.34, 0.9175)), 1.0 / 298.257};
+  const ReceiverGeometry g{"Moon in the Earth's penumbra", moonR, {-384400e3 - au, 0.0, 6000e3}, sunR,
+                           {-384400e3, 0.0, 6000e3}, meanR, true};
+  const double a = eclipse::equatorialRadiusM(meanR, figure);
+  const auto sunX = eclipse::angularRadiusExpansion(g.sunRadiusM, glm::length(g.sunM), g.receiverRadiusM);
+  const auto occX = eclipse::angularRadiusExpansion(a, glm::length(g.occluderM), g.receiverRadiusM);
+  ASSERT_TRUE(eclipse::receiverShadowExpands(sunX, occX));
+  for (const int exact : {0, 1}) {
+    auto window = quadWindow();
+    const std::vector<float> px = quadPixels(
+        window, std::string(kReceiverUniforms) + "uniform vec4 figure; uniform int exact;",
+        receiverPointGlsl() +
+        "  vec2 uv = exact != 0 ? umbraReceiverShadowUv(toSun * invSun, invSun, sunX, sunRadius, occPos - p, occX,\n"
+        "                                               occRadius, true, figure, true)\n"
+        "                       : umbraReceiverShadowUv(toSun * invSun, invSun, sunX, sunRadius, occPos - p, occX,\n"
+        "                                               occRadius, false, figure, true);\n"
+        "  gl_FragData[0] = vec4(uv, umbraOutlineRadiusFactor(normalize(occPos - p), toSun, figure), 0.0);",
+        [&](vtkShaderProgram& program) {
+          setReceiverUniforms(program, g, a, sunX, occX);
+          const float fig[4] = {float(figure.pole.x), float(figure.pole.y), float(figure.pole.z),
+                                float(figure.flattening * (2.0 - figure.flattening))};
+          program.SetUniform4f("figure", fig);
+          program.SetUniformi("exact", exact);
+        });
+    ASSERT_EQ(px.size(), 4u * kSize * kSize);
+    double maxU = 0.0, maxV = 0.0, maxFactor = 0.0, maxMoved = 0.0;
+    int shadowed = 0;
+    for (int j = 0; j < kSize; ++j)
+      for (int i = 0; i < kSize; ++i) {
+        const glm::dvec3 p = receiverPoint(g, i, j);
+        const eclipse::LutCoords c =
+            eclipse::lutCoords(eclipse::shadowAngles(p, g.sunM, g.sunRadiusM, g.occluderM, meanR, figure));
+        const eclipse::LutCoords sphere =
+            eclipse::lutCoords(eclipse::shadowAngles(p, g.sunM, g.sunRadiusM, g.occluderM, meanR));
+        const float* q = &px[4 * (static_cast<std::size_t>(j) * kSize + i)];
+        maxFactor = std::max(maxFactor, std::abs(q[2] - eclipse::outlineRadiusFactor(glm::normalize(g.occluderM - p),
+                                                                                       g.sunM - p, figure)));
+        if (c.v >= 1.0) continue;
+        ++shadowed;
+        maxU = std::max(maxU, std::abs(q[0] - c.u));
+        maxV = std::max(maxV, std::abs(q[1] - c.v));
+        maxMoved = std::max(maxMoved, std::max(std::abs(sphere.u - c.u), std::abs(sphere.v - c.v)));
+      }
+    std::printf("  %s: %d points in the shadow; max |u - CPU| %.3g, |v - CPU| %.3g, |factor - CPU| %.3g; "
+                "the outline moves (u, v) by up to %.3g\n",
+                exact ? "exact" : "expanded", shadowed, maxU, maxV, maxFactor, maxMoved);
+    EXPECT_GT(shadowed, kSize);
+    EXPECT_GT(maxMoved, 5e-4);
+    EXPECT_LT(maxU, 2e-6);
+    EXPECT_LT(maxV, 2e-6);
+    EXPECT_LT(maxFactor, 1e-6);
   }
 }

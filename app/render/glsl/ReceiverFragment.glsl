@@ -43,6 +43,10 @@ uniform vec4 umbraOccluders[4];    // xyz: centre relative to the body's centre 
 // shadow needs Eq. 3-4 exactly (eclipse::receiverShadowExpands false: umbraReceiverShadowUv).
 uniform vec4 umbraSunAngularRadius;
 uniform vec4 umbraOccluderAngularRadius[4];
+// UMBRA_OBLATE_SHADOW (#defined by EclipseShading) has bit i set for an oblate occluder:
+// its umbraOccluders[i].w and umbraOccluderAngularRadius[i] are then its equatorial
+// radius', and umbraOccluderFigure[i] its pole and e^2 (umbraOutlineRadiusFactor).
+uniform vec4 umbraOccluderFigure[4];
 // The atmospheric table's texture coordinates from (u, v) (umbraShadowLutCoordIn), with
 // the part of the table held folded in.
 uniform vec4 umbraAtmosphereLutMap;
@@ -139,7 +143,8 @@ void umbraReceiverShade() {
   for (int i = 0; i < UMBRA_OCCLUDER_COUNT; ++i) {
     vec2 uv = umbraReceiverShadowUv(sunDir, invSun, umbraSunAngularRadius, umbraSunRadius, umbraOccluders[i].xyz - p,
                                     umbraOccluderAngularRadius[i], umbraOccluders[i].w,
-                                    (UMBRA_EXACT_SHADOW & (1 << i)) != 0);
+                                    (UMBRA_EXACT_SHADOW & (1 << i)) != 0, umbraOccluderFigure[i],
+                                    (UMBRA_OBLATE_SHADOW & (1 << i)) != 0);
     vec3 lut = i == UMBRA_ATMOSPHERE_OCCLUDER
                    ? texture(umbraAtmosphereShadowLut,
                              umbraShadowLutCoordIn(uv, umbraAtmosphereLutMap, umbraAtmosphereLutMapLow)).rgb
