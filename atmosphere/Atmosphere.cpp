@@ -318,8 +318,27 @@ std::string unknownPresetMessage(const std::string& name) {
   return "unknown atmosphere preset '" + name + "' (known: " + join(presetNames()) + ")";
 }
 
+/// Fails on a removal (a null) in `patch` of a key that `base` does not have at that place:
+/// a typo would otherwise change nothing and say nothing. Names the keys that are there.
+void checkRemovals(const Reader& in, const json& base, const json& patch, const std::string& field,
+                   const std::string& baseName) {
+  for (const auto& [key, value] : patch.items()) {
+    const std::string at = Reader::join(field, key);
+    const bool there = base.is_object() && base.contains(key);
+    if (value.is_null() && !there) {
+      std::vector<std::string> keys;
+      if (base.is_object())
+        for (const auto& kv : base.items()) keys.push_back(kv.key());
+      in.fail(at, "null removes '" + key + "', which '" + baseName + "' does not have" +
+                      (field.empty() ? "" : " in '" + field + "'") + " (it has: " + join(keys) + ")");
+    }
+    if (value.is_object() && there && base[key].is_object()) checkRemovals(in, base[key], value, at, baseName);
+  }
+}
+
 /// The document with "extends" resolved: the base (a preset name or a path relative to
-/// `directory`) merge-patched (RFC 7386) with the rest of this one.
+/// `directory`) merge-patched (RFC 7386) with the rest of this one. A null removes what the
+/// base has; a null for what it does not have is an error.
 json resolveExtends(json doc, const std::string& file, const std::string& directory, int depth) {
   if (!doc.is_object() || !doc.contains("extends")) return doc;
   const Reader in(file, {});
@@ -336,6 +355,7 @@ json resolveExtends(json doc, const std::string& file, const std::string& direct
   json merged = resolveExtends(parseJson(readFile(basePath), basePath), basePath,
                                fs::path(basePath).parent_path().string(), depth + 1);
   doc.erase("extends");
+  checkRemovals(in, merged, doc, "", base);
   merged.merge_patch(doc);
   return merged;
 }

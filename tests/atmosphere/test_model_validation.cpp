@@ -177,6 +177,21 @@ TEST(ModelValidation, FilesWavelengthsAndFormulaRanges) {
             "layer), got 'air'");
 }
 
+// A null removes what the base has; one for what it does not have (a typo, or a component
+// renamed since) is an error naming what there is.
+TEST(ModelValidation, RemovingWhatTheBaseLacksNamesWhatItHas) {
+  EXPECT_EQ(errorOf(R"({"extends": "earth", "components": {"aerosols": null}})"),
+            "bad.json: components.aerosols: null removes 'aerosols', which 'earth' does not have in 'components' "
+            "(it has: molecules, troposphere, stratosphere, ozone, oxygen)");
+  const std::string top = errorOf(R"({"extends": "earth", "ozone": null})");
+  EXPECT_EQ(top.rfind("bad.json: ozone: null removes 'ozone', which 'earth' does not have (it has: ", 0), 0u) << top;
+  EXPECT_NE(top.find("components"), std::string::npos) << top;
+  // What is there goes, and the rest reads as before.
+  EXPECT_EQ(parseAtmosphere(R"({"extends": "earth", "components": {"stratosphere": null}})", "ok.json", {550.0})
+                .find("stratosphere"),
+            nullptr);
+}
+
 TEST(ModelValidation, ExtendsMergesAPresetWithOverrides) {
   // a file next to nothing: "extends" a preset by name, drops ozone, changes one number
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "umbra-atmosphere-model-test";
