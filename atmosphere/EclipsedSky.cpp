@@ -19,9 +19,9 @@ namespace umbra::atmosphere {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr std::size_t kMaxWavelengths = 64;
+constexpr std::size_t kMaxSkyWavelengths = 64;
 constexpr std::size_t kMaxComponents = 32;
-using Spectrum = std::array<double, kMaxWavelengths>;
+using Spectrum = std::array<double, kMaxSkyWavelengths>;
 using Densities = std::array<double, kMaxComponents>;
 
 /// A phase function tabulated in x = sin(theta / 2) = sqrt((1 - cos theta) / 2), uniform,
@@ -363,7 +363,7 @@ EclipsedSky eclipsedSkyRadiance(const AtmosphereTables& tables, const Atmosphere
   if (const std::string problem = options.validate(); !problem.empty())
     throw std::invalid_argument("eclipsed sky: " + problem);
   const std::size_t nw = atmosphere.wavelengthsNm.size();
-  if (nw > kMaxWavelengths) throw std::invalid_argument("eclipsed sky: at most 64 wavelengths, got " + std::to_string(nw));
+  if (nw > kMaxSkyWavelengths) throw std::invalid_argument("eclipsed sky: at most 64 wavelengths, got " + std::to_string(nw));
   if (atmosphere.components.size() > kMaxComponents)
     throw std::invalid_argument("eclipsed sky: at most 32 components, got " + std::to_string(atmosphere.components.size()));
   if (tables.wavelengthsNm != atmosphere.wavelengthsNm || tables.bottomRadiusM != atmosphere.bottomRadiusM ||

@@ -37,13 +37,28 @@ using namespace stages;
 
 // ---- options -------------------------------------------------------------------------------
 
+PrecomputeOptions& PrecomputeOptions::withSizes(const TableSizes& s) {
+  transmittanceWidth = s.transmittance[0], transmittanceHeight = s.transmittance[1];
+  scatteringR = s.scattering[0], scatteringMu = s.scattering[1], scatteringMuS = s.scattering[2];
+  scatteringNu = s.scattering[3];
+  irradianceWidth = s.irradiance[0], irradianceHeight = s.irradiance[1];
+  orders = s.orders;
+  return *this;
+}
+
 std::string PrecomputeOptions::validate() const {
   std::ostringstream e;
-  if (transmittanceWidth < 2 || transmittanceHeight < 2) e << "transmittance size must be >= 2x2; ";
-  if (scatteringR < 2 || scatteringMuS < 2 || scatteringNu < 2) e << "scattering R, MU_S, NU must be >= 2; ";
-  if (scatteringMu < 4 || scatteringMu % 2 != 0) e << "scatteringMu must be even and >= 4; ";
-  if (irradianceWidth < 2 || irradianceHeight < 2) e << "irradiance size must be >= 2x2; ";
-  if (orders < 1) e << "orders must be >= 1; ";
+  const auto side = [](int n) { return n >= 2 && n <= kMaxTableSide; };
+  const auto cells = [](int n) { return n >= 2 && n <= kMaxScatteringCells; };
+  if (!side(transmittanceWidth) || !side(transmittanceHeight))
+    e << "transmittance size must be 2 to " << kMaxTableSide << " texels a side; ";
+  if (!cells(scatteringR) || !cells(scatteringMuS) || !cells(scatteringNu))
+    e << "scattering R, MU_S, NU must be 2 to " << kMaxScatteringCells << "; ";
+  if (!cells(scatteringMu) || scatteringMu < 4 || scatteringMu % 2 != 0)
+    e << "scatteringMu must be even and 4 to " << kMaxScatteringCells << "; ";
+  if (!side(irradianceWidth) || !side(irradianceHeight))
+    e << "irradiance size must be 2 to " << kMaxTableSide << " texels a side; ";
+  if (orders < 1 || orders > kMaxOrders) e << "orders must be 1 to " << kMaxOrders << "; ";
   if (transmittanceSamples < 2 || transmittanceSamples % 2 != 0) e << "transmittanceSamples must be even and >= 2; ";
   if (singleScatteringSamples < 1 || multipleScatteringSamples < 1) e << "scattering samples must be >= 1; ";
   if (opticalDepthSubsamples < 2 || opticalDepthSubsamples % 2 != 0) e << "opticalDepthSubsamples must be even and >= 2; ";

@@ -43,6 +43,7 @@
 // Transmittance rays bent into the ground continue through it (constant n, the ground's
 // extinction), as in the deviation table: the table stays continuous and near 0 there.
 #include "Atmosphere.hpp"
+#include "TableSizes.hpp"
 #include "TextureCoords.hpp"
 
 #include <algorithm>
@@ -68,16 +69,18 @@ inline constexpr const char* kDensityQuadrature =
 /// keys of the tables it changes (multiple scattering, indirect irradiance).
 inline constexpr const char* kGroundSunlight = "E_0 from the transmittance times the visible disc, per point";
 
+/// The sizes default to kDefaultTableSizes (TableSizes.hpp), which also holds the largest
+/// that validate() accepts.
 struct PrecomputeOptions {
-  int transmittanceWidth = 256;   ///< x_mu
-  int transmittanceHeight = 64;   ///< x_r
-  int scatteringR = 32;
-  int scatteringMu = 128;         ///< even: half for rays that hit the ground
-  int scatteringMuS = 32;
-  int scatteringNu = 8;
-  int irradianceWidth = 64;       ///< mu_s
-  int irradianceHeight = 16;      ///< r
-  int orders = 4;                 ///< scattering orders (1: single only)
+  int transmittanceWidth = kDefaultTableSizes.transmittance[0];   ///< x_mu
+  int transmittanceHeight = kDefaultTableSizes.transmittance[1];  ///< x_r
+  int scatteringR = kDefaultTableSizes.scattering[0];
+  int scatteringMu = kDefaultTableSizes.scattering[1];  ///< even: half for rays that hit the ground
+  int scatteringMuS = kDefaultTableSizes.scattering[2];
+  int scatteringNu = kDefaultTableSizes.scattering[3];
+  int irradianceWidth = kDefaultTableSizes.irradiance[0];   ///< mu_s
+  int irradianceHeight = kDefaultTableSizes.irradiance[1];  ///< r
+  int orders = kDefaultTableSizes.orders;  ///< scattering orders (1: single only)
   int transmittanceSamples = 500;     ///< Simpson intervals per transmittance ray (even)
   int singleScatteringSamples = 50;   ///< trapezoid intervals per view ray
   int multipleScatteringSamples = 50; ///< trapezoid intervals per view ray
@@ -106,6 +109,8 @@ struct PrecomputeOptions {
 
   /// Empty when usable, else what is wrong.
   std::string validate() const;
+  /// The sizes of `sizes` (the Bruneton tables' and the orders; the rest as it is).
+  PrecomputeOptions& withSizes(const TableSizes& sizes);
 };
 
 /// The memory one wavelength of a batch holds at the precomputation's peak [bytes], for
@@ -335,7 +340,8 @@ AtmosphereTables precompute(const Atmosphere& atmosphere, const PrecomputeOption
 // ---- the 4D parametrisation (Bruneton 2017, GetScatteringTextureUvwzFromRMuMuSNu) -------
 
 struct ScatteringTableSize {
-  int r = 32, mu = 128, muS = 32, nu = 8;
+  int r = kDefaultTableSizes.scattering[0], mu = kDefaultTableSizes.scattering[1];
+  int muS = kDefaultTableSizes.scattering[2], nu = kDefaultTableSizes.scattering[3];
 };
 struct ScatteringCoords {
   double uNu = 0.0, uMuS = 0.0, uMu = 0.0, uR = 0.0;  ///< texture coordinates in [0, 1]

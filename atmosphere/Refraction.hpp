@@ -8,6 +8,7 @@
 // The table stores the deviation Delta-theta and the contact altitude ("contact radius",
 // negative = the ray is blocked by the planet) in the transmittance parametrisation of
 // Eq. 2 (TextureCoords.hpp), as in Figure 6.
+#include "TableSizes.hpp"
 #include "TextureCoords.hpp"
 
 #include <functional>
@@ -129,8 +130,8 @@ struct RefractionSample {
 /// traced through the ground with constant n, so that it has no discontinuities.
 /// Observers above the top use the point where their ray enters the atmosphere.
 struct RefractionTable {
-  int width = 512;
-  int height = 256;
+  int width = kDefaultTableSizes.refraction[0];
+  int height = kDefaultTableSizes.refraction[1];
   double bottomRadiusM = 0.0;
   double topRadiusM = 0.0;
   double stepM = 10e3;
@@ -159,8 +160,8 @@ struct RefractionTable {
 /// traced are the whole table's, to the bit). `progress` gets the fraction done, from the
 /// calling thread only. Throws std::invalid_argument for sizes < 2, a step <= 0, radii
 /// with top <= bottom, a medium without refractivity or firstRow outside 0 .. height - 2.
-RefractionTable buildRefractionTable(const RefractiveMedium& medium, int width = 512,
-                                     int height = 256, double stepM = 10e3,
+RefractionTable buildRefractionTable(const RefractiveMedium& medium, int width = kDefaultTableSizes.refraction[0],
+                                     int height = kDefaultTableSizes.refraction[1], double stepM = 10e3,
                                      const std::function<void(double fraction)>& progress = {},
                                      int firstRow = 0);
 

@@ -15,10 +15,9 @@ void addAtmosphereOptions(CLI::App* command, std::string& preset, std::string& c
   command->add_option("--config", config, "Atmosphere file (JSON, see docs/atmosphere-format.md)");
 }
 
-atmosphere::Atmosphere loadAtmosphereOption(const std::string& preset, const std::string& config,
-                                            const std::vector<double>& wavelengthsNm) {
+atmosphere::AtmosphereModelPtr atmosphereOption(const std::string& preset, const std::string& config) {
   if (preset.empty() == config.empty()) throw CommandError("give one of --preset or --config");
-  return atmosphere::loadAtmosphere(preset.empty() ? config : preset, wavelengthsNm);
+  return atmosphere::AtmosphereModel::load(preset.empty() ? config : preset);
 }
 
 void addAtmosphereCommand(CLI::App& app, Action& action) {

@@ -3,6 +3,7 @@
 #include "Commands.hpp"
 
 #include "Atmosphere.hpp"
+#include "AtmosphereModel.hpp"
 
 #include <string>
 #include <vector>
@@ -14,10 +15,9 @@ namespace umbra::cli {
 /// Adds --preset NAME and --config FILE (exactly one of them is needed).
 void addAtmosphereOptions(CLI::App* command, std::string& preset, std::string& config);
 
-/// The atmosphere named by --preset or --config, at these wavelengths; throws CommandError
-/// unless exactly one of them was given (and AtmosphereError for a bad file).
-atmosphere::Atmosphere loadAtmosphereOption(const std::string& preset, const std::string& config,
-                                            const std::vector<double>& wavelengthsNm);
+/// The atmosphere named by --preset or --config, read once; throws CommandError unless
+/// exactly one of them was given (and AtmosphereError for a bad file).
+atmosphere::AtmosphereModelPtr atmosphereOption(const std::string& preset, const std::string& config);
 
 /// Updates `source` through the cache that `cache` names, with a progress line saying
 /// `what`: its error thrown as a CommandError (VTK's own messages kept quiet), a cache hit

@@ -180,7 +180,8 @@ void addAtmosphereEclipseSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       const scene::Observer observer = parseObserver(o->observer);
       const atmosphere::WavelengthSet set =
           o->wavelengths == 3 ? atmosphere::WavelengthSet::rgb() : atmosphere::WavelengthSet::uniform(o->wavelengths);
-      const atmosphere::Atmosphere atm = loadAtmosphereOption(o->preset, o->config, set.nm);
+      const atmosphere::AtmosphereModelPtr model = atmosphereOption(o->preset, o->config);
+      const atmosphere::Atmosphere& atm = model->at(set.nm);
       if (!(observer.altM >= 0.0 && observer.altM <= 0.5 * atm.thicknessM()))
         throw CommandError("--observer: the altitude must be from 0 to half the atmosphere's thickness (" +
                            std::to_string(0.5 * atm.thicknessM()) + " m), got " + std::to_string(observer.altM) + " m");

@@ -99,10 +99,13 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
   struct Options {
     std::string preset, config, output;
     bool refraction = false;
-    int orders = 4, wavelengths = 3, wavelengthBatch = 0;
+    int orders = atmosphere::kDefaultTableSizes.orders, wavelengths = 3, wavelengthBatch = 0;
     double memoryMiB = 128;
     std::string spill = "auto";
-    std::string refractionSize = "512x256", transmittanceSize = "256x64", scatteringSize = "32,128,32,8", irradianceSize = "64x16";
+    std::string refractionSize = atmosphere::sizeText(atmosphere::kDefaultTableSizes.refraction),
+                transmittanceSize = atmosphere::sizeText(atmosphere::kDefaultTableSizes.transmittance),
+                scatteringSize = atmosphere::sizeText(atmosphere::kDefaultTableSizes.scattering),
+                irradianceSize = atmosphere::sizeText(atmosphere::kDefaultTableSizes.irradiance);
     std::string step = "10km";
     CacheOptions cache;
   };
@@ -145,27 +148,33 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
 
   precompute->callback([&action, o] {
     action = [o] {
-      const auto transmittance = parseSize("--transmittance-size", o->transmittanceSize, 2, "x", "WxH (e.g. 256x64)");
-      const auto scattering =
-          parseSize("--scattering-size", o->scatteringSize, 4, ",", "R,MU,MU_S,NU (e.g. 32,128,32,8)");
-      const auto irradiance = parseSize("--irradiance-size", o->irradianceSize, 2, "x", "WxH (e.g. 64x16)");
-      if (transmittance[0] < 2 || transmittance[1] < 2 || transmittance[0] > 8192 || transmittance[1] > 8192)
-        throw CommandError("--transmittance-size: expected 2 to 8192 texels a side, got " + o->transmittanceSize);
-      if (scattering[0] < 2 || scattering[1] < 4 || scattering[1] % 2 != 0 || scattering[2] < 2 || scattering[3] < 2 ||
-          scattering[0] > 1024 || scattering[1] > 1024 || scattering[2] > 1024 || scattering[3] > 1024)
-        throw CommandError("--scattering-size: expected R, MU_S, NU in 2..1024 and MU even in 4..1024, got " +
-                           o->scatteringSize);
-      if (irradiance[0] < 2 || irradiance[1] < 2 || irradiance[0] > 8192 || irradiance[1] > 8192)
-        throw CommandError("--irradiance-size: expected 2 to 8192 texels a side, got " + o->irradianceSize);
-      const auto refraction = parseSize("--refraction-size", o->refractionSize, 2, "x", "WxH (e.g. 512x256)");
-      if (refraction[0] < 2 || refraction[1] < 2 || refraction[0] > 8192 || refraction[1] > 8192)
-        throw CommandError("--refraction-size: expected 2 to 8192 texels a side, got " + o->refractionSize);
-      if (o->orders < 1 || o->orders > 64) throw CommandError("--orders: expected 1 to 64, got " + std::to_string(o->orders));
-      if (o->wavelengths < 1 || o->wavelengths > 256)
-        throw CommandError("--wavelengths: expected 1 to 256, got " + std::to_string(o->wavelengths));
-      if (o->wavelengthBatch < 0 || o->wavelengthBatch > 256)
-        throw CommandError("--wavelength-batch: expected 0 (from --memory) to 256, got " +
-                           std::to_string(o->wavelengthBatch));
+      using atmosphere::kMaxScatteringCells, atmosphere::kMaxTableSide, atmosphere::kMaxOrders, atmosphere::kMaxWavelengths;
+      const atmosphere::TableSizes& d = atmosphere::kDefaultTableSizes;
+      const std::string sides = "2 to " + std::to_string(kMaxTableSide) + " texels a side, got ";
+      const auto twoD = [&](const char* option, const std::string& text, const int(&example)[2]) {
+        const auto size = parseSize(option, text, 2, "x", ("WxH (e.g. " + atmosphere::sizeText(example) + ")").c_str());
+        if (size[0] < 2 || size[1] < 2 || size[0] > kMaxTableSide || size[1] > kMaxTableSide)
+          throw CommandError(std::string(option) + ": expected " + sides + text);
+        return size;
+      };
+      const auto transmittance = twoD("--transmittance-size", o->transmittanceSize, d.transmittance);
+      const auto irradiance = twoD("--irradiance-size", o->irradianceSize, d.irradiance);
+      const auto refraction = twoD("--refraction-size", o->refractionSize, d.refraction);
+      const auto scattering = parseSize("--scattering-size", o->scatteringSize, 4, ",",
+                                        ("R,MU,MU_S,NU (e.g. " + atmosphere::sizeText(d.scattering) + ")").c_str());
+      const auto cell = [](int n) { return n >= 2 && n <= kMaxScatteringCells; };
+      if (!cell(scattering[0]) || !cell(scattering[1]) || scattering[1] < 4 || scattering[1] % 2 != 0 ||
+          !cell(scattering[2]) || !cell(scattering[3]))
+        throw CommandError("--scattering-size: expected R, MU_S, NU in 2.." + std::to_string(kMaxScatteringCells) +
+                           " and MU even in 4.." + std::to_string(kMaxScatteringCells) + ", got " + o->scatteringSize);
+      const auto count = [](const char* option, int n, int least, int most, const char* what) {
+        if (n < least || n > most)
+          throw CommandError(std::string(option) + ": expected " + std::to_string(least) + what + " to " +
+                             std::to_string(most) + ", got " + std::to_string(n));
+      };
+      count("--orders", o->orders, 1, kMaxOrders, "");
+      count("--wavelengths", o->wavelengths, 1, kMaxWavelengths, "");
+      count("--wavelength-batch", o->wavelengthBatch, 0, kMaxWavelengths, " (from --memory)");
       if (!(o->memoryMiB >= 1.0 && o->memoryMiB <= 1e7))
         throw CommandError("--memory: expected 1 to 1e7 MiB, got " + atmosphere::formatNumber(o->memoryMiB));
 
@@ -179,10 +188,11 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
         throw CommandError(o->output + ": directory " + parent.string() + " does not exist");
 
       // One-line errors for the atmosphere before any work.
-      const atmosphere::Atmosphere atm = loadAtmosphereOption(o->preset, o->config, {680.0, 550.0, 440.0});
+      const atmosphere::AtmosphereModelPtr model = atmosphereOption(o->preset, o->config);
+      const atmosphere::Atmosphere& atm = model->rgb();
 
       auto source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
-      source->SetAtmosphere((o->preset.empty() ? o->config : o->preset).c_str());
+      source->SetAtmosphereModel(model);
       source->SetTables(vtkAtmosphereTablesSource::Bruneton | (o->refraction ? vtkAtmosphereTablesSource::Refraction : 0));
       source->SetRefractedPaths(o->refraction);
       source->SetOrders(o->orders);

@@ -58,7 +58,8 @@ void addAtmosphereRefractionCommand(CLI::App& atmosphereCmd, Action& action) {
       const double altitudeM = lengthOption("--altitude", o->altitude);
       const double stepM = lengthOption("--step", o->step);
       if (!(stepM >= 1.0 && stepM <= 1e6)) throw CommandError("--step: expected 1 m to 1000 km, got " + o->step);
-      const atmosphere::Atmosphere atm = loadAtmosphereOption(o->preset, o->config, {680.0, 550.0, 440.0});
+      const atmosphere::AtmosphereModelPtr model = atmosphereOption(o->preset, o->config);
+      const atmosphere::Atmosphere& atm = model->rgb();
       if (!(altitudeM >= 0.0)) throw CommandError("--altitude: expected a length >= 0, got " + o->altitude);
 
       output::OutputFile out(o->csv);

@@ -160,7 +160,8 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
 
       const atmosphere::WavelengthSet wavelengths =
           o->wavelengths == 3 ? atmosphere::WavelengthSet::rgb() : atmosphere::WavelengthSet::uniform(o->wavelengths);
-      const atmosphere::Atmosphere atm = loadAtmosphereOption(o->preset, o->config, wavelengths.nm);
+      const atmosphere::AtmosphereModelPtr model = atmosphereOption(o->preset, o->config);
+      const atmosphere::Atmosphere& atm = model->at(wavelengths.nm);
       if (!(altitudeM < 0.5 * atm.thicknessM()))
         throw CommandError("--observer-altitude: expected below half the atmosphere's thickness (" +
                            std::to_string(0.5 * atm.thicknessM()) + " m), got " + o->altitude);
@@ -177,7 +178,7 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
                   << "--density-directions " << asked << " for that\n";
       // The tables through the filter (and so through the cache), at the sky's sizes.
       auto source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
-      source->SetAtmosphere((o->preset.empty() ? o->config : o->preset).c_str());
+      source->SetAtmosphereModel(model);
       source->SetTables(vtkAtmosphereTablesSource::Bruneton);
       source->SetWavelengths(o->wavelengths);
       source->SetOrders(options.orders);

@@ -129,8 +129,9 @@ void addRenderOptions(CLI::App* render, RenderOptions& o) {
   render->add_option("--to", o.to, "Animation: UTC time of the last frame at most, ISO 8601");
   render->add_option("--step", o.step, "Animation: time between frames, e.g. 30min (units s, min, h, d)");
   render->add_option("--atmosphere-tables", o.atmosphereTables,
-                     "Atmosphere table sizes: default (vtkAtmosphereTablesSource's: 256x64, 32,128,32,8, 64x16, "
-                     "4 orders) or small (64x16, 8,32,8,4, 16x4, 3 orders: quick looks and tests). From the ground in "
+                     "Atmosphere table sizes: default (" + atmosphere::brunetonSizesText(atmosphere::kDefaultTableSizes) +
+                         ") or small (" + atmosphere::brunetonSizesText(atmosphere::kSmallTableSizes) +
+                         ": quick looks and tests). From the ground in "
                      "twilight (the Sun from 1 deg down to night: Earth 30, Mars 35 deg) the scattering and irradiance "
                      "tables have 4 times the mu_s cells (default: 16,128,128,8 and 256x16) and reach 20 deg below the "
                      "Sun (docs/accuracy-vs-speed.md, \"Twilight in the render pass\")")

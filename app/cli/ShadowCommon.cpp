@@ -90,42 +90,52 @@ void EclipseAtmosphereChoice::addTo(CLI::App* command) {
                       "Cells (a side) of a limb view on which the in-scattered light is sampled")
       ->capture_default_str()->check(CLI::Range(1, 1024));
   command->add_option("--orders", orders, "Scattering orders of the atmosphere tables")
-      ->capture_default_str()->check(CLI::Range(1, 64));
+      ->capture_default_str()->check(CLI::Range(1, atmosphere::kMaxOrders));
+  const atmosphere::TableSizes& small = atmosphere::kSmallTableSizes;
   command->add_flag("--draft-tables", draftTables,
-                    "Small atmosphere tables (transmittance 64x16, scattering 8,32,8,4, irradiance 16x4, "
-                    "refraction 128x64): seconds instead of minutes, for quick looks and tests");
+                    "Small atmosphere tables (transmittance " + atmosphere::sizeText(small.transmittance) +
+                        ", scattering " + atmosphere::sizeText(small.scattering) + ", irradiance " +
+                        atmosphere::sizeText(small.irradiance) + ", refraction " + atmosphere::sizeText(small.refraction) +
+                        "): seconds instead of minutes, for quick looks and tests");
   command->add_option("--scattering-nu", scatteringNu,
-                      "Cells in nu (cosine of the view-sun angle) of the scattering tables (default 8, draft 4; "
+                      "Cells in nu (cosine of the view-sun angle) of the scattering tables (default " +
+                          std::to_string(atmosphere::kDefaultTableSizes.scattering[3]) + ", draft " +
+                          std::to_string(small.scattering[3]) + "; "
                       "32 for Mars, whose forward-peaked dust needs them: with 8 the multiple scattering at "
                       "~20 degrees is interpolated from the forward peak, docs/eclipse-shadows.md)")
       ->check(CLI::Range(2, 256));
 }
 
-double EclipseAtmosphereChoice::bottomRadiusM() const {
+atmosphere::AtmosphereModelPtr EclipseAtmosphereChoice::model() const {
   try {
-    return atmosphere::loadAtmosphere(atmosphere, atmosphere::WavelengthSet::rgb().nm).bottomRadiusM;
+    return atmosphere::modelNamed(atmosphere, read);
   } catch (const std::exception& e) {
     throw CommandError(std::string("--atmosphere: ") + e.what());
   }
+}
+
+double EclipseAtmosphereChoice::bottomRadiusM() const {
+  const atmosphere::AtmosphereModelPtr m = model();
+  if (!m) throw CommandError("--atmosphere: none given");
+  return m->rgb().bottomRadiusM;
 }
 
 void EclipseAtmosphereChoice::configure(vtkEclipseAtmosphereSource* source, const OccluderChoice& occ) const {
   source->SetOccluderName(occ.name.c_str());
   source->SetOccluderRadiusM(occ.radiusM);
   source->SetSunOccluderDistanceM(occ.sunDistanceM);
-  source->SetAtmosphere(atmosphere.c_str());
+  source->SetAtmosphereModel(model());
   source->SetOrders(orders);
+  const atmosphere::TableSizes& s = draftTables ? atmosphere::kSmallTableSizes : atmosphere::kDefaultTableSizes;
   if (draftTables) {
-    source->SetTransmittanceSize(64, 16);
-    source->SetIrradianceSize(16, 4);
-    source->SetRefractionSize(128, 64);
+    source->SetTransmittanceSize(s.transmittance[0], s.transmittance[1]);
+    source->SetIrradianceSize(s.irradiance[0], s.irradiance[1]);
+    source->SetRefractionSize(s.refraction[0], s.refraction[1]);
   }
-  // 0: the occluder's default (eclipse::defaultScatteringNu; draft tables 4 where it is 8).
-  const int nu = scatteringNu > 0 ? scatteringNu : draftTables ? eclipse::defaultScatteringNu(occ.name, 4) : 0;
-  if (draftTables)
-    source->SetScatteringSize(8, 32, 8, nu);
-  else
-    source->SetScatteringSize(32, 128, 32, nu);
+  // 0: the occluder's default (eclipse::defaultScatteringNu; the draft tables' where it is
+  // the default tables').
+  const int nu = scatteringNu > 0 ? scatteringNu : draftTables ? eclipse::defaultScatteringNu(occ.name, s.scattering[3]) : 0;
+  source->SetScatteringSize(s.scattering[0], s.scattering[1], s.scattering[2], nu);
 }
 
 void updateEclipseSource(vtkEclipseAtmosphereSource* source, const std::string& what, const CacheOptions& cache) {

@@ -2,6 +2,7 @@
 // What the `precompute shadow` and `profile shadow` commands share: choosing the
 // occluder and building (or loading from the cache) its shadow LuT.
 #include "Commands.hpp"
+#include "AtmosphereModel.hpp"
 #include "ShadowLut.hpp"
 #include "scene/Units.hpp"
 #include "scene/ReceiverShadow.hpp"
@@ -71,8 +72,12 @@ struct EclipseAtmosphereChoice {
   /// not an option of every command: cover 0, none.
   double cloudTopM = 0.0, cloudCover = 0.0;
   void addTo(CLI::App* command);
+  /// The model `atmosphere` names, read once (a CommandError naming --atmosphere); null
+  /// for none.
+  atmosphere::AtmosphereModelPtr model() const;
   /// Checks the atmosphere file (one-line error) and returns its bottom radius [m].
   double bottomRadiusM() const;
+  mutable atmosphere::AtmosphereModelPtr read;  ///< what model() read
   void configure(vtkEclipseAtmosphereSource* source, const OccluderChoice& occluder) const;
 };
 

@@ -58,10 +58,11 @@ QString qs(const std::string& s) { return QString::fromStdString(s); }
 
 QString km(double m) { return QString::number(m / 1e3, 'f', 0) + " km"; }
 
-void checkAtmosphere(const std::string& model) {
-  if (model.empty()) return;
+// The model named `model` (kept in `chosen`: read once while the choice stays); null for
+// "". Throws naming the atmosphere.
+atmosphere::AtmosphereModelPtr chosenAtmosphere(const std::string& model, atmosphere::AtmosphereModelPtr& chosen) {
   try {
-    atmosphere::loadAtmosphere(model, atmosphere::WavelengthSet::rgb().nm);
+    return atmosphere::modelNamed(model, chosen);
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("atmosphere: ") + e.what());
   }
@@ -354,7 +355,7 @@ void MainWindow::setRefraction(bool on) {
 void MainWindow::setExposure(double ev) { this->exposure->setValue(ev); }
 
 void MainWindow::overrideAtmosphere(const std::string& model) {
-  checkAtmosphere(model);
+  chosenAtmosphere(model, this->chosenModel);
   this->atmosphereOverride = model;
 }
 
@@ -390,7 +391,7 @@ void MainWindow::showJob(const std::optional<std::string>& status) {
 void MainWindow::setAtmosphere(const std::string& model) {
   if (!this->current) throw std::runtime_error("atmosphere: no scene loaded");
   if (this->atmosphereBody.empty()) throw std::runtime_error("atmosphere: the scene has no body to put it on");
-  checkAtmosphere(model);
+  chosenAtmosphere(model, this->chosenModel);
   if (model.empty()) {
     this->editor->setDocument(AtmosphereEditor::Json(), "");
   } else {
@@ -398,7 +399,7 @@ void MainWindow::setAtmosphere(const std::string& model) {
     const std::string name = edit                                     ? this->editedFrom
                              : model.find('/') == std::string::npos ? model
                                                                     : QFileInfo(qs(model)).fileName().toStdString();
-    this->editor->setDocument(AtmosphereEditor::Json::parse(atmosphere::resolvedAtmosphereJson(model)), name);
+    this->editor->setDocument(AtmosphereEditor::Json::parse(this->chosenModel->resolvedJson()), name);
   }
   int index = this->atmosphereChoice->findData(qs(model));
   if (index < 0) {
@@ -437,7 +438,7 @@ void MainWindow::atmosphereEdited() {
 void MainWindow::startAtmosphere(const std::string& model) {
   this->cancelAtmosphere();
   if (model.empty()) {
-    for (scene::Body& b : this->current->bodies) b.atmosphereModel.clear();
+    for (scene::Body& b : this->current->bodies) b.atmosphere = nullptr;
     this->view->setAtmosphereTables(nullptr);
     this->drawnModel.clear();
     this->refresh();
@@ -448,7 +449,8 @@ void MainWindow::startAtmosphere(const std::string& model) {
   // them (pipeline::configureSceneAtmosphereTables), so that pipeline::showSceneAtmosphereTables
   // (GUI thread) finds them up to date. The view keeps its tables meanwhile.
   scene::Scene withModel = *this->current;
-  for (scene::Body& b : withModel.bodies) b.atmosphereModel = b.name == this->atmosphereBody ? model : std::string();
+  for (scene::Body& b : withModel.bodies)
+    b.atmosphere = b.name == this->atmosphereBody ? chosenAtmosphere(model, this->chosenModel) : nullptr;
   auto source = vtkSmartPointer<vtkAtmosphereTablesSource>::New();
   pipeline::AtmosphereTableChoice choice;
   try {
@@ -490,11 +492,10 @@ void MainWindow::tablesMade(TableJobs::Result& done) {
     this->atmosphereFailed(done.tablesError);
     return;
   }
-  const std::string model = done.tables->GetAtmosphere();
-  for (scene::Body& b : this->current->bodies)
-    b.atmosphereModel = b.name == this->atmosphereBody ? model : std::string();
+  const atmosphere::AtmosphereModelPtr model = done.tables->GetAtmosphereModel();
+  for (scene::Body& b : this->current->bodies) b.atmosphere = b.name == this->atmosphereBody ? model : nullptr;
   this->view->setAtmosphereTables(done.tables, done.choice);
-  this->drawnModel = model;
+  this->drawnModel = model->name();
   this->refresh();
 }
 
@@ -595,7 +596,10 @@ void MainWindow::loadScene(const std::string& path, std::optional<scene::UtcTime
   std::string model;
   this->atmosphereBody.clear();
   for (const scene::Body& b : c.bodies)
-    if (!b.atmosphereModel.empty() && this->atmosphereBody.empty()) this->atmosphereBody = b.name, model = b.atmosphereModel;
+    if (b.atmosphere && this->atmosphereBody.empty()) {
+      this->atmosphereBody = b.name, model = b.atmosphere->name();
+      this->chosenModel = b.atmosphere;  // read with the scene
+    }
   if (this->atmosphereBody.empty() && c.camera.observer) this->atmosphereBody = c.camera.observer->body;
   if (this->atmosphereBody.empty() && !c.camera.targetBody.empty() && c.camera.targetBody != c.sun().name)
     this->atmosphereBody = c.camera.targetBody;

@@ -197,6 +197,7 @@ private:
   std::string atmosphereBody;  // the body the atmosphere goes on ("" : none possible)
   std::optional<std::string> atmosphereOverride;
   std::string drawnModel;  // the model of the tables the view has
+  atmosphere::AtmosphereModelPtr chosenModel;  // the chosen atmosphere, read once while the choice stays
   QTemporaryDir editedDir;  // the editor's documents, one file per accepted edit
   int editCount = 0;
   std::string editedFrom;  // the name the edits started from (the editor's name for them)

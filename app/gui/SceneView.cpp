@@ -145,7 +145,7 @@ void SceneView::setScene(const scene::Scene& s, vtkImageData* shadowLut) {
   }
   impl->bodies->SetBodies(in.sun, in.bodies, range ? impl->ranged->GetOutput() : shadowLut);
   pipeline::showSceneSky(*impl->bodies, in);
-  const bool drawn = impl->tables && in.atmosphere && impl->tables->GetAtmosphere() == in.atmosphere->model;
+  const bool drawn = impl->tables && in.atmosphere && impl->tables->GetAtmosphere() == in.atmosphere->model->name();
   render::AtmosphereRendering& atmosphere = impl->bodies->GetAtmosphere();
   const auto body = in.atmosphere ? std::find_if(in.bodies.begin(), in.bodies.end(),
                                                  [&](const render::SphereBody& b) { return b.name == in.atmosphere->body; })

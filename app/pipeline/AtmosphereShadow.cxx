@@ -73,7 +73,7 @@ vtkAlgorithm* setUpTable(Source* source, const EclipseTableRequest& r, const std
   source->SetOccluderRadiusM(r.occluderRadiusM);
   source->SetSunRadiusM(r.sunRadiusM);
   source->SetSunOccluderDistanceM(r.sunOccluderDistanceM);
-  source->SetAtmosphere(r.model.c_str());
+  source->SetAtmosphereModel(r.model);
   source->SetWidth(r.width);
   source->SetHeight(r.height);
   try {
@@ -151,12 +151,14 @@ void updateTable(Source* source, const EclipseTableRequest& r, const std::string
 }
 
 // The tables of the atmosphere shared by the small shadow and limb-luminance LuTs.
+// (atmosphere::kSmallTableSizes with 2 orders.)
 void useSmallEclipseAtmosphere(vtkEclipseAtmosphereSource* s) {
+  const atmosphere::TableSizes& small = atmosphere::kSmallTableSizes;
   s->SetOrders(2);
-  s->SetTransmittanceSize(64, 16);
-  s->SetScatteringSize(8, 32, 8, 4);
-  s->SetIrradianceSize(16, 4);
-  s->SetRefractionSize(128, 64);
+  s->SetTransmittanceSize(small.transmittance[0], small.transmittance[1]);
+  s->SetScatteringSize(small.scattering[0], small.scattering[1], small.scattering[2], small.scattering[3]);
+  s->SetIrradianceSize(small.irradiance[0], small.irradiance[1]);
+  s->SetRefractionSize(small.refraction[0], small.refraction[1]);
 }
 } // namespace
 
@@ -235,7 +237,8 @@ int rangedLutWidth(const eclipse::LutRange& range, int width) {
 }
 
 bool EclipseTableRequest::operator==(const EclipseTableRequest& o) const {
-  return occluder == o.occluder && model == o.model && occluderRadiusM == o.occluderRadiusM &&
+  const auto name = [](const atmosphere::AtmosphereModelPtr& m) { return m ? m->name() : std::string(); };
+  return occluder == o.occluder && name(model) == name(o.model) && occluderRadiusM == o.occluderRadiusM &&
          sunRadiusM == o.sunRadiusM && sunOccluderDistanceM == o.sunOccluderDistanceM && width == o.width &&
          height == o.height && range == o.range;
 }
@@ -308,9 +311,8 @@ std::optional<LimbLuminanceRequest> sceneLimbLuminanceRequest(const SceneInputs&
   const auto angles = eclipse::shadowAngles(cam, in.sun.positionM, in.sun.radiusM, occ.centreM, occ.radiusM);
   const bool inShadow = eclipse::occluderInFront(cam, in.sun.positionM, occ.centreM) && eclipse::lutCoords(angles).v < 1.0;
   if (!inShadow) return std::nullopt;
-  const double topM = in.atmosphere->topRadiusM > 0.0
-                          ? in.atmosphere->topRadiusM
-                          : atmosphere::loadAtmosphere(in.atmosphere->model, atmosphere::WavelengthSet::rgb().nm).topRadiusM;
+  const double topM =
+      in.atmosphere->topRadiusM > 0.0 ? in.atmosphere->topRadiusM : in.atmosphere->model->rgb().topRadiusM;
   if (glm::length(cam - occ.centreM) <= topM) return std::nullopt;
   LimbLuminanceRequest r;
   static_cast<EclipseTableRequest&>(r) = tableRequest(in, width, height);

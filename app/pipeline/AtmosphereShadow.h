@@ -63,7 +63,8 @@ double sunDistanceOnGrid(double distanceM);
 /// the same table: a GUI computes one in a worker and keeps it while the request stays the
 /// same.
 struct EclipseTableRequest {
-  std::string occluder, model;
+  std::string occluder;
+  atmosphere::AtmosphereModelPtr model;  ///< requests are equal when its name() is
   double occluderRadiusM = 0.0, sunRadiusM = 0.0, sunOccluderDistanceM = 0.0;
   int width = 0, height = 0;
   std::optional<eclipse::LutRange> range;

@@ -191,13 +191,13 @@ SceneInputs sceneInputs(const scene::Scene& s) {
       body.earthshineWm2 = earthshineOn(b, *earth, sun.positionM);
     }
     in.bodies.push_back(body);
-    if (b.atmosphereModel.empty()) continue;
+    if (!b.atmosphere) continue;
     if (in.atmosphere) {
       throw std::invalid_argument("only one atmosphere per view is drawn ('" + in.atmosphere->body +
                                   "' and '" + b.name + "' ask for one)");
     }
-    const atmosphere::Atmosphere model = atmosphere::loadAtmosphere(b.atmosphereModel, atmosphere::WavelengthSet::rgb().nm);
-    in.atmosphere = SceneAtmosphere{b.name, b.atmosphereModel, model.bottomRadiusM, model.topRadiusM};
+    const atmosphere::Atmosphere& model = b.atmosphere->rgb();
+    in.atmosphere = SceneAtmosphere{b.name, b.atmosphere, model.bottomRadiusM, model.topRadiusM};
     in.atmosphere->zenithOpticalDepth550 = model.verticalOpticalDepth(0.0, model.thicknessM())[1];  // 680, 550, 440 nm
     in.bodies.back().radiusM = model.bottomRadiusM;
     // A reflectance map is the ground's albedo in the composite, which draws the ground
@@ -274,11 +274,13 @@ AtmosphereTableChoice atmosphereTableChoice(const SceneInputs& in) {
 void configureAtmosphereTables(vtkAtmosphereTablesSource* source, AtmosphereTableSizes sizes,
                                const AtmosphereTableChoice& choice) {
   const bool small = sizes == AtmosphereTableSizes::Small, twilight = choice.twilight;
-  const int finer = twilight ? 4 : 1;  // mu_s cells
-  source->SetTransmittanceSize(small ? 64 : 256, small ? 16 : 64);
-  source->SetScatteringSize(small ? 8 : (twilight ? 16 : 32), small ? 32 : 128, (small ? 8 : 32) * finer, small ? 4 : 8);
-  source->SetIrradianceSize((small ? 16 : 64) * finer, small ? 4 : 16);
-  source->SetOrders(small ? 3 : 4);
+  const atmosphere::TableSizes& s = small ? atmosphere::kSmallTableSizes : atmosphere::kDefaultTableSizes;
+  // Twilight: 4 times the mu_s cells, and half the r cells of the default tables.
+  const int finer = twilight ? 4 : 1, fewerR = twilight && !small ? 2 : 1;
+  source->SetTransmittanceSize(s.transmittance[0], s.transmittance[1]);
+  source->SetScatteringSize(s.scattering[0] / fewerR, s.scattering[1], s.scattering[2] * finer, s.scattering[3]);
+  source->SetIrradianceSize(s.irradiance[0] * finer, s.irradiance[1]);
+  source->SetOrders(s.orders);
   source->SetMuSMin(twilight ? std::cos(choice.lowestSunZenithRad) : atmosphere::PrecomputeOptions().muSMin);
   source->SetMinimumDensityDirections(twilight ? 24 : 0);
 }
@@ -287,7 +289,7 @@ void configureSceneAtmosphereTables(vtkAtmosphereTablesSource* source, const Sce
                                     AtmosphereTableSizes sizes) {
   atmosphereBody(in);
   configureAtmosphereTables(source, sizes, atmosphereTableChoice(in));
-  source->SetAtmosphere(in.atmosphere->model.c_str());
+  source->SetAtmosphereModel(in.atmosphere->model);
   source->SetWavelengths(3);
   source->SetTables(vtkAtmosphereTablesSource::Bruneton | (refraction ? vtkAtmosphereTablesSource::Refraction : 0));
   source->SetRefractedPaths(refraction);
@@ -300,7 +302,7 @@ void showSceneAtmosphereTables(BodyView& view, const SceneInputs& in, vtkAtmosph
   if (!source->GetLastError().empty())
     throw std::runtime_error("atmosphere of '" + a.body + "': " + source->GetLastError());
   const bool refraction = source->GetRefractedPaths();
-  const atmosphere::Atmosphere model = atmosphere::loadAtmosphere(a.model, atmosphere::WavelengthSet::rgb().nm);
+  const atmosphere::Atmosphere& model = a.model->rgb();
   view.GetAtmosphere().SetAtmosphere(model, filters::tablesFromBlocks(source->GetOutput(), model), body.centreM,
                                      body.albedoRgb);
   // A reflectance map (the Earth's colour) is the ground's albedo under the air.

@@ -2,6 +2,7 @@
 // The glue from a scene to the renderer (the CLI and the GUI share it): what the renderer
 // needs from a scene (the Sun as the light, the other bodies as spheres, each a receiver
 // shadowed by the rest, and the camera), and the table sources configured for it.
+#include "AtmosphereModel.hpp"
 #include "BodyView.h"
 #include "EclipseShading.h"
 
@@ -25,10 +26,10 @@ using render::StarPoint;
 using render::SunLight;
 using render::ViewCamera;
 
-/// The atmosphere a scene asks to draw (scene::Body::atmosphereModel).
+/// The atmosphere a scene asks to draw (scene::Body::atmosphere).
 struct SceneAtmosphere {
-  std::string body;   ///< the body it surrounds (its SphereBody has the same name)
-  std::string model;  ///< preset name or file (vtkAtmosphereTablesSource::SetAtmosphere)
+  std::string body;  ///< the body it surrounds (its SphereBody has the same name)
+  atmosphere::AtmosphereModelPtr model;  ///< the scene's, read once with it (never null)
   /// The model's ground and top radii (sceneInputs sets them; 0: not known, the body's
   /// sphere and the model are read where needed). The eclipse tables are made for the
   /// ground radius, not for the body's sphere, which an observer on it may shrink.
@@ -86,9 +87,8 @@ struct SceneInputs {
 /// 1 m), in the same direction from the centre; the target moves with it.
 SceneInputs sceneInputs(const scene::Scene& scene);
 
-/// The sizes of the atmosphere tables a caller asks for: vtkAtmosphereTablesSource's
-/// defaults (256x64 transmittance, 32,128,32,8 scattering, 64x16 irradiance, 4 orders), or
-/// small ones for quick looks and tests (64x16, 8,32,8,4, 16x4, 3 orders: about a second).
+/// The sizes of the atmosphere tables a caller asks for: atmosphere::kDefaultTableSizes,
+/// or kSmallTableSizes for quick looks and tests (about a second).
 enum class AtmosphereTableSizes { Default, Small };
 
 /// What the sky of a scene needs of its tables beyond their sizes. For a camera in the air

@@ -4,6 +4,7 @@
 #include "scene/Time.hpp"
 
 #include "Clouds.hpp"
+#include "AtmosphereModel.hpp"
 #include "Photometry.hpp"
 #include "ShadowMapping.hpp"  // Oblateness
 
@@ -44,10 +45,10 @@ struct Body {
   glm::dvec3 positionM{0.0};     ///< heliocentric, ICRS axes
   bool positionFromEphemeris = false;
   bool hasAtmosphere = false;
-  /// The atmosphere `umbra render` draws: a preset name ("earth") or an absolute file
-  /// path; "" for none. Set only when the scene asks for it (`"atmosphere": true`, a
-  /// preset name or a file), never by a preset's default.
-  std::string atmosphereModel;
+  /// The atmosphere `umbra render` draws, read once with the scene: a preset ("earth") or
+  /// a file (its name() the absolute path); null for none. Set only when the scene asks
+  /// for it (`"atmosphere": true`, a preset name or a file), never by a preset's default.
+  atmosphere::AtmosphereModelPtr atmosphere;
   double albedo = 0.0;           ///< geometric albedo
   glm::dvec3 color{1.0};         ///< relative reflectance at 680, 550, 440 nm, in [0, 1]
   sky::Photometry photometry;    ///< Lambert's or Hapke's law (the preset's; "photometry")

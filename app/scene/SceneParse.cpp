@@ -140,12 +140,12 @@ json parseJson(const std::string& text, const std::string& file) {
 
 /// The atmosphere a body's "atmosphere" key asks for: true (the atmosphere preset named
 /// like the body's preset, else its name: earth, mars), false, a preset name, or a JSON file (relative to the scene file).
-/// The model is loaded once here so that a bad one fails with the scene's file and field.
-std::string parseAtmosphereModel(const Reader& in, const json& value, const std::string& field,
-                                 const std::string& bodyName, const std::string& sceneFile) {
+/// The model is read here, once, so that a bad one fails with the scene's file and field.
+atmosphere::AtmosphereModelPtr parseAtmosphereModel(const Reader& in, const json& value, const std::string& field,
+                                                    const std::string& bodyName, const std::string& sceneFile) {
   std::string model;
   if (value.is_boolean()) {
-    if (!value.get<bool>()) return "";
+    if (!value.get<bool>()) return nullptr;
     std::string lower = bodyName;
     std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
     const auto names = atmosphere::presetNames();
@@ -165,11 +165,10 @@ std::string parseAtmosphereModel(const Reader& in, const json& value, const std:
     in.fail(field, "expected true, false, an atmosphere preset name or a file, " + got(value));
   }
   try {
-    atmosphere::loadAtmosphere(model, atmosphere::WavelengthSet::rgb().nm);
+    return atmosphere::AtmosphereModel::load(model);
   } catch (const std::exception& e) {
     in.fail(field, e.what());
   }
-  return model;
 }
 
 /// A body's "terrain": {"dem": FILE (relative to the scene) | "seed": N [, "size": N],
@@ -379,9 +378,9 @@ Body parseBody(const Reader& in, const json& value, const std::string& field, co
   }
 
   if (value.contains("atmosphere")) {
-    body.atmosphereModel = parseAtmosphereModel(in, value["atmosphere"], field + ".atmosphere",
+    body.atmosphere = parseAtmosphereModel(in, value["atmosphere"], field + ".atmosphere",
                                                  body.preset.empty() ? body.name : body.preset, sceneFile);
-    body.hasAtmosphere = !body.atmosphereModel.empty();
+    body.hasAtmosphere = body.atmosphere != nullptr;
   }
   if (value.contains("albedo"))
     body.albedo = in.number(value["albedo"], field + ".albedo", 0.0, 1.0, "a number in [0, 1]");
@@ -412,7 +411,7 @@ Body parseBody(const Reader& in, const json& value, const std::string& field, co
     body.terrain = parseTerrain(in, value["terrain"], field + ".terrain", sceneFile);
   }
   if (value.contains("clouds")) {
-    if (body.atmosphereModel.empty())
+    if (!body.atmosphere)
       in.fail(field + ".clouds", "clouds are drawn in an atmosphere: give the body \"atmosphere\" too");
     body.clouds = parseClouds(in, value["clouds"], field + ".clouds");
   }

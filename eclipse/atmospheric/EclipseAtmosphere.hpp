@@ -18,7 +18,8 @@ namespace umbra::eclipse {
 struct EclipseAtmosphereOptions {
   atmosphere::PrecomputeOptions tables;  ///< refraction on by default (see the constructor)
   bool refraction = true;                ///< bend rays (the deviation table, refracted paths)
-  int refractionWidth = 512, refractionHeight = 256;
+  int refractionWidth = atmosphere::kDefaultTableSizes.refraction[0];
+  int refractionHeight = atmosphere::kDefaultTableSizes.refraction[1];
   double refractionStepM = 10e3;
   int profileSamples = 4096;             ///< impact parameters of the limb ray profile
   double terrainMeanElevationM = -1.0;   ///< < 0: defaultTerrain(occluder)

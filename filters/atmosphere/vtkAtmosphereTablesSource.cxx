@@ -317,6 +317,17 @@ void vtkAtmosphereTablesSource::PrintSelf(ostream& os, vtkIndent indent) {
      << "\n" << indent << "RefractedPaths: " << this->RefractedPaths << "\n";
 }
 
+void vtkAtmosphereTablesSource::SetAtmosphereModel(umbra::atmosphere::AtmosphereModelPtr model) {
+  if (model == this->Model && model && model->name() == this->Atmosphere) return;
+  this->Model = model;
+  this->Atmosphere = model ? model->name() : std::string();
+  this->Modified();
+}
+
+umbra::atmosphere::AtmosphereModelPtr vtkAtmosphereTablesSource::GetAtmosphereModel() const {
+  return umbra::atmosphere::modelNamed(this->Atmosphere, this->Model);
+}
+
 int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) {
   using namespace umbra;
   vtkMultiBlockDataSet* output = vtkMultiBlockDataSet::GetData(out);
@@ -326,7 +337,9 @@ int vtkAtmosphereTablesSource::RequestData(vtkInformation*, vtkInformationVector
   try {
     const std::vector<double> wavelengthsNm = this->Wavelengths == 3 ? atmosphere::WavelengthSet::rgb().nm
                                                                      : atmosphere::WavelengthSet::uniform(this->Wavelengths).nm;
-    const atmosphere::Atmosphere atm = atmosphere::loadAtmosphere(this->Atmosphere, wavelengthsNm);
+    const atmosphere::AtmosphereModelPtr model = this->GetAtmosphereModel();
+    if (!model) throw std::invalid_argument("no atmosphere (SetAtmosphere)");
+    const atmosphere::Atmosphere& atm = model->at(wavelengthsNm);
     const tables::TableCache cache(this->CacheDirectory.empty() ? tables::TableCache::defaultDirectory()
                                                                 : this->CacheDirectory);
     unsigned block = 0;

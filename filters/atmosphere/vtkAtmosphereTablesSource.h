@@ -49,6 +49,7 @@
 // "depth" (= R), "scatteringSize" (R,MU,MU_S,NU) describe it.
 #include <vtkMultiBlockDataSetAlgorithm.h>
 
+#include "AtmosphereModel.hpp"
 #include "Precompute.hpp"  // PrecomputeOptions (defaults)
 
 #include <string>
@@ -75,25 +76,30 @@ public:
     All = Bruneton | Refraction
   };
 
-  /// Preset name ("earth", "mars", "earth-2015-calbuco") or the path of a JSON file.
+  /// Preset name ("earth", "mars", "earth-2015-calbuco") or the path of a JSON file, read
+  /// on the next update (once while it stays the same).
   vtkSetStdStringFromCharMacro(Atmosphere);
   vtkGetCharFromStdStringMacro(Atmosphere);
+  /// The atmosphere as a value, read where the user named it: Atmosphere becomes its name.
+  void SetAtmosphereModel(umbra::atmosphere::AtmosphereModelPtr model);
+  /// The model Atmosphere names (read now if it is not yet; throws AtmosphereError).
+  umbra::atmosphere::AtmosphereModelPtr GetAtmosphereModel() const;
   /// Which tables to make (bitwise or of Table values; default Bruneton).
   vtkSetMacro(Tables, int);
   vtkGetMacro(Tables, int);
 
   // ---- the Bruneton tables (PrecomputeOptions) ----
   /// Scattering orders (1: single only; default 4).
-  vtkSetClampMacro(Orders, int, 1, 64);
+  vtkSetClampMacro(Orders, int, 1, umbra::atmosphere::kMaxOrders);
   vtkGetMacro(Orders, int);
   /// Number of wavelengths: 3 = 680, 550, 440 nm; else WavelengthSet::uniform(N) (default 3).
-  vtkSetClampMacro(Wavelengths, int, 1, 256);
+  vtkSetClampMacro(Wavelengths, int, 1, umbra::atmosphere::kMaxWavelengths);
   vtkGetMacro(Wavelengths, int);
-  vtkSetVector2Macro(TransmittanceSize, int);  ///< x_mu x x_r (default 256 x 64)
+  vtkSetVector2Macro(TransmittanceSize, int);  ///< x_mu x x_r (default: kDefaultTableSizes)
   vtkGetVector2Macro(TransmittanceSize, int);
-  vtkSetVector4Macro(ScatteringSize, int);     ///< R, MU, MU_S, NU (default 32, 128, 32, 8)
+  vtkSetVector4Macro(ScatteringSize, int);     ///< R, MU, MU_S, NU (default: kDefaultTableSizes)
   vtkGetVector4Macro(ScatteringSize, int);
-  vtkSetVector2Macro(IrradianceSize, int);     ///< x_mu_s x x_r (default 64 x 16)
+  vtkSetVector2Macro(IrradianceSize, int);     ///< x_mu_s x x_r (default: kDefaultTableSizes)
   vtkGetVector2Macro(IrradianceSize, int);
   /// The lowest Sun the scattering tables hold, as the cosine of its zenith angle
   /// (PrecomputeOptions::muSMin; default cos 102 deg, in [-1, 0]): air that sees the Sun
@@ -126,7 +132,7 @@ public:
   /// fewer hold less memory (the orders' working tables are that many channels wide) and
   /// take more time (the work common to the wavelengths is redone per batch). The tables
   /// are the same to the bit, so it is not part of the cache key.
-  vtkSetClampMacro(WavelengthBatch, int, 0, 256);
+  vtkSetClampMacro(WavelengthBatch, int, 0, umbra::atmosphere::kMaxWavelengths);
   vtkGetMacro(WavelengthBatch, int);
   /// With FileBacked: the 4D tables but J_k through a temporary file in $TMPDIR, a few r
   /// slices of each in memory at a time (PrecomputeOptions::spillTables): a batch's tables
@@ -156,9 +162,9 @@ public:
   vtkGetCharFromStdStringMacro(ScratchDirectory);
 
   // ---- the refraction table ----
-  vtkSetClampMacro(RefractionWidth, int, 2, 8192);
+  vtkSetClampMacro(RefractionWidth, int, 2, umbra::atmosphere::kMaxTableSide);
   vtkGetMacro(RefractionWidth, int);
-  vtkSetClampMacro(RefractionHeight, int, 2, 8192);
+  vtkSetClampMacro(RefractionHeight, int, 2, umbra::atmosphere::kMaxTableSide);
   vtkGetMacro(RefractionHeight, int);
   /// RK4 step along the rays [m] (default 10 km); also the step of the refracted paths.
   vtkSetClampMacro(RefractionStepM, double, 1.0, 1e6);
@@ -203,12 +209,16 @@ private:
   void Count(const umbra::tables::CacheOutcome& outcome);
 
   std::string Atmosphere = "earth";
+  mutable umbra::atmosphere::AtmosphereModelPtr Model;  // the one Atmosphere names, once read
   int Tables = Bruneton;
-  int Orders = 4;
+  int Orders = umbra::atmosphere::kDefaultTableSizes.orders;
   int Wavelengths = 3;
-  int TransmittanceSize[2] = {256, 64};
-  int ScatteringSize[4] = {32, 128, 32, 8};
-  int IrradianceSize[2] = {64, 16};
+  int TransmittanceSize[2] = {umbra::atmosphere::kDefaultTableSizes.transmittance[0],
+                              umbra::atmosphere::kDefaultTableSizes.transmittance[1]};
+  int ScatteringSize[4] = {umbra::atmosphere::kDefaultTableSizes.scattering[0], umbra::atmosphere::kDefaultTableSizes.scattering[1],
+                           umbra::atmosphere::kDefaultTableSizes.scattering[2], umbra::atmosphere::kDefaultTableSizes.scattering[3]};
+  int IrradianceSize[2] = {umbra::atmosphere::kDefaultTableSizes.irradiance[0],
+                           umbra::atmosphere::kDefaultTableSizes.irradiance[1]};
   double MuSMin = umbra::atmosphere::PrecomputeOptions().muSMin;
   int MinimumDensityDirections = 0;
   int DensityDirections = 0;
@@ -222,8 +232,8 @@ private:
   bool SpreadOverRanks = false;
   bool FileBacked = false;
   std::string ScratchDirectory;
-  int RefractionWidth = 512;
-  int RefractionHeight = 256;
+  int RefractionWidth = umbra::atmosphere::kDefaultTableSizes.refraction[0];
+  int RefractionHeight = umbra::atmosphere::kDefaultTableSizes.refraction[1];
   double RefractionStepM = 10e3;
   std::string CacheDirectory;
   bool UseCache = true;

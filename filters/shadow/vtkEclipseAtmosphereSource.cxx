@@ -42,11 +42,14 @@ struct Resolved {
   std::map<std::string, std::string> parameters;
 };
 
-Resolved resolve(const std::string& spec, int wavelengths, vtkMultiBlockDataSet* input, const std::string& occluder,
-                 double sunOccluderDistanceM, umbra::eclipse::EclipseAtmosphereOptions options) {
+// `spec` names the atmosphere (or, empty, the input's); `kept` is the model read for that
+// name (atmosphere::modelNamed: read once while the name stays).
+Resolved resolve(const std::string& spec, umbra::atmosphere::AtmosphereModelPtr& kept, int wavelengths,
+                 vtkMultiBlockDataSet* input, const std::string& occluder, double sunOccluderDistanceM,
+                 umbra::eclipse::EclipseAtmosphereOptions options) {
   using namespace umbra;
   if (!input) {
-    Resolved r{atmosphere::loadAtmosphere(spec, wavelengthsOf(wavelengths)), options, {}};
+    Resolved r{atmosphere::modelNamed(spec, kept)->at(wavelengthsOf(wavelengths)), options, {}};
     r.parameters = eclipse::eclipseAtmosphereParameters(r.atm, occluder, sunOccluderDistanceM, options);
     return r;
   }
@@ -55,7 +58,7 @@ Resolved resolve(const std::string& spec, int wavelengths, vtkMultiBlockDataSet*
     throw std::invalid_argument("atmosphere tables input: no 'multiple-scattering' block (ask vtkAtmosphereTablesSource "
                                 "for the Bruneton tables)");
   const std::string name = spec.empty() && ms.count("atmosphere") ? ms.at("atmosphere") : spec;
-  Resolved r{atmosphere::loadAtmosphere(name, wavelengthsOf(wavelengths)), options, {}};
+  Resolved r{atmosphere::modelNamed(name, kept)->at(wavelengthsOf(wavelengths)), options, {}};
   const auto atmosphereKeys = atmosphere::atmosphereParameters(r.atm);
   for (const auto& [k, v] : atmosphereKeys) {
     const auto it = ms.find(k);
@@ -124,6 +127,13 @@ vtkMultiBlockDataSet* vtkEclipseAtmosphereSource::InputTables() const {
   return blocks;
 }
 
+void vtkEclipseAtmosphereSource::SetAtmosphereModel(umbra::atmosphere::AtmosphereModelPtr model) {
+  if (model == this->Model && model && model->name() == this->Atmosphere) return;
+  this->Model = model;
+  this->Atmosphere = model ? model->name() : std::string();
+  this->Modified();
+}
+
 bool vtkEclipseAtmosphereSource::HasAtmosphere() const {
   return !this->Atmosphere.empty() || const_cast<vtkEclipseAtmosphereSource*>(this)->GetNumberOfInputConnections(0) > 0;
 }
@@ -141,7 +151,8 @@ vtkAlgorithm* vtkEclipseAtmosphereSource::ConnectAtmosphereTables() {
     this->SetInputConnection(tables->GetOutputPort());
   }
   // (Re)configured on every call: the setters mark it modified only on a change.
-  tables->SetAtmosphere(this->Atmosphere.c_str());
+  if (this->Model && this->Model->name() == this->Atmosphere) tables->SetAtmosphereModel(this->Model);
+  else tables->SetAtmosphere(this->Atmosphere.c_str());
   tables->SetWavelengths(this->Wavelengths);
   tables->SetOrders(this->Orders);
   tables->SetTransmittanceSize(this->TransmittanceSize);
@@ -180,7 +191,7 @@ umbra::eclipse::EclipseAtmosphereOptions vtkEclipseAtmosphereSource::Options() c
   o.tables.scatteringMu = this->ScatteringSize[1];
   o.tables.scatteringMuS = this->ScatteringSize[2];
   o.tables.scatteringNu = this->ScatteringSize[3] > 0 ? this->ScatteringSize[3]
-                                                       : umbra::eclipse::defaultScatteringNu(this->OccluderName, 8);
+                                                       : umbra::eclipse::defaultScatteringNu(this->OccluderName, umbra::atmosphere::kDefaultTableSizes.scattering[3]);
   o.tables.irradianceWidth = this->IrradianceSize[0];
   o.tables.irradianceHeight = this->IrradianceSize[1];
   o.refraction = this->Refraction;
@@ -193,7 +204,7 @@ umbra::eclipse::EclipseAtmosphereOptions vtkEclipseAtmosphereSource::Options() c
 }
 
 std::map<std::string, std::string> vtkEclipseAtmosphereSource::AtmosphereParameters() const {
-  return resolve(this->Atmosphere, this->Wavelengths, this->InputTables(), this->OccluderName,
+  return resolve(this->Atmosphere, this->Model, this->Wavelengths, this->InputTables(), this->OccluderName,
                  this->SunOccluderDistanceM, this->Options())
       .parameters;
 }
@@ -204,7 +215,7 @@ std::shared_ptr<const umbra::eclipse::EclipseAtmosphere> vtkEclipseAtmosphereSou
   static std::mutex mutex;
   static std::map<std::string, std::weak_ptr<const eclipse::EclipseAtmosphere>> prepared;
   vtkMultiBlockDataSet* input = this->InputTables();
-  const Resolved r = resolve(this->Atmosphere, this->Wavelengths, input, this->OccluderName,
+  const Resolved r = resolve(this->Atmosphere, this->Model, this->Wavelengths, input, this->OccluderName,
                              this->SunOccluderDistanceM, this->Options());
   const std::string key = keyOf(r.parameters);
   std::lock_guard<std::mutex> lock(mutex);

@@ -15,7 +15,9 @@
 // key); the atmosphere is the Atmosphere property, or when empty the input's "atmosphere"
 // (a preset name), and must be the one the tables were made for. No input and no
 // Atmosphere: the airless case.
+#include "AtmosphereModel.hpp"
 #include "ShadowLut.hpp"
+#include "TableSizes.hpp"
 
 #include <vtkImageAlgorithm.h>
 #include <vtkSmartPointer.h>
@@ -49,13 +51,17 @@ public:
   vtkSetMacro(SunOccluderDistanceM, double);
   vtkGetMacro(SunOccluderDistanceM, double);
 
-  /// Preset name ("earth", "mars", "earth-2015-calbuco") or JSON file; empty (default): none.
+  /// Preset name ("earth", "mars", "earth-2015-calbuco") or JSON file; empty (default):
+  /// none. Read on the next update (once while it stays the same).
   vtkSetStdStringFromCharMacro(Atmosphere);
   vtkGetCharFromStdStringMacro(Atmosphere);
+  /// The atmosphere as a value, read where the user named it: Atmosphere becomes its name
+  /// (null: none). The tables source ConnectAtmosphereTables makes gets it too.
+  void SetAtmosphereModel(umbra::atmosphere::AtmosphereModelPtr model);
   /// Bruneton tables: orders, wavelengths (3 = 680, 550, 440 nm), sizes.
-  vtkSetClampMacro(Orders, int, 1, 64);
+  vtkSetClampMacro(Orders, int, 1, umbra::atmosphere::kMaxOrders);
   vtkGetMacro(Orders, int);
-  vtkSetClampMacro(Wavelengths, int, 1, 256);
+  vtkSetClampMacro(Wavelengths, int, 1, umbra::atmosphere::kMaxWavelengths);
   vtkGetMacro(Wavelengths, int);
   vtkSetVector2Macro(TransmittanceSize, int);
   vtkGetVector2Macro(TransmittanceSize, int);
@@ -182,13 +188,19 @@ protected:
   double SunRadiusM = umbra::eclipse::kSunRadiusM;
   double SunOccluderDistanceM = 149597870700.0;
   std::string Atmosphere;
-  int Orders = 4;
+  mutable umbra::atmosphere::AtmosphereModelPtr Model;  // the one Atmosphere names, once read
+  int Orders = umbra::atmosphere::kDefaultTableSizes.orders;
   int Wavelengths = 3;
-  int TransmittanceSize[2] = {256, 64};
-  int ScatteringSize[4] = {32, 128, 32, 0};
-  int IrradianceSize[2] = {64, 16};
+  int TransmittanceSize[2] = {umbra::atmosphere::kDefaultTableSizes.transmittance[0],
+                              umbra::atmosphere::kDefaultTableSizes.transmittance[1]};
+  // NU 0: the occluder's (eclipse::defaultScatteringNu).
+  int ScatteringSize[4] = {umbra::atmosphere::kDefaultTableSizes.scattering[0], umbra::atmosphere::kDefaultTableSizes.scattering[1],
+                           umbra::atmosphere::kDefaultTableSizes.scattering[2], 0};
+  int IrradianceSize[2] = {umbra::atmosphere::kDefaultTableSizes.irradiance[0],
+                           umbra::atmosphere::kDefaultTableSizes.irradiance[1]};
   bool Refraction = true;
-  int RefractionSize[2] = {512, 256};
+  int RefractionSize[2] = {umbra::atmosphere::kDefaultTableSizes.refraction[0],
+                           umbra::atmosphere::kDefaultTableSizes.refraction[1]};
   double RefractionStepM = 10e3;
   double TerrainMeanElevationM = -1.0;
   std::string CacheDirectory;

@@ -1,6 +1,8 @@
 // `umbra atmosphere precompute`: one EXR per table in the output directory, readable, with
 // the right channels and no non-finite value; the cache; bad input leaves nothing behind.
 #include "CliRunner.hpp"
+#include "Precompute.hpp"
+#include "TableSizes.hpp"
 
 #include "umbra/tables/Exr.h"
 
@@ -230,4 +232,36 @@ TEST(AtmospherePrecomputeCli, AKilledRunLeavesNoHalfFilledDirectory) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(filesIn(out).size(), 7u);  // transmittance, 3 single scattering, multiple, 2 irradiance
   EXPECT_EQ(filesIn(dir.path.string()), std::vector<std::string>{"tables"});  // no staging left
+}
+
+// The command's bounds and defaults are the library's (atmosphere/TableSizes.hpp): the
+// largest sizes pass PrecomputeOptions::validate and one more fails there and on the
+// command line, whose message names the bound; the help shows the default sizes.
+TEST(AtmospherePrecomputeCli, SizesAndBoundsAreTheLibrarys) {
+  using namespace umbra::atmosphere;
+  PrecomputeOptions po;
+  EXPECT_EQ(po.scatteringMu, kDefaultTableSizes.scattering[1]);
+  EXPECT_EQ(po.transmittanceWidth, kDefaultTableSizes.transmittance[0]);
+  po.scatteringNu = kMaxScatteringCells;
+  po.orders = kMaxOrders;
+  po.transmittanceWidth = kMaxTableSide;
+  EXPECT_EQ(po.validate(), "");
+  po.scatteringNu = kMaxScatteringCells + 1;
+  EXPECT_NE(po.validate().find(std::to_string(kMaxScatteringCells)), std::string::npos) << po.validate();
+  EXPECT_EQ(PrecomputeOptions().withSizes(kSmallTableSizes).irradianceWidth, kSmallTableSizes.irradiance[0]);
+
+  TempDir dir;
+  const std::string tooMany = "8,32,8," + std::to_string(kMaxScatteringCells + 1);
+  const RunResult bad = run(UMBRA_EXE, {"atmosphere", "precompute", "--preset", "earth", "--scattering-size", tooMany,
+                                        "--output", dir / "bad"});
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_NE(bad.err.find("--scattering-size: expected R, MU_S, NU in 2.." + std::to_string(kMaxScatteringCells)),
+            std::string::npos)
+      << bad.err;
+  const RunResult orders = run(UMBRA_EXE, {"atmosphere", "precompute", "--preset", "earth", "--orders",
+                                           std::to_string(kMaxOrders + 1), "--output", dir / "bad"});
+  EXPECT_NE(orders.err.find("--orders: expected 1 to " + std::to_string(kMaxOrders)), std::string::npos) << orders.err;
+  EXPECT_FALSE(fs::exists(dir / "bad"));
+  const RunResult help = run(UMBRA_EXE, {"atmosphere", "precompute", "--help"});
+  EXPECT_NE(help.out.find(sizeText(kDefaultTableSizes.scattering)), std::string::npos) << help.out;
 }

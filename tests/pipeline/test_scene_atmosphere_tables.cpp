@@ -32,7 +32,7 @@ SceneInputs groundScene(double altitudeM, double sunElevationDeg) {
   SceneInputs in;
   in.sun.positionM = directionFromAngles(sunElevationDeg, 0.0) * kAu;
   in.bodies.push_back({"Earth", {0.0, 0.0, 0.0}, bottomM, {0.1, 0.1, 0.1}});
-  in.atmosphere = SceneAtmosphere{"Earth", "earth", bottomM, topM};
+  in.atmosphere = SceneAtmosphere{"Earth", atmosphere::AtmosphereModel::load("earth"), bottomM, topM};
   in.camera.positionM = {0.0, 0.0, bottomM + altitudeM};
   in.camera.targetM = in.camera.positionM + glm::dvec3(1.0, 0.0, 0.0);
   return in;

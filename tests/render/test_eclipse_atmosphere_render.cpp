@@ -94,7 +94,7 @@ struct MoonInUmbra {
     const SphereBody earth{"Earth", {0.0, 0.0, 0.0}, earthBottomRadius(), {0.3, 0.3, 0.3}};
     moon = {"Moon", {kMoonDistance, offsetM, 0.0}, 1.7374e6, {0.12, 0.12, 0.12}};
     in.bodies = {earth, moon};
-    in.atmosphere = SceneAtmosphere{"Earth", "earth"};
+    in.atmosphere = SceneAtmosphere{"Earth", atmosphere::AtmosphereModel::load("earth")};
     in.camera.positionM = {earth.radiusM + 1000.0, 0.0, 0.0};
     in.camera.targetM = moon.centreM;
     in.camera.up = {0.0, 0.0, 1.0};
@@ -203,7 +203,7 @@ TEST(EclipseAtmosphereRender, RangedLutAtPhobosAgreesWithTheCpu) {
   const SphereBody mars{"Mars", {0.0, 0.0, 0.0}, marsRadiusM, {0.25, 0.25, 0.25}};
   const SphereBody phobos{"Phobos", {phobosDistanceM, marsRadiusM, 0.0}, phobosRadiusM, {0.07, 0.07, 0.07}};
   in.bodies = {mars, phobos};
-  in.atmosphere = SceneAtmosphere{"Mars", "mars"};
+  in.atmosphere = SceneAtmosphere{"Mars", atmosphere::AtmosphereModel::load("mars")};
   in.camera.positionM = phobos.centreM + glm::dvec3(-200e3, 0.0, 0.0);
   in.camera.targetM = phobos.centreM;
   in.camera.up = {0.0, 0.0, 1.0};

@@ -195,7 +195,8 @@ TEST(SceneValidation, TerrainMessages) {
 // to the scene; a preset's own flag (Earth: true) does not ask for rendering.
 TEST(Scene, AtmosphereChoices) {
   auto model = [](const std::string& body) {
-    return parseScene(fixedScene(R"({"preset": "Sun"}, )" + body), kFile).bodies[1].atmosphereModel;
+    const auto m = parseScene(fixedScene(R"({"preset": "Sun"}, )" + body), kFile).bodies[1].atmosphere;
+    return m ? m->name() : std::string();
   };
   EXPECT_EQ(model(R"({"preset": "Earth", "position": [1e11, 0, 0], "atmosphere": true})"), "earth");
   EXPECT_EQ(model(R"({"preset": "Earth", "name": "Terra", "position": [1e11, 0, 0], "atmosphere": true})"), "earth");
@@ -212,7 +213,9 @@ TEST(Scene, AtmosphereChoices) {
   const Scene scene = parseScene(
       fixedScene(R"({"preset": "Sun"}, {"preset": "Earth", "position": [1e11, 0, 0], "atmosphere": "thin.json"})"),
       (dir / "scene.json").string());
-  EXPECT_EQ(scene.bodies[1].atmosphereModel, (dir / "thin.json").string());
+  ASSERT_TRUE(scene.bodies[1].atmosphere);
+  EXPECT_EQ(scene.bodies[1].atmosphere->name(), (dir / "thin.json").string());
+  EXPECT_EQ(scene.bodies[1].atmosphere->rgb().name, "thin");
   std::filesystem::remove_all(dir);
 }
 
@@ -296,7 +299,8 @@ TEST(Scene, DefaultsAndOverrides) {
   EXPECT_EQ(luna->polarRadiusM, 1e6);
   EXPECT_EQ(luna->albedo, 0.2);
   EXPECT_TRUE(luna->hasAtmosphere);
-  EXPECT_EQ(luna->atmosphereModel, "mars");
+  ASSERT_TRUE(luna->atmosphere);
+  EXPECT_EQ(luna->atmosphere->name(), "mars");
   EXPECT_FALSE(luna->positionFromEphemeris);
   EXPECT_EQ(luna->positionM, glm::dvec3(149597870700.0, 0.0, -2000.0));
   EXPECT_EQ(luna->color, glm::dvec3(1, 0, 0));
