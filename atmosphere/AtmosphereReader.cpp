@@ -3,6 +3,7 @@
 #include "JsonErrors.hpp"
 #include "Atmosphere.hpp"
 #include "AtmosphereModel.hpp"
+#include "Fields.hpp"
 #include "Humidity.hpp"
 #include "Mie.hpp"
 #include "MieCache.hpp"
@@ -108,10 +109,19 @@ public:
     throw AtmosphereError(file_ + ": " + (field.empty() ? "" : field + ": ") + message);
   }
 
-  /// Fails on a key that is not listed.
+  /// Fails on a key that is not listed: a value's own form (a spectrum's object), not an
+  /// object of the field table.
   void object(const json& value, const std::string& field, std::initializer_list<const char*> keys) const {
     if (!value.is_object()) fail(field, "expected an object, " + got(value));
     if (const auto unknown = atmosphere::firstUnknownKey(value, keys))
+      fail(field.empty() ? unknown->key : field + "." + unknown->key, unknown->message);
+  }
+
+  /// Fails on a key that the field table (Fields.hpp, fieldKeys) does not describe for an
+  /// object at `where` whose selector value is `type` ("" for none).
+  void object(const json& value, const std::string& field, const char* where, const std::string& type = "") const {
+    if (!value.is_object()) fail(field, "expected an object, " + got(value));
+    if (const auto unknown = atmosphere::firstUnknownKey(value, fieldKeys(where, type)))
       fail(field.empty() ? unknown->key : field + "." + unknown->key, unknown->message);
   }
 
@@ -259,18 +269,18 @@ DensityProfile parseProfile(const Reader& in, const json& value, const std::stri
   };
   DensityProfile p;
   if (type == "exponential" || type == "double-exponential") {
-    in.object(value, field, {"type", "scaleHeightM"});
+    in.object(value, field, "components.*.density", type);
     p.kind = type == "exponential" ? DensityProfile::Kind::Exponential : DensityProfile::Kind::DoubleExponential;
     p.scaleHeightM = finite("scaleHeightM");
   } else if (type == "tent") {
-    in.object(value, field, {"type", "centreM", "halfWidthM"});
+    in.object(value, field, "components.*.density", type);
     p.kind = DensityProfile::Kind::Tent;
     p.centreM = finite("centreM");
     p.halfWidthM = finite("halfWidthM");
   } else if (type == "boundary-layer") {
     // OPAC's tropospheric layers: the mixing layer up to the document's boundaryLayerHeightM,
     // then (when given) the free troposphere above it.
-    in.object(value, field, {"type", "scaleHeightM", "transitionM", "freeTroposphere"});
+    in.object(value, field, "components.*.density", type);
     p.kind = DensityProfile::Kind::BoundaryLayer;
     p.scaleHeightM = finite("scaleHeightM");
     if (value.contains("transitionM")) p.transitionM = finite("transitionM");
@@ -280,7 +290,7 @@ DensityProfile parseProfile(const Reader& in, const json& value, const std::stri
       const std::string f = field + ".freeTroposphere";
       const json& ft = value["freeTroposphere"];
       if (!ft.is_object()) in.fail(f, "expected an object, " + got(ft));
-      in.object(ft, f, {"relativeDensity", "scaleHeightM", "topM"});
+      in.object(ft, f, "components.*.density.freeTroposphere");
       p.freeTroposphereDensity = in.number(in.require(ft, "relativeDensity", f), f + ".relativeDensity",
                                            "a relative density >= 0", [](double x) { return x >= 0.0; });
       p.freeTroposphereScaleHeightM = in.number(in.require(ft, "scaleHeightM", f), f + ".scaleHeightM",
@@ -289,7 +299,7 @@ DensityProfile parseProfile(const Reader& in, const json& value, const std::stri
                                         [](double) { return true; });
     }
   } else if (type == "tabulated") {
-    in.object(value, field, {"type", "altitudesM", "values"});
+    in.object(value, field, "components.*.density", type);
     p.kind = DensityProfile::Kind::Tabulated;
     p.altitudesM = in.numbers(in.require(value, "altitudesM", field), field + ".altitudesM");
     p.values = in.numbers(in.require(value, "values", field), field + ".values");
@@ -314,24 +324,24 @@ std::vector<PhaseFunction> parsePhase(const Reader& in, const json& value, const
   };
   std::vector<PhaseFunction> phases;
   if (type == "isotropic" || type == "rayleigh" || type == "penndorf") {
-    in.object(value, field, {"type"});
+    in.object(value, field, "components.*.phase", type);
     const PhaseFunction p = type == "isotropic" ? PhaseFunction::isotropic()
                             : type == "rayleigh" ? PhaseFunction::rayleigh()
                                                  : PhaseFunction::penndorf();
     phases.assign(n, p);
   } else if (type == "henyey-greenstein" || type == "cornette-shanks") {
-    in.object(value, field, {"type", "g"});
+    in.object(value, field, "components.*.phase", type);
     for (double gi : g("g"))
       phases.push_back(type == "henyey-greenstein" ? PhaseFunction::henyeyGreenstein(gi)
                                                    : PhaseFunction::cornetteShanks(gi));
   } else if (type == "double-henyey-greenstein") {
-    in.object(value, field, {"type", "g1", "g2", "alpha"});
+    in.object(value, field, "components.*.phase", type);
     const std::vector<double> g1 = g("g1"), g2 = g("g2");
     const std::vector<double> alpha =
         in.spectrum(in.require(value, "alpha", field), field + ".alpha", "a number in [0, 1]", unit);
     for (std::size_t i = 0; i < n; ++i) phases.push_back(PhaseFunction::doubleHenyeyGreenstein(g1[i], g2[i], alpha[i]));
   } else if (type == "tabulated") {
-    in.object(value, field, {"type", "cosTheta", "anglesDeg", "values", "wavelengthsNm"});
+    in.object(value, field, "components.*.phase", type);
     const bool byAngle = value.contains("anglesDeg");
     if (byAngle == value.contains("cosTheta")) in.fail(field, "expected exactly one of 'cosTheta' and 'anglesDeg'");
     const std::string axisKey = byAngle ? "anglesDeg" : "cosTheta";
@@ -385,7 +395,7 @@ std::vector<PhaseFunction> parsePhase(const Reader& in, const json& value, const
 /// dust is ~3 degrees wide at 440 nm), and the size quadrature's tolerances (relative
 /// change of one halving; Mie.hpp): bulk coefficients to ~1e-4, phase samples to ~1e-2.
 /// Martian dust (r_eff 1.5 um, v_eff 0.3) then takes 1000-2000 radius nodes a wavelength
-/// instead of 5000-14000 (docs/accuracy-vs-speed.md, "Mars' dust by Lorenz-Mie").
+/// instead of 5000-14000 (docs/accuracy-vs-speed/atmosphere-tables.md, "Mars' dust by Lorenz-Mie").
 constexpr int kMiePhaseSamples = 361;
 constexpr double kMieBulkTolerance = 1e-4, kMiePhaseTolerance = 1e-2;
 
@@ -404,8 +414,10 @@ std::pair<std::vector<double>, double> parseRefractiveIndex(const Reader& in, co
   if (!value.is_object()) in.fail(field, "expected an object, " + got(value));
   std::vector<double> refractivity;
   double atN = kStandardNumberDensityPerM3;
+  in.object(value, field, "components.*.optics.refractiveIndex");
+  if (value.contains("formula") && value.contains("refractivity"))
+    in.fail(field, "expected one of 'formula' and 'refractivity', not both");
   if (value.contains("formula")) {
-    in.object(value, field, {"formula", "atNumberDensityPerM3"});
     const std::string formula = in.string(value["formula"], field + ".formula");
     double lo = 0.0, hi = 0.0;
     std::function<double(double)> f;
@@ -426,7 +438,6 @@ std::pair<std::vector<double>, double> parseRefractiveIndex(const Reader& in, co
     if (value.contains("atNumberDensityPerM3"))
       atN = in.positive(value["atNumberDensityPerM3"], field + ".atNumberDensityPerM3", "number density in 1/m^3");
   } else {
-    in.object(value, field, {"refractivity", "atNumberDensityPerM3"});
     refractivity = in.spectrum(in.require(value, "refractivity", field), field + ".refractivity",
                                "n - 1, a positive number below 1", [](double r) { return r > 0.0 && r < 1.0; });
     atN = in.number(in.require(value, "atNumberDensityPerM3", field), field + ".atNumberDensityPerM3",
@@ -477,7 +488,7 @@ LogNormalSizes parseMieSizes(const Reader& in, const json& value, const std::str
 
 /// r_wet / r_dry of a "mie" model's "hygroscopicGrowth" rows at the air's relative humidity.
 double parseGrowth(const Reader& in, const json& value, const std::string& field) {
-  in.object(value, field, {"relativeHumidity", "radiusFactor"});
+  in.object(value, field, "components.*.optics.hygroscopicGrowth");
   const std::vector<double> humidity = in.numbers(in.require(value, "relativeHumidity", field),
                                                   Reader::join(field, "relativeHumidity"));
   const std::vector<double> factor = in.numbers(in.require(value, "radiusFactor", field),
@@ -527,7 +538,7 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
 
   Optics o;
   if (model == "rayleigh") {
-    in.object(value, field, {"model", "refractiveIndex", "numberDensityPerM3", "depolarisation"});
+    in.object(value, field, "components.*.optics", model);
     const auto [refractivity, atN] = parseRefractiveIndex(in, in.require(value, "refractiveIndex", field), key("refractiveIndex"));
     const double N = density("numberDensityPerM3");
     const double delta = in.number(in.require(value, "depolarisation", field), key("depolarisation"),
@@ -537,23 +548,22 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
     o.absorption.assign(n, 0.0);
     o.defaultPhase.assign(n, PhaseFunction::rayleigh());
   } else if (model == "absorber") {
-    in.object(value, field, {"model", "numberDensityPerM3", "crossSectionM2"});
+    in.object(value, field, "components.*.optics", model);
     const double N = density("numberDensityPerM3");
     const std::vector<double> sigma =
         in.spectrum(in.require(value, "crossSectionM2", field), key("crossSectionM2"), "a cross-section >= 0 in m^2", nonNegative);
     o.scattering.assign(n, 0.0);
     for (double s : sigma) o.absorption.push_back(N * s);
   } else if (model == "coefficients") {
-    in.object(value, field, {"model", "scatteringPerM", "absorptionPerM"});
+    in.object(value, field, "components.*.optics", model);
     o.scattering = in.spectrum(in.require(value, "scatteringPerM", field), key("scatteringPerM"), coefficient, coefficientRange);
     o.absorption = optionalSpectrum("absorptionPerM");
   } else if (model == "van-de-hulst") {
-    in.object(value, field, {"model", "turbidity", "jungeExponent", "K", "absorptionPerM"});
+    in.object(value, field, "components.*.optics", model);
     o.scattering = vanDeHulst(value, field);
     o.absorption = optionalSpectrum("absorptionPerM");
   } else if (model == "anomalous-diffraction") {
-    in.object(value, field, {"model", "radiusM", "numberDensityPerM3", "refractiveIndexReal", "refractiveIndexImag",
-                             "vanDeHulst"});
+    in.object(value, field, "components.*.optics", model);
     const double r = in.number(in.require(value, "radiusM", field), key("radiusM"),
                                "a particle radius in (0, 0.01] m", [](double x) { return x > 0.0 && x <= 0.01; });
     const double N = density("numberDensityPerM3");
@@ -568,7 +578,7 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
     if (value.contains("vanDeHulst")) {
       // Costa's combination: scattering from Eq. 17, extinction from Eq. 20.
       const std::string f = key("vanDeHulst");
-      in.object(value["vanDeHulst"], f, {"turbidity", "jungeExponent", "K"});
+      in.object(value["vanDeHulst"], f, "components.*.optics.vanDeHulst");
       o.scattering = vanDeHulst(value["vanDeHulst"], f);
       for (std::size_t i = 0; i < n; ++i) {
         if (o.scattering[i] > extinction[i] * (1.0 + 1e-12))
@@ -585,9 +595,7 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
       }
     }
   } else if (model == "mie") {
-    in.object(value, field, {"model", "effectiveRadiusM", "medianRadiusM", "effectiveVariance", "geometricStdDev",
-                             "radiusRangeM", "hygroscopicGrowth", "numberDensityPerM3", "refractiveIndexReal",
-                             "refractiveIndexImag"});
+    in.object(value, field, "components.*.optics", model);
     LogNormalSizes sizes = parseMieSizes(in, value, field);
     const std::vector<double> m = in.spectrum(in.require(value, "refractiveIndexReal", field), key("refractiveIndexReal"),
                                               "a real refractive index > 0", positive);
@@ -624,7 +632,7 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
   } else if (model == "mixture") {
     // Populations sharing one density profile (an OPAC aerosol type): their coefficients
     // add, their phase functions mix weighted by their scattering.
-    in.object(value, field, {"model", "of"});
+    in.object(value, field, "components.*.optics", model);
     const json& of = in.require(value, "of", field);
     if (!of.is_object() || of.empty()) in.fail(key("of"), "expected a non-empty object of named optics, " + got(of));
     std::vector<Optics> parts;
@@ -657,7 +665,7 @@ Optics parseOptics(const Reader& in, const json& value, const std::string& field
 }
 
 Component parseComponent(const Reader& in, const std::string& name, const json& value, const std::string& field) {
-  in.object(value, field, {"description", "aerosol", "density", "densityScale", "optics", "phase"});
+  in.object(value, field, "components.*");
   if (value.contains("aerosol") && !value["aerosol"].is_boolean())
     in.fail(field + ".aerosol", "expected true or false, " + got(value["aerosol"]));
   Component c;
@@ -721,8 +729,7 @@ void scaleAerosols(const Reader& in, const json& doc, Atmosphere& a) {
 }
 
 Atmosphere build(const Reader& in, const json& doc, const std::string& defaultName) {
-  in.object(doc, "", {"name", "description", "bottomRadiusM", "topRadiusM", "groundAlbedo", "relativeHumidity",
-                      "boundaryLayerHeightM", "aerosolOpticalDepth550", "refraction", "components"});
+  in.object(doc, "", "");
   Atmosphere a;
   a.wavelengthsNm = in.wavelengths();
   a.name = doc.contains("name") ? in.string(doc["name"], "name") : defaultName;
@@ -763,7 +770,7 @@ Atmosphere build(const Reader& in, const json& doc, const std::string& defaultNa
   a.refractivityFollows.clear();
   if (doc.contains("refraction")) {
     const json& r = doc["refraction"];
-    in.object(r, "refraction", {"seaLevelRefractivity", "referenceWavelengthNm", "dispersion", "followsComponent"});
+    in.object(r, "refraction", "refraction");
     a.seaLevelRefractivity = in.number(in.require(r, "seaLevelRefractivity", "refraction"), "refraction.seaLevelRefractivity",
                                        "n - 1, a number in [0, 1)", [](double x) { return x >= 0.0 && x < 1.0; });
     if (r.contains("referenceWavelengthNm"))

@@ -27,7 +27,7 @@
 //     orders' mean radiance at the point (at most 0.9).
 // Without an eclipse (V = 1) it is the tables' sky computed another way (within 2 % of
 // the Monte-Carlo). In totality the orders past the second carry 30 to 60 % of the light.
-// docs/accuracy-vs-speed.md, "The sky of a solar eclipse", has its error against the
+// docs/accuracy-vs-speed/atmosphere-tables.md, "The sky of a solar eclipse", has its error against the
 // reference and its time.
 //
 // The tables give the transmittance to space (the Sun's light at a point); they must be
@@ -72,7 +72,7 @@ struct EclipsedSkyOptions {
 
 /// Quick knobs for interactive use: field 13 x 8 x 12, incoming 8 x 8 x 16, 3 orders, diffuse
 /// 6 x 6, view 32 (some 20 times faster than the defaults; their error against the reference
-/// in docs/accuracy-vs-speed.md).
+/// in docs/accuracy-vs-speed/atmosphere-tables.md).
 EclipsedSkyOptions draftEclipsedSkyOptions();
 
 struct EclipsedSky {

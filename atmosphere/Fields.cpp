@@ -1,5 +1,6 @@
-// The table of an atmosphere file's fields (Fields.hpp); the ranges repeat what
-// Atmosphere.cpp's reader checks, tests/atmosphere/test_fields.cpp holds them together.
+// The table of an atmosphere file's fields (Fields.hpp). The reader (AtmosphereReader.cpp)
+// takes the keys it accepts from it; the ranges it states are the reader's checks, which
+// tests/atmosphere/test_fields.cpp holds together with it.
 #include "Fields.hpp"
 
 #include <algorithm>
@@ -153,6 +154,13 @@ std::vector<std::string> fieldTypes(const std::string& where) {
   for (const Field& f : atmosphereFields())
     if (where == f.where && *f.type != '\0' && selector == f.key) types.emplace_back(f.type);
   return types;
+}
+
+std::vector<std::string> fieldKeys(const std::string& where, const std::string& type) {
+  std::vector<std::string> keys;
+  for (const Field& f : atmosphereFields())
+    if (where == f.where && (*f.type == '\0' || type == f.type)) keys.emplace_back(f.key);
+  return keys;
 }
 
 const Field* findField(const std::string& where, const std::string& type, const std::string& key) {

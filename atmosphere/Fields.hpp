@@ -44,6 +44,11 @@ std::string selectorKey(const std::string& where);
 /// The types (selector values) the table knows at `where`, in table order.
 std::vector<std::string> fieldTypes(const std::string& where);
 
+/// The keys the table describes for an object at `where` whose selector value is `type`
+/// ("" for none): the lines of that type and those of every type, in table order. The
+/// reader (AtmosphereReader.cpp) accepts these keys and no others.
+std::vector<std::string> fieldKeys(const std::string& where, const std::string& type = "");
+
 /// The description of `key` in an object at `where` whose selector value is `type` (""
 /// for none); nullptr when the table does not know it.
 const Field* findField(const std::string& where, const std::string& type, const std::string& key);

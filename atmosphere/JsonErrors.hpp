@@ -161,15 +161,22 @@ struct UnknownKey {
   std::string key;
   std::string message;
 };
-inline std::optional<UnknownKey> firstUnknownKey(const nlohmann::json& object,
-                                                 std::initializer_list<const char*> keys) {
+template <class Keys>
+std::optional<UnknownKey> firstUnknownKeyOf(const nlohmann::json& object, const Keys& keys) {
   std::string list;
-  for (const char* key : keys) list += (list.empty() ? "" : ", ") + std::string(key);
+  for (const auto& key : keys) list += (list.empty() ? "" : ", ") + std::string(key);
   for (const auto& item : object.items()) {
-    if (std::none_of(keys.begin(), keys.end(), [&](const char* key) { return item.key() == key; }))
+    if (std::none_of(keys.begin(), keys.end(), [&](const auto& key) { return item.key() == key; }))
       return UnknownKey{item.key(), "unknown key (expected one of: " + list + ")"};
   }
   return std::nullopt;
+}
+inline std::optional<UnknownKey> firstUnknownKey(const nlohmann::json& object,
+                                                 std::initializer_list<const char*> keys) {
+  return firstUnknownKeyOf(object, keys);
+}
+inline std::optional<UnknownKey> firstUnknownKey(const nlohmann::json& object, const std::vector<std::string>& keys) {
+  return firstUnknownKeyOf(object, keys);
 }
 
 } // namespace umbra::atmosphere

@@ -132,7 +132,7 @@ int wavelengthBatchFor(const PrecomputeOptions& options, int scatterers, int wav
 /// (the angle at which a phase function falls to half its forward value) of the components
 /// that hold at least kMinDensityShare of the scattering optical depth, n a multiple of
 /// 8 in [16, 64]. Rayleigh and Earth's haze: 16; Mars' dust, whose Lorenz-Mie diffraction
-/// peak is a few degrees wide: more (docs/accuracy-vs-speed.md, "Density directions").
+/// peak is a few degrees wide: more (docs/accuracy-vs-speed/atmosphere-tables.md, "Density directions").
 int densityDirectionsFor(const Atmosphere& atmosphere);
 /// The share of a wavelength's scattering optical depth below which a component's forward
 /// peak does not set densityDirectionsFor.
@@ -415,7 +415,7 @@ std::vector<double> indirectIrradiance(const AtmosphereTables& tables, double r,
 /// muS times sunDiscCosine (options.sunAngularRadiusRad), as its table's texels hold, but
 /// computed where asked and not interpolated across the table's mu_s cells: those are
 /// 1.8 deg wide at 64 cells, and across the Sun's setting the interpolation was x19 too
-/// bright with the Sun on the horizon (docs/accuracy-vs-speed.md, "Twilight in the render
+/// bright with the Sun on the horizon (docs/accuracy-vs-speed/atmosphere-tables.md, "Twilight in the render
 /// pass"). The precomputation's second order takes its ground's E_0 the same way; the
 /// table is still written, for the table files.
 std::vector<double> directIrradiance(const AtmosphereTables& tables, double r, double muS);

@@ -63,7 +63,7 @@ struct SkyGrid {
 /// `atmosphere` asks for them (densityDirectionsFor above kMinDensityDirections: Mars' dust,
 /// 48 x 96; its dome's mean is 17 % too dark with 12 x 24). About 2 s (day) and 4 s
 /// (twilight) for Earth at 15 wavelengths and 4 orders on 2 cores; Mars 88 s. The twilight sky varies by orders of magnitude over a few degrees
-/// of Sun and of view, and coarse tables miss it (docs/accuracy-vs-speed.md, "Twilight"):
+/// of Sun and of view, and coarse tables miss it (docs/accuracy-vs-speed/atmosphere-tables.md, "Twilight"):
 /// linear interpolation across 16 mu_s cells made the zenith x4.7 too bright at a Sun
 /// 100 deg from the zenith; 12 density directions make it +27 % (+75 % at 106 deg), 24
 /// within 3 % of 48.

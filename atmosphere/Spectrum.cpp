@@ -1,4 +1,5 @@
 #include "Spectrum.hpp"
+#include "Colour.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -166,7 +167,7 @@ glm::dvec3 xyzToLinearSrgb(const glm::dvec3& c) {
 
 glm::dvec3 linearSrgbToXyz(const glm::dvec3& c) {
   // IEC 61966-2-1:1999, linear sRGB to XYZ (D65).
-  return glm::dvec3(0.4124 * c.r + 0.3576 * c.g + 0.1805 * c.b, 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b,
+  return glm::dvec3(0.4124 * c.r + 0.3576 * c.g + 0.1805 * c.b, colour::luminance(c),
                     0.0193 * c.r + 0.1192 * c.g + 0.9505 * c.b);
 }
 

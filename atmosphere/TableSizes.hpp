@@ -15,7 +15,7 @@ struct TableSizes {
 };
 
 /// What every table is made at unless asked otherwise (Bruneton 2017's sizes, 4 orders;
-/// docs/accuracy-vs-speed.md says what each costs and buys).
+/// docs/accuracy-vs-speed/atmosphere-tables.md, "Table sizes", says what each costs and buys).
 inline constexpr TableSizes kDefaultTableSizes{{256, 64}, {32, 128, 32, 8}, {64, 16}, {512, 256}, 4};
 /// Small tables for quick looks and tests: about a second.
 inline constexpr TableSizes kSmallTableSizes{{64, 16}, {8, 32, 8, 4}, {16, 4}, {128, 64}, 3};

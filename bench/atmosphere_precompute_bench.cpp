@@ -2,7 +2,7 @@
 // time per stage and in total against table sizes, scattering orders, the refraction step
 // and the number of wavelengths, with the error of the sky radiance looked up in each
 // against a reference configuration, and the peak memory. Prints Markdown for
-// docs/accuracy-vs-speed.md.
+// docs/accuracy-vs-speed/atmosphere-tables.md.
 //
 //   build/bench/umbra-bench-atmosphere [--preset earth] [--wavelengths 3] [--probes 2000]
 //       [--sections sizes,orders,refraction,wavelengths,stages,directions] [--reference-cache FILE]

@@ -7,7 +7,7 @@
 // scattering cells) and a fine deviation table (1024 x 512, 2.5 km step). Errors are the
 // largest relative error of R and G and of the luminance over the profile at the Moon's
 // mean distance (0 to 1.1 x the penumbra's radius), where the reference is above 1e-5.
-// Prints Markdown tables for docs/accuracy-vs-speed.md.
+// Prints Markdown tables for docs/accuracy-vs-speed/eclipse-luts.md.
 //
 //   build/bench/umbra-bench-eclipse-atmosphere [--sections set,scaling,extent,error,columns] [--profile-points 41]
 //
@@ -16,6 +16,7 @@
 // against a view of --column-reference rows, for --column-sub sub-rows per solar diameter
 // (0: point samples), and the precomputation's time for each.
 #include "AtmosphericShadow.hpp"
+#include "Colour.hpp"
 #include "EclipseAtmosphere.hpp"
 #include "SightLines.hpp"
 #include "Spectrum.hpp"
@@ -77,8 +78,8 @@ Errors compare(const Reference& ref, const std::vector<glm::dvec3>& values) {
   for (std::size_t k = 0; k < values.size(); ++k) {
     for (int c = 0; c < 2; ++c)
       if (ref.rgb[k][c] > 1e-5) e.rg = std::max(e.rg, std::abs(values[k][c] / ref.rgb[k][c] - 1.0));
-    const double l = eclipse::luminance(ref.rgb[k]);
-    if (l > 1e-5) e.luminance = std::max(e.luminance, std::abs(eclipse::luminance(values[k]) / l - 1.0));
+    const double l = colour::luminance(ref.rgb[k]);
+    if (l > 1e-5) e.luminance = std::max(e.luminance, std::abs(colour::luminance(values[k]) / l - 1.0));
   }
   return e;
 }

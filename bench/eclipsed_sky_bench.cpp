@@ -5,7 +5,7 @@
 // the distance that makes the umbra --umbra-km across through the observer
 // (occluderDistanceForUmbraM), --offset-km off that line for a partial phase.
 // With --fast, the quadrature (atmosphere/EclipsedSky.hpp) against it instead.
-// Prints Markdown for docs/accuracy-vs-speed.md ("The sky of a solar eclipse").
+// Prints Markdown for docs/accuracy-vs-speed/atmosphere-tables.md ("The sky of a solar eclipse").
 //
 //   build/bench/umbra-bench-eclipsed-sky [--preset earth] [--sun-zenith-deg 26.1]
 //       [--umbra-km 114.7] [--paths 100000] [--image 320x180 --image-paths 64]

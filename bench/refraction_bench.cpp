@@ -1,7 +1,7 @@
 // Speed against accuracy of the refraction table (deviation and contact altitude, eclipse
 // paper section 4.1) for the Earth preset: build time per table size and RK4 step, and the
 // error of the table lookup against rays traced directly with a 1 km step.
-// Prints Markdown for docs/accuracy-vs-speed.md.
+// Prints Markdown for docs/accuracy-vs-speed/atmosphere-tables.md.
 //
 //   build/bench/umbra-bench-refraction [--preset earth] [--samples 4000]
 #include "Atmosphere.hpp"

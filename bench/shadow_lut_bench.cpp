@@ -1,7 +1,7 @@
 // Speed against accuracy of the airless eclipse-shadow LuT.
 // For each size, the build time (best of --repeats runs) and the error of the bilinearly
 // sampled LuT against a 1024x1024 reference LuT and against the exact shadow function.
-// Prints a Markdown table for docs/accuracy-vs-speed.md.
+// Prints a Markdown table for docs/accuracy-vs-speed/eclipse-luts.md.
 //
 //   build/bench/umbra-bench-shadow-lut [--sizes 64,128,256,512] [--reference 1024] [--repeats 3]
 #include "ShadowLut.hpp"

@@ -5,7 +5,7 @@
 // percentile). Speed: the same --timed random receivers (one thread, the methods
 // interleaved, best of --repeats), as microseconds per receiver. For each size the speed
 // ratio is taken against the cheapest uniform step count whose mean error is not below DP's.
-// Prints Markdown tables for docs/accuracy-vs-speed.md.
+// Prints Markdown tables for docs/accuracy-vs-speed/terrain.md.
 //
 //   build/bench/umbra-bench-terrain [--sizes 512,1024,2048,4096] [--sun-elevation-deg 1.5]
 #include "CraterField.hpp"

@@ -1,4 +1,6 @@
 #include "ShadowLut.hpp"
+
+#include "Colour.hpp"
 #include "ParallelErrors.hpp"
 
 #include <algorithm>
@@ -7,10 +9,6 @@
 #include <stdexcept>
 
 namespace umbra::eclipse {
-
-double luminance(const glm::dvec3& rgb) {
-  return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
-}
 
 glm::dvec3 ShadowLut::texel(int i, int j) const {
   const std::size_t k = 3 * (static_cast<std::size_t>(j) * width + i);
@@ -169,7 +167,7 @@ std::vector<ProfileSample> shadowProfile(const SunOccluderSystem& s, double dist
   for (int k = 0; k < samples; ++k) errors.run([&] {
     const double offset = maxOffsetM * k / (samples - 1);
     const glm::dvec3 rgb = eclipseFactor({distanceBehindM, offset, 0.0}, sun, s.sunRadiusM, occ, lut, limbDarkening);
-    out[k] = {offset, rgb, luminance(rgb)};
+    out[k] = {offset, rgb, colour::luminance(rgb)};
   });
   errors.rethrow();
   return out;

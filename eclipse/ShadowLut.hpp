@@ -13,9 +13,6 @@
 
 namespace umbra::eclipse {
 
-/// Relative luminance of a linear RGB triple (Rec. 709 / sRGB primaries).
-double luminance(const glm::dvec3& rgb);
-
 struct ShadowLutParams {
   int width = 256;                 ///< texels along u
   int height = 256;                ///< texels along v

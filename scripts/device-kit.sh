@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Packs what the GPU checks need on a machine that has no VTK, no X server and no package
-# mirror (a GPU machine; docs/accuracy-vs-speed.md, "Frame-time ratios on a
+# mirror (a GPU machine; docs/accuracy-vs-speed/rendering.md, "Frame-time ratios on a
 # GPU"): .devkit/kit.tar.xz with the three frame-time benches, the rendering tests (CPU
 # against GLSL), the shared libraries they load (all but glibc >= 2.36,
 # libstdc++ and the GL loaders), the benches' small tables from the cache, the Moon's two

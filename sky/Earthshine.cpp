@@ -1,7 +1,7 @@
 #include "Earthshine.hpp"
 
+#include "Colour.hpp"
 #include "Photometry.hpp"
-#include "ShadowLut.hpp"  // eclipse::luminance
 
 #include <algorithm>
 #include <cmath>
@@ -31,7 +31,7 @@ double earthshineIrradiance(double sunIrradianceAtEarthWm2, double earthGeometri
 
 glm::dvec3 earthshineColour() {
   const glm::dvec3 beta(0.88, 0.96, 1.00);
-  return beta / eclipse::luminance(beta);
+  return beta / colour::luminance(beta);
 }
 
 }  // namespace umbra::sky

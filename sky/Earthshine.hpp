@@ -31,7 +31,7 @@ double earthshineJensen(double moonPhaseRad);
 double earthshineIrradiance(double sunIrradianceAtEarthWm2, double earthGeometricAlbedo, double earthRadiusM,
                             double earthMoonDistanceM, double earthPhaseRad);
 
-/// beta_e over its luminance (eclipse::luminance): the colour of the earthshine, R, G, B.
+/// beta_e over its luminance (colour::luminance): the colour of the earthshine, R, G, B.
 glm::dvec3 earthshineColour();
 
 }  // namespace umbra::sky

@@ -1,6 +1,6 @@
 #include "MilkyWay.hpp"
 
-#include "ShadowLut.hpp"  // luminance
+#include "Colour.hpp"
 #include "StarLight.hpp"
 
 #include <glm/geometric.hpp>
@@ -136,7 +136,7 @@ void removeStars(MilkyWayMap& map, const std::vector<glm::dvec3>& icrsDirections
   }
 }
 
-double frameLuminance(const glm::dvec3& rgb) { return eclipse::luminance(rgb * sunLinearSrgb()); }
+double frameLuminance(const glm::dvec3& rgb) { return colour::luminance(rgb * sunLinearSrgb()); }
 
 BrightestCap brightestCap(const MilkyWayMap& map, double capRadiusRad) {
   const TexelAngles a(map);

@@ -66,7 +66,7 @@ struct MilkyWayMap {
 /// in length.
 void removeStars(MilkyWayMap& map, const std::vector<glm::dvec3>& icrsDirections, const std::vector<double>& vMags);
 
-/// The luminance of a texel's colour in the frames' units: eclipse::luminance of the colour
+/// The luminance of a texel's colour in the frames' units: colour::luminance of the colour
 /// with the frames' white balance undone (times sunLinearSrgb).
 double frameLuminance(const glm::dvec3& rgb);
 

@@ -144,12 +144,12 @@ void addAtmosphereEclipseSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       ->capture_default_str();
   cmd->add_option("--paths", o->paths,
                   "Monte-Carlo paths per direction and wavelength (the standard error falls as 1/sqrt: "
-                  "docs/accuracy-vs-speed.md, \"The sky of a solar eclipse\")")
+                  "docs/accuracy-vs-speed/atmosphere-tables.md, \"The sky of a solar eclipse\")")
       ->capture_default_str();
   cmd->add_option("--method", o->method,
                   "reference: Monte-Carlo, every order, with its standard error; fast: the quadrature (single and "
                   "second order exact, higher orders from a light field around the observer; its error against the "
-                  "reference in docs/accuracy-vs-speed.md)")
+                  "reference in docs/accuracy-vs-speed/atmosphere-tables.md)")
       ->check(CLI::IsMember({"reference", "fast"}))
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Random seed (the same seed, the same numbers)")->capture_default_str();

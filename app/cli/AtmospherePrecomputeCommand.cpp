@@ -129,7 +129,7 @@ void addAtmospherePrecomputeCommand(CLI::App& atmosphereCmd, Action& action) {
       ->capture_default_str();
   precompute->add_option("--wavelength-batch", o->wavelengthBatch,
                          "Wavelengths computed together (0: as many as --memory allows): fewer hold less memory and "
-                         "take more time; the tables are the same (docs/accuracy-vs-speed.md, \"Wavelengths computed "
+                         "take more time; the tables are the same (docs/accuracy-vs-speed/atmosphere-tables.md, \"Wavelengths computed "
                          "together\")")
       ->capture_default_str();
   precompute->add_option("--memory", o->memoryMiB,

@@ -118,7 +118,7 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
   CLI::Option* directions = sky->add_option("--density-directions", o->densityDirections,
                   "Polar directions of the multiple-scattering density (times twice as many azimuths; 4-64). Default: 12, "
                   "24 for a Sun below the horizon, or what a forward-peaked phase function asks for (Mars' dust: 56; "
-                  "docs/accuracy-vs-speed.md, \"Density directions\")");
+                  "docs/accuracy-vs-speed/atmosphere-tables.md, \"Density directions\")");
   sky->add_option("--observer-altitude", o->altitude, "Observer altitude above the ground (units m, km)")
       ->capture_default_str();
   sky->add_option("--zenith-step", o->zenithStep, "View zenith step in degrees (0 to 90)")->capture_default_str();
@@ -169,7 +169,7 @@ void addAtmosphereSkyCommand(CLI::App& atmosphereCmd, Action& action) {
       atmosphere::PrecomputeOptions options = atmosphere::skyPrecomputeOptions(atm, o->orders, sunZenithRad);
       if (lowestSunGiven) options.muSMin = std::cos(o->lowestSunZenithDeg * kDeg);
       if (directionsGiven) options.sphereSamples = o->densityDirections;
-      // Fewer than a forward-peaked phase function asks for (docs/accuracy-vs-speed.md,
+      // Fewer than a forward-peaked phase function asks for (docs/accuracy-vs-speed/atmosphere-tables.md,
       // "Density directions"): say so.
       const int asked = atmosphere::densityDirectionsFor(atm);
       if (asked > atmosphere::kMinDensityDirections && options.sphereSamples < asked && options.orders >= 2)

@@ -134,7 +134,7 @@ void addRenderOptions(CLI::App* render, RenderOptions& o) {
                          ": quick looks and tests). From the ground in "
                      "twilight (the Sun from 1 deg down to night: Earth 30, Mars 35 deg) the scattering and irradiance "
                      "tables have 4 times the mu_s cells (default: 16,128,128,8 and 256x16) and reach 20 deg below the "
-                     "Sun (docs/accuracy-vs-speed.md, \"Twilight in the render pass\")")
+                     "Sun (docs/accuracy-vs-speed/atmosphere-tables.md, \"Twilight in the render pass\")")
       ->capture_default_str();
   render->add_flag("--refraction", o.refraction,
                    "Bend the rays through the atmosphere (eclipse paper, 4.2): a lifted, flattened Sun at the "

@@ -35,7 +35,7 @@ const SphereBody& atmosphereBody(const SceneInputs& in) {
 // Tables of a scene in motion (an animation, the GUI's time slider through an eclipse) are
 // asked for on grids, so that the frames of a while make one table, one cache file: the
 // Sun's distance and the ends of a u range on geometric grids of these relative steps
-// (docs/accuracy-vs-speed.md, "Tables for a scene in motion").
+// (docs/accuracy-vs-speed/eclipse-luts.md, "Tables for a scene in motion").
 constexpr double kSunDistanceStep = 1e-4;
 constexpr double kRangeUStep = 1e-3;
 

@@ -138,7 +138,7 @@ void applySceneLimbLuminance(AtmosphereRendering& atmosphere, const SceneInputs&
 /// useSmallAtmosphereTables with 2 orders, a 128x64 deviation table; the shadow LuT 64x32
 /// with limb views of 32 rows and 4x4 scattering cells; the limb-luminance LuT 8 (u) x 32
 /// (v) x 16 (beta) with views of 32 rows and 4x4 cells (fewer v rows put the ring's flux
-/// off: docs/accuracy-vs-speed.md, "The limb-luminance LuT in the GUI").
+/// off: docs/accuracy-vs-speed/gui.md, "The limb-luminance LuT in the GUI").
 void useSmallEclipseShadowTables(vtkEclipseShadowLutSource* source);
 void useSmallLimbLuminanceTables(vtkLimbLuminanceSource* source);
 

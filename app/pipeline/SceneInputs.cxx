@@ -11,7 +11,7 @@
 #include <vtkMultiBlockDataSet.h>
 
 #include "AtmosphericShadow.hpp"  // defaultTerrain()
-#include "ShadowLut.hpp"  // luminance()
+#include "Colour.hpp"
 #include "scene/Ephemeris.hpp"
 #include "scene/Planets.hpp"
 #include "scene/Scene.hpp"

@@ -103,7 +103,7 @@ enum class AtmosphereTableSizes { Default, Small };
 /// Otherwise the day tables, the Sun down to 102 deg: in daylight, with the Sun on the
 /// horizon, for a camera above the air, and at night (then the twilight sky is 1e-4 cd/m^2
 /// or fainter, below the night sky's own glow, which is not modelled; the day tables draw
-/// it black). Why: docs/accuracy-vs-speed.md, "Twilight in the render pass".
+/// it black). Why: docs/accuracy-vs-speed/atmosphere-tables.md, "Twilight in the render pass".
 struct AtmosphereTableChoice {
   bool twilight = false;
   double lowestSunZenithRad = 0.0;  ///< twilight only (the day tables' is the source's default)

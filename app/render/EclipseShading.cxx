@@ -4,7 +4,7 @@
 #include "EclipseShadowGlsl.hpp"
 #include "PhotometryGlsl.hpp"
 #include "FieldParameters.h"
-#include "ShadowLut.hpp"  // luminance
+#include "Colour.hpp"
 #include "ShadowLutData.h"
 #include "RenderGlsl.hpp"
 

@@ -3,7 +3,7 @@
 #include "AlbedoMap.hpp"
 #include "MilkyWay.hpp"
 #include "StarCatalogueCache.h"
-#include "ShadowLut.hpp"  // luminance
+#include "Colour.hpp"
 #include "Spectrum.hpp"   // srgbToLinear
 
 #include <vtkDataArray.h>
@@ -63,7 +63,7 @@ std::shared_ptr<MapTexels> relativeAlbedoTexels(const std::string& path, vtkImag
   map.height = dims[1];
   map.values.resize(static_cast<std::size_t>(dims[0]) * dims[1]);
   for (vtkIdType i = 0; i < static_cast<vtkIdType>(map.values.size()); ++i) {
-    const double y = comps >= 3 ? eclipse::luminance({scalars->GetComponent(i, 0), scalars->GetComponent(i, 1),
+    const double y = comps >= 3 ? colour::luminance({scalars->GetComponent(i, 0), scalars->GetComponent(i, 1),
                                                       scalars->GetComponent(i, 2)})
                                 : scalars->GetComponent(i, 0);
     map.values[i] = static_cast<float>(std::round(y / range * 255.0) / 255.0);

@@ -232,7 +232,7 @@ float umbraAtmDistanceToSunCosine(float r, float mu, float muS, float nu, float 
 // skyRadiance: the tables' radiance; below their lowest Sun (the air in the planet's
 // shadow) the light from where the ray first reaches sunlit air, T(x, x_d) S(x_d), or none.
 // One table lookup either way: Mesa's llvmpipe runs both sides of every branch, masked,
-// and the lookup is the expensive part (docs/accuracy-vs-speed.md, "Below the tables'
+// and the lookup is the expensive part (docs/accuracy-vs-speed/atmosphere-tables.md, "Below the tables'
 // lowest Sun": the night-side path costs llvmpipe ~10 % of the atmosphere pass).
 vec3 umbraAtmScatteredRadiance(float r, float mu, float muS, float nu, bool rayHitsGround) {
   vec3 T = vec3(1.0);

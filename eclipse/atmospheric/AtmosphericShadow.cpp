@@ -1,4 +1,6 @@
 #include "AtmosphericShadow.hpp"
+
+#include "Colour.hpp"
 #include "ParallelErrors.hpp"
 
 #include "Atmosphere.hpp"
@@ -469,7 +471,7 @@ ProfileSample atmosphericShadowAt(const AtmosphericShadowModel& m, double distan
   s.offsetM = offsetM;
   const std::vector<double> t = illuminanceAt(m, limbPositionBehind(m, distanceBehindM, offsetM), limb).total();
   s.rgb = rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data());
-  s.luminance = luminance(s.rgb);
+  s.luminance = colour::luminance(s.rgb);
   return s;
 }
 
@@ -492,7 +494,7 @@ std::vector<ProfileSample> atmosphericShadowProfile(const AtmosphericShadowModel
     const LutCoords c = lutCoordsOf(limbPositionBehind(m, distanceBehindM, offsetM));
     // The LuT ends at v = 1 (the solid body's penumbra), as the renderer reads it.
     s.rgb = c.v >= 1.0 ? glm::dvec3(1.0) : lut->sample(c);
-    s.luminance = luminance(s.rgb);
+    s.luminance = colour::luminance(s.rgb);
   });
   errors.rethrow();
   return out;

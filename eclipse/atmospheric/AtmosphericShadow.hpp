@@ -129,11 +129,11 @@ struct AtmosphericShadowModel {
 struct LimbViewParams {
   int columns = 256;           ///< beta over [0, pi]
   int rows = 256;              ///< gamma over [0, phi_atmo - phi_occ]
-  int scatteringColumns = 16;  ///< cells the in-scattered radiance is sampled on (docs/accuracy-vs-speed.md)
+  int scatteringColumns = 16;  ///< cells the in-scattered radiance is sampled on (docs/accuracy-vs-speed/eclipse-luts.md)
   int scatteringRows = 16;
   /// The refracted Sun is integrated over each row's extent: sub-rows across which the exit
   /// direction moves by at most 1 / subRowsPerSunDiameter of the Sun's diameter; 0: one point
-  /// sample at each row's centre (docs/accuracy-vs-speed.md, "Single columns of the limb ring").
+  /// sample at each row's centre (docs/accuracy-vs-speed/eclipse-luts.md, "Single columns of the limb ring").
   double subRowsPerSunDiameter = 128.0;
 };
 

@@ -10,7 +10,7 @@ for moon in phobos:9376km deimos:23463km; do
   # --exact: past the solid body's penumbra (v >= 1) every shadow LuT reads 1, while Mars'
   # atmosphere still dims the Sun there (the grey rim of the figure). Without --exact the
   # profile reads a LuT over this cross-section's distances (within 2e-4 of --exact inside
-  # the solid penumbra at 64^2; docs/accuracy-vs-speed.md, "Scene-limited shadow LuTs").
+  # the solid penumbra at 64^2; docs/accuracy-vs-speed/eclipse-luts.md, "Scene-limited shadow LuTs").
   # --scattering-nu 32: the dust's forward-peaked multiple scattering needs 32 cells in nu
   # (docs/eclipse-shadows.md, "The nu resolution of the scattering tables: Mars").
   "$UMBRA" profile shadow --occluder mars --atmosphere mars --distance "$distance" --exact --scattering-nu 32 \

@@ -1,12 +1,14 @@
 // The field table (atmosphere/Fields.hpp) against the reader it describes
-// (parseAtmosphere): every type the reader accepts has lines, every line's example value
-// is accepted, every key of the shipped presets is described, and a type switch keeps
-// what the new type shares with the old one.
+// (parseAtmosphere), which takes the keys it accepts from it: every type the reader accepts
+// has lines, every line's example value is accepted, every key of the shipped presets is
+// described, a type switch keeps what the new type shares with the old one, and
+// docs/atmosphere-format.md lists the same keys and types.
 #include "Atmosphere.hpp"
 #include "Fields.hpp"
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <regex>
 #include <set>
 #include <string>
@@ -150,4 +152,95 @@ TEST(Fields, ResolvedPresetIsTheMergedDocument) {
   EXPECT_EQ(a.components.size(), b.components.size());
   EXPECT_EQ(a.component("stratosphere").scatteringPerM, b.component("stratosphere").scatteringPerM);
   EXPECT_THROW(resolvedAtmosphereJson("venus"), AtmosphereError);
+}
+
+namespace {
+
+// The rows of the first markdown table after the heading `heading` in
+// docs/atmosphere-format.md: each row's cells, trimmed.
+std::vector<std::vector<std::string>> docsTable(const std::string& heading) {
+  std::ifstream in(UMBRA_SOURCE_DIR "/docs/atmosphere-format.md");
+  std::string line;
+  bool after = false;
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    if (line == heading) after = true;
+    if (!after) continue;
+    if (line.rfind("|", 0) != 0) {
+      if (!rows.empty()) break;
+      continue;
+    }
+    if (line.rfind("|---", 0) == 0) continue;
+    std::vector<std::string> cells;
+    std::string cell;
+    for (std::size_t i = 1; i < line.size(); ++i) {
+      if (line[i] == '|' && line[i - 1] != '\\') {
+        const std::size_t first = cell.find_first_not_of(' ');
+        cells.push_back(first == std::string::npos ? std::string() : cell.substr(first, cell.find_last_not_of(' ') - first + 1));
+        cell.clear();
+      } else {
+        cell += line[i];
+      }
+    }
+    rows.push_back(cells);
+  }
+  EXPECT_FALSE(rows.empty()) << "no table after '" << heading << "'";
+  if (!rows.empty()) rows.erase(rows.begin());  // the header
+  return rows;
+}
+
+// The words in backticks of a cell.
+std::set<std::string> quoted(const std::string& cell) {
+  std::set<std::string> words;
+  const std::regex word("`([^`]+)`");
+  for (std::sregex_iterator i(cell.begin(), cell.end(), word), end; i != end; ++i) words.insert((*i)[1]);
+  return words;
+}
+
+// "`name`" -> "name".
+std::string unquoted(const std::string& cell) { return cell.size() > 2 ? cell.substr(1, cell.size() - 2) : cell; }
+
+}  // namespace
+
+// docs/atmosphere-format.md's reference tables against the field table: the keys of the top
+// level and of a component, the types of densities, optics and phase functions, and each
+// type's keys: the same sets, no more and no fewer.
+TEST(Fields, TheFormatDocumentListsTheTablesKeysAndTypes) {
+  const auto keysOf = [](const std::vector<std::vector<std::string>>& rows) {
+    std::set<std::string> keys;
+    for (const auto& r : rows)
+      if (unquoted(r[0]) != "extends") keys.insert(unquoted(r[0]));  // resolved before the fields are read
+    return keys;
+  };
+  const auto asSet = [](const std::vector<std::string>& v) { return std::set<std::string>(v.begin(), v.end()); };
+  EXPECT_EQ(keysOf(docsTable("## Top level")), asSet(fieldKeys("")));
+  EXPECT_EQ(keysOf(docsTable("## Components")), asSet(fieldKeys("components.*")));
+  for (const auto& [heading, where] : std::vector<std::pair<std::string, std::string>>{
+           {"### Density profiles (`density`)", "components.*.density"},
+           {"### Optics (`optics`)", "components.*.optics"},
+           {"### Phase functions (`phase`)", "components.*.phase"}}) {
+    const auto rows = docsTable(heading);
+    std::set<std::string> types;
+    for (const auto& r : rows) types.insert(unquoted(r[0]));
+    EXPECT_EQ(types, asSet(fieldTypes(where))) << heading;
+    const std::string selector = selectorKey(where);
+    for (const auto& r : rows) {
+      const std::string type = unquoted(r[0]);
+      // Every key of the type is in its "keys" cell (all but the selector and the free text).
+      const std::set<std::string> listed = quoted(r[1]);
+      for (const std::string& key : fieldKeys(where, type)) {
+        if (key != selector && key != "description") {
+          EXPECT_TRUE(listed.count(key)) << heading << " " << type << ": " << key << " is not in the document";
+        }
+      }
+      // And every word quoted there is a key of the type or of an object inside it.
+      for (const std::string& word : listed) {
+        bool known = findField(where, type, word) != nullptr;
+        for (const Field& f : atmosphereFields())
+          known = known || (std::string(f.where).rfind(where + ".", 0) == 0 && word == f.key);
+        EXPECT_TRUE(known || word == "mie" || word == "rayleigh") << heading << " " << type << ": `" << word
+                                                                  << "` is not in the field table";
+      }
+    }
+  }
 }

@@ -72,11 +72,15 @@ TEST(ModelValidation, TheTestDocumentIsValid) {
 
 TEST(ModelValidation, UnknownKey) {
   EXPECT_EQ(errorOf(document("\"scatteringPerM\": 3.996e-6", "\"scaterringPerM\": 3.996e-6")),
-            "bad.json: components.aerosols.optics.scaterringPerM: unknown key (expected one of: model, "
+            "bad.json: components.aerosols.optics.scaterringPerM: unknown key (expected one of: description, model, "
             "scatteringPerM, absorptionPerM)");
   EXPECT_EQ(errorOf(document("\"name\": \"test\"", "\"nmae\": \"test\"")),
             "bad.json: nmae: unknown key (expected one of: name, description, bottomRadiusM, topRadiusM, "
             "groundAlbedo, relativeHumidity, boundaryLayerHeightM, aerosolOpticalDepth550, refraction, components)");
+  // A refractive index is a formula or a refractivity, not both.
+  EXPECT_EQ(errorOf(document("{\"formula\": \"peck-reeder-1972\"}",
+                             "{\"formula\": \"peck-reeder-1972\", \"refractivity\": 2.9e-4}")),
+            "bad.json: components.molecules.optics.refractiveIndex: expected one of 'formula' and 'refractivity', not both");
 }
 
 TEST(ModelValidation, NegativeOrMissingCoefficient) {

@@ -519,7 +519,7 @@ TEST(Precompute, SkyRadianceLookupGivesSkyRadiancesValues) {
 // and the tables need fine mu_s cells, radii and density directions to hold it (R 16,
 // mu_s 128, 24 x 48 directions here: +18 / +7 / +15 % at 680 / 550 / 440 nm; with
 // 16 x 32 directions and R 8, mu_s 64: +83 %; finer still, 33 s: within 13 %;
-// docs/accuracy-vs-speed.md, "Twilight"). Bruneton's thin haze (earth-bruneton): the
+// docs/accuracy-vs-speed/atmosphere-tables.md, "Twilight"). Bruneton's thin haze (earth-bruneton): the
 // default sky's aerosols put the tables at +62 / +2 / +14 % with the same sizes.
 TEST(Precompute, SecondOrderTwilightAtTheZenithMatchesBruteForce) {
   Atmosphere earth = loadAtmosphere("earth-bruneton", {680.0, 550.0, 440.0});
@@ -602,7 +602,7 @@ TEST(Precompute, DensityDirectionsFollowTheNarrowestForwardPeak) {
 // brightest ray. From Phobos only rays through 5-30 km reach sunlit air (high on the far
 // side), and that light crosses the thick limb: at most 5e-8 sr^-1 of the solar irradiance.
 // Reading the lowest row at the entry point instead made it up to 1e6 times brighter
-// (docs/accuracy-vs-speed.md); from Deimos, 3.6 times.
+// (docs/accuracy-vs-speed/atmosphere-tables.md); from Deimos, 3.6 times.
 TEST(Precompute, MarsLimbFromPhobosAndDeimosInTheUmbraMatchesBruteForce) {
   const Atmosphere mars = loadAtmosphere("mars", {680.0, 550.0, 440.0});
   const PrecomputeOptions o = belowTheLowestSunOptions();

@@ -6,7 +6,7 @@
 // render's EXR, W m^-2 sr^-1; the exposure from its header), the value the tone curve
 // turns into the display (x = 1: white). The EXR's radiance does not depend on the
 // exposure; x does, so a change of a scene's exposure fails the test as a change of its
-// light does. Thresholds (docs/accuracy-vs-speed.md, "Image tests against baselines"):
+// light does. Thresholds (docs/accuracy-vs-speed/image-tests.md):
 //   - a value is off when |x - x_base| > 5 % of x_base + 1e-3 (1e-3: a tenth of an 8-bit
 //     step of a mid-grey, invisible on the display);
 //   - at most 1 % of the values may be off (the rim of a disc, the horizon or the Sun's

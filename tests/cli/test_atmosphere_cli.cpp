@@ -152,7 +152,7 @@ TEST(AtmosphereSkyCli, TwilightSkyBelowTheTablesLowestSun) {
 }
 
 // --density-directions: the default (12 by day) and 16 x 32 give the same day sky within a
-// few per cent (docs/accuracy-vs-speed.md, "Density directions": <= 2 % between 12 and
+// few per cent (docs/accuracy-vs-speed/atmosphere-tables.md, "Density directions": <= 2 % between 12 and
 // 48), the count in the summary line. Mars' dust asks for 48: its default (one order here,
 // to be quick: the count is chosen all the same), and a note naming the flag when fewer
 // are asked for.

@@ -136,7 +136,7 @@ TEST(ProfileCli, SceneGivesTheOccluderAndTheReceiversDistance) {
 
 // Near the occluder (Mars' shadow at Phobos) the profile command builds a LuT over the
 // cross-section's distances only, and `precompute shadow --distance-range` makes one: both
-// agree with --exact at 64^2 where a whole 64^2 LuT is off by ~0.5 (docs/accuracy-vs-speed.md).
+// agree with --exact at 64^2 where a whole 64^2 LuT is off by ~0.5 (docs/accuracy-vs-speed/eclipse-luts.md).
 TEST(ProfileCli, RangedLutsAtPhobosAgreeWithExact) {
   TempDir dir;
   const std::vector<std::string> env{"UMBRA_CACHE_DIR=" + dir / "cache"};

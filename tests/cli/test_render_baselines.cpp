@@ -1,4 +1,4 @@
-// Image tests: the example scenes (docs/accuracy-vs-speed.md, "Baselines: size, tables and
+// Image tests: the example scenes (docs/accuracy-vs-speed/image-tests.md, "Baselines: size, tables and
 // scenes", lists those without a baseline), the sunset with refraction and the
 // 2015-09-28 eclipse series (30-minute frames, `umbra render --from/--to/--step`) rendered
 // at 64x36 with small tables and compared with baseline EXRs in tests/cli/baselines

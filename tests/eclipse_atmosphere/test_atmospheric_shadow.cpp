@@ -4,6 +4,7 @@
 // ozone (Fig. 13), Calbuco, Mars at Phobos and Deimos (Fig. 12 right), the ends u -> 0 and u -> 1,
 // and finite tables at every preset. Small tables throughout.
 #include "AtmosphericShadow.hpp"
+#include "Colour.hpp"
 #include "EclipseAtmosphere.hpp"
 
 #include "Atmosphere.hpp"
@@ -176,8 +177,8 @@ TEST(AtmosphericShadow, CalbucoDarkensTheUmbra) {
   const glm::dvec3 calbuco = rgbAt(body("earth-2015-calbuco").model, kMoonDistanceM, 0.0);
   const glm::dvec3 volcanic = rgbAt(body("earth-volcanic").model, kMoonDistanceM, 0.0);
   EXPECT_LT(calbuco.r, 0.95 * clear.r);
-  EXPECT_LT(eclipse::luminance(calbuco), 0.95 * eclipse::luminance(clear));
-  EXPECT_GT(eclipse::luminance(calbuco), eclipse::luminance(volcanic));
+  EXPECT_LT(colour::luminance(calbuco), 0.95 * colour::luminance(clear));
+  EXPECT_GT(colour::luminance(calbuco), colour::luminance(volcanic));
 }
 
 // Must show: ozone absorbs green-orange (Chappuis band) and leaves blue: with ozone the
@@ -319,7 +320,7 @@ TEST(AtmosphericShadow, LimbLuminanceIsTheLayerAverageOfTheLimbView) {
 // the umbra's edge at the Moon, the far side of the ring sees the Sun through rays ~1-3 km up
 // whose deviation changes by a good part of the Sun's diameter within one row of 256: a
 // row's point sample either hits or misses the Sun's image at a given beta, and columns were
-// off by 10-15 % (docs/accuracy-vs-speed.md, "Single columns of the limb ring"). Integrated
+// off by 10-15 % (docs/accuracy-vs-speed/eclipse-luts.md, "Single columns of the limb ring"). Integrated
 // by sub-rows (1/128 of the Sun's diameter each, the default), each column of a 256-row view
 // (the LuT's default) is within 3 % of a 4096-row view with four times finer sub-rows: the
 // sub-rows' midpoint rule is off by at most half a sub-row at each edge of the Sun's image
@@ -404,10 +405,10 @@ TEST(AtmosphericShadow, RangedLutResolvesMarsShadowAtPhobos) {
       const eclipse::LutCoords c = eclipse::lutCoordsOf(p);
       if (c.v >= 1.0) continue;  // the LuT ends at v = 1
       const std::vector<double> t = eclipse::illuminanceAt(m, p, smallLimb()).total();
-      const double exact = eclipse::luminance(eclipse::rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data()));
+      const double exact = colour::luminance(eclipse::rgbOfSpectralRatio(m.rays.wavelengthsNm, t.data()));
       const eclipse::ShadowLut* luts[3] = {&lutWhole, &lutU, &lutRanged};
-      for (int q = 0; q < 3; ++q) err[q] = std::max(err[q], std::abs(eclipse::luminance(luts[q]->sample(c)) - exact));
-      if (c.v < r.vMin) umbraErr = std::max(umbraErr, std::abs(eclipse::luminance(lutRanged.sample(c)) - exact));
+      for (int q = 0; q < 3; ++q) err[q] = std::max(err[q], std::abs(colour::luminance(luts[q]->sample(c)) - exact));
+      if (c.v < r.vMin) umbraErr = std::max(umbraErr, std::abs(colour::luminance(lutRanged.sample(c)) - exact));
     }
   }
   std::printf("  Mars' atmosphere at Phobos, 64^2: max |LuT - exact| %.3g whole, %.3g u range only, %.3g u range "
@@ -491,7 +492,7 @@ TEST(AtmosphericShadow, CloudsScreenTheLowRays) {
 
   eclipse::AtmosphericShadowModel clear = body("earth").model, cloudy = clear;
   eclipse::screenByClouds(cloudy.rays, 10e3, 0.5);
-  const double ratio = eclipse::luminance(rgbAt(cloudy, kMoonDistanceM, 0.0)) / eclipse::luminance(rgbAt(clear, kMoonDistanceM, 0.0));
+  const double ratio = colour::luminance(rgbAt(cloudy, kMoonDistanceM, 0.0)) / colour::luminance(rgbAt(clear, kMoonDistanceM, 0.0));
   EXPECT_LT(ratio, 0.95);
   EXPECT_GE(ratio, 0.5 - 1e-9);
 }

@@ -260,7 +260,7 @@ class QuadratureTotality : public ::testing::TestWithParam<TotalityCase> {};
 
 TEST_P(QuadratureTotality, AgreesWithTheMonteCarloAtTheZenithTheHorizonAndThirtyDegreesUp) {
   // `earth` (its aerosols' forward peaks the hard part), 680 / 550 / 440 nm, the Sun 63.9
-  // deg up; the default knobs within 16 % (docs/accuracy-vs-speed.md, "The sky of a solar
+  // deg up; the default knobs within 16 % (docs/accuracy-vs-speed/atmosphere-tables.md, "The sky of a solar
   // eclipse": -15 .. +11 % measured) plus the reference's own noise.
   const std::vector<double> nm{680.0, 550.0, 440.0};
   const atmosphere::Atmosphere atm = atmosphere::loadAtmosphere("earth", nm);

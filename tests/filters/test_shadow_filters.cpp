@@ -132,7 +132,7 @@ TEST(ShadowProfileFilter, LutAndExactProfilesAgreeAndUseTheBodiesOfTheLut) {
   const auto* lb = vtkDoubleArray::SafeDownCast(b->GetColumnByName("luminance"));
   double maxDiff = 0.0;
   for (vtkIdType i = 0; i < 300; ++i) maxDiff = std::max(maxDiff, std::abs(la->GetValue(i) - lb->GetValue(i)));
-  EXPECT_LT(maxDiff, 0.01);  // a 256^2 LuT at the Moon's distance (see docs/accuracy-vs-speed.md)
+  EXPECT_LT(maxDiff, 0.01);  // a 256^2 LuT at the Moon's distance (see docs/accuracy-vs-speed/eclipse-luts.md)
   // default extent: 1.25 x the penumbra radius, which is ~8177 km here
   const double last = vtkDoubleArray::SafeDownCast(a->GetColumnByName("offset_km"))->GetValue(299);
   EXPECT_NEAR(last, 1.25 * 8176.8, 2.0);

@@ -98,7 +98,7 @@ TEST(SceneAtmosphereTables, ChoiceFollowsTheSunAtTheCamera) {
 // twilight ones the scene asks for, against the sky command's (128 mu_s cells, 24 x 48
 // directions, 4 orders). The day's: x26-43 too bright at 10 deg (8 mu_s cells), black at
 // 16 deg (their lowest Sun is 12 deg down); the twilight ones within x3 at both (x1.2-2.5;
-// the default sizes' within 7 %: docs/accuracy-vs-speed.md, "Twilight in the render pass").
+// the default sizes' within 7 %: docs/accuracy-vs-speed/atmosphere-tables.md, "Twilight in the render pass").
 TEST(SceneAtmosphereTables, TwilightTablesCarryTheZenithAfterSunset) {
   const atmosphere::Atmosphere& model = atmosphereFixture().model;
   for (double depressionDeg : {10.0, 16.0}) {
@@ -190,7 +190,7 @@ TEST(SceneAtmosphereTables, TwilightTablesCarryTheGroundIrradiance) {
 // at most 5 %). The twilight tables are within x1.5 and nearer than the sky command's,
 // which its 8 radii make too bright there. About 4 min on 2 cores, so not in the suite
 // (--gtest_also_run_disabled_tests). UMBRA_TWILIGHT_REFERENCE="R MU_S NU DIRECTIONS
-// SAMPLES" gives the reference other sizes (docs/accuracy-vs-speed.md, "Deep twilight").
+// SAMPLES" gives the reference other sizes (docs/accuracy-vs-speed/atmosphere-tables.md, "Deep twilight").
 TEST(SceneAtmosphereTables, DISABLED_DeepTwilightAgainstConvergedTables) {
   const atmosphere::Atmosphere& model = atmosphereFixture().model;
   int sizes[5] = {32, 256, 32, 48, 100};

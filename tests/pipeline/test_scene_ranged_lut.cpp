@@ -313,7 +313,7 @@ TEST(SceneRangedLut, AnEclipseInMotionKeepsTheMoonsShadowLut) {
 // What the Sun distance's grid costs: the small limb-luminance LuT made for the grid's
 // distance and for the exact one (the example above at its time; were they equal, half a
 // step off, the most the grid moves it) differ by < 1e-3 of each texel above 1e-3 of the
-// largest (docs/accuracy-vs-speed.md, "Tables for a scene in motion").
+// largest (docs/accuracy-vs-speed/eclipse-luts.md, "Tables for a scene in motion").
 TEST(SceneRangedLut, LimbLuminanceLutOnTheSunDistanceGrid) {
   scene::Scene s = scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/earth-from-lunar-north-pole-2015-09-28.json");
   const SceneInputs in = sceneInputs(s);

@@ -3,6 +3,7 @@
 // sky must look like (bluer at the zenith than at the horizon at noon, a reddened Sun
 // low down), on the HDR frame with the display colour matrix.
 #include "DiscExtent.hpp"
+#include "Colour.hpp"
 #include "AtmosphereTestSupport.hpp"
 
 #include "Refraction.hpp"
@@ -25,7 +26,7 @@ using namespace umbra::pipeline;  // the scene glue (app/pipeline)
 using namespace umbra;
 using namespace umbra::render;
 using namespace umbra::render::test;
-using umbra::eclipse::luminance;
+using umbra::colour::luminance;
 
 namespace {
 

@@ -3,6 +3,7 @@
 // by pixel; the rendered light summed over the disc against the V magnitude of the
 // photometry; the albedo map's place in the body-fixed frame; and the extremes.
 #include "RenderTestSupport.hpp"
+#include "Colour.hpp"
 #include "SceneInputs.h"
 #include "vtkUmbraRenderPass.h"
 #include "scene/Scene.hpp"
@@ -120,7 +121,7 @@ double frameIrradiance(const Frame& f, const ViewCamera& c) {
     for (int i = 0; i < f.w; ++i) {
       const double x = ((i + 0.5) / f.w * 2.0 - 1.0) * t, y = (1.0 - (j + 0.5) / f.h * 2.0) * t;
       const double omega = (2.0 * t / f.w) * (2.0 * t / f.h) / std::pow(1.0 + x * x + y * y, 1.5);
-      sum += eclipse::luminance(f.at(i, j)) * omega;
+      sum += colour::luminance(f.at(i, j)) * omega;
     }
   return sum;
 }
@@ -181,7 +182,7 @@ double terminatorContrast(const Frame& f, const ViewCamera& cam, const SphereBod
       const glm::dvec3 n = glm::normalize(*hit);
       const double cosSun = glm::dot(n, glm::normalize(sun.positionM - *hit));
       if (cosSun <= 0.02 || cosSun >= 0.25 || -glm::dot(n, ray.dir) < 0.3) continue;
-      const double a = eclipse::luminance(f.at(i, j)), b = eclipse::luminance(f.at(i + 1, j));
+      const double a = colour::luminance(f.at(i, j)), b = colour::luminance(f.at(i + 1, j));
       diff += std::abs(b - a);
       level += a;
     }
@@ -520,7 +521,7 @@ TEST(MoonRender, GlareFollowsTheMoonsBrightness) {
       for (int i = 0; i < f.w; ++i) {
         const double a = sky::angleBetween(pixelRay(cam, f.w, f.h, i, j).dir, toMoon) / kDeg;
         if (a < 1.4 || a > 1.6) continue;
-        ring += eclipse::luminance(f.at(i, j));
+        ring += colour::luminance(f.at(i, j));
         ++n;
       }
     lights[c] = frameIrradiance(f, cam);

@@ -1,8 +1,8 @@
 // Earthshine (sky/Earthshine.hpp): the paper's cubic against Jensen et al.'s closed form,
 // and the irradiance of the full Earth.
 #include "Earthshine.hpp"
+#include "Colour.hpp"
 #include "Photometry.hpp"
-#include "ShadowLut.hpp"
 
 #include <gtest/gtest.h>
 
@@ -51,7 +51,7 @@ TEST(Earthshine, IrradianceOfTheEarth) {
 // Its colour, the paper's beta_e, keeps the luminance and is bluish.
 TEST(Earthshine, Colour) {
   const glm::dvec3 c = earthshineColour();
-  EXPECT_NEAR(umbra::eclipse::luminance(c), 1.0, 1e-12);
+  EXPECT_NEAR(umbra::colour::luminance(c), 1.0, 1e-12);
   EXPECT_NEAR(c.r / c.b, 0.88, 1e-12);
   EXPECT_NEAR(c.g / c.b, 0.96, 1e-12);
 }

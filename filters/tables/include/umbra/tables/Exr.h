@@ -11,7 +11,7 @@ namespace umbra::tables {
 
 // Tables of more values than this [bytes of float] are written without compression: ZIP
 // packs the precomputed tables' floats by only 10-20 %, and was a sixth of the CPU time of a
-// 15-wavelength atmosphere precomputation (docs/accuracy-vs-speed.md, "Wavelengths computed
+// 15-wavelength atmosphere precomputation (docs/accuracy-vs-speed/atmosphere-tables.md, "Wavelengths computed
 // together").
 inline constexpr unsigned long long kUncompressedAboveBytes = 4ull << 20;
 
