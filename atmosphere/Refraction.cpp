@@ -202,6 +202,51 @@ RayPoint toPoint(const State& s, double pathLengthM, bool underGround) {
   return {s.px, s.py, s.vx / vn, s.vy / vn, pathLengthM, underGround};
 }
 
+// A ray from at or above the top (radius r, direction mu, sin z): straight to its entry
+// point, where r, mu and sinZ are moved (true); or past the atmosphere, when `out` is
+// finished with its straight contact (false).
+bool enterFromAbove(double b, double t, double& r, double& mu, double& sinZ, RayPath& out) {
+  if (mu >= 0.0) {
+    out.contactAltitudeM = r - b;
+    return false;
+  }
+  const double p = r * sinZ;  // impact parameter
+  if (p >= t) {
+    out.contactAltitudeM = p - b;
+    return false;
+  }
+  r = t;
+  mu = -std::sqrt((t - p) * (t + p)) / t;
+  sinZ = p / t;
+  return true;
+}
+
+// Where a step of length h from s (ending at next) first goes under the ground (radius b):
+// h when it ends under it, the path's lowest point when it dips under and comes back up;
+// -1 when it stays above.
+double groundWithinStep(const RayIntegrator& ray, const State& s, const State& next, double h, double b) {
+  if (radius(next) < b) return h;
+  const double turn = Radius2Hermite(s, next, h).interiorMinimum();
+  if (turn > 0.0 && Radius2Hermite(s, next, h).at(turn) < b * b && radius(ray.step(s, turn)) < b) return turn;
+  return -1.0;
+}
+
+// The path's results from its last state s: the deviation, a signed angle from the initial
+// direction (sin z, mu) to the final one (towards the planet is clockwise in this frame, the
+// planet's centre lying to the right of +x), the exit direction and central angle, the
+// contact and the length.
+void finishPath(const State& s, double sinZ, double mu, double contactAltitudeM, double lengthM, RayPath& out) {
+  const double vn = speed(s), tx = s.vx / vn, ty = s.vy / vn;
+  const double cross = sinZ * ty - mu * tx, dot = sinZ * tx + mu * ty;
+  out.deviationRad = -std::atan2(cross, dot);
+  const double re = radius(s);
+  out.exitMu = clampCosine((s.px * tx + s.py * ty) / re);
+  out.centralAngleRad = std::atan2(s.px, s.py);
+  out.contactAltitudeM = contactAltitudeM;
+  out.hitGround = out.contactAltitudeM < 0.0;
+  out.pathLengthM = lengthM;
+}
+
 } // namespace
 
 RayPath traceRay(const RefractiveMedium& medium, double radiusM, double mu, double stepM,
@@ -226,21 +271,7 @@ RayPath traceRay(const RefractiveMedium& medium, double radiusM, double mu,
   double sinZ = std::sqrt((1.0 - mu) * (1.0 + mu));
   out.exitMu = mu;
 
-  // From above the top: straight to the entry point, or past the atmosphere.
-  if (r >= t) {
-    if (mu >= 0.0) {
-      out.contactAltitudeM = r - b;
-      return out;
-    }
-    const double p = r * sinZ;  // impact parameter
-    if (p >= t) {
-      out.contactAltitudeM = p - b;
-      return out;
-    }
-    r = t;
-    mu = -std::sqrt((t - p) * (t + p)) / t;
-    sinZ = p / t;
-  }
+  if (r >= t && !enterFromAbove(b, t, r, mu, sinZ, out)) return out;
 
   const RayIntegrator ray(medium);
   const double n0 = medium.refractiveIndex(r);
@@ -299,18 +330,7 @@ RayPath traceRay(const RefractiveMedium& medium, double radiusM, double mu,
     }
     const State next = ray.step(s, h);
 
-    // The ground: the step ends under it, or dips under it and comes back up.
-    double groundHi = -1.0;
-    if (radius(next) < b) {
-      groundHi = h;
-    } else {
-      const double turn = Radius2Hermite(s, next, h).interiorMinimum();
-      if (turn > 0.0 && Radius2Hermite(s, next, h).at(turn) < b * b &&
-          radius(ray.step(s, turn)) < b) {
-        groundHi = turn;
-      }
-    }
-    if (groundHi > 0.0) {
+    if (const double groundHi = groundWithinStep(ray, s, next, h, b); groundHi > 0.0) {
       const double sigma = findCrossing(ray, s, 0.0, groundHi, b);
       const State at = ray.step(s, sigma);
       advance(s, at, sigma);
@@ -334,18 +354,7 @@ RayPath traceRay(const RefractiveMedium& medium, double radiusM, double mu,
     s = next;
   }
   out.completed = exited;
-
-  // Deviation: signed angle from the initial to the final direction (towards the planet
-  // is clockwise in this frame, the planet's centre lying to the right of +x).
-  const double vn = speed(s), tx = s.vx / vn, ty = s.vy / vn;
-  const double cross = sinZ * ty - mu * tx, dot = sinZ * tx + mu * ty;
-  out.deviationRad = -std::atan2(cross, dot);
-  const double re = radius(s);
-  out.exitMu = clampCosine((s.px * tx + s.py * ty) / re);
-  out.centralAngleRad = std::atan2(s.px, s.py);
-  out.contactAltitudeM = minRadius - b;
-  out.hitGround = out.contactAltitudeM < 0.0;
-  out.pathLengthM = length;
+  finishPath(s, sinZ, mu, minRadius - b, length, out);
   return out;
 }
 
