@@ -10,13 +10,13 @@ constexpr double kPi = 3.14159265358979323846;
 }
 
 double EarthOutline::radiusM(double fromEquatorRad) const {
-  const double c = std::cos(fromEquatorRad) / equatorialRadiusM, s = std::sin(fromEquatorRad) / projectedPolarRadiusM;
-  return 1.0 / std::sqrt(c * c + s * s);
+  const double s = std::sin(fromEquatorRad);
+  return equatorialRadiusM * ellipseRadius(projectedPolarRadiusM / equatorialRadiusM, s * s);
 }
 
 EarthOutline earthOutline(double a, double f, double declinationRad, double profileRadiusM) {
-  const double e2 = f * (2.0 - f), c = std::cos(declinationRad);
-  return {a, a * std::sqrt(1.0 - e2 * c * c), profileRadiusM};
+  // The axis' declination: the sine of it is the view's cosine to the pole.
+  return {a, a * outlinePolarRatio(std::sin(declinationRad), f), profileRadiusM};
 }
 
 double profileLuminanceAt(const std::vector<ProfileSample>& profile, double offsetM) {

@@ -62,15 +62,24 @@ double equatorialRadiusM(double meanRadiusM, const Oblateness& figure) {
   return figure.flattening == 0.0 ? meanRadiusM : meanRadiusM / std::cbrt(1.0 - figure.flattening);
 }
 
+double outlinePolarRatio(double cosViewToPole, double flattening) {
+  const double e2 = flattening * (2.0 - flattening);
+  return std::sqrt(1.0 - e2 * (1.0 - cosViewToPole * cosViewToPole));
+}
+
+double ellipseRadius(double q, double cosToMinorSq) {
+  return q / std::sqrt(q * q + (1.0 - q * q) * cosToMinorSq);
+}
+
 double outlineRadiusFactor(const glm::dvec3& viewDir, const glm::dvec3& towards, const Oblateness& figure) {
-  const double e2 = figure.flattening * (2.0 - figure.flattening);
   const double cosView = glm::dot(viewDir, figure.pole);
-  const double q2 = 1.0 - e2 * (1.0 - cosView * cosView);
+  const double poleAcrossSq = 1.0 - cosView * cosView;  // the pole's part across the view, squared
   const glm::dvec3 across = towards - glm::dot(towards, viewDir) * viewDir;
   const double acrossSq = glm::dot(across, across);
+  if (!(poleAcrossSq > 0.0 && acrossSq > 0.0)) return 1.0;
   const double tp = glm::dot(across, figure.pole);
-  const double alongPoleSq = acrossSq > 0.0 ? tp * tp / acrossSq : 0.0;
-  return std::sqrt(q2 / (q2 + e2 * alongPoleSq));
+  const double cosToPoleSq = std::min(1.0, tp * tp / (acrossSq * poleAcrossSq));
+  return ellipseRadius(outlinePolarRatio(cosView, figure.flattening), cosToPoleSq);
 }
 
 double outlineRadiusTowardsSunM(const glm::dvec3& p, const glm::dvec3& sun, const glm::dvec3& occ,

@@ -70,11 +70,19 @@ struct Oblateness {
 /// The equatorial radius of that spheroid: meanRadiusM (1 - f)^(-1/3).
 double equatorialRadiusM(double meanRadiusM, const Oblateness& figure);
 
+/// A spheroid of flattening f seen along a direction whose cosine to its pole is
+/// `cosViewToPole` shows an ellipse: its semi-axis along the projected pole over the one
+/// across it, q = sqrt(1 - e^2 (1 - cos^2)), e^2 = f (2 - f).
+double outlinePolarRatio(double cosViewToPole, double flattening);
+/// An ellipse of semi-axes 1 and q: its radius in a direction whose squared cosine to the
+/// q axis is `cosToMinorSq`, q / sqrt(q^2 + (1 - q^2) cos^2).
+double ellipseRadius(double q, double cosToMinorSq);
+
 /// A spheroid seen along `viewDir` (unit) shows an ellipse, of semi-axes a across the
 /// projected pole and a q along it, q^2 = 1 - e^2 (1 - (view . pole)^2), e^2 = f (2 - f).
-/// Its radius towards `towards` (the part of it across the view, unit t) over a:
-/// q / sqrt(q^2 + e^2 (t . pole)^2). 1 across the pole, q along it; for `towards` along the
-/// view (no direction across it), 1.
+/// Its radius towards `towards` (the part of it across the view) over a: ellipseRadius with
+/// outlinePolarRatio's q. 1 across the pole, q along it; for `towards` along the view (no
+/// direction across it) or a view along the pole, 1.
 double outlineRadiusFactor(const glm::dvec3& viewDir, const glm::dvec3& towards, const Oblateness& figure);
 
 /// The radius of an occluder's outline, seen from `pointM`, in the direction of the Sun

@@ -4,6 +4,7 @@
 #include "scene/EclipseEphemerides.hpp"
 #include "scene/Ephemeris.hpp"
 
+#include "ShadowMapping.hpp"  // outlinePolarRatio, outlineRadiusFactor
 #include "SolarDisc.hpp"  // visibleFractionUniform
 
 #include <erfa.h>
@@ -174,8 +175,7 @@ struct SolarContext {
     f.tanF1 = sinF1 / cosF1, f.tanF2 = sinF2 / cosF2;
     f.l1 = f.z * f.tanF1 + k.moonRadiusPenumbral / cosF1;
     f.l2 = f.z * f.tanF2 - k.moonRadiusUmbral / cosF2;
-    const double e2 = k.earthFlattening * (2.0 - k.earthFlattening);
-    f.rho1 = std::sqrt(1.0 - e2 * (1.0 - f.ez.z * f.ez.z));
+    f.rho1 = eclipse::outlinePolarRatio(f.ez.z, k.earthFlattening);
     return f;
   }
 
@@ -335,14 +335,7 @@ LunarAt lunarAt(const E& ephemerides, double tt, const EclipseSearch& s, const g
   const double sunRadius = std::atan(k.sunRadiusArcsecAt1Au * kArcsec * kAuM / sunDistance);
   // The outline's radius towards the Moon over the equatorial radius (1 at the equator,
   // 1 - f cos^2(delta) or so towards the projected pole).
-  double outline = 0.0;
-  if (pole) {
-    const glm::dvec3 ey = glm::normalize(*pole - glm::dot(*pole, axis) * axis), ex = glm::cross(ey, axis);
-    const double theta = std::atan2(glm::dot(offset, ey), glm::dot(offset, ex));
-    const double cosDelta2 = 1.0 - std::pow(glm::dot(axis, *pole), 2.0);
-    const double e2 = k.earthFlattening * (2.0 - k.earthFlattening);
-    outline = 1.0 / std::sqrt(std::pow(std::cos(theta), 2.0) + std::pow(std::sin(theta), 2.0) / (1.0 - e2 * cosDelta2));
-  }
+  const double outline = pole ? eclipse::outlineRadiusFactor(axis, offset, {*pole, k.earthFlattening}) : 0.0;
   switch (s.lunarRule) {
   case LunarShadowRule::Danjon: {
     const double f = pole ? (1.0 + 1.0 / 85.0) * outline : 1.01;
