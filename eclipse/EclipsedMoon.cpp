@@ -71,6 +71,19 @@ double danjonLFromMagnitude(double magnitudeV) {
   return std::clamp(2.0 * (3.0 - std::sqrt(std::max(0.0, 4.8 + magnitudeV))), 0.0, 4.0);
 }
 
+EclipsedMoonMagnitudes eclipsedMoonMagnitudes(double uneclipsedV, double moonAngularRadiusRad,
+                                              const EclipsedMoonLight& light) {
+  const auto dimming = [](double factor) { return -2.5 * std::log10(std::max(factor, 1e-30)); };
+  EclipsedMoonMagnitudes m;
+  m.v = uneclipsedV + dimming(light.mean);
+  m.danjonL = danjonLFromMagnitude(m.v);
+  m.fullSurface = meanSurfaceBrightness(uneclipsedV, moonAngularRadiusRad);
+  m.centreSurface = m.fullSurface + dimming(light.centre);
+  m.nearLimbSurface = m.fullSurface + dimming(light.nearLimb);
+  m.farLimbSurface = m.fullSurface + dimming(light.farLimb);
+  return m;
+}
+
 double meanSurfaceBrightness(double magnitude, double angularRadiusRad) {
   const double radiusArcsec = angularRadiusRad * 180.0 / kPi * 3600.0;
   return magnitude + 2.5 * std::log10(kPi * radiusArcsec * radiusArcsec);

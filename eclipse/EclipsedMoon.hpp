@@ -56,6 +56,18 @@ double danjonLFromMagnitude(double magnitudeV);
 /// angular radius.
 double meanSurfaceBrightness(double magnitude, double angularRadiusRad);
 
+/// The eclipsed Moon's magnitudes: its integrated V and Danjon L, and the surface
+/// brightness (mag/arcsec^2) of the uneclipsed Moon and at the centre and the limbs.
+struct EclipsedMoonMagnitudes {
+  double v = 0.0, danjonL = 0.0;
+  double fullSurface = 0.0, centreSurface = 0.0, nearLimbSurface = 0.0, farLimbSurface = 0.0;
+};
+/// From the Moon's V outside the shadow (`uneclipsedV`, lit as the shadow's light comes),
+/// its angular radius and the shadow's light on it: each I / I_sun as -2.5 log10 of it
+/// added (a factor below 1e-30 taken as 1e-30).
+EclipsedMoonMagnitudes eclipsedMoonMagnitudes(double uneclipsedV, double moonAngularRadiusRad,
+                                              const EclipsedMoonLight& light);
+
 /// The umbra's edge as an atmosphere draws it: the offset where the profile's logarithm
 /// rises steepest (between the samples where it does). Throws std::invalid_argument for a
 /// profile of fewer than 2 samples or with a value <= 0.

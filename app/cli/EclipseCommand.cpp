@@ -336,11 +336,9 @@ void addEclipseCommand(CLI::App& app, Action& action) {
       const double phaseRad = std::asin(k.earthEquatorialRadiusM / g.moonDistanceM);
       const double fullV = sky::apparentMagnitudeV(moonBody.albedo, moonBody.photometry.hapke, phaseRad, moonRadiusM,
                                                    g.sunDistanceM, g.moonDistanceM);
-      const double fullSurface = eclipse::meanSurfaceBrightness(fullV, std::asin(moonRadiusM / g.moonDistanceM));
-      const auto mag = [](double factor) { return -2.5 * std::log10(std::max(factor, 1e-30)); };
-      const double v = fullV + mag(light.mean);
-      const double danjon = eclipse::danjonLFromMagnitude(v);
-      for (double x : {v, light.centre, light.nearLimb, light.farLimb})
+      const eclipse::EclipsedMoonMagnitudes m =
+          eclipse::eclipsedMoonMagnitudes(fullV, eclipse::angularRadiusRad(moonRadiusM, g.moonDistanceM), light);
+      for (double x : {m.v, m.centreSurface, m.nearLimbSurface, m.farLimbSurface})
         if (!std::isfinite(x)) throw CommandError("the eclipse's brightness is not finite (the shadow profile has no value there)");
       std::string clouds;
       if (bo->atmosphere.cloudCover > 0.0) {
@@ -355,10 +353,10 @@ void addEclipseCommand(CLI::App& app, Action& action) {
                   bo->spherical ? " (a spherical Earth)" : "");
       std::printf("the Moon %.0f km away, its centre %.0f km from the shadow's axis\n", g.moonDistanceM / 1000.0,
                   std::hypot(g.moonOffsetXM, g.moonOffsetYM) / 1000.0);
-      std::printf("V outside the shadow %.2f; in it %.2f (%.2f magnitudes dimmer), Danjon L %.1f\n", fullV, v, mag(light.mean), danjon);
+      std::printf("V outside the shadow %.2f; in it %.2f (%.2f magnitudes dimmer), Danjon L %.1f\n", fullV, m.v, m.v - fullV,
+                  m.danjonL);
       std::printf("surface brightness, mag/arcsec^2: centre %.2f, limb nearest the axis %.2f, farthest %.2f (full Moon %.2f)\n",
-                  fullSurface + mag(light.centre), fullSurface + mag(light.nearLimb), fullSurface + mag(light.farLimb),
-                  fullSurface);
+                  m.centreSurface, m.nearLimbSurface, m.farLimbSurface, m.fullSurface);
       if (!bo->csv.empty()) {
         output::OutputFile out(bo->csv);
         {
@@ -370,8 +368,8 @@ void addEclipseCommand(CLI::App& app, Action& action) {
                         "surface_brightness_centre,%.3f,mag/arcsec2\nsurface_brightness_near_limb,%.3f,mag/arcsec2\n"
                         "surface_brightness_far_limb,%.3f,mag/arcsec2\n",
                         utOf(e.greatestTt, e.deltaTSeconds).c_str(), g.moonDistanceM / 1000.0,
-                        std::hypot(g.moonOffsetXM, g.moonOffsetYM) / 1000.0, fullV, v, light.mean, danjon,
-                        fullSurface + mag(light.centre), fullSurface + mag(light.nearLimb), fullSurface + mag(light.farLimb));
+                        std::hypot(g.moonOffsetXM, g.moonOffsetYM) / 1000.0, fullV, m.v, light.mean, m.danjonL,
+                        m.centreSurface, m.nearLimbSurface, m.farLimbSurface);
           f << b;
           if (!f.flush()) throw CommandError(bo->csv + ": cannot write");
         }

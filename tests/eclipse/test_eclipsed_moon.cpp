@@ -105,3 +105,21 @@ TEST(EclipsedMoon, InterpolationAndBadInput) {
 
 }  // namespace
 }  // namespace umbra::eclipse
+
+// The magnitudes from the shadow's light: unshadowed, the Moon's own; each factor of 100 in
+// light five magnitudes; the Danjon L that of the V; the surface brightness the full Moon's
+// plus the same dimming at each place.
+TEST(EclipsedMoon, MagnitudesAddTheShadowsDimming) {
+  const double fullV = -12.7, radiusRad = 0.0045;
+  const umbra::eclipse::EclipsedMoonMagnitudes lit = umbra::eclipse::eclipsedMoonMagnitudes(fullV, radiusRad, umbra::eclipse::EclipsedMoonLight{});
+  EXPECT_DOUBLE_EQ(lit.v, fullV);
+  EXPECT_DOUBLE_EQ(lit.centreSurface, lit.fullSurface);
+  EXPECT_DOUBLE_EQ(lit.fullSurface, umbra::eclipse::meanSurfaceBrightness(fullV, radiusRad));
+  const umbra::eclipse::EclipsedMoonMagnitudes dark =
+      umbra::eclipse::eclipsedMoonMagnitudes(fullV, radiusRad, umbra::eclipse::EclipsedMoonLight{1e-4, 1e-5, 1e-2, 1e-6});
+  EXPECT_NEAR(dark.v, fullV + 10.0, 1e-12);
+  EXPECT_NEAR(dark.centreSurface - dark.fullSurface, 12.5, 1e-12);
+  EXPECT_NEAR(dark.nearLimbSurface - dark.fullSurface, 5.0, 1e-12);
+  EXPECT_NEAR(dark.farLimbSurface - dark.fullSurface, 15.0, 1e-12);
+  EXPECT_DOUBLE_EQ(dark.danjonL, umbra::eclipse::danjonLFromMagnitude(dark.v));
+}
