@@ -33,7 +33,6 @@
 namespace umbra::cli {
 namespace {
 
-constexpr double kDayS = 86400.0;
 
 struct DateOptions {
   std::string date;
@@ -44,6 +43,8 @@ struct DateOptions {
         ->check(CLI::Range(-1e6, 1e6));
   }
 };
+
+std::string utOf(double tt, double deltaTSeconds) { return scene::formatJulianDate(scene::ut1FromTt(tt, deltaTSeconds)); }
 
 /// The eclipse (`find`: scene::findSolarEclipses or findLunarEclipses) whose greatest eclipse
 /// falls on --date (UT). Throws CommandError naming the next one when there is none.
@@ -56,11 +57,10 @@ auto eclipseOn(const DateOptions& o, const char* kind, Find find) -> typename de
     throw CommandError(std::string("--date: ") + e.what());
   }
   day = std::floor(day - 0.5) + 0.5;  // 0h UT
-  const auto tt = [&](double ut) { return o.deltaT ? ut + *o.deltaT / kDayS : scene::ttFromUt1(ut); };
   scene::EclipseSearch search;
   search.deltaTSeconds = o.deltaT;
-  search.fromTt = tt(day);
-  search.toTt = tt(day + 1.0);
+  search.fromTt = scene::ttFromUt1(day, o.deltaT);
+  search.toTt = scene::ttFromUt1(day + 1.0, o.deltaT);
   try {
     const auto found = find(search);
     if (!found.empty()) return found.front();
@@ -69,7 +69,7 @@ auto eclipseOn(const DateOptions& o, const char* kind, Find find) -> typename de
     std::string next;
     if (!later.empty())
       next = "; the next is the " + std::string(scene::typeName(later.front().type)) + " eclipse of " +
-             scene::formatJulianDate(later.front().greatestTt - later.front().deltaTSeconds / kDayS).substr(0, 10);
+             utOf(later.front().greatestTt, later.front().deltaTSeconds).substr(0, 10);
     throw CommandError("--date: no " + std::string(kind) + " eclipse on " + o.date + next);
   } catch (const std::invalid_argument& e) {
     throw CommandError(std::string("--date: ") + e.what());
@@ -79,7 +79,7 @@ auto eclipseOn(const DateOptions& o, const char* kind, Find find) -> typename de
 scene::SolarEclipse solarEclipseOn(const DateOptions& o) { return eclipseOn(o, "solar", scene::findSolarEclipses); }
 scene::LunarEclipse lunarEclipseOn(const DateOptions& o) { return eclipseOn(o, "lunar", scene::findLunarEclipses); }
 
-std::string utOf(double tt, double deltaTSeconds) { return scene::formatJulianDate(tt - deltaTSeconds / kDayS); }
+
 
 /// GeoJSON's [lon, lat] pairs of a line, split where it crosses the antimeridian (RFC 7946,
 /// 3.1.9): a MultiLineString's lines.

@@ -20,11 +20,10 @@
 namespace umbra::cli {
 namespace {
 
-constexpr double kDayS = 86400.0;
 
 /// A contact's UT, or "" when the eclipse has none.
 std::string ut(const scene::Contact& tt, double deltaTSeconds, int decimals = 1) {
-  return tt ? scene::formatJulianDate(*tt - deltaTSeconds / kDayS, decimals) : "";
+  return tt ? scene::formatJulianDate(scene::ut1FromTt(*tt, deltaTSeconds), decimals) : "";
 }
 
 std::string number(const std::optional<double>& v, const char* format) {
@@ -49,7 +48,7 @@ Row row(const scene::SolarEclipse& e) {
   r.kind = "solar";
   r.type = scene::typeName(e.type);
   if (!e.central && e.type != scene::SolarEclipseType::Partial) r.type += " (non-central)";
-  r.greatestUt = scene::formatJulianDate(e.greatestTt - e.deltaTSeconds / kDayS);
+  r.greatestUt = ut(e.greatestTt, e.deltaTSeconds);
   r.greatestTt = scene::formatJulianDate(e.greatestTt);
   r.deltaT = e.deltaTSeconds, r.deltaTSource = e.deltaTSource;
   r.gamma = e.gamma, r.magnitude = e.magnitude;
@@ -65,7 +64,7 @@ Row row(const scene::LunarEclipse& e) {
   Row r;
   r.kind = "lunar";
   r.type = scene::typeName(e.type);
-  r.greatestUt = scene::formatJulianDate(e.greatestTt - e.deltaTSeconds / kDayS);
+  r.greatestUt = ut(e.greatestTt, e.deltaTSeconds);
   r.greatestTt = scene::formatJulianDate(e.greatestTt);
   r.deltaT = e.deltaTSeconds, r.deltaTSource = e.deltaTSource;
   r.gamma = e.gamma, r.magnitude = e.umbralMagnitude, r.penumbralMagnitude = e.penumbralMagnitude;
@@ -119,10 +118,7 @@ void addEclipsesCommand(CLI::App& app, Action& action) {
       if (!o->csv.empty()) output::checkWritable(o->csv, {".csv"});
       scene::EclipseSearch search;
       try {
-        const auto toTt = [&](const std::string& text) {
-          const double ut1 = scene::parseUtDate(text);
-          return o->deltaT ? ut1 + *o->deltaT / kDayS : scene::ttFromUt1(ut1);
-        };
+        const auto toTt = [&](const std::string& text) { return scene::ttFromUt1(scene::parseUtDate(text), o->deltaT); };
         search.fromTt = toTt(o->from);
         search.toTt = toTt(o->to);
       } catch (const std::invalid_argument& e) {

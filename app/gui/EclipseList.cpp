@@ -19,7 +19,6 @@
 namespace umbra::gui {
 namespace {
 
-constexpr double kDayS = 86400.0;
 
 std::vector<std::pair<std::string, double>> contactsOf(double greatest, const std::vector<std::pair<const char*, scene::Contact>>& named) {
   std::vector<std::pair<std::string, double>> out{{"greatest", greatest}};
@@ -90,7 +89,7 @@ void EclipseList::list(int from, int to) {
   std::vector<Row> rows;
   for (const auto& e : scene::findSolarEclipses(search)) {
     Row r;
-    r.dateUt = scene::formatJulianDate(e.greatestTt - e.deltaTSeconds / kDayS, 0);
+    r.dateUt = scene::formatJulianDate(scene::ut1FromTt(e.greatestTt, e.deltaTSeconds), 0);
     r.kind = "solar";
     r.type = scene::typeName(e.type);
     r.magnitude = e.magnitude, r.deltaTSeconds = e.deltaTSeconds, r.saros = e.saros;
@@ -100,7 +99,7 @@ void EclipseList::list(int from, int to) {
   }
   for (const auto& e : scene::findLunarEclipses(search)) {
     Row r;
-    r.dateUt = scene::formatJulianDate(e.greatestTt - e.deltaTSeconds / kDayS, 0);
+    r.dateUt = scene::formatJulianDate(scene::ut1FromTt(e.greatestTt, e.deltaTSeconds), 0);
     r.kind = "lunar";
     r.type = scene::typeName(e.type);
     r.magnitude = e.umbralMagnitude, r.deltaTSeconds = e.deltaTSeconds, r.saros = e.saros;
@@ -157,7 +156,7 @@ void EclipseList::goToChosen() {
   for (const auto& [contactName, tt] : r.contacts)
     if (contactName == name) {
       this->status->setText(QString::fromStdString("the " + r.kind + " eclipse of " + r.dateUt.substr(0, 10) + " at " + name));
-      this->goTo(tt - r.deltaTSeconds / kDayS);
+      this->goTo(scene::ut1FromTt(tt, r.deltaTSeconds));
     }
 }
 

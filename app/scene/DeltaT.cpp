@@ -98,4 +98,10 @@ double ttFromUt1(double ut1Jd) {
   return ut1Jd + deltaTAtYear(decimalYear(ut1Jd)).seconds / 86400.0;
 }
 
+double ttFromUt1(double ut1Jd, const std::optional<double>& deltaTSeconds) {
+  return deltaTSeconds ? ut1Jd + *deltaTSeconds / 86400.0 : ttFromUt1(ut1Jd);
+}
+
+double ut1FromTt(double ttJd, double deltaTSeconds) { return ttJd - deltaTSeconds / 86400.0; }
+
 }  // namespace umbra::scene

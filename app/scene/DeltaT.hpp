@@ -1,5 +1,8 @@
 #pragma once
 // Delta T = TT - UT1: the Earth's rotation against the ephemerides' uniform time.
+#include <optional>
+#include <string>
+
 namespace umbra::scene {
 
 /// Delta T and where it comes from.
@@ -26,5 +29,9 @@ double decimalYear(double jd);
 
 /// Terrestrial Time of a UT1 Julian date, Delta T from deltaTAtYear.
 double ttFromUt1(double ut1Jd);
+/// The same with `deltaTSeconds` when one is given (a user's --delta-t), else deltaTAtYear's.
+double ttFromUt1(double ut1Jd, const std::optional<double>& deltaTSeconds);
+/// UT1 of a TT Julian date for `deltaTSeconds` (an eclipse's Delta T).
+double ut1FromTt(double ttJd, double deltaTSeconds);
 
 }  // namespace umbra::scene

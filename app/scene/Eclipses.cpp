@@ -751,7 +751,7 @@ double eclipseInstantUt(const std::string& date, const std::string& at) {
     const double unit = m[4] == "h" ? 3600.0 : m[4] == "min" ? 60.0 : 1.0;
     offsetS = (m[2] == "-" ? -1.0 : 1.0) * std::stod(m[3]) * unit;
   }
-  return *instant - deltaT / kDayS + offsetS / kDayS;
+  return ut1FromTt(*instant, deltaT) + offsetS / kDayS;
 }
 
 std::vector<std::vector<GeoPlace>> partialEclipseOutline(const SolarEclipse& eclipse, double stepDeg,
