@@ -3,6 +3,8 @@
 #include "Colour.hpp"
 #include "ParallelErrors.hpp"
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -144,6 +146,19 @@ ShadowLut buildAirlessShadowLut(const ShadowLutParams& p, const Progress& progre
   errors.rethrow();
   if (cancelled) return {};
   return lut;
+}
+
+double lightTimeToSurfaceS(const glm::dvec3& pointM, const glm::dvec3& centreM, double radiusM) {
+  return std::max(0.0, glm::length(centreM - pointM) - radiusM) / kLightSpeedMps;
+}
+
+Occluder occluderSeenBy(const Occluder& o, const glm::dvec3& receiverCentreM, double receiverRadiusM,
+                        double receiverDelayS) {
+  const double delayS = receiverDelayS + lightTimeToSurfaceS(o.centreM, receiverCentreM, receiverRadiusM);
+  Occluder seen = o;
+  seen.centreM -= o.velocityMps * (delayS - o.lightDelayS);
+  seen.lightDelayS = delayS;
+  return seen;
 }
 
 glm::dvec3 eclipseFactor(const glm::dvec3& p, const glm::dvec3& sun, double sunRadiusM,

@@ -126,7 +126,32 @@ struct Occluder {
   glm::dvec3 centreM{0.0};
   double radiusM = 0.0;  ///< the mean radius
   Oblateness figure{};   ///< a sphere unless its flattening is set
+  /// Its velocity in the Sun's rest frame, and how long before the scene's time centreM
+  /// has it (its light time to the camera, lightTimeToSurfaceS): what occluderSeenBy needs
+  /// to move it to where the light that reaches a receiver passed it. Zero: at rest.
+  glm::dvec3 velocityMps{0.0};
+  double lightDelayS = 0.0;
 };
+
+/// The speed of light in vacuum, m/s (exact, SI).
+inline constexpr double kLightSpeedMps = 299792458.0;
+
+/// Seconds light takes from a body's near surface to `pointM`: (|centre - point| -
+/// radius) / c, at least 0. A body is drawn where it was this long before the scene's time
+/// (the camera at `pointM`), and a receiver's occluders are taken this long before the
+/// receiver's own time (a receiver's surface stands for all its points: the 640 m the
+/// Moon moves in the Earth's radius' light time is the error left).
+double lightTimeToSurfaceS(const glm::dvec3& pointM, const glm::dvec3& centreM, double radiusM);
+
+/// `o` where the light that reaches a receiver (of centre and radius as drawn, drawn
+/// `receiverDelayS` before the scene's time) passed it: moved by -velocity x (receiverDelayS
+/// + lightTimeToSurfaceS(receiver from the occluder) - o.lightDelayS), to first order in
+/// v/c in the Sun's rest frame (the Sun's own motion about the barycentre, 13 m/s, left
+/// out). The Moon's shadow on the Earth moves 38 km by it (its 1.28 s at 30 km/s); the
+/// Earth's on the Moon seen from the Earth as much. The receiver's own motion is not a
+/// shadow's: the Sun, at rest, sends light along straight lines.
+Occluder occluderSeenBy(const Occluder& o, const glm::dvec3& receiverCentreM, double receiverRadiusM,
+                        double receiverDelayS);
 
 /// Fraction of sunlight (per channel) reaching `pointM` past `occluder`: 1 where the
 /// occluder is behind the Sun or the point outside the penumbra. With `lut` the value is

@@ -211,11 +211,13 @@ std::optional<eclipse::LutRange> sceneLutRange(const SunLight& sun, const std::v
     validateBody(occ);
     for (const SphereBody& r : receivers) {
       validateBody(r);
-      if (r.name == occ.name || !canBeInPenumbra(sun, occ, r)) continue;
-      const double dOcc = glm::length(r.centreM - occ.centreM);
-      const double lo = std::max(dOcc - r.radiusM, occ.radiusM), hi = dOcc + r.radiusM;
+      if (r.name == occ.name) continue;
+      const SphereBody seen = occluderSeenBy(occ, r);  // where r's shading takes it
+      if (!canBeInPenumbra(sun, seen, r)) continue;
+      const double dOcc = glm::length(r.centreM - seen.centreM);
+      const double lo = std::max(dOcc - r.radiusM, seen.radiusM), hi = dOcc + r.radiusM;
       if (hi <= lo) continue;  // inside the occluder: never seen
-      if (!addDistances(sun, occ, lo, hi, darkUmbra, height, u)) return std::nullopt;
+      if (!addDistances(sun, seen, lo, hi, darkUmbra, height, u)) return std::nullopt;
     }
   }
   return rangeForU(u, darkUmbra, height);
@@ -263,7 +265,7 @@ std::optional<AtmosphereShadowRequest> sceneAtmosphereShadowRequest(const SceneI
   }
   int first = width, last = -1;
   for (const SphereBody& b : others) {
-    const auto cols = shadowLutColumns(in.sun, occ, b, width);
+    const auto cols = shadowLutColumns(in.sun, occluderSeenBy(occ, b), b, width);
     first = std::min(first, cols[0]);
     last = std::max(last, cols[1]);
   }

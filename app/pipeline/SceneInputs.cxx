@@ -140,9 +140,12 @@ void nightLights(const scene::Scene& s, SceneInputs& in) {
     const glm::dvec3 toSun = in.sun.positionM - b.positionM, toCamera = cam - b.positionM;
     const double v = sky::apparentMagnitudeV(b.albedo, hapke, sky::angleBetween(toSun, toCamera), b.radiusM,
                                              glm::length(toSun), glm::length(toCamera));
-    const glm::dvec3 shadow = eclipse::eclipseFactor(b.positionM, in.sun.positionM, in.sun.radiusM,
-                                                     {planet->positionM, a.bottomRadiusM, scene::shadowFigure(s, *planet)},
-                                                     nullptr);
+    // The planet's shadow on the Moon as the camera sees it (eclipse::occluderSeenBy).
+    const double delayS = eclipse::lightTimeToSurfaceS(cam, b.positionM, b.radiusM);
+    const glm::dvec3 moonSeenM = b.positionM - b.velocityMps * delayS;
+    const eclipse::Occluder air{planet->positionM, a.bottomRadiusM, scene::shadowFigure(s, *planet), planet->velocityMps};
+    const glm::dvec3 shadow = eclipse::eclipseFactor(moonSeenM, in.sun.positionM, in.sun.radiusM,
+                                                     eclipse::occluderSeenBy(air, moonSeenM, b.radiusM, delayS), nullptr);
     a.moonPositionM = b.positionM;
     a.moonIrradianceWm2 = in.sun.irradianceAt1AuWm2 * sky::irradianceRelativeToSun(v) * bodyTint(b) * shadow;
     return;
@@ -159,9 +162,11 @@ void sceneClouds(const scene::Scene& s, SceneInputs& in) {
   const double seconds = s.hasTime ? scene::secondsBetween(s.fileTime, s.time) : 0.0;
   for (const sky::CloudLayer& l : planet->clouds)
     a.clouds.push_back({l, sky::cloudDrift(l, foot, a.bottomRadiusM + l.altitudeM, 0.0, seconds) * toBody});
+  const auto receiver = std::find_if(in.bodies.begin(), in.bodies.end(), [&](const SphereBody& b) { return b.name == a.body; });
   for (const SphereBody& b : in.bodies)
     if (b.name != a.body)
-      a.cloudSunFactor *= eclipse::eclipseFactor(in.camera.positionM, in.sun.positionM, in.sun.radiusM, occluderOf(b),
+      a.cloudSunFactor *= eclipse::eclipseFactor(in.camera.positionM, in.sun.positionM, in.sun.radiusM,
+                                                 occluderOf(receiver == in.bodies.end() ? b : occluderSeenBy(b, *receiver)),
                                                  nullptr);
 }
 } // namespace
@@ -183,6 +188,7 @@ SceneInputs sceneInputs(const scene::Scene& s) {
     body.albedoMapReflectance = b.albedoMapReflectance;
     body.normalMapPath = b.normalMapPath;
     body.reliefStrength = b.reliefStrength;
+    body.velocityMps = b.velocityMps;
     if (!b.preset.empty() && scene::hasRotationModel(b.preset) && s.hasTime)
       body.bodyFixedToInertial = scene::bodyFixedToInertial(b.preset, s.time);
     body.flattening = scene::shadowFigure(s, b).flattening;  // about bodyFixedToInertial's z
@@ -231,6 +237,15 @@ SceneInputs sceneInputs(const scene::Scene& s) {
       throw std::invalid_argument("the camera is inside '" + b.name + "' (" + std::to_string(std::lround(d)) +
                                   " m from its centre, radius " + std::to_string(std::lround(b.radiusM)) + " m)");
     b.radiusM = std::min(b.radiusM, d * (1.0 - 1e-6));
+  }
+  // Each body as the camera sees it: where it was a light time before (from its near
+  // surface); the Sun stays, at rest. A body the camera stands on does not move, and the
+  // camera keeps a body it targets at the centre.
+  for (SphereBody& b : in.bodies) {
+    b.lightDelayS = eclipse::lightTimeToSurfaceS(in.camera.positionM, b.centreM, b.radiusM);
+    const glm::dvec3 shiftM = -b.velocityMps * b.lightDelayS;
+    b.centreM += shiftM;
+    if (b.name == s.camera.targetBody) in.camera.targetM += shiftM;
   }
   in.camera.up = s.camera.up;
   in.camera.fovDeg = s.camera.fovDeg;

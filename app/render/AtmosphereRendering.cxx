@@ -220,6 +220,10 @@ struct AtmosphereRendering::Impl {
   // irradiance, table channels) for `eclipsedKey` (camera, Sun and bodies relative to the
   // centre), its frame, its texture (a 1x1 black one when unused keeps the sampler valid).
   std::vector<eclipse::Occluder> eclipsingBodies;
+  // This frame's: those of eclipsingBodies that are not the atmosphere's own body, each
+  // where it is for the shadow in this atmosphere (eclipse::occluderSeenBy: the body's
+  // ground the receiver, drawn a light time from the camera).
+  std::vector<eclipse::Occluder> seenBodies;
   std::shared_ptr<const eclipse::ShadowLut> eclipsingLut;
   atmosphere::EclipsedSkyOptions eclipsedOptions;
   std::vector<float> eclipsedValues;
@@ -275,9 +279,17 @@ struct AtmosphereRendering::Impl {
   /// The Sun's visible fraction at world point p past the eclipsing bodies.
   double sunVisibleAt(const glm::dvec3& p) const {
     double v = 1.0;
-    for (const eclipse::Occluder& b : eclipsingBodies)
-      if (glm::length(b.centreM - centre) > 1.0e3) v *= eclipse::eclipseFactor(p, sun.positionM, sun.radiusM, b, eclipsingLut.get()).g;
+    for (const eclipse::Occluder& b : seenBodies)
+      v *= eclipse::eclipseFactor(p, sun.positionM, sun.radiusM, b, eclipsingLut.get()).g;
     return v;
+  }
+  /// seenBodies for a camera at cameraWorld.
+  void updateSeenBodies(const glm::dvec3& cameraWorld) {
+    seenBodies.clear();
+    const double delayS = eclipse::lightTimeToSurfaceS(cameraWorld, centre, tables.bottomRadiusM);
+    for (const eclipse::Occluder& b : eclipsingBodies)
+      if (glm::length(b.centreM - centre) > 1.0e3)
+        seenBodies.push_back(eclipse::occluderSeenBy(b, centre, tables.bottomRadiusM, delayS));
   }
   /// The eclipsed sky's grid for a camera at cameraWorld (inside the atmosphere): computed
   /// again only when the camera, the Sun or a body has moved.
@@ -452,7 +464,7 @@ std::vector<glm::dvec3> AtmosphereRendering::eclipsedSkyDirections(const glm::dv
 void AtmosphereRendering::Impl::updateEclipsedSky(const glm::dvec3& cameraWorld) {
   const glm::dvec3 camera = cameraWorld - centre, toSun = sun.positionM - centre;
   std::vector<double> key{camera.x, camera.y, camera.z, toSun.x, toSun.y, toSun.z};
-  for (const eclipse::Occluder& b : eclipsingBodies)
+  for (const eclipse::Occluder& b : seenBodies)
     for (double c : {b.centreM.x - centre.x, b.centreM.y - centre.y, b.centreM.z - centre.z, b.radiusM}) key.push_back(c);
   bool same = key.size() == eclipsedKey.size();
   for (std::size_t i = 0; same && i < key.size(); ++i) same = std::abs(key[i] - eclipsedKey[i]) <= 1.0;  // 1 m
@@ -759,6 +771,7 @@ bool AtmosphereRendering::Draw(vtkOpenGLRenderWindow* window, vtkRenderer* rende
   // The eclipsed sky: a camera inside the atmosphere, part of the Sun hidden from it.
   m.lastUsedEclipsedSky = false;
   m.lastEclipsedSkySeconds = 0.0;
+  m.updateSeenBodies(f.cameraWorld);
   m.cameraSunVisible = m.sunVisibleAt(f.cameraWorld);
   if (!m.eclipsingBodies.empty() && !f.parallel && f.camRadius < t.topRadiusM && m.cameraSunVisible < kEclipsedSkyBelow) {
     m.updateEclipsedSky(f.cameraWorld);

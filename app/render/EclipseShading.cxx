@@ -113,7 +113,16 @@ void validateBody(const SphereBody& b) {
 }
 
 eclipse::Occluder occluderOf(const SphereBody& b) {
-  return {b.centreM, b.radiusM, {b.bodyFixedToInertial[2], b.flattening}};
+  return {b.centreM, b.radiusM, {b.bodyFixedToInertial[2], b.flattening}, b.velocityMps, b.lightDelayS};
+}
+
+SphereBody occluderSeenBy(const SphereBody& occluder, const SphereBody& receiver) {
+  const eclipse::Occluder o =
+      eclipse::occluderSeenBy(occluderOf(occluder), receiver.centreM, receiver.radiusM, receiver.lightDelayS);
+  SphereBody seen = occluder;
+  seen.centreM = o.centreM;
+  seen.lightDelayS = o.lightDelayS;
+  return seen;
 }
 
 struct Receiver {
@@ -150,13 +159,14 @@ struct EclipseShading::Impl {
   // the umbraAtmosphereLutMap and MapLow uniforms (atmosphereTextureMap).
   eclipse::LutRange atmosphereRange;
 
-  std::vector<const SphereBody*> occludersOf(const SphereBody& receiver) const {
-    std::vector<const SphereBody*> out;
+  // The receiver's occluders, each where it is for the receiver's shadow (occluderSeenBy).
+  std::vector<SphereBody> occludersOf(const SphereBody& receiver) const {
+    std::vector<SphereBody> out;
     for (const SphereBody& o : occluders) {
       const bool self = receiver.name.empty()
                             ? (o.centreM == receiver.centreM && o.radiusM == receiver.radiusM)
                             : o.name == receiver.name;
-      if (!self) out.push_back(&o);
+      if (!self) out.push_back(occluderSeenBy(o, receiver));
     }
     return out;
   }
@@ -178,7 +188,7 @@ struct EclipseShading::Impl {
     if (atmosphereOccluder.empty()) return -1;
     const auto occ = occludersOf(receiver);
     for (std::size_t i = 0; i < occ.size() && i < static_cast<std::size_t>(kMaxOccluders); ++i)
-      if (occ[i]->name == atmosphereOccluder) return static_cast<int>(i);
+      if (occ[i].name == atmosphereOccluder) return static_cast<int>(i);
     return -1;
   }
 
@@ -191,9 +201,9 @@ struct EclipseShading::Impl {
   // UMBRA_OBLATE_SHADOW: bit i for an oblate occluder.
   int oblateShadowsOf(const SphereBody& receiver) const {
     int mask = 0, k = 0;
-    for (const SphereBody* o : occludersOf(receiver)) {
+    for (const SphereBody& o : occludersOf(receiver)) {
       if (k == kMaxOccluders) break;
-      if (o->flattening > 0.0) mask |= 1 << k;
+      if (o.flattening > 0.0) mask |= 1 << k;
       ++k;
     }
     return mask;
@@ -207,9 +217,9 @@ struct EclipseShading::Impl {
     const double h = receiver.radiusM;
     x[kMaxOccluders] = eclipse::angularRadiusExpansion(sun.radiusM, glm::length(sun.positionM - receiver.centreM), h);
     int n = 0;
-    for (const SphereBody* o : occludersOf(receiver)) {
+    for (const SphereBody& o : occludersOf(receiver)) {
       if (n == kMaxOccluders) break;
-      x[n++] = eclipse::angularRadiusExpansion(shadowRadiusM(*o), glm::length(o->centreM - receiver.centreM), h);
+      x[n++] = eclipse::angularRadiusExpansion(shadowRadiusM(o), glm::length(o.centreM - receiver.centreM), h);
     }
     return x;
   }
@@ -287,14 +297,14 @@ struct EclipseShading::Impl {
     program.SetUniformf("umbraSunIrradiance", float(sun.irradianceAt1AuWm2));
     float occ[kMaxOccluders][4] = {}, figure[kMaxOccluders][4] = {};
     int n = 0;
-    for (const SphereBody* o : occludersOf(b)) {
+    for (const SphereBody& o : occludersOf(b)) {
       if (n == kMaxOccluders) break;  // checked when set; never silently reached
-      const glm::dvec3 rel = o->centreM - b.centreM;
+      const glm::dvec3 rel = o.centreM - b.centreM;
       occ[n][0] = float(rel.x);
       occ[n][1] = float(rel.y);
       occ[n][2] = float(rel.z);
-      occ[n][3] = float(shadowRadiusM(*o));
-      const eclipse::Oblateness f = occluderOf(*o).figure;
+      occ[n][3] = float(shadowRadiusM(o));
+      const eclipse::Oblateness f = occluderOf(o).figure;
       figure[n][0] = float(f.pole.x);
       figure[n][1] = float(f.pole.y);
       figure[n][2] = float(f.pole.z);

@@ -84,6 +84,12 @@ struct SphereBody {
   /// this body, W m^-2 per channel; zero for none.
   glm::dvec3 earthshineWm2{0.0};
   glm::dvec3 earthCentreM{0.0};
+  /// Its velocity in the Sun's rest frame, and how long before the scene's time centreM
+  /// has it (eclipse::lightTimeToSurfaceS from the camera): a receiver takes it as an
+  /// occluder where the light that reaches the receiver passed it (occluderSeenBy).
+  /// Zero: at rest, where it is.
+  glm::dvec3 velocityMps{0.0};
+  double lightDelayS = 0.0;
 };
 
 class EclipseShading {
@@ -144,8 +150,12 @@ class EclipseShading {
   std::unique_ptr<Impl> impl_;
 };
 
-/// The body as an occluder: its centre, mean radius and figure (the pole its body-fixed z).
+/// The body as an occluder: its centre, mean radius and figure (the pole its body-fixed z),
+/// its velocity and light delay.
 eclipse::Occluder occluderOf(const SphereBody& body);
+/// `occluder` moved to where it is for `receiver`'s shadow (eclipse::occluderSeenBy): what
+/// every receiver's shading, its atmosphere and its clouds take.
+SphereBody occluderSeenBy(const SphereBody& occluder, const SphereBody& receiver);
 
 /// Validates a body (finite centre, radius > 0, finite albedo >= 0); throws
 /// std::invalid_argument naming the body.

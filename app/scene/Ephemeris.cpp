@@ -18,6 +18,7 @@ namespace {
 
 constexpr double kJ2000 = 2451545.0;
 constexpr double kDaysPerCentury = 36525.0;
+constexpr double kDayS = 86400.0;
 
 glm::dvec3 auToM(const double p[3]) { return glm::dvec3(p[0], p[1], p[2]) * kAuM; }
 
@@ -75,12 +76,29 @@ glm::dvec3 heliocentricPositionM(const std::string& body, UtcTime time) {
   double tt1 = 0.0, tt2 = 0.0; // ERFA wants TDB; TT is within 2 ms of it
   toTt(time, tt1, tt2);
   if (body == "Earth") return earthHeliocentricM(tt1, tt2);
-  if (body == "Moon") {
-    double pv[2][3];
-    eraMoon98(tt1, tt2, pv); // geocentric, GCRS-aligned
-    return earthHeliocentricM(tt1, tt2) + auToM(pv[0]);
-  }
+  if (body == "Moon") return earthHeliocentricM(tt1, tt2) + moonGeocentricElpM(tt1 + tt2);
   return planetHeliocentricPositionM("Mars", time);
+}
+
+glm::dvec3 heliocentricVelocityMps(const std::string& body, UtcTime time) {
+  if (!hasEphemeris(body)) throwNoEphemeris(body);
+  if (body == "Sun") return glm::dvec3(0.0);
+  double tt1 = 0.0, tt2 = 0.0;
+  toTt(time, tt1, tt2);
+  double pv[2][3];
+  if (body == "Mars") {
+    if (eraPlan94(tt1, tt2, 4, pv) < 0) throw std::invalid_argument("Mars ephemeris failed at this date");
+    return auToM(pv[1]) / kDayS;
+  }
+  double pvb[2][3];
+  eraEpv00(tt1, tt2, pv, pvb);
+  glm::dvec3 v = auToM(pv[1]);
+  if (body == "Moon") {
+    double moon[2][3];
+    eraMoon98(tt1, tt2, moon);
+    v += auToM(moon[1]);
+  }
+  return v / kDayS;  // au/day -> m/s
 }
 
 glm::dvec3 moonGeocentricElpM(double ttJd) {

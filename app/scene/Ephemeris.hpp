@@ -18,18 +18,24 @@ inline constexpr double kObliquityJ2000Rad = 84381.406 / 3600.0 * 3.141592653589
 bool hasEphemeris(const std::string& body);
 
 /// Heliocentric position in metres: Sun (zero), Earth (eraEpv00), Moon (Earth +
-/// eraMoon98), Mars (eraPlan94). Throws std::invalid_argument for other bodies.
+/// moonGeocentricElpM), Mars (eraPlan94). Throws std::invalid_argument for other bodies.
 glm::dvec3 heliocentricPositionM(const std::string& body, UtcTime time);
+
+/// Heliocentric velocity in m/s of the same bodies: the Sun zero (its 13 m/s about the
+/// barycentre left out), the Earth's and Mars' from their theories, the Moon's the
+/// Earth's plus eraMoon98's (ELP's truncated series: its velocity within 0.1 %, all that
+/// the light-time corrections it serves need). Throws std::invalid_argument as above.
+glm::dvec3 heliocentricVelocityMps(const std::string& body, UtcTime time);
 
 /// The Moon's geocentric position in metres (ICRS axes) at a Terrestrial Time Julian date,
 /// from the lunar theory ELP 2000-82B with every term (libnova; Chapront-Touze & Chapront):
 /// well under an arcsecond over 1900-2100, against eraMoon98's ~10 arcseconds, at 2 ms a
 /// call against 3 us. Its mean ecliptic and equinox of J2000 are turned to ICRS axes by the
-/// IAU 2006 obliquity (the 0.05 arcsecond frame bias between them is left out). For eclipse
-/// predictions; scenes keep heliocentricPositionM's faster theory.
+/// IAU 2006 obliquity (the 0.05 arcsecond frame bias between them is left out). The
+/// eclipse predictions and the scenes' Moon (heliocentricPositionM) take it.
 glm::dvec3 moonGeocentricElpM(double ttJd);
 
-/// eraMoon98 (Meeus' truncated ELP series, as heliocentricPositionM's Moon) at a TT Julian date:
+/// eraMoon98 (Meeus' truncated ELP series: ~10 arcseconds) at a TT Julian date:
 /// the Moon's geocentric position in metres, ICRS axes.
 glm::dvec3 moonGeocentricMeeusM(double ttJd);
 

@@ -7,6 +7,7 @@
 #include "Earthshine.hpp"
 #include "MoonGeometry.hpp"
 #include "Photometry.hpp"
+#include "ShadowLut.hpp"  // occluderSeenBy
 
 #include <erfa.h>
 #include <erfam.h>
@@ -124,8 +125,9 @@ std::string describeMoon(const MoonNumbers& m) {
 }
 
 glm::dvec3 moonSeenFromM(UtcTime time, const glm::dvec3& observerM) {
-  const double lightTimeS = glm::length(heliocentricPositionM("Moon", time) - observerM) / ERFA_CMPS;
-  return heliocentricPositionM("Moon", addSeconds(time, -lightTimeS));
+  const Body moon = presetBody("Moon", time);
+  const eclipse::Occluder o{moon.positionM, moon.radiusM, {}, moon.velocityMps};
+  return eclipse::occluderSeenBy(o, observerM, 0.0, 0.0).centreM;
 }
 
 SunAndMoonInHorizon sunAndMoonInHorizon(UtcTime time, const Observer& observer) {

@@ -41,10 +41,11 @@ struct MoonNumbers {
 MoonNumbers moonNumbers(UtcTime time, const std::optional<Observer>& observer);
 
 /// Where the Moon was (heliocentric, metres, ICRS axes) when the light that reaches
-/// `observerM` (heliocentric) at `time` passed it: its place one light time earlier (about
-/// 1.3 s from the Earth: some 40 km along the Earth's orbit, the 20 arcseconds of the
-/// aberration of the Sun's light). With the Sun at rest at the origin, the Moon's shadow at
-/// `observerM` is cast by the Moon there.
+/// `observerM` (heliocentric) at `time` passed it: its place one light time from its near
+/// surface earlier, as scenes take it (eclipse::occluderSeenBy; about 1.3 s from the Earth:
+/// some 40 km along the Earth's orbit, the 20 arcseconds of the aberration of the Sun's
+/// light). With the Sun at rest at the origin, the Moon's shadow at `observerM` is cast by
+/// the Moon there.
 glm::dvec3 moonSeenFromM(UtcTime time, const glm::dvec3& observerM);
 
 /// The Sun and the Moon seen from an observer on the Earth at an instant, in the

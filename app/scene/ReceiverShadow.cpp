@@ -1,5 +1,6 @@
 #include "scene/ReceiverShadow.hpp"
 
+#include "ShadowLut.hpp"  // occluderSeenBy
 #include "ShadowMapping.hpp"
 
 #include <glm/geometric.hpp>
@@ -7,6 +8,17 @@
 #include <limits>
 
 namespace umbra::scene {
+
+namespace {
+
+/// An occluder as the shadow on the receiver takes it (eclipse::occluderSeenBy), with its figure.
+eclipse::Occluder seenBy(const Scene& scene, const Body& occluder, const glm::dvec3& receiverM, double receiverRadiusM,
+                         double receiverDelayS) {
+  const eclipse::Occluder o{occluder.positionM, occluder.radiusM, shadowFigure(scene, occluder), occluder.velocityMps};
+  return eclipse::occluderSeenBy(o, receiverM, receiverRadiusM, receiverDelayS);
+}
+
+}  // namespace
 
 ReceiverShadow receiverShadow(const Scene& scene) {
   ReceiverShadow r;
@@ -16,19 +28,24 @@ ReceiverShadow receiverShadow(const Scene& scene) {
     return r;
   }
   const Body& sun = scene.sun();
+  // The receiver as the camera sees it, a light time back (as the renderer draws it).
+  const double delayS = eclipse::lightTimeToSurfaceS(scene.camera.positionM, receiver->positionM, receiver->radiusM);
+  const glm::dvec3 receiverM = receiver->positionM - receiver->velocityMps * delayS;
   const Body* occluder = nullptr;
+  eclipse::Occluder seen;
   double bestV = std::numeric_limits<double>::infinity();
   for (const Body& body : scene.bodies) {
     if (&body == receiver || body.isSun()) continue;
-    if (!eclipse::occluderInFront(receiver->positionM, sun.positionM, body.positionM)) continue;
+    const eclipse::Occluder o = seenBy(scene, body, receiverM, receiver->radiusM, delayS);
+    if (!eclipse::occluderInFront(receiverM, sun.positionM, o.centreM)) continue;
     // behind the body as seen from the Sun
-    if (!(glm::dot(receiver->positionM - body.positionM, body.positionM - sun.positionM) > 0.0)) continue;
-    const auto angles = eclipse::shadowAngles(receiver->positionM, sun.positionM, sun.radiusM, body.positionM,
-                                              body.radiusM);
+    if (!(glm::dot(receiverM - o.centreM, o.centreM - sun.positionM) > 0.0)) continue;
+    const auto angles = eclipse::shadowAngles(receiverM, sun.positionM, sun.radiusM, o.centreM, o.radiusM, o.figure);
     const double v = eclipse::lutCoords(angles).v;
     if (v < bestV) {
       bestV = v;
       occluder = &body;
+      seen = o;
     }
   }
   r.receiver = receiver->name;
@@ -38,12 +55,12 @@ ReceiverShadow receiverShadow(const Scene& scene) {
     return r;
   }
   r.occluder = occluder->name;
-  r.occluderRadiusM = occluder->radiusM;
+  r.occluderRadiusM = eclipse::outlineRadiusTowardsSunM(receiverM, sun.positionM, seen.centreM, seen.radiusM, seen.figure);
   r.sunRadiusM = sun.radiusM;
-  const glm::dvec3 axis = occluder->positionM - sun.positionM;
+  const glm::dvec3 axis = seen.centreM - sun.positionM;
   r.sunOccluderDistanceM = glm::length(axis);
   const glm::dvec3 dir = axis / r.sunOccluderDistanceM;
-  const glm::dvec3 rel = receiver->positionM - occluder->positionM;
+  const glm::dvec3 rel = receiverM - seen.centreM;
   r.receiverDistanceM = glm::dot(rel, dir);
   r.offsetM = glm::length(rel - r.receiverDistanceM * dir);
   if (!(r.sunOccluderDistanceM > r.sunRadiusM)) {

@@ -17,6 +17,9 @@ struct ReceiverShadow {
   std::string receiver;          ///< the camera's target body
   std::string occluder;          ///< the body whose shadow is closest to the receiver's centre
   double receiverRadiusM = 0.0;
+  /// The radius of the occluder's outline towards the Sun seen from the receiver's centre
+  /// (eclipse::outlineRadiusTowardsSunM: the circle the scenes' shading takes for an
+  /// oblate occluder, whose shadow's cross-section is an ellipse); its mean radius for a sphere.
   double occluderRadiusM = 0.0;
   double sunRadiusM = 0.0;
   double sunOccluderDistanceM = 0.0;
@@ -34,6 +37,9 @@ struct ReceiverShadow {
 /// The receiver is the camera's target body (not the Sun). The occluder is, among the
 /// other bodies lying between the Sun and the receiver, the one whose shadow axis passes
 /// closest to the receiver's centre in units of the penumbra (smallest v of Eq. 4).
+/// Both are placed as the renderer places them: the receiver where the camera sees it, a
+/// light time back, and the occluder where the light that reaches the receiver passed it
+/// (eclipse::occluderSeenBy), with its figure (scene::shadowFigure).
 ReceiverShadow receiverShadow(const scene::Scene& scene);
 
 } // namespace umbra::scene

@@ -73,6 +73,7 @@ void resolve(Scene& scene) {
     if (!body.positionFromEphemeris) continue;
     try {
       body.positionM = heliocentricPositionM(body.preset, scene.time);
+      body.velocityMps = heliocentricVelocityMps(body.preset, scene.time);
     } catch (const std::invalid_argument& e) {
       fail(scene.path, "bodies[" + std::to_string(i) + "].position", e.what());
     }
@@ -128,6 +129,7 @@ Body presetBody(const std::string& name, UtcTime time) {
   b.albedo = p.geometricAlbedo;
   b.photometry = p.photometry;
   b.positionM = heliocentricPositionM(name, time);
+  b.velocityMps = heliocentricVelocityMps(name, time);
   return b;
 }
 
@@ -174,8 +176,9 @@ std::optional<double> sunVisibleFractionAtCamera(const Scene& scene) {
   double least = 1.0;
   for (const Body& b : scene.bodies) {
     if (b.isSun() || b.name == own) continue;
+    const eclipse::Occluder o{b.positionM, b.radiusM, shadowFigure(scene, b), b.velocityMps};
     const glm::dvec3 f = eclipse::eclipseFactor(scene.camera.positionM, sun.positionM, sun.radiusM,
-                                                {b.positionM, b.radiusM, shadowFigure(scene, b)}, nullptr);
+                                                eclipse::occluderSeenBy(o, scene.camera.positionM, 0.0, 0.0), nullptr);
     least = std::min(least, f.g);
   }
   if (!(least < 1.0)) return std::nullopt;

@@ -43,6 +43,10 @@ struct Body {
   double equatorialRadiusM = 0.0;
   double polarRadiusM = 0.0;
   glm::dvec3 positionM{0.0};     ///< heliocentric, ICRS axes
+  /// Heliocentric, m/s, from the ephemeris (heliocentricVelocityMps); zero for a body at a
+  /// given position. It places the body a light time back where it is seen or casts a
+  /// shadow (eclipse::occluderSeenBy).
+  glm::dvec3 velocityMps{0.0};
   bool positionFromEphemeris = false;
   bool hasAtmosphere = false;
   /// The atmosphere `umbra render` draws, read once with the scene: a preset ("earth") or

@@ -262,3 +262,27 @@ TEST(ShadowLut, TexelSharesTogetherAreTheWholeLut) {
 
 }  // namespace
 }  // namespace umbra::eclipse
+
+// Light time (occluderSeenBy): an occluder at rest stays; a moving one goes back along its
+// velocity by the light time from its centre to the receiver's near surface, plus the
+// receiver's own delay, less the delay it is given at; the distances are the Moon's.
+TEST(LightTime, AMovingOccluderGoesBackByItsLightTimeToTheReceiversSurface) {
+  const glm::dvec3 earth(1.5e11, 0.0, 0.0), moonAt(1.5e11, 3.844e8, 0.0);
+  const double earthRadius = 6.371e6;
+  const Occluder still{moonAt, 1.7374e6};
+  EXPECT_EQ(occluderSeenBy(still, earth, earthRadius, 2.0).centreM, moonAt);
+
+  const glm::dvec3 v(0.0, 0.0, 3.0e4);
+  const double toSurfaceS = (3.844e8 - earthRadius) / kLightSpeedMps;
+  EXPECT_NEAR(lightTimeToSurfaceS(moonAt, earth, earthRadius), toSurfaceS, 1e-12);
+  EXPECT_EQ(lightTimeToSurfaceS(earth + glm::dvec3(1.0, 0.0, 0.0), earth, earthRadius), 0.0);  // inside
+  const Occluder moving{moonAt, 1.7374e6, {}, v};
+  const Occluder seen = occluderSeenBy(moving, earth, earthRadius, 0.0);
+  EXPECT_NEAR(seen.centreM.z, -3.0e4 * toSurfaceS, 1e-6);  // 37.8 km
+  EXPECT_NEAR(seen.lightDelayS, toSurfaceS, 1e-12);
+  // Drawn 0.5 s back already, seen by a receiver drawn 2 s back: 2 + 1.26 - 0.5 s more.
+  const Occluder drawn{moonAt, 1.7374e6, {}, v, 0.5};
+  EXPECT_NEAR(occluderSeenBy(drawn, earth, earthRadius, 2.0).centreM.z, -3.0e4 * (2.0 + toSurfaceS - 0.5), 1e-6);
+  // Seen again by the same receiver, it stays (the delay it carries is the receiver's).
+  EXPECT_NEAR(occluderSeenBy(seen, earth, earthRadius, 0.0).centreM.z, seen.centreM.z, 1e-3);
+}

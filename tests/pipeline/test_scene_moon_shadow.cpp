@@ -5,7 +5,8 @@
 // at the same ground point, and the umbra's pixels (factor below 1e-3) counted both ways, at the
 // LuT sizes a scene can ask for. The umbra is 197 km wide there: 18 pixels of this 240-pixel
 // view. The scene's ranged LuT resolves it from 256 rows (the example's size): the factor
-// within 2e-4 of the exact one everywhere, the pixels darker than 1e-3 the same to 2 %;
+// within 2e-4 of the exact one everywhere, the pixels darker than 1e-3 the same to 4 % (those at the umbra's edge within the
+// factor's 2e-4 of the threshold go either way);
 // at 64 rows the factor is within 5e-3 but the umbra is not black (a quarter of its
 // pixels below 1e-3).
 #include "AtmosphereShadow.h"
@@ -73,7 +74,7 @@ UmbraAgreement renderAndCompare(int lutSize) {
       double cosi = 0.0;
       const double unshadowed = unshadowedRadiance(*hit, earth.centreM, 1.0, in.sun, &cosi);
       if (cosi < 0.2) continue;
-      const double exact = eclipse::eclipseFactor(*hit, in.sun.positionM, in.sun.radiusM, {moon.centreM, moon.radiusM}, nullptr).g;
+      const double exact = eclipse::eclipseFactor(*hit, in.sun.positionM, in.sun.radiusM, occluderOf(occluderSeenBy(moon, earth)), nullptr).g;
       const double gpu = hdr[3 * (static_cast<std::size_t>(j) * w + i) + 1] / (earth.albedoRgb.g * unshadowed);
       ++a.pixels;
       if (gpu < 1e-3) ++a.umbraGpu;
@@ -96,7 +97,7 @@ TEST(SceneMoonShadow, TheUmbraOnEarthThroughTheLutAgainstTheExactFactor) {
     EXPECT_GT(a.penumbra, 40000);
     if (size >= 256) {
       EXPECT_LT(a.maxDiff, 5e-4) << size;
-      EXPECT_NEAR(a.umbraGpu, a.umbraExact, 0.02 * a.umbraExact) << size;
+      EXPECT_NEAR(a.umbraGpu, a.umbraExact, 0.04 * a.umbraExact) << size;
     } else {
       EXPECT_LT(a.maxDiff, 1e-2);
       EXPECT_LT(a.umbraGpu, a.umbraExact / 2);

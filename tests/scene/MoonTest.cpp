@@ -17,14 +17,17 @@ const UtcTime kMeeusDate = fromTt(2448724.5, 0.0);  // 1992-04-12 0h TD (TT)
 }
 
 // Example 47.a: lambda 133.162655 deg, beta -3.229126 deg (geocentric, mean equinox of
-// date), Delta 368 409.7 km: within 2 arcsec and 1 km.
+// date), Delta 368 409.7 km. Meeus computes them with his truncated series (ERFA's
+// eraMoon98: 10 arcsec in longitude, 4 in latitude, 0.2 arcsec in parallax or about 20 km
+// in distance, as he states); the scenes' Moon is ELP 2000-82B with every term, which
+// differs from them by 1.1 and 0.3 arcsec and 4.1 km. Within 2 arcsec and 5 km.
 TEST(Moon, PositionOfMeeus47a) {
   const MoonNumbers m = moonNumbers(kMeeusDate, std::nullopt);
   std::printf("  lambda %.6f deg, beta %.6f deg, Delta %.1f km\n", m.eclipticLongitudeDeg, m.eclipticLatitudeDeg,
               m.distanceKm);
   EXPECT_NEAR(m.eclipticLongitudeDeg, 133.162655, 2.0 / 3600.0);
   EXPECT_NEAR(m.eclipticLatitudeDeg, -3.229126, 2.0 / 3600.0);
-  EXPECT_NEAR(m.distanceKm, 368409.7, 1.0);
+  EXPECT_NEAR(m.distanceKm, 368409.7, 5.0);
   EXPECT_FALSE(m.topocentric);
   EXPECT_FALSE(m.altitudeDeg.has_value());
 }

@@ -2,6 +2,10 @@
 #include "scene/ReceiverShadow.hpp"
 #include "scene/Time.hpp"
 
+#include "ShadowMapping.hpp"
+
+#include <cstdio>
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -72,4 +76,29 @@ TEST(ReceiverShadow, ExampleSceneDuringAndAfterTheEclipse) {
   r = scene::receiverShadow(s);
   ASSERT_TRUE(r.valid) << r.why;
   EXPECT_GT(r.offsetM - r.receiverRadiusM, r.penumbraRadiusM);
+}
+
+// The lunar eclipse of 2018-07-27 at NASA's greatest eclipse (20:21:44 UT) seen from the
+// Earth: the Moon lies NASA's gamma (0.1168 equatorial radii) from the axis of the Earth's
+// shadow, placed as the renderer places both (light time); the Earth casts it with its
+// outline towards the Sun, between its polar and equatorial radii (oblate, flattening
+// 1/298.257), and the umbra is the cone of that radius.
+TEST(ReceiverShadow, TheMoonIn2018LiesNasasGammaFromTheOblateEarthsShadowAxis) {
+  const scene::Scene s = scene::parseScene(R"({
+    "time": "2018-07-27T20:21:44Z",
+    "bodies": [{"preset": "Sun"}, {"preset": "Earth"}, {"preset": "Moon"}],
+    "camera": {"observer": {"body": "Earth", "latDeg": -19.0, "lonDeg": 56.0, "altM": 2}, "target": "Moon"}
+  })", "receiver-shadow test");
+  const scene::ReceiverShadow r = scene::receiverShadow(s);
+  ASSERT_TRUE(r.valid) << r.why;
+  EXPECT_EQ(r.occluder, "Earth");
+  EXPECT_NEAR(r.offsetM / 6378137.0, 0.1168, 0.0005);
+  const scene::Body& earth = *s.find("Earth");
+  std::printf("  the Earth's outline towards the Sun %.3f km (polar %.3f, equatorial %.3f)\n", r.occluderRadiusM / 1e3,
+              earth.polarRadiusM / 1e3, earth.equatorialRadiusM / 1e3);
+  EXPECT_GT(r.occluderRadiusM, earth.polarRadiusM + 1.0);
+  EXPECT_LT(r.occluderRadiusM, earth.equatorialRadiusM - 1.0);
+  const auto cones = eclipse::shadowConeRadii({r.sunRadiusM, r.occluderRadiusM, r.sunOccluderDistanceM},
+                                              r.receiverDistanceM);
+  EXPECT_DOUBLE_EQ(r.umbraRadiusM, cones.umbraRadiusM);
 }

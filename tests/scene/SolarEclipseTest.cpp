@@ -63,8 +63,8 @@ double visibleAt(UtcTime t, double latDeg, double lonDeg) {
 }  // namespace
 
 TEST(SolarEclipse2017, TheShadowsAxisMeetsTheGroundAtNasasGreatestEclipse) {
-  // eraMoon98 (Meeus' truncated series) is good to about 10 arcseconds, some 20 km on the
-  // ground; here the axis lands 2.8 km from NASA's point.
+  // The Moon from ELP 2000-82B with every term (well under an arcsecond, 2 km on the
+  // ground): the axis lands 1.2 km from NASA's point.
   const UtcTime t = fromTt(2457986.5, 66400.2 / 86400.0);
   const Ground g = axisOnTheGround(t);
   double km = 0.0;
@@ -77,7 +77,7 @@ TEST(SolarEclipse2017, TheShadowsAxisMeetsTheGroundAtNasasGreatestEclipse) {
 
 TEST(SolarEclipse2017, TheUmbrasWidthAcrossThePathIsNasas) {
   // Across the path (perpendicular to the axis point's motion over the ground) the umbra
-  // spans NASA's 114.7 km within 2 % (114.38 km: the Moon a sphere of 1737.4 km, its mean
+  // spans NASA's 114.7 km within 2 % (114.44 km: the Moon a sphere of 1737.4 km, its mean
   // limb; the shadow moving over the ground at 0.648 km/s).
   const UtcTime t = fromTt(2457986.5, 66400.2 / 86400.0);
   const Ground g = axisOnTheGround(t);
