@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <type_traits>
@@ -218,16 +219,24 @@ void setBlock(vtkMultiBlockDataSet* output, unsigned& block, vtkImageData* image
   ++block;
 }
 
-/// The Bruneton tables `made` (requests[i] asks for made[i]) as files in `scratch` on one
-/// rank (vtkAtmosphereTablesSource::SetFileBacked): read from the cache, or computed by
-/// `po` a batch of wavelengths at a time.
+/// The Bruneton tables `made` (requests[i] asks for made[i]) as files in rank 0's `scratch`
+/// (vtkAtmosphereTablesSource::SetFileBacked): read from the cache, or computed by `po` a
+/// batch of wavelengths at a time. Over ranks (`overRanks`, collective), rank 0 looks in
+/// the cache for all; on a miss rank r computes the batches b with b % ranks == r (po's
+/// batch), each rank putting its own batches' 4D tables in files as they are made (rank 0
+/// in the tables' files, the others in unlinked files of their temporary directory), and
+/// then the others send theirs to rank 0 alone, one batch of one table at a time; the small
+/// 2D tables (zero outside a rank's channels) are summed on rank 0. No rank holds a whole
+/// 4D table; the files are those of one process to the byte.
 void makeBrunetonFiles(vtkAtmosphereTablesSource* source, const umbra::atmosphere::Atmosphere& atm,
                        const umbra::tables::TableCache& cache, bool useCache, const umbra::tables::TableCache& scratch,
                        const BrunetonSet& set, const std::vector<BrunetonTable*>& made,
                        const std::vector<umbra::tables::TableRequest>& requests,
-                       const umbra::atmosphere::PrecomputeOptions& po, umbra::tables::CacheOutcome& outcome,
+                       umbra::atmosphere::PrecomputeOptions po, bool overRanks, umbra::tables::CacheOutcome& outcome,
                        int& precomputeCalls) {
   using namespace umbra;
+  parallel::Ranks& ranks = parallel::Ranks::world();
+  const bool spread = overRanks && ranks.size() > 1, root = ranks.root() || !spread;
   // From the cache when every needed table is there as asked (checked one at a time, each
   // then dropped), copied as it is.
   const auto fromCache = [&] {
@@ -241,59 +250,117 @@ void makeBrunetonFiles(vtkAtmosphereTablesSource* source, const umbra::atmospher
     return true;
   };
   std::unique_ptr<tables::TableCache::Lock> lock;
-  if (useCache) {
-    bool hit = fromCache();
+  bool hit = false;
+  if (useCache && root) {
+    hit = fromCache();
     if (!hit && !requests.empty()) {  // made by one process at a time, as cachedOrComputed does
       lock = cache.lock(requests.front().kind, requests.front().parameters);
       if (lock) hit = fromCache();
     }
-    if (hit) {
-      for (const tables::TableRequest& r : requests) outcome.hits += r.needed ? 1 : 0;
-      return;
-    }
+  }
+  if (spread) hit = ranks.broadcast(hit ? "1" : "") == "1";
+  if (hit) {
+    for (const tables::TableRequest& r : requests) outcome.hits += r.needed ? 1 : 0;
+    return;
   }
 
   ++precomputeCalls;
+  const int nl = static_cast<int>(set.channels.size());
+  if (spread) po.batchShareIndex = ranks.rank(), po.batchShareCount = ranks.size();
+  // The 4D tables: in files on rank 0; another rank's batches held until they are sent.
   std::vector<std::unique_ptr<tables::PlanarTableFile>> planes(requests.size());
-  std::vector<bool> written(requests.size(), false);
-  for (std::size_t i = 0; i < requests.size(); ++i)
-    if (made[i]->depth > 1)
-      planes[i] = std::make_unique<tables::PlanarTableFile>(scratch.directory(), requests[i].width, requests[i].height,
-                                                            requests[i].channels);
-  atmosphere::AtmosphereTables result = atmosphere::precompute(
-      atm, po,
-      [source](double f, const std::string&) {
-        source->UpdateProgress(0.9 * f);
-        return !source->GetAbortExecute();
-      },
-      [&](int first, int table, const atmosphere::FloatTable3D& values) {
-        // Table `table`: that component's single scattering, or (after them) the multiple.
-        const bool multiple = table == static_cast<int>(set.components.size());
-        for (std::size_t i = 0; i < requests.size(); ++i) {
-          if (!planes[i] || !(multiple ? made[i]->name == "multiple-scattering"
-                                       : made[i]->parameters.count("component") &&
-                                             made[i]->parameters.at("component") == set.components.at(table)))
-            continue;
-          if (first == 0 && values.channels == static_cast<int>(requests[i].channels.size())) {
-            // Every wavelength at once: the table is whole, written as it is (no planes).
-            tables::Table shape;
-            shape.width = requests[i].width, shape.height = requests[i].height, shape.channels = requests[i].channels;
-            scratch.store(requests[i].kind, requests[i].parameters, shape, values.values.data());
-            planes[i].reset();
-            written[i] = true;
-          } else {
-            planes[i]->put(first, values.channels, values.values.data());
+  // Another rank's finished batches wait in unlinked files of its temporary directory
+  // (a few r slices in memory at a time), not in its memory beside the next batch's work.
+  struct Held {
+    std::size_t table;
+    int first;
+    std::unique_ptr<tables::PlanarTableFile> file;
+  };
+  std::vector<Held> held;
+  if (root)
+    for (std::size_t i = 0; i < requests.size(); ++i)
+      if (made[i]->depth > 1)
+        planes[i] = std::make_unique<tables::PlanarTableFile>(scratch.directory(), requests[i].width,
+                                                              requests[i].height, requests[i].channels);
+  // Whether a 4D table the precomputation hands on (that component's single scattering, or
+  // after them the multiple) is made[i].
+  const auto isTable = [&](std::size_t i, int table) {
+    if (made[i]->depth <= 1) return false;
+    return table == static_cast<int>(set.components.size())
+               ? made[i]->name == "multiple-scattering"
+               : made[i]->parameters.count("component") && made[i]->parameters.at("component") == set.components.at(table);
+  };
+  atmosphere::AtmosphereTables result;
+  std::string error;
+  try {
+    result = atmosphere::precompute(
+        atm, po,
+        [source, root](double f, const std::string&) {
+          if (root) source->UpdateProgress(0.9 * f);
+          return !source->GetAbortExecute();
+        },
+        [&](int first, int table, const atmosphere::FloatTable3D& values) {
+          for (std::size_t i = 0; i < requests.size(); ++i) {
+            if (!isTable(i, table)) continue;
+            if (!root) {
+              const std::vector<std::string>& all = requests[i].channels;
+              auto file = std::make_unique<tables::PlanarTableFile>(
+                  std::filesystem::temp_directory_path().string(), requests[i].width, requests[i].height,
+                  std::vector<std::string>(all.begin() + first, all.begin() + first + values.channels));
+              file->put(0, values.channels, values.values.data());
+              held.push_back({i, first, std::move(file)});
+            } else if (first == 0 && values.channels == nl) {
+              // Every wavelength at once: the table is whole, written as it is (no planes).
+              tables::Table shape;
+              shape.width = requests[i].width, shape.height = requests[i].height, shape.channels = requests[i].channels;
+              scratch.store(requests[i].kind, requests[i].parameters, shape, values.values.data());
+              planes[i].reset();
+            } else {
+              planes[i]->put(first, values.channels, values.values.data());
+            }
           }
-        }
-      });
+        });
+  } catch (const std::exception& e) {
+    if (!spread) throw;
+    error = e.what();
+  }
+  if (spread) {
+    if (const std::string errors = ranks.finish(error); !errors.empty()) throw std::runtime_error(errors);
+    // The other ranks' batches to rank 0, one batch of one table at a time, in an order
+    // every rank knows.
+    const int batch = po.wavelengthBatch > 0 ? std::min(po.wavelengthBatch, nl) : nl;
+    for (std::size_t i = 0; i < requests.size(); ++i) {
+      if (made[i]->depth <= 1) continue;
+      for (int first = 0; first < nl; first += batch) {
+        const int owner = (first / batch) % ranks.size();
+        if (owner == 0) continue;
+        std::vector<float> mine;
+        if (ranks.rank() == owner)
+          for (Held& h : held)
+            if (h.table == i && h.first == first && h.file) {
+              h.file->rows(0, h.file->height(), mine);
+              h.file.reset();
+            }
+        const std::vector<float> got = ranks.gather(mine);
+        if (root && !got.empty()) planes[i]->put(first, std::min(batch, nl - first), got.data());
+      }
+    }
+  }
   for (std::size_t i = 0; i < requests.size(); ++i) {
     const tables::TableRequest& r = requests[i];
-    if (planes[i]) {
+    if (made[i]->depth <= 1) {
+      tables::Table t = set.takeTable(result, *made[i]);
+      if (spread) {  // each rank's channels, zero elsewhere: summed on rank 0
+        const std::vector<float> all = ranks.gather(t.data);
+        if (root)
+          for (std::size_t k = t.data.size(); k < all.size(); ++k) t.data[k % t.data.size()] += all[k];
+      }
+      if (root) scratch.store(r.kind, r.parameters, t);
+    } else if (planes[i]) {
       scratch.store(r.kind, r.parameters, *planes[i]);
       planes[i].reset();
-    } else if (!written[i]) {
-      scratch.store(r.kind, r.parameters, set.takeTable(result, *made[i]));
     }
+    if (!root) continue;
     source->UpdateProgress(0.9 + 0.1 * static_cast<double>(i + 1) / static_cast<double>(requests.size()));
     outcome.computed += r.needed ? 1 : 0;
     if (!useCache) continue;
@@ -427,19 +494,21 @@ void vtkAtmosphereTablesSource::AddBrunetonBlocks(const umbra::atmosphere::Atmos
                requests[i].kind, made[i]->name);
     }
   };
-  if (this->FileBacked && !overRanks) {
-    tables::CacheOutcome outcome;
-    makeBrunetonFiles(this, atm, cache, this->UseCache, *scratch, set, made, requests,
-                      onlyTransmittance ? transmittanceOnly(set.po) : set.po, outcome, this->PrecomputeCalls);
-    this->Count(outcome);
-    fileBlocks();
-    return;
-  }
   // Over ranks: wavelength batches of ceil(wavelengths / ranks) unless the batch is given.
   const int nl = static_cast<int>(set.channels.size());
   const auto batchFor = [&](int count) {
     return set.po.wavelengthBatch > 0 ? set.po.wavelengthBatch : std::max(1, (nl + count - 1) / count);
   };
+  if (this->FileBacked) {
+    tables::CacheOutcome outcome;
+    atmosphere::PrecomputeOptions po = onlyTransmittance ? transmittanceOnly(set.po) : set.po;
+    if (overRanks) po.wavelengthBatch = batchFor(parallel::Ranks::world().size());
+    makeBrunetonFiles(this, atm, cache, this->UseCache, *scratch, set, made, requests, po, overRanks, outcome,
+                      this->PrecomputeCalls);
+    this->Count(outcome);
+    fileBlocks();
+    return;
+  }
   tables::CacheOutcome outcome;
   std::vector<tables::Table> values = filters::spreadChannelsOrCached(
       cache, this->UseCache != 0, requests, this->SpreadOverRanks,
@@ -463,13 +532,6 @@ void vtkAtmosphereTablesSource::AddBrunetonBlocks(const umbra::atmosphere::Atmos
       },
       outcome);
   this->Count(outcome);
-  if (this->FileBacked) {  // over ranks: rank 0 writes the gathered tables
-    if (parallel::Ranks::world().root())
-      for (std::size_t i = 0; i < made.size(); ++i)
-        if (requests[i].needed) scratch->store(requests[i].kind, made[i]->parameters, values[i]);
-    fileBlocks();
-    return;
-  }
   for (std::size_t i = 0; i < made.size(); ++i)
     if (requests[i].needed) made[i]->table = std::move(values[i]);
   values.clear();

@@ -141,10 +141,12 @@ public:
   vtkSetMacro(SpillTables, bool);
   vtkGetMacro(SpillTables, bool);
   /// Under mpirun: the Bruneton tables' wavelength batches shared by the ranks (batch b of
-  /// rank b mod N; a batch of ceil(wavelengths / N) unless WavelengthBatch says), the
-  /// channels gathered on every rank, the tables stored by rank 0
-  /// (filters::spreadChannelsOrCached; every rank must update the source). The same tables
-  /// to the bit; not in the cache key. Off by default. Run directly: no change.
+  /// rank b mod N; a batch of ceil(wavelengths / N) unless WavelengthBatch says); every
+  /// rank must update the source. In arrays, the channels are gathered on every rank and
+  /// the tables stored by rank 0 (filters::spreadChannelsOrCached). With FileBacked, each
+  /// rank's batches are sent to rank 0 alone, which writes the files: no rank holds a whole
+  /// 4D table, and the blocks are of use on rank 0 only. The same tables to the bit; not in
+  /// the cache key. Off by default. Run directly: no change.
   vtkSetMacro(SpreadOverRanks, bool);
   vtkGetMacro(SpreadOverRanks, bool);
 
