@@ -41,18 +41,21 @@ int main(int argc, char** argv) {
   const pipeline::SceneInputs in = pipeline::sceneInputs(s);
   const auto lut = filters::toImageData(eclipse::buildAirlessShadowLut({256, 256}));
   std::vector<render::SphereBody> lambert = in.bodies, uniform = in.bodies, mapOnly = in.bodies;
-  std::string map, normals;
+  std::string map, normals;  // the files the scene's maps are read from
+  for (const scene::Body& b : s.bodies)
+    if (b.photometry.law == sky::Photometry::Law::Hapke) {
+      if (!b.albedoMapPath.empty()) map = b.albedoMapPath;
+      if (!b.normalMapPath.empty()) normals = b.normalMapPath;
+    }
   for (std::size_t k = 0; k < in.bodies.size(); ++k) {
     if (in.bodies[k].photometry.law != sky::Photometry::Law::Hapke) continue;
-    if (!in.bodies[k].albedoMapPath.empty()) map = in.bodies[k].albedoMapPath;
-    if (!in.bodies[k].normalMapPath.empty()) normals = in.bodies[k].normalMapPath;
     lambert[k].photometry = {};
-    lambert[k].albedoMapPath.clear();
-    lambert[k].normalMapPath.clear();
+    lambert[k].albedoMap.reset();
+    lambert[k].normalMap.reset();
     lambert[k].earthshineWm2 = glm::dvec3(0.0);
-    uniform[k].albedoMapPath.clear();
-    uniform[k].normalMapPath.clear();
-    mapOnly[k].normalMapPath.clear();
+    uniform[k].albedoMap.reset();
+    uniform[k].normalMap.reset();
+    mapOnly[k].normalMap.reset();
   }
   if (map.empty()) std::fprintf(stderr, "note: the scene's bodies have no albedo map (marble-qt-data not installed?)\n");
   if (normals.empty()) std::fprintf(stderr, "note: the scene's bodies have no relief (stellarium-data not installed?)\n");

@@ -61,15 +61,15 @@ int main(int argc, char** argv) {
   const std::filesystem::path cache =
       std::filesystem::temp_directory_path() / ("umbra-bench-stars-" + std::to_string(::getpid()));
   auto t0 = std::chrono::steady_clock::now();
-  render::readStarCatalogue(sky::kKStarsCatalogue, cache.string());
+  pipeline::readStarCatalogue(sky::kKStarsCatalogue, cache.string());
   const double textMs = msSince(t0);
   t0 = std::chrono::steady_clock::now();
-  render::readStarCatalogue(sky::kKStarsCatalogue, cache.string());
+  pipeline::readStarCatalogue(sky::kKStarsCatalogue, cache.string());
   const double copyMs = msSince(t0);
   std::filesystem::remove_all(cache);
-  const auto all = render::starCatalogue(sky::kKStarsCatalogue);
+  const auto all = pipeline::starCatalogue(sky::kKStarsCatalogue);
   t0 = std::chrono::steady_clock::now();
-  render::starCatalogue(sky::kKStarsCatalogue);
+  pipeline::starCatalogue(sky::kKStarsCatalogue);
   const double memoMs = msSince(t0);
   scene::Scene orion = scene::loadScene(bench::exampleScene("orion-night-sky.json"));
   orion.stars->limitingMagnitude = 9.0;

@@ -88,7 +88,7 @@ glm::dvec3 earthshineOn(const scene::Body& body, const scene::Body& earth, const
 // taken with the Sun's colour), when the scene has a time.
 std::vector<StarPoint> sceneStars(const scene::Scene& s, const glm::dvec3& cameraM, double sunIrradianceAt1AuWm2,
                                   const std::optional<std::pair<glm::dvec3, double>>& air) {
-  const auto all = render::starCatalogue(s.stars->cataloguePath);
+  const auto all = starCatalogue(s.stars->cataloguePath);
   std::vector<sky::CatalogueStar> bright;
   for (const sky::CatalogueStar& star : *all)
     if (star.vMag <= s.stars->limitingMagnitude) bright.push_back(star);
@@ -184,9 +184,10 @@ SceneInputs sceneInputs(const scene::Scene& s) {
     SphereBody body{b.name, b.positionM, b.radiusM,
                     b.albedoMapReflectance ? glm::dvec3(1.0) : bodyAlbedo(b) * bodyTint(b)};
     body.photometry = b.photometry;
-    body.albedoMapPath = b.albedoMapPath;
+    if (!b.albedoMapPath.empty())
+      body.albedoMap = mapTexels(b.albedoMapPath, b.albedoMapReflectance ? MapKind::Reflectance : MapKind::RelativeAlbedo);
     body.albedoMapReflectance = b.albedoMapReflectance;
-    body.normalMapPath = b.normalMapPath;
+    if (!b.normalMapPath.empty()) body.normalMap = mapTexels(b.normalMapPath, MapKind::Normals);
     body.reliefStrength = b.reliefStrength;
     body.velocityMps = b.velocityMps;
     if (!b.preset.empty() && scene::hasRotationModel(b.preset) && s.hasTime)
@@ -210,8 +211,8 @@ SceneInputs sceneInputs(const scene::Scene& s) {
     // anew; the receiver under it has a uniform albedo, so that the frame gives back the
     // eclipse alone (the same map sampled twice would not agree to the pixel).
     if (b.albedoMapReflectance) {
-      in.atmosphere->groundAlbedoMapPath = b.albedoMapPath;
-      in.bodies.back().albedoMapPath.clear();
+      in.atmosphere->groundAlbedoMap = in.bodies.back().albedoMap;
+      in.bodies.back().albedoMap.reset();
       in.bodies.back().albedoMapReflectance = false;
     }
   }
@@ -255,7 +256,7 @@ SceneInputs sceneInputs(const scene::Scene& s) {
       if (const scene::Body* planet = s.find(in.atmosphere->body)) air = {{planet->positionM, in.atmosphere->topRadiusM}};
     in.stars = sceneStars(s, in.camera.positionM, in.sun.irradianceAt1AuWm2, air);
     if (!s.stars->milkyWayPath.empty()) {
-      in.milkyWay = render::milkyWayTexels(s.stars->milkyWayPath, s.stars->cataloguePath,
+      in.milkyWay = milkyWayTexels(s.stars->milkyWayPath, s.stars->cataloguePath,
                                    std::min(s.stars->limitingMagnitude, sky::kMilkyWayStarsShownToV));
       in.milkyWayRadianceScale = in.milkyWay->radiancePerSunIrradiance * in.sun.irradianceAt1AuWm2;
     }
@@ -321,7 +322,7 @@ void showSceneAtmosphereTables(BodyView& view, const SceneInputs& in, vtkAtmosph
   view.GetAtmosphere().SetAtmosphere(model, filters::tablesFromBlocks(source->GetOutput(), model), body.centreM,
                                      body.albedoRgb);
   // A reflectance map (the Earth's colour) is the ground's albedo under the air.
-  view.GetAtmosphere().SetGroundAlbedoMap(a.groundAlbedoMapPath, body.bodyFixedToInertial);
+  view.GetAtmosphere().SetGroundAlbedoMap(a.groundAlbedoMap, body.bodyFixedToInertial);
   view.GetAtmosphere().SetRefraction(refraction ? refractionBlock(source->GetOutput()) : nullptr);
   view.GetAtmosphere().SetTerrainMeanElevation(eclipse::defaultTerrain(a.body).meanElevationM);
 }

@@ -5,6 +5,7 @@
 #include "AtmosphereModel.hpp"
 #include "BodyView.h"
 #include "EclipseShading.h"
+#include "MapFiles.h"
 
 #include <optional>
 #include <string>
@@ -20,7 +21,6 @@ namespace umbra::pipeline {
 using render::AtmosphereRendering;
 using render::BodyView;
 using render::EclipseShading;
-using render::MilkyWayTexels;
 using render::SphereBody;
 using render::StarPoint;
 using render::SunLight;
@@ -51,8 +51,8 @@ struct SceneAtmosphere {
   std::vector<AtmosphereRendering::CloudLayerView> clouds{};
   glm::dvec3 cloudSunFactor{1.0};
   /// The body's reflectance map ("bluemarble"), drawn as the ground's albedo by the
-  /// composite (AtmosphereRendering::SetGroundAlbedoMap; its receiver is then white); "" for none.
-  std::string groundAlbedoMapPath{};
+  /// composite (AtmosphereRendering::SetGroundAlbedoMap; its receiver is then white); null for none.
+  std::shared_ptr<const render::MapTexels> groundAlbedoMap{};
 };
 
 struct SceneInputs {
@@ -73,7 +73,8 @@ struct SceneInputs {
 /// The scene at its current time. A body's albedo is 3/2 of its geometric albedo, for
 /// Lambert's law (exact for a Lambertian sphere) and for Hapke's (A = p / I(0), I(0) = 2/3),
 /// tinted by its colour (its reflectance at 680, 550, 440 nm: sky::reflectanceTint) at equal
-/// luminance; it keeps its photometry, its albedo map and its
+/// luminance; it keeps its photometry, its albedo and normal maps (their texels, read once
+/// per process: MapFiles.h; std::invalid_argument naming a file that cannot be read) and its
 /// body-fixed frame (with a rotation model), and a Hapke body is lit by the Earth too
 /// (earthshine) when the scene has one.
 /// The stars come from the scene's catalogue (read once per process, from the table cache's

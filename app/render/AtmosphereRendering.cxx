@@ -519,11 +519,11 @@ void AtmosphereRendering::SetNightGlow(double zenithRadianceWm2Sr, double layerA
   impl_->nightGlowWm2Sr = zenithRadianceWm2Sr;
   impl_->glowLayerAltitudeM = layerAltitudeM;
 }
-void AtmosphereRendering::SetGroundAlbedoMap(const std::string& path, const glm::dmat3& bodyFixedToWorld) {
+void AtmosphereRendering::SetGroundAlbedoMap(std::shared_ptr<const MapTexels> map, const glm::dmat3& bodyFixedToWorld) {
   Impl& m = *impl_;
   if (!std::isfinite(glm::determinant(bodyFixedToWorld)) || std::abs(glm::determinant(bodyFixedToWorld) - 1.0) > 1e-6)
     throw std::invalid_argument("the ground's body-fixed frame must be a rotation");
-  std::shared_ptr<const MapTexels> map = path.empty() ? nullptr : mapTexels(path, MapKind::Reflectance);
+  if (map && !map->texels) throw std::invalid_argument("the ground's map has no texels");
   m.groundToBodyFixed = glm::transpose(bodyFixedToWorld);
   if (map == m.groundMap) return;
   m.groundMap = std::move(map);

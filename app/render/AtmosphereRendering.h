@@ -174,13 +174,14 @@ class AtmosphereRendering {
   /// sunlight on the clouds. Throws std::invalid_argument for more layers or a non-finite or
   /// out-of-range value.
   static constexpr int kMaxCloudLayers = 4;
-  /// The ground's albedo as a reflectance map (MapTexels, MapKind::Reflectance: the Earth's
-  /// colour) in the planet's body-fixed frame, which `bodyFixedToWorld` turns to world axes;
-  /// "" for SetAtmosphere's uniform albedo. The map's colour is taken per table channel.
-  /// SetAtmosphere's albedo stays the one the planet's receiver is drawn with (uniform): the
-  /// frame's ground over it gives the eclipse on the ground.
-  /// Throws std::invalid_argument naming the file when it cannot be read (nothing changed).
-  void SetGroundAlbedoMap(const std::string& path, const glm::dmat3& bodyFixedToWorld = glm::dmat3(1.0));
+  /// The ground's albedo as a reflectance map's texels (16-bit linear RGB:
+  /// pipeline::mapTexels with MapKind::Reflectance, the Earth's colour) in the planet's
+  /// body-fixed frame, which `bodyFixedToWorld` turns to world axes; null for SetAtmosphere's
+  /// uniform albedo. The map's colour is taken per table channel. SetAtmosphere's albedo
+  /// stays the one the planet's receiver is drawn with (uniform): the frame's ground over it
+  /// gives the eclipse on the ground. Throws std::invalid_argument for a frame that is not a
+  /// rotation or a map without texels (nothing changed).
+  void SetGroundAlbedoMap(std::shared_ptr<const MapTexels> map, const glm::dmat3& bodyFixedToWorld = glm::dmat3(1.0));
   void SetClouds(const std::vector<CloudLayerView>& layers, const glm::dvec3& sunFactor = glm::dvec3(1.0));
   int GetNumberOfCloudLayers() const;
 

@@ -90,6 +90,8 @@ void validateBody(const SphereBody& b) {
   if (!(std::isfinite(b.radiusM) && b.radiusM > 0.0)) {
     throw std::invalid_argument(who + " needs a finite radius > 0 (got " + std::to_string(b.radiusM) + ")");
   }
+  if ((b.albedoMap && !b.albedoMap->texels) || (b.normalMap && !b.normalMap->texels))
+    throw std::invalid_argument(who + " has a map without texels");
   if (!finite(b.albedoRgb) || b.albedoRgb.r < 0 || b.albedoRgb.g < 0 || b.albedoRgb.b < 0) {
     throw std::invalid_argument(who + " needs a finite albedo >= 0");
   }
@@ -129,9 +131,9 @@ struct Receiver {
   vtkSmartPointer<vtkActor> actor;
   vtkSmartPointer<vtkOpenGLPolyDataMapper> mapper;
   SphereBody body;
-  std::shared_ptr<const MapTexels> albedoMap;  // body.albedoMapPath's; null without one
+  std::shared_ptr<const MapTexels> albedoMap;  // body.albedoMap; null without one
   vtkSmartPointer<vtkTexture> albedoTexture;          // of albedoMap's texels, for this actor's window
-  std::shared_ptr<const MapTexels> normalMap;  // body.normalMapPath's; null without one
+  std::shared_ptr<const MapTexels> normalMap;  // body.normalMap; null without one
   vtkSmartPointer<vtkTexture> normalTexture;
   unsigned long observerTag = 0;
   std::string fragmentDecl;  // the fragment code its shader was given (fragmentDeclFor)
@@ -248,9 +250,9 @@ struct EclipseShading::Impl {
            std::to_string(atmosphereIndexOf(receiver)) + "\n#define UMBRA_EXACT_SHADOW " +
            std::to_string(exactShadowsOf(receiver)) + "\n#define UMBRA_OBLATE_SHADOW " +
            std::to_string(oblateShadowsOf(receiver)) + "\n#define UMBRA_PHOTOMETRY " + (hapke ? "1" : "0") +
-           "\n#define UMBRA_ALBEDO_MAP " + (receiver.albedoMapPath.empty() ? "0" : receiver.albedoMapReflectance ? "2" : "1") +
+           "\n#define UMBRA_ALBEDO_MAP " + (!receiver.albedoMap ? "0" : receiver.albedoMapReflectance ? "2" : "1") +
            "\n#define UMBRA_EARTHSHINE " + (earthshine ? "1" : "0") +
-           "\n#define UMBRA_NORMAL_MAP " + (receiver.normalMapPath.empty() ? "0" : "1") + "\n" +
+           "\n#define UMBRA_NORMAL_MAP " + (!receiver.normalMap ? "0" : "1") + "\n" +
            eclipseGlslWithoutSampler() + "\n" +
            checkedGlsl("sky/glsl/Photometry.glsl", sky::kPhotometryGlsl) + "\n" +
            checkedGlsl("ReceiverFragment.glsl", glsl::kReceiverFragment) + "\n" + kFsDec.tag;
@@ -553,11 +555,7 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   }
   impl_->checkOccluderCount(body, impl_->occludersOf(body).size());
   const std::string vsDec = checkedGlsl("ReceiverVertex.glsl", glsl::kReceiverVertex);
-  std::shared_ptr<const MapTexels> albedoMap;  // read before changing anything (they throw)
-  if (!body.albedoMapPath.empty())
-    albedoMap = mapTexels(body.albedoMapPath, body.albedoMapReflectance ? MapKind::Reflectance : MapKind::RelativeAlbedo);
-  std::shared_ptr<const MapTexels> normalMap;
-  if (!body.normalMapPath.empty()) normalMap = mapTexels(body.normalMapPath, MapKind::Normals);
+  const std::shared_ptr<const MapTexels> albedoMap = body.albedoMap, normalMap = body.normalMap;
 
   Receiver* receiver = nullptr;
   for (auto& r : impl_->receivers) {

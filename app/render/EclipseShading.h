@@ -29,6 +29,7 @@
 // body's radius centred on (0, 0, 0) with the world's axes (vtkSphereSource), inscribed
 // (vertices on the sphere). EclipseShading owns that actor's position/orientation/scale,
 // its back-face culling, its "umbraShadowLut" texture and its shader replacements.
+#include "MapTexels.h"
 #include "Photometry.hpp"
 #include "ShadowLut.hpp"  // Occluder
 
@@ -65,15 +66,15 @@ struct SphereBody {
   /// over the disc seen from above the map's centre (sky::nearSideDiscMean).
   glm::dvec3 albedoRgb{0.12};
   sky::Photometry photometry{};  ///< Lambert's law or Hapke's (GLSL twin: sky/glsl/Photometry.glsl)
-  /// An equirectangular albedo map (any image VTK reads: JPEG, PNG, TIFF; sky/AlbedoMap.hpp
-  /// says how it lies) in the body-fixed frame below; "" for a uniform albedo.
-  std::string albedoMapPath{};
-  /// The map's colour is the surface's reflectance (sRGB; albedoRgb multiplies it), not a
-  /// grey albedo relative to the geometric albedo.
+  /// An equirectangular albedo map's texels (pipeline::mapTexels; sky/AlbedoMap.hpp says how
+  /// it lies) in the body-fixed frame below; null for a uniform albedo.
+  std::shared_ptr<const MapTexels> albedoMap{};
+  /// The map is the surface's reflectance (16-bit linear RGB; albedoRgb multiplies it), not
+  /// a grey albedo relative to the geometric albedo.
   bool albedoMapReflectance = false;
-  /// An equirectangular normal map of its relief (sky/NormalMap.hpp says how it lies), in
-  /// the same frame; "" for the sphere's normals. reliefStrength scales its slopes (0..4).
-  std::string normalMapPath{};
+  /// An equirectangular normal map's texels (sky/NormalMap.hpp says how it lies), in the
+  /// same frame; null for the sphere's normals. reliefStrength scales its slopes (0..4).
+  std::shared_ptr<const MapTexels> normalMap{};
   double reliefStrength = 1.0;
   glm::dmat3 bodyFixedToInertial{1.0};
   /// Its shadow is cast by the spheroid of this flattening (0 <= f < 0.5) about its

@@ -68,7 +68,7 @@ class StarRendering {
   void SetStars(const std::vector<StarPoint>& stars);
   std::size_t GetNumberOfStars() const;
 
-  /// The Milky Way behind the stars: a map's texels (MapTexels.h: milkyWayTexels) and the
+  /// The Milky Way behind the stars: a map's texels (pipeline::milkyWayTexels reads them) and the
   /// factor that turns them into frame radiance [W m^-2 sr^-1]; nullptr or a factor of 0
   /// for none. Throws std::invalid_argument for a negative or non-finite factor.
   void SetMilkyWay(std::shared_ptr<const MapTexels> map, double radianceScale);

@@ -397,7 +397,7 @@ TEST(AtmosphereRender, EclipseShadowOnTheGroundThroughTheAtmosphere) {
     if (moon) bodies.push_back({"Moon", {kMoonDistance, 0.0, 0.0}, 1.7374e6, {0.1, 0.1, 0.1}});
     scene.view.SetBodies(scene.sun, bodies, testLutImage());
     scene.view.GetAtmosphere().SetAtmosphere(f.model, f.tables, glm::dvec3(0.0), scene.earth.albedoRgb);
-    scene.view.GetAtmosphere().SetGroundAlbedoMap(groundMap);
+    scene.view.GetAtmosphere().SetGroundAlbedoMap(groundMap.empty() ? nullptr : mapTexels(groundMap, MapKind::Reflectance));
     scene.view.SetCamera(cam);
     scene.view.Render();
     Frame out;
@@ -507,7 +507,7 @@ TEST(AtmosphereRender, GroundAlbedoMapLiesInTheBodyFixedFrame) {
       scene.view.SetBodies(scene.sun, {scene.earth}, testLutImage());
     }
     scene.view.GetAtmosphere().SetAtmosphere(f.model, f.tables, glm::dvec3(0.0), scene.earth.albedoRgb);
-    scene.view.GetAtmosphere().SetGroundAlbedoMap(map, turn);
+    scene.view.GetAtmosphere().SetGroundAlbedoMap(map.empty() ? nullptr : mapTexels(map, MapKind::Reflectance), turn);
     scene.view.Render();
     Frame out;
     scene.view.ReadHdr(out.rgb, out.w, out.h);

@@ -3,7 +3,7 @@
 // brightest part renders at the published surface brightness; and a map's galactic centre
 // renders where ERFA puts it.
 #include "RenderTestSupport.hpp"
-#include "MapTexels.h"
+#include "MapFiles.h"
 #include "MilkyWay.hpp"
 #include "StarLight.hpp"
 #include "scene/Bodies.hpp"
@@ -27,6 +27,7 @@
 using namespace umbra;
 using namespace umbra::render;
 using namespace umbra::render::test;
+using umbra::pipeline::milkyWayTexels;
 
 namespace {
 

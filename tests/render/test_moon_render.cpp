@@ -200,7 +200,7 @@ TEST(MoonRender, ReliefCpuGlslAgreement) {
   const glm::dvec3 texel = glm::dvec3(166.0, 107.0, 240.0) / 255.0;
   const std::string path = writeRgbPng(256, 128, [&](int, int) { return texel; }, "tilt.png");
   SphereBody moon = hapkeMoon();
-  moon.normalMapPath = path;
+  moon.normalMap = mapTexels(path, MapKind::Normals);
   moon.reliefStrength = 0.8;
   moon.bodyFixedToInertial = glm::dmat3(glm::rotate(glm::dmat4(1.0), 20.0 * kDeg, glm::dvec3(0, 0, 1)));
   const SunLight sun = sunTowards({1.0, 0.6, 0.1});
@@ -238,7 +238,7 @@ TEST(MoonRender, ReliefCpuGlslAgreement) {
   ViewCamera close = cam;
   close.fovDeg = 160.0 / 30.0 * (2.0 * kPi * kMoonRadius / 256.0) / glm::length(cam.positionM) / kDeg;
   SphereBody smooth = moon;
-  smooth.normalMapPath.clear();
+  smooth.normalMap.reset();
   const Frame near = renderFrame(sun, {moon}, close, 160), plain = renderFrame(sun, {smooth}, close, 160);
   EXPECT_NEAR(sky::reliefFade(30.0), 0.0, 0.0);
   double off = 0.0;
@@ -264,7 +264,7 @@ TEST(MoonRender, ReliefShowsAtTheTerminatorAndKeepsTheMagnitude) {
     for (const double phaseDeg : {90.0, 0.0}) {
       const SunLight sun = sunTowards({std::cos(phaseDeg * kDeg), std::sin(phaseDeg * kDeg), 0.0});
       SphereBody sphere = hapkeMoon(), relief = hapkeMoon();
-      relief.normalMapPath = path;
+      relief.normalMap = mapTexels(path, MapKind::Normals);
       const Frame a = renderFrame(sun, {sphere}, cam, 384), b = renderFrame(sun, {relief}, cam, 384);
       const double dv = sky::magnitudeOfIrradiance(frameIrradiance(b, cam)) -
                         sky::magnitudeOfIrradiance(frameIrradiance(a, cam));
@@ -323,7 +323,7 @@ TEST(MoonRender, RenderedLightGivesBackTheMagnitude) {
   for (const bool withMap : {false, true}) {
     for (const double phaseDeg : {0.0, 90.0}) {
       SphereBody moon = hapkeMoon();
-      if (withMap) moon.albedoMapPath = mapPath;
+      if (withMap) moon.albedoMap = mapTexels(mapPath, MapKind::RelativeAlbedo);
       const glm::dvec3 eyeDir(1.0, 0.0, 0.0);  // body-fixed longitude 0, latitude 0
       const SunLight sun = sunTowards({std::cos(phaseDeg * kDeg), std::sin(phaseDeg * kDeg), 0.0});
       const ViewCamera cam = cameraAt(eyeDir, distanceM, 0.85);
@@ -348,7 +348,7 @@ TEST(MoonRender, AlbedoMapLiesInTheBodyFixedFrame) {
   map.values[spotJ * 32 + spotI] = 0.1f;
   const std::string mapPath = writeMapPng(map, "spot.png");
   SphereBody moon = hapkeMoon();
-  moon.albedoMapPath = mapPath;
+  moon.albedoMap = mapTexels(mapPath, MapKind::RelativeAlbedo);
   // Body-fixed to inertial: 25 deg about z, then 10 deg about x.
   moon.bodyFixedToInertial = glm::dmat3(glm::rotate(glm::dmat4(1.0), 10.0 * kDeg, glm::dvec3(1, 0, 0)) *
                                         glm::rotate(glm::dmat4(1.0), 25.0 * kDeg, glm::dvec3(0, 0, 1)));
@@ -390,7 +390,7 @@ TEST(MoonRender, ReflectanceMapIsTheAlbedoAsItIs) {
   auto decode = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
   const glm::dvec3 albedo(decode(bytes.r / 255.0), decode(bytes.g / 255.0), decode(bytes.b / 255.0));
   SphereBody mapped{"Earth", {0.0, 0.0, 0.0}, kMoonRadius, glm::dvec3(1.0)}, uniform = mapped;
-  mapped.albedoMapPath = path;
+  mapped.albedoMap = mapTexels(path, MapKind::Reflectance);
   mapped.albedoMapReflectance = true;
   uniform.albedoRgb = albedo;
   const SunLight sun = sunTowards({1.0, 0.6, 0.1});

@@ -12,7 +12,7 @@
 #include <map>
 #include <system_error>
 
-namespace umbra::render {
+namespace umbra::pipeline {
 namespace {
 
 namespace fs = std::filesystem;
@@ -117,4 +117,4 @@ std::shared_ptr<const std::vector<sky::CatalogueStar>> starCatalogue(const std::
   });
 }
 
-}  // namespace umbra::render
+}  // namespace umbra::pipeline

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace umbra::render {
+namespace umbra::pipeline {
 
 /// The binary copy's file for the catalogue at `path` in `cacheDirectory`.
 std::string starCatalogueCopyPath(const std::string& path, const std::string& cacheDirectory);
@@ -26,4 +26,4 @@ std::vector<sky::CatalogueStar> readStarCatalogue(const std::string& path, const
 /// readStarCatalogue once per process, in tables::TableCache::defaultDirectory().
 std::shared_ptr<const std::vector<sky::CatalogueStar>> starCatalogue(const std::string& path);
 
-}  // namespace umbra::render
+}  // namespace umbra::pipeline
