@@ -89,7 +89,10 @@ struct FrameTimes {
 };
 
 /// A view of a scene's inputs as `umbra render` draws it (tables through the cache, the
-/// night sky, the camera, the exposure), rendered once to warm up (shaders, textures).
+/// night sky, the camera, the exposure), rendered once to warm up (shaders, textures). It
+/// leaves out what `umbra render` adds for eclipses and terrain: the airless LuT is the one
+/// given (not ranged to the receivers), and there is no atmospheric shadow LuT, limb-luminance
+/// LuT nor terrain patch; the benches that use it time scenes that need none of these.
 inline std::unique_ptr<render::BodyView> sceneView(const scene::Scene& s, const pipeline::SceneInputs& in, int width,
                                                    int height, vtkImageData* lut) {
   auto v = std::make_unique<render::BodyView>(width, height, true);
