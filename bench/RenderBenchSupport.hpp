@@ -92,7 +92,10 @@ struct FrameTimes {
 /// night sky, the camera, the exposure), rendered once to warm up (shaders, textures). It
 /// leaves out what `umbra render` adds for eclipses and terrain: the airless LuT is the one
 /// given (not ranged to the receivers), and there is no atmospheric shadow LuT, limb-luminance
-/// LuT nor terrain patch; the benches that use it time scenes that need none of these.
+/// LuT nor terrain patch. The benches that use it compare views of one scene with a stage
+/// and without it (clouds, stars, the Milky Way), which these omissions leave alike; the
+/// eclipse scene among them (lunar-eclipse-2015-09-28-clouds) draws the Moon in the airless
+/// shadow, not the atmosphere's.
 inline std::unique_ptr<render::BodyView> sceneView(const scene::Scene& s, const pipeline::SceneInputs& in, int width,
                                                    int height, vtkImageData* lut) {
   auto v = std::make_unique<render::BodyView>(width, height, true);
