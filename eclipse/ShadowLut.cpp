@@ -152,6 +152,13 @@ double lightTimeToSurfaceS(const glm::dvec3& pointM, const glm::dvec3& centreM, 
   return std::max(0.0, glm::length(centreM - pointM) - radiusM) / kLightSpeedMps;
 }
 
+Occluder seenFromCamera(const Occluder& body, const glm::dvec3& cameraM) {
+  Occluder seen = body;
+  seen.lightDelayS = lightTimeToSurfaceS(cameraM, body.centreM, body.radiusM);
+  seen.centreM -= body.velocityMps * seen.lightDelayS;
+  return seen;
+}
+
 Occluder occluderSeenBy(const Occluder& o, const glm::dvec3& receiverCentreM, double receiverRadiusM,
                         double receiverDelayS) {
   const double delayS = receiverDelayS + lightTimeToSurfaceS(o.centreM, receiverCentreM, receiverRadiusM);

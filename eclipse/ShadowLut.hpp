@@ -143,6 +143,10 @@ inline constexpr double kLightSpeedMps = 299792458.0;
 /// Moon moves in the Earth's radius' light time is the error left).
 double lightTimeToSurfaceS(const glm::dvec3& pointM, const glm::dvec3& centreM, double radiusM);
 
+/// `body` as a camera at `cameraM` sees it: where it was lightTimeToSurfaceS(camera, its
+/// centre, its radius) before the scene's time, its lightDelayS that (from the delay 0).
+Occluder seenFromCamera(const Occluder& body, const glm::dvec3& cameraM);
+
 /// `o` where the light that reaches a receiver (of centre and radius as drawn, drawn
 /// `receiverDelayS` before the scene's time) passed it: moved by -velocity x (receiverDelayS
 /// + lightTimeToSurfaceS(receiver from the occluder) - o.lightDelayS), to first order in

@@ -33,7 +33,6 @@
 namespace umbra::cli {
 namespace {
 
-
 struct DateOptions {
   std::string date;
   std::optional<double> deltaT;
@@ -78,8 +77,6 @@ auto eclipseOn(const DateOptions& o, const char* kind, Find find) -> typename de
 
 scene::SolarEclipse solarEclipseOn(const DateOptions& o) { return eclipseOn(o, "solar", scene::findSolarEclipses); }
 scene::LunarEclipse lunarEclipseOn(const DateOptions& o) { return eclipseOn(o, "lunar", scene::findLunarEclipses); }
-
-
 
 /// GeoJSON's [lon, lat] pairs of a line, split where it crosses the antimeridian (RFC 7946,
 /// 3.1.9): a MultiLineString's lines.

@@ -141,11 +141,12 @@ void nightLights(const scene::Scene& s, SceneInputs& in) {
     const double v = sky::apparentMagnitudeV(b.albedo, hapke, sky::angleBetween(toSun, toCamera), b.radiusM,
                                              glm::length(toSun), glm::length(toCamera));
     // The planet's shadow on the Moon as the camera sees it (eclipse::occluderSeenBy).
-    const double delayS = eclipse::lightTimeToSurfaceS(cam, b.positionM, b.radiusM);
-    const glm::dvec3 moonSeenM = b.positionM - b.velocityMps * delayS;
-    const eclipse::Occluder air{planet->positionM, a.bottomRadiusM, scene::shadowFigure(s, *planet), planet->velocityMps};
-    const glm::dvec3 shadow = eclipse::eclipseFactor(moonSeenM, in.sun.positionM, in.sun.radiusM,
-                                                     eclipse::occluderSeenBy(air, moonSeenM, b.radiusM, delayS), nullptr);
+    const eclipse::Occluder moon = eclipse::seenFromCamera(scene::occluderOf(s, b), cam);
+    eclipse::Occluder air = scene::occluderOf(s, *planet);
+    air.radiusM = a.bottomRadiusM;
+    const glm::dvec3 shadow =
+        eclipse::eclipseFactor(moon.centreM, in.sun.positionM, in.sun.radiusM,
+                               eclipse::occluderSeenBy(air, moon.centreM, b.radiusM, moon.lightDelayS), nullptr);
     a.moonPositionM = b.positionM;
     a.moonIrradianceWm2 = in.sun.irradianceAt1AuWm2 * sky::irradianceRelativeToSun(v) * bodyTint(b) * shadow;
     return;
@@ -243,10 +244,10 @@ SceneInputs sceneInputs(const scene::Scene& s) {
   // surface); the Sun stays, at rest. A body the camera stands on does not move, and the
   // camera keeps a body it targets at the centre.
   for (SphereBody& b : in.bodies) {
-    b.lightDelayS = eclipse::lightTimeToSurfaceS(in.camera.positionM, b.centreM, b.radiusM);
-    const glm::dvec3 shiftM = -b.velocityMps * b.lightDelayS;
-    b.centreM += shiftM;
-    if (b.name == s.camera.targetBody) in.camera.targetM += shiftM;
+    const eclipse::Occluder drawn = eclipse::seenFromCamera(occluderOf(b), in.camera.positionM);
+    if (b.name == s.camera.targetBody) in.camera.targetM += drawn.centreM - b.centreM;
+    b.centreM = drawn.centreM;
+    b.lightDelayS = drawn.lightDelayS;
   }
   in.camera.up = s.camera.up;
   in.camera.fovDeg = s.camera.fovDeg;

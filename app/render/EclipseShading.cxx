@@ -131,10 +131,8 @@ struct Receiver {
   vtkSmartPointer<vtkActor> actor;
   vtkSmartPointer<vtkOpenGLPolyDataMapper> mapper;
   SphereBody body;
-  std::shared_ptr<const MapTexels> albedoMap;  // body.albedoMap; null without one
-  vtkSmartPointer<vtkTexture> albedoTexture;          // of albedoMap's texels, for this actor's window
-  std::shared_ptr<const MapTexels> normalMap;  // body.normalMap; null without one
-  vtkSmartPointer<vtkTexture> normalTexture;
+  vtkSmartPointer<vtkTexture> albedoTexture;  // of body.albedoMap's texels, for this actor's window
+  vtkSmartPointer<vtkTexture> normalTexture;  // of body.normalMap's
   unsigned long observerTag = 0;
   std::string fragmentDecl;  // the fragment code its shader was given (fragmentDeclFor)
 };
@@ -272,7 +270,7 @@ struct EclipseShading::Impl {
     const glm::dvec3 sunRel = sun.positionM - b.centreM;
     const float sunPos[3] = {float(sunRel.x), float(sunRel.y), float(sunRel.z)};
     // With a map, the albedo over its mean on the disc: the map's texels times this.
-    const glm::dvec3 a = b.albedoRgb / (r.albedoMap ? r.albedoMap->discMean : 1.0);
+    const glm::dvec3 a = b.albedoRgb / (b.albedoMap ? b.albedoMap->discMean : 1.0);
     const float albedo[3] = {float(a.r), float(a.g), float(a.b)};
     program.SetUniformf("umbraBodyRadius", float(b.radiusM));
     program.SetUniform3f("umbraAlbedo", albedo);
@@ -284,9 +282,9 @@ struct EclipseShading::Impl {
     for (int col = 0; col < 3; ++col)
       for (int row = 0; row < 3; ++row) toBody[3 * col + row] = float(inertialToBody[col][row]);
     program.SetUniformMatrix3x3("umbraInertialToBodyFixed", toBody);
-    if (r.albedoMap) program.SetUniformf("umbraAlbedoMapHalfTexel", float(0.5 / r.albedoMap->height));
-    if (r.normalMap) {
-      program.SetUniformf("umbraNormalMapHalfTexel", float(0.5 / r.normalMap->height));
+    if (b.albedoMap) program.SetUniformf("umbraAlbedoMapHalfTexel", float(0.5 / b.albedoMap->height));
+    if (b.normalMap) {
+      program.SetUniformf("umbraNormalMapHalfTexel", float(0.5 / b.normalMap->height));
       program.SetUniformf("umbraReliefStrength", float(b.reliefStrength));
     }
     const glm::dvec3 earthRel = b.earthCentreM - b.centreM;
@@ -555,7 +553,6 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   }
   impl_->checkOccluderCount(body, impl_->occludersOf(body).size());
   const std::string vsDec = checkedGlsl("ReceiverVertex.glsl", glsl::kReceiverVertex);
-  const std::shared_ptr<const MapTexels> albedoMap = body.albedoMap, normalMap = body.normalMap;
 
   Receiver* receiver = nullptr;
   for (auto& r : impl_->receivers) {
@@ -575,11 +572,12 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
     receiver->actor = actor;
   }
   receiver->mapper = mapper;
+  // A texture for each map that is new to this receiver (a fresh one has none).
+  if (body.albedoMap != receiver->body.albedoMap)
+    receiver->albedoTexture = body.albedoMap ? mapTextureOf(*body.albedoMap) : nullptr;
+  if (body.normalMap != receiver->body.normalMap)
+    receiver->normalTexture = body.normalMap ? mapTextureOf(*body.normalMap) : nullptr;
   receiver->body = body;
-  if (albedoMap != receiver->albedoMap) receiver->albedoTexture = albedoMap ? mapTextureOf(*albedoMap) : nullptr;
-  receiver->albedoMap = albedoMap;
-  if (normalMap != receiver->normalMap) receiver->normalTexture = normalMap ? mapTextureOf(*normalMap) : nullptr;
-  receiver->normalMap = normalMap;
 
   // The actor only translates: model coordinates stay body-centred with world axes.
   actor->SetOrientation(0.0, 0.0, 0.0);
@@ -595,9 +593,9 @@ void EclipseShading::MakeReceiver(vtkActor* actor, const SphereBody& body, const
   prop->BackfaceCullingOn();  // a convex mesh: no self-overlap, depth only orders bodies
   prop->SetTexture(kLutSamplerName, impl_->lutTexture);
   prop->SetTexture(kAtmosphereLutSamplerName, impl_->atmosphereTexture);
-  if (albedoMap) prop->SetTexture(kAlbedoMapSamplerName, receiver->albedoTexture);
+  if (receiver->albedoTexture) prop->SetTexture(kAlbedoMapSamplerName, receiver->albedoTexture);
   else prop->RemoveTexture(kAlbedoMapSamplerName);
-  if (normalMap) prop->SetTexture(kNormalMapSamplerName, receiver->normalTexture);
+  if (receiver->normalTexture) prop->SetTexture(kNormalMapSamplerName, receiver->normalTexture);
   else prop->RemoveTexture(kNormalMapSamplerName);
 
   if (fresh) {

@@ -4,6 +4,7 @@
 #include "scene/EclipseEphemerides.hpp"
 #include "scene/Ephemeris.hpp"
 
+#include "ShadowLut.hpp"  // kLightSpeedMps
 #include "ShadowMapping.hpp"  // outlinePolarRatio, outlineRadiusFactor
 #include "SolarDisc.hpp"  // visibleFractionUniform
 
@@ -30,7 +31,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kArcsec = kPi / (180.0 * 3600.0);
-constexpr double kLightSpeedMs = 299792458.0;
 constexpr double kAuM = 149597870700.0;
 constexpr double kDayS = 86400.0;
 constexpr double kSynodicMonthDays = 29.530588861;
@@ -64,9 +64,9 @@ template <class E>
 Apparent apparentAt(const E& ephemerides, double tt) {
   Apparent a;
   const glm::dvec3 m0 = ephemerides.moonGeocentricM(tt);
-  a.moonM = ephemerides.moonGeocentricM(tt - glm::length(m0) / kLightSpeedMs / kDayS);
+  a.moonM = ephemerides.moonGeocentricM(tt - glm::length(m0) / eclipse::kLightSpeedMps / kDayS);
   const glm::dvec3 e0 = ephemerides.earthHeliocentricM(tt);
-  a.sunM = -ephemerides.earthHeliocentricM(tt - glm::length(e0) / kLightSpeedMs / kDayS);
+  a.sunM = -ephemerides.earthHeliocentricM(tt - glm::length(e0) / eclipse::kLightSpeedMps / kDayS);
   return a;
 }
 

@@ -3,6 +3,7 @@
 #include "scene/Ephemeris.hpp"
 
 #include "PlanetMagnitudes.hpp"
+#include "ShadowLut.hpp"  // kLightSpeedMps
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -17,7 +18,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 constexpr double kAuM = 149597870700.0;
-constexpr double kLightSpeedMs = 299792458.0;
 
 /// A longitude in [0, 360) degrees.
 double wrapDeg(double deg) {
@@ -48,7 +48,7 @@ std::vector<PlanetSeen> planetsSeenFrom(const glm::dvec3& observerM, UtcTime tim
     glm::dvec3 planet = planetHeliocentricPositionM(name, time);
     UtcTime departure = time;
     for (int k = 0; k < 2; ++k) {
-      departure = addSeconds(time, -glm::length(planet - observerM) / kLightSpeedMs);
+      departure = addSeconds(time, -glm::length(planet - observerM) / eclipse::kLightSpeedMps);
       planet = planetHeliocentricPositionM(name, departure);
     }
     const glm::dvec3 toObserver = observerM - planet;

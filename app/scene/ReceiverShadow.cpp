@@ -9,17 +9,6 @@
 
 namespace umbra::scene {
 
-namespace {
-
-/// An occluder as the shadow on the receiver takes it (eclipse::occluderSeenBy), with its figure.
-eclipse::Occluder seenBy(const Scene& scene, const Body& occluder, const glm::dvec3& receiverM, double receiverRadiusM,
-                         double receiverDelayS) {
-  const eclipse::Occluder o{occluder.positionM, occluder.radiusM, shadowFigure(scene, occluder), occluder.velocityMps};
-  return eclipse::occluderSeenBy(o, receiverM, receiverRadiusM, receiverDelayS);
-}
-
-}  // namespace
-
 ReceiverShadow receiverShadow(const Scene& scene) {
   ReceiverShadow r;
   const Body* receiver = scene.camera.targetBody.empty() ? nullptr : scene.find(scene.camera.targetBody);
@@ -29,14 +18,14 @@ ReceiverShadow receiverShadow(const Scene& scene) {
   }
   const Body& sun = scene.sun();
   // The receiver as the camera sees it, a light time back (as the renderer draws it).
-  const double delayS = eclipse::lightTimeToSurfaceS(scene.camera.positionM, receiver->positionM, receiver->radiusM);
-  const glm::dvec3 receiverM = receiver->positionM - receiver->velocityMps * delayS;
+  const eclipse::Occluder drawn = eclipse::seenFromCamera(occluderOf(scene, *receiver), scene.camera.positionM);
+  const glm::dvec3 receiverM = drawn.centreM;
   const Body* occluder = nullptr;
   eclipse::Occluder seen;
   double bestV = std::numeric_limits<double>::infinity();
   for (const Body& body : scene.bodies) {
     if (&body == receiver || body.isSun()) continue;
-    const eclipse::Occluder o = seenBy(scene, body, receiverM, receiver->radiusM, delayS);
+    const eclipse::Occluder o = eclipse::occluderSeenBy(occluderOf(scene, body), receiverM, receiver->radiusM, drawn.lightDelayS);
     if (!eclipse::occluderInFront(receiverM, sun.positionM, o.centreM)) continue;
     // behind the body as seen from the Sun
     if (!(glm::dot(receiverM - o.centreM, o.centreM - sun.positionM) > 0.0)) continue;

@@ -170,15 +170,19 @@ eclipse::Oblateness shadowFigure(const Scene& scene, const Body& b) {
   return {bodyFixedToInertial(b.preset, scene.time)[2], (b.equatorialRadiusM - b.polarRadiusM) / b.equatorialRadiusM};
 }
 
+eclipse::Occluder occluderOf(const Scene& scene, const Body& b) {
+  return {b.positionM, b.radiusM, shadowFigure(scene, b), b.velocityMps};
+}
+
 std::optional<double> sunVisibleFractionAtCamera(const Scene& scene) {
   const Body& sun = scene.sun();
   const std::string own = scene.camera.observer ? scene.camera.observer->body : std::string();
   double least = 1.0;
   for (const Body& b : scene.bodies) {
     if (b.isSun() || b.name == own) continue;
-    const eclipse::Occluder o{b.positionM, b.radiusM, shadowFigure(scene, b), b.velocityMps};
-    const glm::dvec3 f = eclipse::eclipseFactor(scene.camera.positionM, sun.positionM, sun.radiusM,
-                                                eclipse::occluderSeenBy(o, scene.camera.positionM, 0.0, 0.0), nullptr);
+    const glm::dvec3 f =
+        eclipse::eclipseFactor(scene.camera.positionM, sun.positionM, sun.radiusM,
+                               eclipse::occluderSeenBy(occluderOf(scene, b), scene.camera.positionM, 0.0, 0.0), nullptr);
     least = std::min(least, f.g);
   }
   if (!(least < 1.0)) return std::nullopt;

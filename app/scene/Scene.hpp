@@ -6,7 +6,7 @@
 #include "Clouds.hpp"
 #include "AtmosphereModel.hpp"
 #include "Photometry.hpp"
-#include "ShadowMapping.hpp"  // Oblateness
+#include "ShadowLut.hpp"  // Occluder, Oblateness
 
 #include <glm/glm.hpp>
 
@@ -171,6 +171,9 @@ std::optional<double> sunElevationDeg(const Scene& scene);
 /// has a time and the body a rotation model (hasRotationModel), else its sphere. The body
 /// is drawn as the sphere of its mean radius.
 eclipse::Oblateness shadowFigure(const Scene& scene, const Body& body);
+/// The body as an occluder where it is at the scene's time: its position, mean radius,
+/// shadowFigure and velocity (light delay 0; eclipse::occluderSeenBy moves it).
+eclipse::Occluder occluderOf(const Scene& scene, const Body& body);
 /// The share of the Sun's light (Eq. 1's limb-darkened disc, eclipse::eclipseFactor
 /// computed exactly) that reaches the camera past the scene's bodies in front of the Sun
 /// (the least over them: exact for one occluder), the camera's own body left out; nothing
