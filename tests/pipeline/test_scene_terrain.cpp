@@ -129,3 +129,62 @@ TEST(TerrainScene, PatchMovedToAnotherTimeRendersAsOneBuiltThere) {
   std::printf("  %zu of %zu values changed in 6 hours\n", changed, firstFrame.size());
   EXPECT_GT(changed, firstFrame.size() / 20);
 }
+
+namespace {
+// Of every column of an image's lower half (rows from H/2 + 8, below a Sun at the centre),
+// the count of rows where the pixel's radiance (R + G + B) stands out of both its
+// neighbours two columns away (above 1.5 times the brighter and by more than 2 % of the
+// lower half's median): a seam drawn down the image is such a column from top to bottom;
+// texture and relief make a few scattered ones.
+int mostOutstandingRowsInAColumn(const std::vector<float>& hdr, int W, int H, int* column) {
+  auto at = [&](int x, int y) { return hdr[3 * (y * W + x)] + hdr[3 * (y * W + x) + 1] + hdr[3 * (y * W + x) + 2]; };
+  std::vector<float> lower;
+  for (int y = H / 2 + 8; y < H; ++y)
+    for (int x = 0; x < W; ++x) lower.push_back(at(x, y));
+  std::nth_element(lower.begin(), lower.begin() + lower.size() / 2, lower.end());
+  const double median = lower[lower.size() / 2];
+  int most = 0;
+  for (int x = 2; x + 2 < W; ++x) {
+    int count = 0;
+    for (int y = H / 2 + 8; y < H; ++y) {
+      const double side = std::max(at(x - 2, y), at(x + 2, y));
+      count += at(x, y) > 1.5 * side && at(x, y) - side > 0.02 * median;
+    }
+    if (count > most) most = count, *column = x;
+  }
+  return most;
+}
+} // namespace
+
+// From 4 km off the lunar south pole the meridian opposite the camera's runs down the
+// middle of the view: the Moon's maps must not show it (a quad of pixels astride the
+// longitude's jump would take the map's coarsest level, a bright line 2 pixels wide from
+// the horizon down). Neither must the terrain patch's edges. Checked on the example scene
+// with and without its terrain, at the scene's 960 x 540 (where the line stands out in
+// over 200 of the 262 rows without the terrain, some 60 with it; at some sizes the pixel quads do not
+// straddle it).
+TEST(TerrainScene, NoLineDownTheViewFromNearThePole) {
+  const scene::Scene s = scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/lunar-south-pole-landing-site.json");
+  const pipeline::SceneInputs in = pipeline::sceneInputs(s);
+  const auto moon = std::find_if(in.bodies.begin(), in.bodies.end(), [](const render::SphereBody& b) { return b.name == "Moon"; });
+  ASSERT_NE(moon, in.bodies.end());
+  ASSERT_TRUE(moon->albedoMap) << "the Moon's albedo map (the set-up scripts install it) is needed here";
+  const int W = 960, H = 540;
+  for (const bool withTerrain : {false, true}) {
+    render::BodyView view(W, H, true);
+    render::test::useSharedDisplay(view.GetRenderWindow());
+    view.SetBodies(in.sun, in.bodies, render::test::testLutImage());
+    view.SetCamera(in.camera);
+    std::vector<std::unique_ptr<render::TerrainRendering>> terrains;
+    if (withTerrain) terrains = pipeline::addSceneTerrains(view, s, in, {});
+    std::vector<float> hdr;
+    int w = 0, h = 0;
+    view.Render();
+    view.ReadHdr(hdr, w, h);
+    int column = -1;
+    const int rows = mostOutstandingRowsInAColumn(hdr, W, H, &column);
+    std::printf("  %s: at most %d of %d rows stand out in one column (column %d)\n",
+                withTerrain ? "with the terrain" : "the sphere alone", rows, H - H / 2 - 8, column);
+    EXPECT_LE(rows, 20) << (withTerrain ? "with the terrain" : "the sphere alone") << ", column " << column;
+  }
+}

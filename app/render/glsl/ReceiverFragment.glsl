@@ -82,12 +82,19 @@ vec2 umbraMapCoord(vec3 nb) {
 }
 // The rows of the poles held half a texel (halfTexel, in texture coordinates) off the other pole.
 vec2 umbraMapRowsHeld(vec2 uv, float halfTexel) { return vec2(uv.x, clamp(uv.y, halfTexel, 1.0 - halfTexel)); }
+// The screen derivatives of map coordinates across the longitude's jump: seen from near a
+// pole the meridian behind the eye runs through the view, and a pixel quad astride it
+// would take a difference of a whole turn (the coarsest mip level: a line of the map's
+// mean). A difference in longitude is taken within half a turn.
+vec2 umbraMapWrapped(vec2 d) { return vec2(d.x - floor(d.x + 0.5), d.y); }
+vec2 umbraMapDx(vec2 uv) { return umbraMapWrapped(dFdx(uv)); }
+vec2 umbraMapDy(vec2 uv) { return umbraMapWrapped(dFdy(uv)); }
 #endif
 
 #if UMBRA_ALBEDO_MAP
 uniform float umbraAlbedoMapHalfTexel;  // half a texel of the map's height, in texture coordinates
 vec3 umbraAlbedoAt(vec2 uv) {
-  vec3 t = texture(umbraAlbedoMap, umbraMapRowsHeld(uv, umbraAlbedoMapHalfTexel)).rgb;
+  vec3 t = textureGrad(umbraAlbedoMap, umbraMapRowsHeld(uv, umbraAlbedoMapHalfTexel), umbraMapDx(uv), umbraMapDy(uv)).rgb;
 #if UMBRA_ALBEDO_MAP == 2
   return t;
 #else
@@ -103,14 +110,15 @@ uniform float umbraReliefStrength;      // 0: the sphere; 1: the map's slopes
 // (sky/NormalMap.hpp, reliefFade): full strength while a texel spans at most 4 pixels
 // across the footprint's short side, none from 16 on.
 vec3 umbraReliefAt(vec3 nb, vec2 uv) {
+  vec2 gx = umbraMapDx(uv), gy = umbraMapDy(uv);
   uv = umbraMapRowsHeld(uv, umbraNormalMapHalfTexel);
   // Texels counted at their size on the sphere: a row's shrink towards the poles.
   vec2 size = vec2(textureSize(umbraNormalMap, 0)) * vec2(length(nb.xy), 1.0);
-  vec2 dx = dFdx(uv) * size, dy = dFdy(uv) * size;
+  vec2 dx = gx * size, dy = gy * size;
   // The footprint's short side: a grazing view stretches the other one along the ray.
   float texelsPerPixel = sqrt(min(dot(dx, dx), dot(dy, dy)));
   float fade = clamp(0.5 * (log2(max(texelsPerPixel, 1.0e-6)) + 4.0), 0.0, 1.0);
-  return umbraReliefNormal(nb, texture(umbraNormalMap, uv).rgb, umbraReliefStrength * fade);
+  return umbraReliefNormal(nb, textureGrad(umbraNormalMap, uv, gx, gy).rgb, umbraReliefStrength * fade);
 }
 #endif
 
