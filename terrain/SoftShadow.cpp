@@ -14,10 +14,11 @@
 namespace umbra::terrain {
 namespace {
 
+/// Where the reference starts along the footprint [texels]: the local slope towards the Sun.
+constexpr double kReferenceStartTexels = 1e-3;
+
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-/// Where the search starts along the footprint [texels]: the local slope towards the Sun.
-constexpr double kStartTexels = 1e-3;
 
 /// The vertical plane through a receiver and a direction to the sky. Points of the plane
 /// are r (cos phi a + sin phi b); its footprint on the grid is g0 + s dir (s in texels).
@@ -56,6 +57,11 @@ public:
   double height(double s) const {
     const glm::dvec2 g = g0 + s * dir;
     return f.bilinear(g.x, g.y);
+  }
+  /// Where a search from `start` begins: the terrain's elevation there, -inf where the
+  /// footprint has ended before it (the local slope at the receiver is always taken).
+  double firstElevation(double start) const {
+    return start <= kReferenceStartTexels || start < sEnd ? terrainElevation(start) : -kInf;
   }
   /// Elevation of the terrain at footprint s; -inf over no data.
   double terrainElevation(double s) const { return terrainElevation(s, height(s)); }
@@ -127,15 +133,15 @@ class MipmapSearch {
 public:
   MipmapSearch(const Profile& p, double lowerEdge, double upperEdge) : p(p), lo(lowerEdge), hi(upperEdge) {}
 
-  double run(int levels, long long& samples) {
-    best = p.terrainElevation(kStartTexels);
+  double run(int levels, double start, long long& samples) {
+    best = p.firstElevation(start);
     count = 1;
     const int top = std::clamp(levels - 1, 0, p.mip.levels() - 1);
     const double block = std::ldexp(1.0, top);
     const int nx = p.mip.width(top), ny = p.mip.height(top);
     const double cellsX = p.f.width - 1.0, cellsY = p.f.height - 1.0;
     // Concatenated intervals: one level-`top` texel of footprint after another.
-    double s = kStartTexels;
+    double s = start;
     while (s < p.sEnd && best < hi) {
       const glm::dvec2 g = p.g0 + s * p.dir;
       const int bi = blockIndex(g.x, p.dir.x, block, nx), bj = blockIndex(g.y, p.dir.y, block, ny);
@@ -234,12 +240,12 @@ private:
   long long count = 0;
 };
 
-double uniformSearch(const Profile& p, int steps, double hi, long long& samples) {
-  double best = p.terrainElevation(kStartTexels);
+double uniformSearch(const Profile& p, int steps, double start, double hi, long long& samples) {
+  double best = p.firstElevation(start);
   samples = 1;
-  if (p.sEnd <= kStartTexels) return best;
-  const double step = (p.sEnd - kStartTexels) / steps;
-  for (int k = 1; k <= steps && best < hi; ++k, ++samples) best = std::max(best, p.terrainElevation(kStartTexels + k * step));
+  if (p.sEnd <= start) return best;
+  const double step = (p.sEnd - start) / steps;
+  for (int k = 1; k <= steps && best < hi; ++k, ++samples) best = std::max(best, p.terrainElevation(start + k * step));
   return best;
 }
 
@@ -264,9 +270,9 @@ double referenceFraction(const HeightField& f, const MaximumMipmap& mip, int i, 
     const Profile p(f, mip, i, j, Lk, 0.0);
     const double e = p.sunElevation, lower = e - q * r, upper = e + q * r;
     const Profile strip(f, mip, i, j, Lk, lower);
-    double horizon = strip.terrainElevation(kStartTexels), atS = kStartTexels;
+    double horizon = strip.terrainElevation(kReferenceStartTexels), atS = kReferenceStartTexels;
     ++samples;
-    for (double s = kStartTexels + o.referenceStepTexels; s < strip.sEnd + o.referenceStepTexels && horizon < upper;
+    for (double s = kReferenceStartTexels + o.referenceStepTexels; s < strip.sEnd + o.referenceStepTexels && horizon < upper;
          s += o.referenceStepTexels, ++samples) {
       const double e = strip.terrainElevation(std::min(s, strip.sEnd));
       if (e > horizon) horizon = e, atS = std::min(s, strip.sEnd);
@@ -274,7 +280,7 @@ double referenceFraction(const HeightField& f, const MaximumMipmap& mip, int i, 
     // The exact peak near the highest sample: golden-section search within a step of it.
     if (horizon > lower && horizon < upper) {
       constexpr double g = 0.6180339887498949;
-      double x0 = std::max(kStartTexels, atS - o.referenceStepTexels), x1 = std::min(strip.sEnd, atS + o.referenceStepTexels);
+      double x0 = std::max(kReferenceStartTexels, atS - o.referenceStepTexels), x1 = std::min(strip.sEnd, atS + o.referenceStepTexels);
       double c = x1 - g * (x1 - x0), d = x0 + g * (x1 - x0);
       double ec = strip.terrainElevation(c), ed = strip.terrainElevation(d);
       for (int k = 0; k < 40; ++k, ++samples) {
@@ -315,6 +321,8 @@ void ShadowOptions::validate() const {
   if (referenceStrips < 2) throw std::invalid_argument("reference strips must be >= 2");
   if (!(referenceStepTexels > 0.0) || referenceStepTexels > 16.0)
     throw std::invalid_argument("reference step must be in (0, 16] texels");
+  if (!(fromTexels > 0.0 && toTexels > fromTexels)) throw std::invalid_argument("the footprint searched must run from > 0 to further on");
+  if (!(windowRadii >= 1.0 && windowRadii <= 100.0)) throw std::invalid_argument("the search window must be 1..100 solar radii");
 }
 
 Horizon horizonTowardsSun(const HeightField& f, const MaximumMipmap& mip, int i, int j, const SunDisc& sun,
@@ -324,7 +332,7 @@ Horizon horizonTowardsSun(const HeightField& f, const MaximumMipmap& mip, int i,
 
 Horizon horizonTowardsSunAt(const HeightField& f, const MaximumMipmap& mip, glm::dvec2 grid, double heightM,
                             const SunDisc& sun, const ShadowOptions& o) {
-  const double r = sun.angularRadiusRad;
+  const double r = sun.angularRadiusRad * o.windowRadii;
   // The lower edge decides where the search may stop; the Sun's elevation comes with the plane.
   const Profile probe(f, mip, grid, heightM, sun.direction, 0.0);
   Horizon h;
@@ -335,18 +343,22 @@ Horizon horizonTowardsSunAt(const HeightField& f, const MaximumMipmap& mip, glm:
     return h;
   }
   const double lo = probe.sunElevation - r, hi = probe.sunElevation + r;
-  const Profile p(f, mip, grid, heightM, sun.direction, lo);
+  Profile p(f, mip, grid, heightM, sun.direction, lo);
+  p.sEnd = std::min(p.sEnd, o.toTexels);
   if (o.method == ShadowMethod::Uniform)
-    h.horizonElevationRad = uniformSearch(p, o.uniformSteps, hi, h.samples);
+    h.horizonElevationRad = uniformSearch(p, o.uniformSteps, o.fromTexels, hi, h.samples);
   else
-    h.horizonElevationRad = MipmapSearch(p, lo, hi).run(o.levels, h.samples);
+    h.horizonElevationRad = MipmapSearch(p, lo, hi).run(o.levels, o.fromTexels, h.samples);
   return h;
 }
 
 double discFractionAboveHorizon(const Horizon& h, const SunDisc& sun) {
   if (h.degenerate) return h.sunElevationRad > 0.0 ? 1.0 : 0.0;
   // Eq. 6: the horizon's chord lies d disc radii below the disc's centre.
-  const double d = (h.sunElevationRad - h.horizonElevationRad) / sun.angularRadiusRad;
+  return discFractionForOffset((h.sunElevationRad - h.horizonElevationRad) / sun.angularRadiusRad, sun);
+}
+
+double discFractionForOffset(double d, const SunDisc& sun) {
   return sun.limbDarkening > 0.0 ? eclipse::visibleFractionAboveHorizonLimbDarkened(d, sun.limbDarkening)
                                  : eclipse::visibleFractionAboveHorizon(d);
 }
@@ -366,9 +378,8 @@ double visibleFraction(const HeightField& f, const MaximumMipmap& mip, int i, in
   return fraction;
 }
 
-std::vector<double> visibleFractionMap(const HeightField& f, const MaximumMipmap& mip, const SunDisc& sun,
-                                       const ShadowOptions& o, const std::function<void(double)>& progress,
-                                       ShadowMapStats* stats) {
+namespace {
+void validateMapInputs(const HeightField& f, const SunDisc& sun, const ShadowOptions& o) {
   f.validate();
   o.validate();
   if (!(sun.angularRadiusRad > 0.0) || sun.angularRadiusRad > 0.5)
@@ -376,7 +387,13 @@ std::vector<double> visibleFractionMap(const HeightField& f, const MaximumMipmap
   if (!(sun.limbDarkening >= 0.0 && sun.limbDarkening <= 1.0)) throw std::invalid_argument("limb darkening must be in [0, 1]");
   if (!(glm::length(sun.direction) > 0.0) || !std::isfinite(glm::length(sun.direction)))
     throw std::invalid_argument("sun direction must be a finite non-zero vector");
-  std::vector<double> out(static_cast<std::size_t>(f.width) * f.height);
+}
+
+/// out[j * width + i] = atSample(i, j, samples looked at) for every sample, rows in parallel.
+template <class T, class AtSample>
+std::vector<T> everySample(const HeightField& f, const std::function<void(double)>& progress, ShadowMapStats* stats,
+                           AtSample atSample) {
+  std::vector<T> out(static_cast<std::size_t>(f.width) * f.height);
   std::atomic<int> rowsDone{0};
   long long total = 0;
   ParallelErrors errors;
@@ -386,7 +403,7 @@ std::vector<double> visibleFractionMap(const HeightField& f, const MaximumMipmap
     errors.run([&] {
       for (int i = 0; i < f.width; ++i) {
         long long n = 0;
-        out[static_cast<std::size_t>(j) * f.width + i] = visibleFraction(f, mip, i, j, sun, o, &n);
+        out[static_cast<std::size_t>(j) * f.width + i] = atSample(i, j, n);
         rowSamples += n;
       }
     });
@@ -397,6 +414,29 @@ std::vector<double> visibleFractionMap(const HeightField& f, const MaximumMipmap
   errors.rethrow();
   if (stats) stats->samples = total;
   return out;
+}
+} // namespace
+
+std::vector<double> visibleFractionMap(const HeightField& f, const MaximumMipmap& mip, const SunDisc& sun,
+                                       const ShadowOptions& o, const std::function<void(double)>& progress,
+                                       ShadowMapStats* stats) {
+  validateMapInputs(f, sun, o);
+  return everySample<double>(f, progress, stats, [&](int i, int j, long long& n) {
+    return visibleFraction(f, mip, i, j, sun, o, &n);
+  });
+}
+
+std::vector<Horizon> horizonMap(const HeightField& f, const MaximumMipmap& mip, const SunDisc& sun,
+                                const ShadowOptions& o, const std::function<void(double)>& progress,
+                                ShadowMapStats* stats) {
+  validateMapInputs(f, sun, o);
+  if (o.method == ShadowMethod::Reference)
+    throw std::invalid_argument("horizonMap: the reference method has no single horizon");
+  return everySample<Horizon>(f, progress, stats, [&](int i, int j, long long& n) {
+    const Horizon h = horizonTowardsSun(f, mip, i, j, sun, o);
+    n = h.samples;
+    return h;
+  });
 }
 
 } // namespace umbra::terrain

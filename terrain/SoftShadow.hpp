@@ -58,6 +58,14 @@ struct ShadowOptions {
   int uniformSteps = 128;            ///< steps along the footprint for Uniform (>= 1)
   int referenceStrips = 32;          ///< vertical strips of the disc for Reference (>= 2)
   double referenceStepTexels = 0.125;  ///< step along each strip's footprint for Reference [texels]
+  /// DP and Uniform: the horizon is resolved where it lies within this many solar radii of
+  /// the Sun's centre (1: on the disc, all the fraction needs; the search stops once it
+  /// is above, and leaves out terrain below). Shadow tables take more, to interpolate.
+  double windowRadii = 1.0;
+  /// DP and Uniform: the stretch of the footprint searched, from and to [texels] (the whole
+  /// footprint by default; its start is where the local slope is taken). A shadow table
+  /// keeps the horizon beyond its first texels; the renderer adds the slope nearby.
+  double fromTexels = 1e-3, toTexels = 1e30;
   /// Throws std::invalid_argument naming the bad field.
   void validate() const;
 };
@@ -83,6 +91,8 @@ Horizon horizonTowardsSunAt(const HeightField& field, const MaximumMipmap& mip, 
 
 /// Disc occlusion (Eq. 6-7): the visible fraction of the disc for a horizon, uniform or limb-darkened.
 double discFractionAboveHorizon(const Horizon& horizon, const SunDisc& sun);
+/// Eq. 7 alone: the visible fraction for the disc's centre d solar radii above the horizon.
+double discFractionForOffset(double d, const SunDisc& sun);
 
 /// Visible fraction of the solar disc (0 = umbra, 1 = fully lit) at sample (i, j).
 /// `samples`, if given, receives the number of heights / texels looked at.
@@ -98,5 +108,11 @@ std::vector<double> visibleFractionMap(const HeightField& field, const MaximumMi
                                        const ShadowOptions& options,
                                        const std::function<void(double)>& progress = {},
                                        ShadowMapStats* stats = nullptr);
+
+/// The horizon towards the Sun at every sample (row-major), in parallel: the DP or Uniform
+/// search (std::invalid_argument for Reference, which has no single horizon).
+std::vector<Horizon> horizonMap(const HeightField& field, const MaximumMipmap& mip, const SunDisc& sun,
+                                const ShadowOptions& options, const std::function<void(double)>& progress = {},
+                                ShadowMapStats* stats = nullptr);
 
 } // namespace umbra::terrain

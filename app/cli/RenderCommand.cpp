@@ -95,6 +95,7 @@ struct RenderOptions {
   bool refraction = false;
   double limbRingThresholdPx = 5.0;
   bool egl = false;
+  std::string terrainShadows = "table";
   CacheOptions cache;
   bool animation() const { return !from.empty() || !to.empty() || !step.empty(); }
   bool smallTables() const { return atmosphereTables == "small"; }
@@ -148,6 +149,12 @@ void addRenderOptions(CLI::App* render, RenderOptions& o) {
                    "Render through EGL even when DISPLAY is set (without it, EGL is used anyway): a GPU machine's "
                    "EGL device (the first that is not Mesa's software one; UMBRA_EGL_DEVICE=N picks another), else "
                    "Mesa's llvmpipe");
+  render->add_option("--terrain-shadows", o.terrainShadows,
+                     "How a terrain patch finds the Sun's visible fraction: table (a shadow table per 0.01 deg of "
+                     "the Sun's motion, made on demand and cached; each pixel searches only its first 17 texels) or "
+                     "search (the whole DP search per pixel: the reference; docs/accuracy-vs-speed/terrain.md)")
+      ->check(CLI::IsMember({"table", "search"}))
+      ->capture_default_str();
   o.cache.addTo(render);
 }
 
@@ -235,12 +242,17 @@ public:
     try {
       // The patches (mesh, mipmap, textures; a DEM read once) are built for the first
       // frame; later frames only move them with their bodies and the Sun.
+      pipeline::TerrainShadowSettings shadows;
+      shadows.tables = o.terrainShadows == "table";
+      shadows.cacheDirectory = o.cache.directory;
+      shadows.useCache = !o.cache.disabled;
       if (k == 0)
-        terrains = pipeline::addSceneTerrains(view, s, in, [](const std::string& path, double spacingM, double radiusM) {
-          return readDem(path, spacingM, radiusM).field;
-        });
+        terrains = pipeline::addSceneTerrains(
+            view, s, in,
+            [](const std::string& path, double spacingM, double radiusM) { return readDem(path, spacingM, radiusM).field; },
+            shadows);
       else
-        pipeline::placeSceneTerrains(terrains, view, s, in);
+        pipeline::placeSceneTerrains(terrains, view, s, in, shadows);
     } catch (const std::invalid_argument& e) {
       throw CommandError(o.scene + ": " + e.what());
     }

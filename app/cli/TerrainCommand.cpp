@@ -5,6 +5,8 @@
 #include "TerrainDem.hpp"
 
 #include "CraterField.hpp"
+#include "HorizonSweep.hpp"
+#include "LightingStatistics.hpp"
 #include "SoftShadow.hpp"
 #include "SolarDisc.hpp"
 #include "TerrainImageData.h"
@@ -16,6 +18,7 @@
 
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
+#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -25,8 +28,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 namespace umbra::cli {
 namespace {
@@ -36,6 +42,8 @@ constexpr double kDeg = kPi / 180.0;
 
 struct Options {
   std::string dem, output, method = "dp", time, body = "Moon", bodyRadius, spacing = "30m";
+  std::string from, to, step, csv;  // lighting
+  std::vector<std::string> points;   // lighting: "I,J"
   long long seed = -1;
   int size = 512, levels = 6, uniformSteps = 128;
   double elevationDeg = NAN, azimuthDeg = NAN, latitudeDeg = NAN, longitudeDeg = NAN, limbDarkening = 0.0;
@@ -102,27 +110,26 @@ std::string fmt(double v) {
   return b;
 }
 
-int runShadow(const Options& o) {
-  output::checkWritable(o.output, {".exr", ".png", ".vti"});
-  const terrain::ShadowMethod method = [&] {
-    try {
-      return terrain::parseShadowMethod(o.method);
-    } catch (const std::exception& e) {
-      throw CommandError(std::string("--method: ") + e.what());
-    }
-  }();
-  const scene::BodyPreset* body = scene::findPreset(o.body);
-  if (!body) throw CommandError("--body: unknown body '" + o.body + "' (known: " + scene::presetNameList() + ")");
+/// The terrain of `o` (a DEM or a synthetic crater field), its body and its centre.
+struct Site {
+  Dem dem;
+  std::string source;
+  const scene::BodyPreset* body = nullptr;
+  double latDeg = 0.0, lonDeg = 0.0;
+};
+
+Site loadSite(const Options& o) {
+  Site site;
+  site.body = scene::findPreset(o.body);
+  if (!site.body) throw CommandError("--body: unknown body '" + o.body + "' (known: " + scene::presetNameList() + ")");
+  const scene::BodyPreset* body = site.body;
   const double radiusOverride = o.bodyRadius.empty() ? 0.0 : lengthOption("--body-radius", o.bodyRadius, 1.0, kMaxRadiusM);
   const double spacingM = lengthOption("--spacing", o.spacing);
   if (!(spacingM > 0.0)) throw CommandError("--spacing: expected a positive length, got " + o.spacing);
-
-  // The terrain.
-  Dem dem;
-  std::string source;
+  Dem& dem = site.dem;
   if (!o.dem.empty()) {
     dem = readDem(o.dem, spacingM, radiusOverride > 0.0 ? radiusOverride : (body->name == "Moon" ? 0.0 : body->meanRadiusM));
-    source = o.dem;
+    site.source = o.dem;
   } else {
     terrain::CraterFieldOptions c;
     c.seed = static_cast<std::uint64_t>(o.seed);
@@ -135,11 +142,28 @@ int runShadow(const Options& o) {
     } catch (const std::exception& e) {
       throw CommandError(std::string("--synthetic with --size and --spacing: ") + e.what());
     }
-    source = "synthetic crater field, seed " + std::to_string(o.seed);
+    site.source = "synthetic crater field, seed " + std::to_string(o.seed);
   }
-  const double latDeg = !std::isnan(o.latitudeDeg) ? o.latitudeDeg : dem.centreLatitudeDeg.value_or(-90.0);
-  const double lonDeg = !std::isnan(o.longitudeDeg) ? o.longitudeDeg : dem.centreLongitudeDeg.value_or(0.0);
-  if (!(latDeg >= -90.0 && latDeg <= 90.0)) throw CommandError("--lat-deg: expected -90..90");
+  site.latDeg = !std::isnan(o.latitudeDeg) ? o.latitudeDeg : dem.centreLatitudeDeg.value_or(-90.0);
+  site.lonDeg = !std::isnan(o.longitudeDeg) ? o.longitudeDeg : dem.centreLongitudeDeg.value_or(0.0);
+  if (!(site.latDeg >= -90.0 && site.latDeg <= 90.0)) throw CommandError("--lat-deg: expected -90..90");
+  return site;
+}
+
+int runShadow(const Options& o) {
+  output::checkWritable(o.output, {".exr", ".png", ".vti"});
+  const terrain::ShadowMethod method = [&] {
+    try {
+      return terrain::parseShadowMethod(o.method);
+    } catch (const std::exception& e) {
+      throw CommandError(std::string("--method: ") + e.what());
+    }
+  }();
+  const Site site = loadSite(o);
+  const Dem& dem = site.dem;
+  const std::string& source = site.source;
+  const scene::BodyPreset* body = site.body;
+  const double latDeg = site.latDeg, lonDeg = site.lonDeg;
 
   // The Sun.
   SunSetting sun;
@@ -207,6 +231,227 @@ int runShadow(const Options& o) {
   return 0;
 }
 
+/// A direction in the site's tangent frame from the body-fixed one.
+glm::dvec3 inTangentFrame(const Site& site, const glm::dvec3& bodyFixed) {
+  return terrain::bodyFixedToTangent(site.latDeg, site.lonDeg) * bodyFixed;
+}
+
+/// The Earth seen from the site's body at `time` (tangent frame, angular radius); none from Earth.
+std::optional<terrain::SunDisc> earthFrom(const Site& site, scene::UtcTime time) {
+  if (site.body->name == "Earth" || !scene::hasEphemeris(site.body->name) || !scene::hasRotationModel(site.body->name))
+    return std::nullopt;
+  const glm::dvec3 toEarth = scene::heliocentricPositionM("Earth", time) - scene::heliocentricPositionM(site.body->name, time);
+  const glm::dvec3 bodyFixed = glm::transpose(scene::bodyFixedToInertial(site.body->name, time)) * glm::normalize(toEarth);
+  terrain::SunDisc earth;
+  earth.direction = inTangentFrame(site, bodyFixed);
+  earth.angularRadiusRad = std::asin(std::min(1.0, scene::findPreset("Earth")->meanRadiusM / glm::length(toEarth)));
+  return earth;
+}
+
+double elevationDegOf(const glm::dvec3& d) { return std::asin(std::clamp(glm::normalize(d).z, -1.0, 1.0)) / kDeg; }
+double azimuthDegOf(const glm::dvec3& d) {
+  const double a = std::atan2(d.x, d.y) / kDeg;
+  return a < 0.0 ? a + 360.0 : a;
+}
+
+std::string timeLabel(scene::UtcTime t) { return scene::formatUtc(t); }
+
+void writeLightingExr(const std::string& path, const terrain::LightingMaps& m, std::map<std::string, std::string> parameters) {
+  tables::Table t;
+  t.width = m.width;
+  t.height = m.height;
+  t.channels = {"lit_time_fraction", "longest_shadow_s", "mean_visible_fraction"};
+  t.data.resize(static_cast<std::size_t>(m.width) * m.height * 3);
+  for (int j = 0; j < m.height; ++j)  // the top row is the DEM's last (+y, north)
+    for (int i = 0; i < m.width; ++i) {
+      const std::size_t from = static_cast<std::size_t>(j) * m.width + i;
+      float* to = &t.data[3 * (static_cast<std::size_t>(m.height - 1 - j) * m.width + i)];
+      to[0] = m.litTimeFraction[from], to[1] = m.longestShadowS[from], to[2] = m.meanVisibleFraction[from];
+    }
+  parameters["rows"] = "top row = last DEM row (+y, north)";
+  t.parameters = std::move(parameters);
+  tables::writeExr(path, t);
+}
+
+void writeLightingVti(const std::string& path, const terrain::HeightField& field, const terrain::LightingMaps& m) {
+  auto image = filters::imageFromHeightField(field);
+  const std::pair<const char*, const std::vector<float>*> arrays[] = {{"lit_time_fraction", &m.litTimeFraction},
+                                                                      {"longest_shadow_s", &m.longestShadowS},
+                                                                      {"mean_visible_fraction", &m.meanVisibleFraction}};
+  for (const auto& [name, values] : arrays) {
+    vtkNew<vtkFloatArray> a;
+    a->SetName(name);
+    a->SetNumberOfTuples(static_cast<vtkIdType>(values->size()));
+    for (std::size_t k = 0; k < values->size(); ++k) a->SetValue(static_cast<vtkIdType>(k), (*values)[k]);
+    image->GetPointData()->AddArray(a);
+  }
+  writeVti(path, image);
+}
+
+struct Point {
+  int i = 0, j = 0;
+};
+
+std::vector<Point> lightingPoints(const Options& o, const terrain::HeightField& f) {
+  std::vector<Point> points;
+  for (const std::string& text : o.points) {
+    Point p;
+    char comma = 0, extra = 0;
+    std::istringstream in(text);
+    if (!(in >> p.i >> comma >> p.j) || comma != ',' || (in >> extra))
+      throw CommandError("--point: expected I,J (grid column and row), got '" + text + "'");
+    if (p.i < 0 || p.j < 0 || p.i >= f.width || p.j >= f.height)
+      throw CommandError("--point: " + text + " lies outside the " + std::to_string(f.width) + " x " +
+                         std::to_string(f.height) + " grid");
+    points.push_back(p);
+  }
+  if (points.empty()) points.push_back({f.width / 2, f.height / 2});  // the centre
+  return points;
+}
+
+int runLighting(const Options& o) {
+  output::checkWritable(o.output, {".exr", ".vti"});
+  if (!o.csv.empty()) output::checkWritable(o.csv, {".csv"});
+  if (o.method != "sweep" && o.method != "dp") throw CommandError("--method: expected sweep or dp, got '" + o.method + "'");
+  const std::vector<scene::UtcTime> times = timeSteps(o.from, o.to, o.step);
+  noteTimesBeyondEphemeris(times);
+  const Site site = loadSite(o);
+  const terrain::HeightField& field = site.dem.field;
+  const std::vector<Point> points = lightingPoints(o, field);
+  // Each step stands for the time nearer to it than to the others, within the range: half
+  // a step on each side, the first and the last clipped at --from and --to.
+  const double stepS = scene::parseDurationS(o.step);
+  const double spanS = scene::secondsBetween(times.front(), scene::parseUtc(o.to));
+  auto durationOf = [&](std::size_t k) {
+    const double at = k * stepS;
+    return std::min(at + 0.5 * stepS, spanS) - std::max(at - 0.5 * stepS, 0.0);
+  };
+
+  std::unique_ptr<terrain::MaximumMipmap> mip;  // the DP's, and the Earth's horizon at the points
+  mip = std::make_unique<terrain::MaximumMipmap>(field);
+  terrain::LightingAccumulator stats(field.width, field.height);
+  std::ostringstream csv;
+  csv << "time_utc,point,i,j,sun_elevation_deg,sun_azimuth_deg,visible_solar_fraction,earth_elevation_deg,"
+         "earth_visible_fraction\n";
+  ProgressLine progress("terrain lighting");
+  const auto t0 = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    terrain::SunDisc sun;
+    try {
+      const scene::SunFromBody s = scene::sunFromBody(site.body->name, times[k]);
+      sun.direction = inTangentFrame(site, s.directionBodyFixed);
+      sun.angularRadiusRad = s.angularRadiusRad;
+    } catch (const std::invalid_argument& e) {
+      throw CommandError(std::string("--body: ") + e.what());
+    }
+    std::vector<float> fraction;
+    if (o.method == "sweep") {
+      fraction = terrain::sweepVisibleFractionMap(field, sun);
+    } else {
+      const std::vector<double> map = terrain::visibleFractionMap(field, *mip, sun, terrain::ShadowOptions{});
+      fraction.assign(map.begin(), map.end());
+    }
+    stats.add(fraction, durationOf(k));
+    const std::optional<terrain::SunDisc> earth = earthFrom(site, times[k]);
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      const Point& q = points[p];
+      csv << timeLabel(times[k]) << ',' << p + 1 << ',' << q.i << ',' << q.j << ',' << fmt(elevationDegOf(sun.direction))
+          << ',' << fmt(azimuthDegOf(sun.direction)) << ',' << fmt(fraction[static_cast<std::size_t>(q.j) * field.width + q.i]);
+      if (earth) {
+        const double seen = terrain::visibleFraction(field, *mip, q.i, q.j, *earth, terrain::ShadowOptions{});
+        csv << ',' << fmt(elevationDegOf(earth->direction)) << ',' << fmt(seen);
+      } else {
+        csv << ",,";
+      }
+      csv << '\n';
+    }
+    progress.update(double(k + 1) / times.size());
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const terrain::LightingMaps maps = stats.maps();
+
+  const std::string ext = output::extensionOf(o.output);
+  if (ext == ".vti") {
+    writeLightingVti(o.output, field, maps);
+  } else {
+    writeLightingExr(o.output, maps,
+                     {{"source", site.source}, {"method", o.method}, {"from", o.from}, {"to", o.to}, {"step", o.step},
+                      {"steps", std::to_string(times.size())}, {"body", site.body->name},
+                      {"latDeg", fmt(site.latDeg)}, {"lonDeg", fmt(site.lonDeg)}, {"spacingM", fmt(field.spacingM)},
+                      {"bodyRadiusM", fmt(field.bodyRadiusM)}, {"totalS", fmt(maps.totalS)}});
+  }
+  if (!o.csv.empty()) {
+    output::OutputFile out(o.csv);
+    {
+      std::ofstream file(out.tempPath());
+      file << csv.str();
+      if (!file) throw CommandError(o.csv + ": cannot write");
+    }
+    out.commit();
+  }
+  std::printf("wrote %s%s%s: %d x %d at %.6g m (%s), %zu steps of %s from %s, method %s, %.2f s\n", o.output.c_str(),
+              o.csv.empty() ? "" : " and ", o.csv.c_str(), field.width, field.height, field.spacingM, site.source.c_str(),
+              times.size(), o.step.c_str(), timeLabel(times.front()).c_str(), o.method.c_str(), seconds);
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const std::size_t at = static_cast<std::size_t>(points[p].j) * field.width + points[p].i;
+    std::printf("point %zu (%d, %d): lit %.1f %% of the time, longest shadow %.1f h, mean visible fraction %.4f\n", p + 1,
+                points[p].i, points[p].j, 100.0 * maps.litTimeFraction[at], maps.longestShadowS[at] / 3600.0,
+                maps.meanVisibleFraction[at]);
+  }
+  return 0;
+}
+
+} // namespace
+
+namespace {
+/// The options that name the terrain (loadSite) and the check of them run before the
+/// command: --dem or --synthetic, --size, --spacing, --body, --body-radius, --lat-deg, --lon-deg.
+std::function<void()> addSiteOptions(CLI::App* command, Options& o, const std::string& centreFor) {
+  auto* dem = command->add_option("--dem", o.dem, "DEM raster (GeoTIFF or any GDAL raster; heights in m, projected CRS)");
+  auto* synthetic = command->add_option("--synthetic", o.seed, "Synthetic crater field with this seed (>= 0)");
+  dem->excludes(synthetic);
+  command->add_option("--size", o.size, "Synthetic field: samples per side")->capture_default_str()->check(CLI::Range(2, 8192));
+  command->add_option("--spacing", o.spacing, "Sample spacing (synthetic field, or a DEM without georeferencing)")
+      ->capture_default_str();
+  command->add_option("--body", o.body, "Body (radius; ephemeris and rotation for the Sun's times)")->capture_default_str();
+  command->add_option("--body-radius", o.bodyRadius, "Override the body radius (units m, km)");
+  command->add_option("--lat-deg", o.latitudeDeg, "Latitude of the DEM centre" + centreFor + " (default: georeferencing, else -90)");
+  command->add_option("--lon-deg", o.longitudeDeg, "Longitude of the DEM centre" + centreFor + " (default: georeferencing, else 0)");
+  return [&o, dem, synthetic] {
+    if (dem->count() == 0 && synthetic->count() == 0) throw CommandError("give --dem FILE or --synthetic SEED");
+    if (synthetic->count() && o.seed < 0) throw CommandError("--synthetic: expected a seed >= 0");
+  };
+}
+
+void addLightingCommand(CLI::App* terrainCmd, Action& action) {
+  CLI::App* lighting = terrainCmd->add_subcommand(
+      "lighting",
+      "Lighting over time at every sample of a DEM: the fraction of the time lit, the longest continuous shadow "
+      "and the mean visible fraction of the solar disc (maps), and at chosen points the Sun's and the Earth's "
+      "visibility at each step (CSV)");
+  auto o = std::make_shared<Options>();
+  o->method = "sweep";
+  const auto checkSite = addSiteOptions(lighting, *o, "");
+  lighting->add_option("--from", o->from, "UTC time of the first step, ISO 8601")->required();
+  lighting->add_option("--to", o->to, "UTC time of the last step at most, ISO 8601")->required();
+  lighting->add_option("--step", o->step, "Time between steps, e.g. 1h (units s, min, h, d); each step stands for the time nearer to it than to the others, within the range")
+      ->required();
+  lighting->add_option("--method", o->method,
+                       "sweep (every sample at once along the Sun's azimuth: the fast path) or dp (the DP search at "
+                       "every sample: the reference; docs/accuracy-vs-speed/terrain.md)")
+      ->capture_default_str();
+  lighting->add_option("--point", o->points, "A point for the CSV: I,J (grid column, row; repeat the option for more; "
+                                             "default: the centre)");
+  lighting->add_option("--csv", o->csv, "The points' time series: the Sun's elevation, azimuth and visible fraction, "
+                                        "the Earth's elevation and visible fraction (bodies other than Earth)");
+  lighting->add_option("--output", o->output, "The maps: .exr (three float channels) or .vti (with the heights)")->required();
+  lighting->callback([&action, o, checkSite] {
+    action = [o, checkSite] {
+      checkSite();
+      return runLighting(*o);
+    };
+  });
+}
 } // namespace
 
 void addTerrainCommand(CLI::App& app, Action& action) {
@@ -215,28 +460,19 @@ void addTerrainCommand(CLI::App& app, Action& action) {
   CLI::App* shadow = terrainCmd->add_subcommand(
       "shadow", "Visible fraction of the solar disc (0 = umbra, 1 = fully lit) at every sample of a DEM");
   auto o = std::make_shared<Options>();
-  auto* dem = shadow->add_option("--dem", o->dem, "DEM raster (GeoTIFF or any GDAL raster; heights in m, projected CRS)");
-  auto* synthetic = shadow->add_option("--synthetic", o->seed, "Synthetic crater field with this seed (>= 0)");
-  dem->excludes(synthetic);
-  shadow->add_option("--size", o->size, "Synthetic field: samples per side")->capture_default_str()->check(CLI::Range(2, 8192));
-  shadow->add_option("--spacing", o->spacing, "Sample spacing (synthetic field, or a DEM without georeferencing)")
-      ->capture_default_str();
+  const auto checkSite = addSiteOptions(shadow, *o, " for --time");
   shadow->add_option("--sun-elevation-deg", o->elevationDeg, "Sun elevation at the DEM centre [deg]");
   shadow->add_option("--sun-azimuth-deg", o->azimuthDeg, "Sun azimuth at the DEM centre, from north (+y) to east (+x) [deg]");
   shadow->add_option("--time", o->time, "UTC instant (ISO 8601): the Sun from the ephemeris and the body's rotation");
-  shadow->add_option("--body", o->body, "Body (radius; ephemeris for --time)")->capture_default_str();
-  shadow->add_option("--body-radius", o->bodyRadius, "Override the body radius (units m, km)");
-  shadow->add_option("--lat-deg", o->latitudeDeg, "Latitude of the DEM centre for --time (default: georeferencing, else -90)");
-  shadow->add_option("--lon-deg", o->longitudeDeg, "Longitude of the DEM centre for --time (default: georeferencing, else 0)");
   shadow->add_option("--method", o->method, "dp (maximum mipmap, Algorithm 1), uniform or reference")->capture_default_str();
   shadow->add_option("--levels", o->levels, "DP: mip levels N' per concatenated interval")->capture_default_str()->check(CLI::Range(1, 30));
   shadow->add_option("--uniform-steps", o->uniformSteps, "uniform: steps along each shadow ray")->capture_default_str()->check(CLI::Range(1, 1 << 20));
   shadow->add_option("--limb-darkening", o->limbDarkening, "Linear limb darkening of the disc (0: uniform)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   shadow->add_option("--output", o->output, "Output: .exr (float), .png (16-bit linear gray), .vti (heights + fraction)")->required();
-  shadow->callback([&action, o, dem, synthetic] {
-    action = [o, dem, synthetic] {
-      if (dem->count() == 0 && synthetic->count() == 0) throw CommandError("give --dem FILE or --synthetic SEED");
-      if (synthetic->count() && o->seed < 0) throw CommandError("--synthetic: expected a seed >= 0");
+  addLightingCommand(terrainCmd, action);
+  shadow->callback([&action, o, checkSite] {
+    action = [o, checkSite] {
+      checkSite();
       return runShadow(*o);
     };
   });

@@ -3,6 +3,7 @@
 #include "CraterField.hpp"
 #include "scene/Ephemeris.hpp"
 #include "scene/Scene.hpp"
+#include "umbra/tables/CachedTables.h"
 
 #include <vtkRenderer.h>
 
@@ -50,8 +51,50 @@ TerrainPatch sceneTerrainPatch(const scene::Scene& scene, const std::string& bod
   return patch;
 }
 
+bool updateShadowTable(TerrainRendering& t, const TerrainShadowSettings& o) {
+  if (!o.tables) {
+    t.SetShadowTable(nullptr);
+    return false;
+  }
+  const terrain::SunDisc sun = terrain::roundedSun(t.GetSunDisc(), o.sunStepRad);
+  if (const terrain::ShadowTable* held = t.GetShadowTable())
+    if (held->sun.direction == sun.direction && held->sun.angularRadiusRad == sun.angularRadiusRad &&
+        held->sun.limbDarkening == sun.limbDarkening && held->nearTexels == o.nearTexels)
+      return false;
+  const terrain::HeightField& f = t.GetPatch().field;
+  const terrain::ShadowOptions search;
+  tables::TableRequest request;
+  request.kind = "terrain-shadow";
+  request.parameters = terrain::shadowTableKey(f, sun, o.sunStepRad, search, o.nearTexels);
+  request.width = f.width;
+  request.height = f.height;
+  request.channels = {"d"};
+  const tables::TableCache cache(o.cacheDirectory.empty() ? tables::TableCache::defaultDirectory() : o.cacheDirectory);
+  tables::CacheOutcome outcome;
+  std::vector<tables::Table> made = tables::cachedOrComputed(
+      cache, o.useCache, {request},
+      [&] {
+        const terrain::ShadowTable table = terrain::makeShadowTable(f, t.GetMipmap(), sun, search, o.nearTexels, o.progress);
+        tables::Table out;
+        out.width = table.width;
+        out.height = table.height;
+        out.channels = {"d"};
+        out.data = table.offsets;
+        return std::vector<tables::Table>{std::move(out)};
+      },
+      outcome);
+  auto table = std::make_shared<terrain::ShadowTable>();
+  table->width = f.width;
+  table->height = f.height;
+  table->offsets = std::move(made.front().data);
+  table->sun = sun;
+  table->nearTexels = o.nearTexels;
+  t.SetShadowTable(std::move(table));
+  return outcome.hits > 0;
+}
+
 void placeSceneTerrains(const std::vector<std::unique_ptr<TerrainRendering>>& terrains, BodyView& view,
-                        const scene::Scene& scene, const SceneInputs& in) {
+                        const scene::Scene& scene, const SceneInputs& in, const TerrainShadowSettings& shadows) {
   std::size_t k = 0;
   for (const scene::Body& b : scene.bodies) {
     if (!b.terrain) continue;
@@ -61,12 +104,14 @@ void placeSceneTerrains(const std::vector<std::unique_ptr<TerrainRendering>>& te
     t.SetPlacement(p.bodyCentreM, p.tangentToWorld);
     t.SetSun(in.sun);
     t.SetOrigin(view.GetCamera().positionM);
+    updateShadowTable(t, shadows);
   }
   if (k != terrains.size()) throw std::invalid_argument("placeSceneTerrains: fewer terrains in the scene than given");
 }
 
 std::vector<std::unique_ptr<TerrainRendering>> addSceneTerrains(BodyView& view, const scene::Scene& scene,
-                                                                const SceneInputs& in, const DemLoader& loadDem) {
+                                                                const SceneInputs& in, const DemLoader& loadDem,
+                                                                const TerrainShadowSettings& shadows) {
   std::vector<std::unique_ptr<TerrainRendering>> out;
   for (const scene::Body& b : scene.bodies) {
     if (!b.terrain) continue;
@@ -75,7 +120,7 @@ std::vector<std::unique_ptr<TerrainRendering>> addSceneTerrains(BodyView& view, 
     view.GetRenderer()->AddActor(t->GetActor());
     out.push_back(std::move(t));
   }
-  placeSceneTerrains(out, view, scene, in);  // the Sun, the origin
+  placeSceneTerrains(out, view, scene, in, shadows);  // the Sun, the origin, the shadow tables
   return out;
 }
 

@@ -79,6 +79,7 @@ struct TerrainRendering::Impl {
   glm::dvec3 origin{0.0};
   Output output = Output::Radiance;
   unsigned long observerTag = 0;
+  std::shared_ptr<const terrain::ShadowTable> table;
 
   glm::dvec3 tangentPointM() const {
     return patch.bodyCentreM + patch.tangentToWorld * glm::dvec3(0.0, 0.0, patch.field.bodyRadiusM);
@@ -93,6 +94,16 @@ struct TerrainRendering::Impl {
     }
     actor->SetUserMatrix(m);
   }
+  /// The shadow search and the fragment stage, with or without the table.
+  void setFragmentDeclarations() const {
+    vtkShaderProperty* sp = actor->GetShaderProperty();
+    sp->ClearFragmentShaderReplacement("//VTK::Edges::Dec", true);
+    sp->AddFragmentShaderReplacement("//VTK::Edges::Dec", true,
+                                     std::string("#define UMBRA_TERRAIN_TABLE ") + (table ? "1" : "0") + "\n" +
+                                         shadowGlslWithoutSamplers() + "\n" + glsl::kTerrainFragment +
+                                         "\n//VTK::Edges::Dec",
+                                     false);
+  }
   terrain::SunDisc sunDisc() const {
     const glm::dvec3 toSun = sun.positionM - tangentPointM();
     terrain::SunDisc disc;
@@ -102,7 +113,14 @@ struct TerrainRendering::Impl {
   }
   double irradiance() const { return sun.irradianceAtWm2(glm::length(sun.positionM - tangentPointM())); }
   void setUniforms(vtkShaderProgram& program) const {
-    setTerrainShadowUniforms(program, textures, patch.field, *mip, sunDisc(), kLevels);
+    const terrain::SunDisc exact = sunDisc();
+    const terrain::ShadowOptions near = table ? table->nearSearch() : terrain::ShadowOptions{};
+    setTerrainShadowUniforms(program, textures, patch.field, *mip, table ? table->sun : exact, kLevels,
+                             table ? near.toTexels : 1e30);
+    program.SetUniformi("umbraNearSteps", near.uniformSteps);
+    const glm::dvec3 l = glm::normalize(exact.direction);
+    const float light[3] = {float(l.x), float(l.y), float(l.z)};
+    program.SetUniform3f("umbraTerrainLight", light);
     const float albedo[3] = {float(patch.albedoRgb.r), float(patch.albedoRgb.g), float(patch.albedoRgb.b)};
     program.SetUniform3f("umbraTerrainAlbedo", albedo);
     program.SetUniformf("umbraTerrainIrradiance", float(irradiance()));
@@ -223,13 +241,16 @@ void TerrainRendering::SetTerrain(const TerrainPatch& patch) {
     sp->AddVertexShaderReplacement("//VTK::Camera::Dec", true, glsl::kReceiverVertex, false);
     sp->AddVertexShaderReplacement("//VTK::CustomEnd::Impl", true,
                                    "  umbraReceiverVertex(vertexMC);\n//VTK::CustomEnd::Impl", false);
-    sp->AddFragmentShaderReplacement("//VTK::Edges::Dec", true,
-                                     shadowGlslWithoutSamplers() + "\n" + glsl::kTerrainFragment + "\n//VTK::Edges::Dec",
-                                     false);
+    m.setFragmentDeclarations();
     sp->AddFragmentShaderReplacement("//VTK::TCoord::Impl", true, "  umbraTerrainShade();\n//VTK::TCoord::Impl", false);
     vtkNew<TerrainUniformsCommand> cmd;
     cmd->owner = impl_.get();
     m.observerTag = m.mapper->AddObserver(vtkCommand::UpdateShaderEvent, cmd);
+  }
+  if (m.table) {  // made for another height field
+    m.table.reset();
+    m.actor->GetProperty()->RemoveTexture("umbraFarOffsets");
+    m.setFragmentDeclarations();
   }
   m.mapper->SetInputData(displacedMesh(m.patch.field, m.patch.meshStep));
   vtkProperty* prop = m.actor->GetProperty();
@@ -262,6 +283,25 @@ void TerrainRendering::SetOutput(Output output) {
   impl_->output = output;
   if (impl_->actor) impl_->actor->Modified();
 }
+
+void TerrainRendering::SetShadowTable(std::shared_ptr<const terrain::ShadowTable> table) {
+  Impl& m = *impl_;
+  if (!m.mip) throw std::logic_error("TerrainRendering: no terrain set");
+  if (table && (table->width != m.patch.field.width || table->height != m.patch.field.height ||
+                table->offsets.size() != static_cast<std::size_t>(table->width) * table->height))
+    throw std::invalid_argument("terrain: the shadow table is not of this patch's size");
+  const bool modeChanges = bool(table) != bool(m.table);
+  m.table = std::move(table);
+  vtkProperty* prop = m.actor->GetProperty();
+  if (m.table)
+    prop->SetTexture("umbraFarOffsets", floatTexture(m.table->width, m.table->height, m.table->offsets));
+  else
+    prop->RemoveTexture("umbraFarOffsets");
+  if (modeChanges) m.setFragmentDeclarations();
+  m.actor->Modified();
+}
+
+const terrain::ShadowTable* TerrainRendering::GetShadowTable() const { return impl_->table.get(); }
 
 vtkActor* TerrainRendering::GetActor() const { return impl_->actor; }
 const TerrainPatch& TerrainRendering::GetPatch() const { return impl_->patch; }

@@ -7,9 +7,11 @@
 // camera above the ground is then above the mesh, and every view ray that meets the
 // ground meets the mesh first). Per fragment (glsl/TerrainFragment.glsl) the view ray through
 // the rasterised mesh point is refined onto the bilinear height field, the visible
-// fraction of the solar disc is searched there with the GLSL twin of the DP search
-// (terrain/glsl/TerrainShadow.glsl, heights and maximum mipmap as float textures), and the
-// point is shaded Lambertian:
+// fraction of the solar disc is found there, and the point is shaded Lambertian. The
+// fraction: with a shadow table (SetShadowTable; terrain/ShadowTable.hpp), the GLSL twin of
+// the DP search (terrain/glsl/TerrainShadow.glsl, heights and maximum mipmap as float
+// textures) over the first texels of the footprint and the table's far horizon looked up;
+// without one, that search over the whole footprint, per pixel (the reference path):
 //
 //   radiance = albedo / pi * E_sun * max(0, n . l) * visible fraction   [W m^-2 sr^-1]
 //
@@ -24,6 +26,7 @@
 #include "EclipseShading.h"
 #include "HeightField.hpp"
 #include "MaximumMipmap.hpp"
+#include "ShadowTable.hpp"
 #include "SoftShadow.hpp"
 
 #include <glm/glm.hpp>
@@ -65,12 +68,19 @@ public:
   /// rays start there, in double precision.
   void SetOrigin(const glm::dvec3& originM);
   void SetOutput(Output output);
+  /// The far horizon from a table made for this patch's height field and a Sun near the
+  /// present one (the search near each pixel then takes the table's Sun too; the shading
+  /// keeps the exact one); null: the whole search per pixel. Throws std::invalid_argument
+  /// for a table of another size.
+  void SetShadowTable(std::shared_ptr<const terrain::ShadowTable> table);
+  const terrain::ShadowTable* GetShadowTable() const;
 
   /// The actor to add to a renderer (valid after SetTerrain).
   vtkActor* GetActor() const;
   const TerrainPatch& GetPatch() const;
   const terrain::MaximumMipmap& GetMipmap() const;
-  /// The Sun as the shadow search sees it (tangent frame, angular radius at the patch).
+  /// The Sun at the patch (tangent frame, angular radius); with a table, the search takes
+  /// the table's.
   terrain::SunDisc GetSunDisc() const;
   /// The Sun's irradiance at the patch [W m^-2].
   double GetSunIrradiance() const;

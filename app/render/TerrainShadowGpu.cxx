@@ -13,6 +13,7 @@
 #include <vtkTextureObject.h>
 #include <vtk_glew.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -63,7 +64,8 @@ TerrainShadowTextures terrainShadowTextures(const terrain::HeightField& f, const
 }
 
 void setTerrainShadowUniforms(vtkShaderProgram& program, const TerrainShadowTextures& t, const terrain::HeightField& f,
-                              const terrain::MaximumMipmap& mip, const terrain::SunDisc& sun, int levels) {
+                              const terrain::MaximumMipmap& mip, const terrain::SunDisc& sun, int levels,
+                              double searchToTexels) {
   program.SetUniform1iv("umbraMipRow", 16, t.row);
   program.SetUniform1iv("umbraMipWidth", 16, t.width);
   program.SetUniform1iv("umbraMipHeight", 16, t.height);
@@ -79,6 +81,7 @@ void setTerrainShadowUniforms(vtkShaderProgram& program, const TerrainShadowText
   program.SetUniformf("umbraSunRadius", static_cast<float>(sun.angularRadiusRad));
   program.SetUniformf("umbraLimbDarkening", static_cast<float>(sun.limbDarkening));
   program.SetUniformi("umbraLevels", levels);
+  program.SetUniformf("umbraSearchToTexels", static_cast<float>(std::min(searchToTexels, 1e30)));
 }
 
 

@@ -23,10 +23,11 @@ struct TerrainShadowTextures {
 };
 /// Throws std::runtime_error for more than 16 mipmap levels.
 TerrainShadowTextures terrainShadowTextures(const terrain::HeightField& field, const terrain::MaximumMipmap& mip);
-/// Sets every uniform of TerrainShadow.glsl but the two samplers.
+/// Sets every uniform of TerrainShadow.glsl but the two samplers; the search runs along
+/// the footprint up to searchToTexels (the whole of it by default).
 void setTerrainShadowUniforms(vtkShaderProgram& program, const TerrainShadowTextures& textures,
                               const terrain::HeightField& field, const terrain::MaximumMipmap& mip,
-                              const terrain::SunDisc& sun, int levels);
+                              const terrain::SunDisc& sun, int levels, double searchToTexels = 1e30);
 
 struct GpuTerrainShadow {
   std::vector<float> fraction;  ///< per DEM sample, row-major like the heights

@@ -18,6 +18,7 @@ uniform vec3 umbraSunDirection;    // tangent frame, unit
 uniform float umbraSunRadius;      // rad
 uniform float umbraLimbDarkening;
 uniform int umbraLevels;           // N'
+uniform float umbraSearchToTexels; // the footprint searched ends here at the latest (ShadowOptions::toTexels)
 
 const float umbraNoData = -1e29;
 const float umbraStartTexels = 1e-3;
@@ -138,7 +139,7 @@ bool umbraMakeProfileAt(vec2 g, float hp, out UmbraProfile p) {
       }
     }
   }
-  p.sEnd = min(gridExit, volumeExit);
+  p.sEnd = min(min(gridExit, volumeExit), umbraSearchToTexels);
   return true;
 }
 
@@ -157,6 +158,17 @@ float umbraMipMax(int level, ivec2 block) {
 float umbraParabola(vec4 cell, vec3 h, float s) {  // cell = (centre, half, -, -)
   float u = (s - cell.x) / cell.y;
   return h.y + 0.5 * (h.z - h.x) * u + 0.5 * (h.x + h.z - 2.0 * h.y) * u * u;
+}
+
+// Uniform stepping (SoftShadow.cpp uniformSearch): the highest of `steps` equal steps
+// along the footprint, stopped once above the disc.
+float umbraHorizonUniform(UmbraProfile p, int steps) {
+  float hi = p.e + umbraSunRadius;
+  float best = umbraTerrainElevation(p, umbraStartTexels);
+  if (p.sEnd <= umbraStartTexels) return best;
+  float step = (p.sEnd - umbraStartTexels) / float(steps);
+  for (int k = 1; k <= steps && best < hi; ++k) best = max(best, umbraTerrainElevation(p, umbraStartTexels + float(k) * step));
+  return best;
 }
 
 // Algorithm 1 (see SoftShadow.cpp MipmapSearch): the highest horizon along the footprint.

@@ -218,6 +218,11 @@ const std::vector<Command>& commands() {
       {{"terrain", "shadow"},
        {"--synthetic", "1", "--size", "16", "--sun-elevation-deg", "5", "--sun-azimuth-deg", "90", "--output", "@/t.exr"},
        {{"--time", t}, {"--dem", "@/dem.tif"}, {"--body-radius", "1737.4km"}, {"--lat-deg", "-89.5"}, {"--lon-deg", "10"}, {"--spacing", "30m"}}},
+      {{"terrain", "lighting"},
+       {"--synthetic", "1", "--size", "16", "--from", "2024-03-01T00:00:00Z", "--to", "2024-03-02T00:00:00Z", "--step",
+        "6h", "--output", "@/l.exr"},
+       {{"--dem", "@/dem.tif"}, {"--body-radius", "1737.4km"}, {"--lat-deg", "-89.5"}, {"--lon-deg", "10"},
+        {"--spacing", "30m"}, {"--method", "dp"}, {"--point", "3,4"}, {"--csv", "@/l.csv"}}},
       {{"sweep"}, {sourcePath("examples/sweeps/moon-in-totality-quick.json"), "--csv", "@/s.csv"},
        {{"--plot", "@/s.svg"}}},
       {{"atmosphere", "eclipse-sky"},
@@ -392,6 +397,7 @@ TEST(Extremes, AtmospherePrecompute) { sweepCommand(command({"atmosphere", "prec
 TEST(Extremes, AtmosphereRefraction) { sweepCommand(command({"atmosphere", "refraction"})); }
 TEST(Extremes, AtmosphereSky) { sweepCommand(command({"atmosphere", "sky"})); }
 TEST(Extremes, TerrainShadow) { sweepCommand(command({"terrain", "shadow"})); }
+TEST(Extremes, TerrainLighting) { sweepCommand(command({"terrain", "lighting"})); }
 TEST(Extremes, Sweep) { sweepCommand(command({"sweep"})); }
 TEST(Extremes, AtmosphereEclipseSky) { sweepCommand(command({"atmosphere", "eclipse-sky"})); }
 TEST(Extremes, Eclipses) { sweepCommand(command({"eclipses"})); }

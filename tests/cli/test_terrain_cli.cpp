@@ -1,6 +1,7 @@
 // `umbra terrain shadow`: the output holds the library's visible fraction (north up),
 // GeoTIFF input matches the same heights given directly, --time puts the Sun where the
 // lunar south pole sees it, and bad input gives one-line errors and no file.
+// `umbra terrain lighting`: a flat plain follows the Sun's elevation; the extremes.
 #include "CliRunner.hpp"
 #include "GeoTiffSupport.hpp"
 
@@ -11,8 +12,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <regex>
+#include <sstream>
 
 using namespace umbra::test;
 using namespace umbra;
@@ -185,4 +190,112 @@ TEST(TerrainCli, VtiHoldsHeightsAndFractionAndGeographicRastersAreRefused) {
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.err.find("geo.tif: geographic"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "geo.exr"));
+}
+
+namespace {
+std::vector<std::vector<std::string>> csvRows(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.push_back("");
+    rows.push_back(cells);
+  }
+  return rows;
+}
+} // namespace
+
+// `umbra terrain lighting` on a flat plain 60 km from the lunar south pole (a GeoTIFF of
+// zeros), March 2024 at 12-hour steps (a lunar day: the Sun sets and rises): the share of the time lit at the centre is the share of the
+// steps whose Sun (the CSV's elevation column, from the ephemeris) has its disc's top above
+// the horizontal, exactly; the mean visible fraction follows Eq. 7 at those elevations;
+// the Earth is reported; the maps come out finite and in range.
+TEST(TerrainLightingCli, FlatPlainFollowsTheSunsElevation) {
+  TempDir dir;
+  terrain::HeightField flat;
+  flat.width = flat.height = 21;
+  flat.heightsM.assign(21 * 21, 0.0);
+  writeGeoTiff(dir / "flat.tif", flat, 0.0);
+  const RunResult r = run(UMBRA_EXE, {"terrain", "lighting", "--dem", dir / "flat.tif", "--lat-deg", "-88", "--lon-deg",
+                                      "30", "--from", "2024-03-01T00:00:00Z", "--to", "2024-03-29T00:00:00Z", "--step",
+                                      "12h", "--point", "10,10", "--point", "0,20", "--csv", dir / "points.csv",
+                                      "--output", dir / "maps.exr"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = csvRows(dir / "points.csv");
+  ASSERT_EQ(rows.size(), 1u + 57u * 2u);  // header, 57 steps of 2 points
+  EXPECT_EQ(rows[0][0], "time_utc");
+  // Each step stands for 12 hours, the first and the last for 6 (the range ends there).
+  int steps = 0, nearTheEdge = 0;
+  double lit = 0.0, expectedLit = 0.0, meanFraction = 0.0, weights = 0.0;
+  const double sunRadiusDeg = 0.2690;  // (the Sun from 0.991 au)
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    ASSERT_EQ(rows[k].size(), 9u) << k;
+    if (rows[k][1] != "1") continue;
+    const double e = std::stod(rows[k][4]), v = std::stod(rows[k][6]);
+    const double w = steps == 0 || steps == 56 ? 0.5 : 1.0;
+    ++steps;
+    weights += w;
+    lit += w * (v > 0.0);
+    expectedLit += w * (e > -sunRadiusDeg);  // the disc's top above the horizontal
+    nearTheEdge += std::abs(e + sunRadiusDeg) < 0.002;
+    meanFraction += w * v;
+    if (std::abs(e) > 0.3) {
+      EXPECT_EQ(v, e > 0.0 ? 1.0 : 0.0) << rows[k][0];
+    }
+    EXPECT_GE(std::stod(rows[k][8]), 0.0);  // the Earth's visible fraction
+    EXPECT_TRUE(std::abs(std::stod(rows[k][7])) < 10.0) << "the Earth from near the pole: low in the sky";
+  }
+  ASSERT_EQ(steps, 57);
+  const tables::Table t = tables::readExr(dir / "maps.exr");
+  ASSERT_EQ(t.width, 21);
+  EXPECT_EQ(t.parameters.at("steps"), "57");
+  const int centre = 3 * (10 * 21 + 10);
+  EXPECT_DOUBLE_EQ(weights, 56.0);
+  EXPECT_EQ(t.parameters.at("totalS"), "2419200");  // 28 days
+  EXPECT_NEAR(t.data[centre + 0], lit / weights, 1e-6);
+  EXPECT_NEAR(t.data[centre + 0], expectedLit / weights, nearTheEdge / weights + 1e-6);
+  EXPECT_GT(expectedLit, 0.0);
+  EXPECT_LT(expectedLit, weights);
+  EXPECT_NEAR(t.data[centre + 2], meanFraction / weights, 1e-5);
+  for (float v : t.data) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  std::printf("  centre: lit %.0f of %.0f hours (%d steps near the disc's edge)\n", 12.0 * lit, 12.0 * weights, nearTheEdge);
+  EXPECT_NE(r.out.find("point 1 (10, 10): lit"), std::string::npos) << r.out;
+}
+
+// The extremes: a range of no length and a step longer than the range give one step; a
+// DEM of one sample, a point off the grid and a bad method give one line and no file.
+TEST(TerrainLightingCli, ExtremesGiveOneStepOrOneLine) {
+  TempDir dir;
+  auto lighting = [&](std::vector<std::string> a) {
+    a.insert(a.begin(), {"terrain", "lighting"});
+    return run(UMBRA_EXE, a);
+  };
+  for (const auto& [to, step] : std::vector<std::pair<std::string, std::string>>{{"2024-03-01T00:00:00Z", "1h"},
+                                                                                 {"2024-03-01T06:00:00Z", "1d"}}) {
+    const RunResult r = lighting({"--synthetic", "2", "--size", "32", "--from", "2024-03-01T00:00:00Z", "--to", to,
+                                  "--step", step, "--csv", dir / "one.csv", "--output", dir / "one.exr"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(csvRows(dir / "one.csv").size(), 2u);
+    const tables::Table t = tables::readExr(dir / "one.exr");
+    EXPECT_EQ(t.parameters.at("steps"), "1");
+    for (float v : t.data) ASSERT_TRUE(std::isfinite(v));
+  }
+  terrain::HeightField one;
+  one.width = one.height = 1;
+  one.heightsM = {0.0};
+  writeGeoTiff(dir / "one.tif", one, 0.0);
+  for (const std::vector<std::string>& a :
+       {std::vector<std::string>{"--dem", dir / "one.tif"}, {"--synthetic", "1", "--point", "40,3"},
+        {"--synthetic", "1", "--method", "fast"}}) {
+    std::vector<std::string> args = a;
+    args.insert(args.end(), {"--size", "32", "--from", "2024-03-01T00:00:00Z", "--to", "2024-03-02T00:00:00Z",
+                             "--step", "6h", "--output", dir / "bad.exr"});
+    if (a[0] == "--dem") args.erase(args.begin() + 2, args.begin() + 4);  // (no --size with a DEM)
+    const RunResult r = lighting(args);
+    EXPECT_NE(r.exitCode, 0) << a[0];
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.exr"));
+  }
 }

@@ -16,6 +16,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <unistd.h>
 #include <cstdio>
 #include <vector>
 
@@ -187,4 +189,49 @@ TEST(TerrainScene, NoLineDownTheViewFromNearThePole) {
                 withTerrain ? "with the terrain" : "the sphere alone", rows, H - H / 2 - 8, column);
     EXPECT_LE(rows, 20) << (withTerrain ? "with the terrain" : "the sphere alone") << ", column " << column;
   }
+}
+
+// The shadow table of a scene's terrain goes through the table cache: made and stored for
+// the first view, read back (the same values) for a second; a Sun within the table's step
+// keeps the held table, one an hour later (0.55 deg on at the pole) gets another.
+TEST(TerrainScene, ShadowTablesAreCachedAndFollowTheSun) {
+  scene::Scene s = scene::loadScene(UMBRA_SOURCE_DIR "/examples/scenes/lunar-south-pole-landing-site.json");
+  pipeline::SceneInputs in = pipeline::sceneInputs(s);
+  render::BodyView view(32, 18, true);
+  render::test::useSharedDisplay(view.GetRenderWindow());
+  view.SetBodies(in.sun, in.bodies, render::test::testLutImage());
+  view.SetCamera(in.camera);
+  pipeline::TerrainShadowSettings shadows;
+  const std::filesystem::path cacheDir =
+      std::filesystem::temp_directory_path() / ("umbra-terrain-shadow-cache-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(cacheDir);
+  shadows.cacheDirectory = cacheDir.string();
+  const auto terrains = pipeline::addSceneTerrains(view, s, in, {}, shadows);
+  render::TerrainRendering& t = *terrains.front();
+  ASSERT_NE(t.GetShadowTable(), nullptr);
+  const std::vector<float> made = t.GetShadowTable()->offsets;
+
+  render::TerrainRendering again;
+  again.SetTerrain(t.GetPatch());
+  again.SetSun(in.sun);
+  EXPECT_TRUE(pipeline::updateShadowTable(again, shadows));  // read from the cache
+  EXPECT_EQ(again.GetShadowTable()->offsets, made);
+  const terrain::ShadowTable* held = again.GetShadowTable();
+  EXPECT_FALSE(pipeline::updateShadowTable(again, shadows));
+  EXPECT_EQ(again.GetShadowTable(), held);  // the same Sun: the table kept
+
+  scene::setTime(s, scene::addSeconds(s.time, 3600.0));
+  in = pipeline::sceneInputs(s);
+  view.SetCamera(in.camera);
+  pipeline::placeSceneTerrains(terrains, view, s, in, shadows);
+  ASSERT_NE(t.GetShadowTable(), nullptr);
+  EXPECT_NE(t.GetShadowTable()->offsets, made);
+  const double movedDeg = std::acos(std::min(1.0, glm::dot(glm::normalize(t.GetShadowTable()->sun.direction),
+                                                           glm::normalize(held->sun.direction)))) * 180.0 / 3.14159265358979;
+  std::printf("  the table's Sun moved %.3f deg in an hour\n", movedDeg);
+  EXPECT_GT(movedDeg, 0.3);
+  shadows.tables = false;
+  pipeline::placeSceneTerrains(terrains, view, s, in, shadows);
+  EXPECT_EQ(t.GetShadowTable(), nullptr);  // the search per pixel
+  std::filesystem::remove_all(cacheDir);
 }

@@ -55,6 +55,13 @@ struct TerrainScene {
     terrain.SetSun(sun);
   }
 
+  /// The shadow table for the present Sun, rounded to the default step.
+  void useShadowTable() {
+    const terrain::SunDisc sun = terrain::roundedSun(terrain.GetSunDisc(), terrain::kDefaultSunStepRad);
+    terrain.SetShadowTable(std::make_shared<terrain::ShadowTable>(
+        terrain::makeShadowTable(field, terrain.GetMipmap(), sun, terrain::ShadowOptions{})));
+  }
+
   /// World (= tangent frame here) surface point at grid coordinates g.
   glm::dvec3 surface(glm::dvec2 g) const { return (field.bodyRadiusM + field.bilinear(g.x, g.y)) * field.direction(g.x, g.y); }
 
@@ -119,9 +126,13 @@ Stats check(TerrainScene& s, const render::ViewCamera& c) {
       const render::test::Ray ray = render::test::pixelRay(c, W, H, i, H - 1 - row);
       const glm::dvec3 d = s.surface(g) - ray.origin;
       st.maxRayGap = std::max(st.maxRayGap, glm::length(d - glm::dot(d, ray.dir) * ray.dir) / glm::length(d));
-      // The CPU DP at that surface point.
-      const terrain::Horizon hz = terrain::horizonTowardsSunAt(s.field, s.terrain.GetMipmap(), g, s.field.bilinear(g.x, g.y), disc, dp);
-      const double cpu = terrain::discFractionAboveHorizon(hz, disc);
+      // The CPU DP at that surface point, or the CPU's lookup in the same shadow table.
+      const terrain::ShadowTable* table = s.terrain.GetShadowTable();
+      const double cpu =
+          table ? table->fractionAt(s.field, s.terrain.GetMipmap(), g)
+                : terrain::discFractionAboveHorizon(
+                      terrain::horizonTowardsSunAt(s.field, s.terrain.GetMipmap(), g, s.field.bilinear(g.x, g.y), disc, dp),
+                      disc);
       const double diff = std::abs(cpu - p[2]);
       st.meanFractionDiff += diff;
       st.fractionOff += diff > 0.01;
@@ -147,10 +158,8 @@ Stats check(TerrainScene& s, const render::ViewCamera& c) {
   return st;
 }
 
-} // namespace
-
-TEST(TerrainRender, FromOrbitTheGpuMatchesTheCpu) {
-  TerrainScene s(4);  // a coarse mesh: the view-ray refinement must find the surface between its vertices
+/// 30 km up, looking down at the patch's centre at a slant.
+render::ViewCamera orbitCamera(const TerrainScene& s) {
   render::ViewCamera c;
   const glm::dvec3 centre(0.0, 0.0, s.field.bodyRadiusM);
   c.positionM = centre + glm::dvec3(-8e3, -12e3, 26e3);
@@ -158,7 +167,24 @@ TEST(TerrainRender, FromOrbitTheGpuMatchesTheCpu) {
   c.up = glm::dvec3(0.0, 0.0, 1.0);
   c.up = glm::normalize(c.up - glm::dot(c.up, glm::normalize(c.targetM - c.positionM)) * glm::normalize(c.targetM - c.positionM));
   c.fovDeg = 9.0;
-  const Stats st = check(s, c);
+  return c;
+}
+
+} // namespace
+
+TEST(TerrainRender, FromOrbitTheGpuMatchesTheCpu) {
+  TerrainScene s(4);  // a coarse mesh: the view-ray refinement must find the surface between its vertices
+  const Stats st = check(s, orbitCamera(s));
+  EXPECT_GT(st.umbra, 100);
+  EXPECT_GT(st.lit, 100);
+}
+
+// With a shadow table, the GLSL lookup (the near search and the table's far horizon)
+// against the CPU's (terrain::ShadowTable::fractionAt) at the same surface points.
+TEST(TerrainRender, FromOrbitTheGpuTableLookupMatchesTheCpu) {
+  TerrainScene s(4);
+  s.useShadowTable();
+  const Stats st = check(s, orbitCamera(s));
   EXPECT_GT(st.umbra, 100);
   EXPECT_GT(st.lit, 100);
 }

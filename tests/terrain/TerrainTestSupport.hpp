@@ -33,6 +33,13 @@ inline double localElevation(const terrain::HeightField& f, int i, int j, const 
   return std::asin(glm::dot(glm::normalize(sun), f.direction(i, j)));
 }
 
+/// The Sun at an elevation and azimuth (degrees) of the tangent frame, 1 au away.
+inline terrain::SunDisc sunAt(double elevationDeg, double azimuthDeg) {
+  terrain::SunDisc s;
+  s.direction = terrain::sunDirectionFromElevationAzimuth(elevationDeg * kDeg, azimuthDeg * kDeg);
+  return s;
+}
+
 inline terrain::ShadowOptions method(terrain::ShadowMethod m) {
   terrain::ShadowOptions o;
   o.method = m;

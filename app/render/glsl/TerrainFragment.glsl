@@ -1,9 +1,11 @@
 // Fragment stage of a terrain patch (TerrainRendering): the view ray through the
 // pre-displaced mesh is refined onto the bilinear height field (terrain paper, section 4),
-// the visible fraction of the Sun is searched there with terrain/glsl/TerrainShadow.glsl
-// (umbraTerrainShadowAt, which comes before this file), and the point is shaded
-// Lambertian: albedo / pi * E_sun * max(0, n . l) * fraction, linear radiance in
-// W m^-2 sr^-1 like the eclipse receivers (ReceiverFragment.glsl).
+// the visible fraction of the Sun is found there, and the point is shaded Lambertian:
+// albedo / pi * E_sun * max(0, n . l) * fraction, linear radiance in W m^-2 sr^-1 like
+// the eclipse receivers (ReceiverFragment.glsl). The fraction: with a shadow table
+// (terrain/ShadowTable.hpp) uniform steps of terrain/glsl/TerrainShadow.glsl (which comes
+// before this file) over the first umbraSearchToTexels of the footprint and the table's
+// far horizon, bilinear; without one, the DP search over the whole footprint.
 //
 // Patch coordinates: the tangent frame of the height field (HeightField.hpp) shifted by
 // -(0, 0, R), so the grid's tangent point is the origin and every position near the
@@ -19,12 +21,15 @@ uniform vec3 umbraTerrainAlbedo;       // linear RGB
 uniform float umbraTerrainIrradiance;  // W m^-2 of the Sun at the patch
 uniform int umbraTerrainOutput;        // 0: radiance; 1: (grid x, grid y, visible fraction)
 uniform vec3 umbraTerrainEye;          // the camera (the origin), patch coordinates from doubles
+uniform vec3 umbraTerrainLight;        // towards the Sun, tangent frame (the table's Sun may be rounded)
+// UMBRA_TERRAIN_TABLE (defined before this file) 1: umbraFarOffsets (declared by VTK) holds
+// the table's far horizon per sample (its R channel).
 
 const float umbraInvPi = 0.31830988618;
 const float umbraLogDepthMinM = 1.0e-3;          // as ReceiverFragment.glsl
 const float umbraLogDepthOctaves = 53.150849518;
 const int umbraMarchSteps = 64;     // half a sample each: 32 samples from the facet at most
-const int umbraBisections = 24;
+const int umbraBisections = 12;   // then one step of false position
 
 vec2 umbraGridOf(vec3 q) {
   return umbraRadiusM * q.xy / (umbraRadiusM + q.z) / umbraSpacingM + 0.5 * vec2(umbraGridSize - 1);
@@ -64,6 +69,34 @@ vec3 umbraSurfacePoint(vec2 g) {
   return vec3((umbraRadiusM + h) / n * pl, (h * umbraRadiusM - umbraRadiusM * pl2 / (n + umbraRadiusM)) / n);
 }
 
+// The table's far horizon at grid coordinates g, bilinear (ShadowTable::farOffsetAt).
+float umbraFarOffsetAt(vec2 g) {
+#if UMBRA_TERRAIN_TABLE
+  g = clamp(g, vec2(0.0), vec2(umbraGridSize - 1));
+  ivec2 c = min(ivec2(floor(g)), umbraGridSize - 2);
+  vec2 f = g - vec2(c);
+  float d00 = texelFetch(umbraFarOffsets, c, 0).r, d10 = texelFetch(umbraFarOffsets, c + ivec2(1, 0), 0).r;
+  float d01 = texelFetch(umbraFarOffsets, c + ivec2(0, 1), 0).r, d11 = texelFetch(umbraFarOffsets, c + ivec2(1, 1), 0).r;
+  return mix(mix(d00, d10, f.x), mix(d01, d11, f.x), f.y);
+#else
+  return 1e30;
+#endif
+}
+
+// The visible fraction of the Sun at grid coordinates g, height h (ShadowTable::fractionAt
+// with a table, else the whole search as terrain::visibleFraction).
+uniform int umbraNearSteps;  // with a table: the near search's uniform steps
+float umbraTerrainFraction(vec2 g, float h) {
+  UmbraProfile p;
+  if (!umbraMakeProfileAt(g, h, p)) return p.e > 0.0 ? 1.0 : 0.0;
+#if UMBRA_TERRAIN_TABLE
+  float horizon = umbraHorizonUniform(p, umbraNearSteps);
+#else
+  float horizon = umbraHorizonDP(p);
+#endif
+  return umbraDiscFraction(min((p.e - horizon) / umbraSunRadius, umbraFarOffsetAt(g)), umbraLimbDarkening);
+}
+
 void umbraTerrainShade() {
   // (umbraEyeMC, from the inverse of VTK's float matrix, is off by ~1e-4 m a kilometre
   // from the patch's centre: too much 2 m above the ground.)
@@ -92,11 +125,14 @@ void umbraTerrainShade() {
     tPrev = t;
   }
   if (!hit) discard;  // the ray misses the surface here (a silhouette)
+  float fa = umbraAboveTerrain(umbraPosMC + ta * dir, g, h), fb = umbraAboveTerrain(umbraPosMC + tb * dir, g, h);
   for (int k = 0; k < umbraBisections; ++k) {
     float tm = 0.5 * (ta + tb);
-    if (umbraAboveTerrain(umbraPosMC + tm * dir, g, h) > 0.0) ta = tm; else tb = tm;
+    float fm = umbraAboveTerrain(umbraPosMC + tm * dir, g, h);
+    if (fm > 0.0) { ta = tm; fa = fm; } else { tb = tm; fb = fm; }
   }
-  tb = 0.5 * (ta + tb);
+  // Within the last bracket (1/4096 of a step) the height along the ray is as good as straight.
+  tb = fa - fb > 0.0 && fa < 1e29 && fb > -1e29 ? ta + (tb - ta) * fa / (fa - fb) : 0.5 * (ta + tb);
   if (umbraAboveTerrain(umbraPosMC + tb * dir, g, h) >= 1e29) discard;  // no data
   vec3 q = umbraPosMC + tb * dir;
 
@@ -104,9 +140,9 @@ void umbraTerrainShade() {
   vec3 dx = umbraSurfacePoint(g + vec2(0.5, 0.0)) - umbraSurfacePoint(g - vec2(0.5, 0.0));
   vec3 dy = umbraSurfacePoint(g + vec2(0.0, 0.5)) - umbraSurfacePoint(g - vec2(0.0, 0.5));
   vec3 n = normalize(cross(dx, dy));
-  float cosi = max(dot(n, umbraSunDirection), 0.0);
+  float cosi = max(dot(n, umbraTerrainLight), 0.0);
   // A slope turned away from the Sun is dark whatever the horizon: no search.
-  float fraction = cosi > 0.0 || umbraTerrainOutput == 1 ? umbraTerrainShadowAt(g, h).x : 0.0;
+  float fraction = cosi > 0.0 || umbraTerrainOutput == 1 ? umbraTerrainFraction(g, h) : 0.0;
   vec3 radiance = umbraTerrainAlbedo * (umbraInvPi * umbraTerrainIrradiance * cosi * fraction);
   fragOutput0 = umbraTerrainOutput == 1 ? vec4(g, fraction, 1.0) : vec4(radiance, 1.0);
 
