@@ -1,6 +1,7 @@
 // umbra terrain shadow: the visible fraction of the solar disc over a DEM (terrain paper).
 #include "Commands.hpp"
 #include "OutputFile.hpp"
+#include "ProfileExport.hpp"
 #include "ShadowCommon.hpp"  // lengthOption
 #include "TerrainDem.hpp"
 
@@ -18,10 +19,12 @@
 
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkTable.h>
 #include <vtkUnsignedShortArray.h>
 #include <vtkXMLImageDataWriter.h>
 
@@ -42,7 +45,7 @@ constexpr double kDeg = kPi / 180.0;
 
 struct Options {
   std::string dem, output, method = "dp", time, body = "Moon", bodyRadius, spacing = "30m";
-  std::string from, to, step, csv;  // lighting
+  std::string from, to, step, csv, plot;  // lighting
   std::vector<std::string> points;   // lighting: "I,J"
   long long seed = -1;
   int size = 512, levels = 6, uniformSteps = 128;
@@ -309,9 +312,43 @@ std::vector<Point> lightingPoints(const Options& o, const terrain::HeightField& 
   return points;
 }
 
+/// The points' visible fraction over time, one line each.
+void writeLightingPlot(const std::string& path, const std::vector<Point>& points, const std::vector<double>& hours,
+                       const std::vector<std::vector<double>>& fractions, const std::string& from, const std::string& source) {
+  vtkNew<vtkTable> table;
+  vtkNew<vtkDoubleArray> x;
+  x->SetName("hours");
+  for (double h : hours) x->InsertNextValue(h);
+  table->AddColumn(x);
+  plot::ProfilePlotStyle style;
+  style.xColumn = "hours";
+  style.xLabel = "hours from " + from;
+  style.yLabel = "visible fraction of the solar disc";
+  style.subtitle = source;
+  style.legendTop = true;
+  static const unsigned char palette[][3] = {{220, 50, 47}, {40, 100, 220}, {60, 160, 60}, {200, 130, 0}, {120, 60, 170}, {30, 30, 30}};
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    vtkNew<vtkDoubleArray> y;
+    const std::string name = "point" + std::to_string(p + 1);
+    y->SetName(name.c_str());
+    for (double v : fractions[p]) y->InsertNextValue(v);
+    table->AddColumn(y);
+    const unsigned char* c = palette[p % 6];
+    style.lines.push_back({name, "point " + std::to_string(p + 1) + " (" + std::to_string(points[p].i) + ", " +
+                                     std::to_string(points[p].j) + ")",
+                           c[0], c[1], c[2], 1.5f});
+  }
+  try {
+    plot::writeProfilePlot(table, path, "The Sun at the points", style);
+  } catch (const std::exception& e) {
+    throw CommandError(e.what());
+  }
+}
+
 int runLighting(const Options& o) {
   output::checkWritable(o.output, {".exr", ".vti"});
   if (!o.csv.empty()) output::checkWritable(o.csv, {".csv"});
+  if (!o.plot.empty()) output::checkWritable(o.plot, {".png", ".svg"});
   if (o.method != "sweep" && o.method != "dp") throw CommandError("--method: expected sweep or dp, got '" + o.method + "'");
   const std::vector<scene::UtcTime> times = timeSteps(o.from, o.to, o.step);
   noteTimesBeyondEphemeris(times);
@@ -333,6 +370,8 @@ int runLighting(const Options& o) {
   std::ostringstream csv;
   csv << "time_utc,point,i,j,sun_elevation_deg,sun_azimuth_deg,visible_solar_fraction,earth_elevation_deg,"
          "earth_visible_fraction\n";
+  std::vector<double> hours;
+  std::vector<std::vector<double>> pointFractions(points.size());
   ProgressLine progress("terrain lighting");
   const auto t0 = std::chrono::steady_clock::now();
   for (std::size_t k = 0; k < times.size(); ++k) {
@@ -353,6 +392,9 @@ int runLighting(const Options& o) {
     }
     stats.add(fraction, durationOf(k));
     const std::optional<terrain::SunDisc> earth = earthFrom(site, times[k]);
+    hours.push_back(k * stepS / 3600.0);
+    for (std::size_t p = 0; p < points.size(); ++p)
+      pointFractions[p].push_back(fraction[static_cast<std::size_t>(points[p].j) * field.width + points[p].i]);
     for (std::size_t p = 0; p < points.size(); ++p) {
       const Point& q = points[p];
       csv << timeLabel(times[k]) << ',' << p + 1 << ',' << q.i << ',' << q.j << ',' << fmt(elevationDegOf(sun.direction))
@@ -389,8 +431,10 @@ int runLighting(const Options& o) {
     }
     out.commit();
   }
-  std::printf("wrote %s%s%s: %d x %d at %.6g m (%s), %zu steps of %s from %s, method %s, %.2f s\n", o.output.c_str(),
-              o.csv.empty() ? "" : " and ", o.csv.c_str(), field.width, field.height, field.spacingM, site.source.c_str(),
+  if (!o.plot.empty()) writeLightingPlot(o.plot, points, hours, pointFractions, o.from, site.source);
+  const std::string others = (o.csv.empty() ? "" : ", " + o.csv) + (o.plot.empty() ? "" : ", " + o.plot);
+  std::printf("wrote %s%s: %d x %d at %.6g m (%s), %zu steps of %s from %s, method %s, %.2f s\n", o.output.c_str(),
+              others.c_str(), field.width, field.height, field.spacingM, site.source.c_str(),
               times.size(), o.step.c_str(), timeLabel(times.front()).c_str(), o.method.c_str(), seconds);
   for (std::size_t p = 0; p < points.size(); ++p) {
     const std::size_t at = static_cast<std::size_t>(points[p].j) * field.width + points[p].i;
@@ -444,6 +488,7 @@ void addLightingCommand(CLI::App* terrainCmd, Action& action) {
                                              "default: the centre)");
   lighting->add_option("--csv", o->csv, "The points' time series: the Sun's elevation, azimuth and visible fraction, "
                                         "the Earth's elevation and visible fraction (bodies other than Earth)");
+  lighting->add_option("--plot", o->plot, "The points' visible fraction of the Sun over time: .png or .svg");
   lighting->add_option("--output", o->output, "The maps: .exr (three float channels) or .vti (with the heights)")->required();
   lighting->callback([&action, o, checkSite] {
     action = [o, checkSite] {

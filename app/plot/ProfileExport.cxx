@@ -33,19 +33,19 @@
 namespace umbra::plot {
 namespace {
 
-struct Line {
-  const char* column;
-  const char* label;
-  unsigned char r, g, b;
-};
-const Line kLines[] = {{"r", "red", 220, 50, 47},
-                       {"g", "green", 60, 160, 60},
-                       {"b", "blue", 40, 100, 220},
-                       {"luminance", "luminance", 30, 30, 30}};
+/// A profile's lines: r, g, b and luminance (the thicker).
+const std::vector<PlotLine>& profileLines() {
+  static const std::vector<PlotLine> lines{{"r", "red", 220, 50, 47, 1.5f},
+                                           {"g", "green", 60, 160, 60, 1.5f},
+                                           {"b", "blue", 40, 100, 220, 1.5f},
+                                           {"luminance", "luminance", 30, 30, 30, 2.5f}};
+  return lines;
+}
+const std::vector<PlotLine>& linesOr(const std::vector<PlotLine>& lines) { return lines.empty() ? profileLines() : lines; }
 
 vtkDoubleArray* column(vtkTable* t, const char* name) {
   auto* c = vtkDoubleArray::SafeDownCast(t->GetColumnByName(name));
-  if (!c) throw std::runtime_error(std::string("shadow profile has no column '") + name + "'");
+  if (!c) throw std::runtime_error(std::string("the plotted table has no column '") + name + "'");
   return c;
 }
 
@@ -78,7 +78,8 @@ void writeSvg(vtkTable* t, const std::string& path, const std::string& title, co
   const vtkIdType n = x->GetNumberOfTuples();
   const double xMax = std::max(x->GetValue(n - 1), 1e-12);
   const double xMin = style.xLogScale ? std::max(x->GetValue(0), 1e-300) : std::min(0.0, x->GetValue(0));
-  const double yLo = style.logScale ? logAxisMinimum(t) : 0.0, yHi = style.yMax;
+  const std::vector<PlotLine>& lines = linesOr(style.lines);
+  const double yLo = style.logScale ? logAxisMinimum(t, lines) : 0.0, yHi = style.yMax;
   const auto px = [&](double v) {
     const double f = style.xLogScale ? std::log(std::max(v, xMin) / xMin) / std::log(xMax / xMin)
                                      : (v - xMin) / (xMax - xMin);
@@ -124,16 +125,17 @@ void writeSvg(vtkTable* t, const std::string& path, const std::string& title, co
     << "<text transform=\"translate(18," << H / 2 << ") rotate(-90)\" text-anchor=\"middle\">" << xmlEscaped(style.yLabel)
     << "</text>\n";
   int legend = 0;
-  for (const Line& line : kLines) {
-    auto* y = column(t, line.column);
+  for (const PlotLine& line : lines) {
+    auto* y = column(t, line.column.c_str());
     char colour[8];
     std::snprintf(colour, sizeof colour, "#%02x%02x%02x", line.r, line.g, line.b);
     s << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\" points=\"";
     for (vtkIdType i = 0; i < n; ++i) s << px(x->GetValue(i)) << "," << py(y->GetValue(i)) << " ";
-    const double legendY = style.legendTop ? top + 24 + 16 * legend : H - bottom - 10 - 16 * (3 - legend);
+    const double legendY = style.legendTop ? top + 24 + 16 * legend
+                                           : H - bottom - 10 - 16 * (static_cast<int>(lines.size()) - 1 - legend);
     ++legend;
     s << "\"/>\n<text x=\"" << W - right - 10 << "\" y=\"" << legendY
-      << "\" text-anchor=\"end\" fill=\"" << colour << "\">" << line.label << "</text>\n";
+      << "\" text-anchor=\"end\" fill=\"" << colour << "\">" << xmlEscaped(line.label) << "</text>\n";
   }
   for (std::size_t k = 0; k < style.notes.size(); ++k)
     s << "<text x=\"" << W - notesWidth + 10 << "\" y=\"" << top + 30 + 18 * k << "\" fill=\"#333\">"
@@ -164,7 +166,7 @@ void writePng(vtkTable* t, const std::string& path, const std::string& title, co
   chart->SetTitle(style.subtitle.empty() ? title : title + "\n" + style.subtitle);
   chart->GetTitleProperties()->SetFontSize(16);
   view->GetScene()->AddItem(chart);
-  addProfileLines(chart, t, style.xColumn, style.xLabel);
+  addProfileLines(chart, t, style.xColumn, style.xLabel, style.lines);
   if (notesWidth > 0) {  // the chart keeps 800 pixels; the notes take the rest, on its right
     chart->SetAutoSize(false);
     chart->SetSize(vtkRectf(0.0f, 0.0f, 800.0f, 500.0f));
@@ -184,7 +186,7 @@ void writePng(vtkTable* t, const std::string& path, const std::string& title, co
   if (style.xLogScale) chart->GetAxis(vtkAxis::BOTTOM)->SetLogScale(true);
   chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
   chart->GetLegend()->SetVerticalAlignment(style.legendTop ? vtkChartLegend::TOP : vtkChartLegend::BOTTOM);
-  const double yLo = style.logScale ? logAxisMinimum(t) : 0.0;
+  const double yLo = style.logScale ? logAxisMinimum(t, style.lines) : 0.0;
   chart->GetAxis(vtkAxis::LEFT)->SetTitle(style.yLabel);
   chart->GetAxis(vtkAxis::LEFT)->SetRange(yLo, style.yMax);
   if (style.logScale) chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
@@ -221,14 +223,15 @@ void writePng(vtkTable* t, const std::string& path, const std::string& title, co
 
 } // namespace
 
-void addProfileLines(vtkChartXY* chart, vtkTable* t, const std::string& xColumn, const std::string& xLabel) {
+void addProfileLines(vtkChartXY* chart, vtkTable* t, const std::string& xColumn, const std::string& xLabel,
+                     const std::vector<PlotLine>& lines) {
   column(t, xColumn.c_str());
-  for (const Line& line : kLines) {
-    column(t, line.column);
+  for (const PlotLine& line : linesOr(lines)) {
+    column(t, line.column.c_str());
     vtkPlot* plot = chart->AddPlot(vtkChart::LINE);
     plot->SetInputData(t, xColumn, line.column);
     plot->SetColor(line.r, line.g, line.b, 255);
-    plot->SetWidth(line.column == std::string("luminance") ? 2.5f : 1.5f);
+    plot->SetWidth(line.width);
     plot->SetLabel(line.label);
   }
   chart->SetShowLegend(true);
@@ -271,10 +274,10 @@ void writeProfilePlot(vtkTable* t, const std::string& path, const std::string& t
   throw std::runtime_error(path + ": unsupported plot type (expected .png or .svg)");
 }
 
-double logAxisMinimum(vtkTable* t) {
+double logAxisMinimum(vtkTable* t, const std::vector<PlotLine>& lines) {
   double lo = 1.0;
-  for (const Line& line : kLines) {
-    auto* y = column(t, line.column);
+  for (const PlotLine& line : linesOr(lines)) {
+    auto* y = column(t, line.column.c_str());
     for (vtkIdType i = 0; i < y->GetNumberOfTuples(); ++i)
       if (y->GetValue(i) > 0.0) lo = std::min(lo, y->GetValue(i));
   }

@@ -16,6 +16,13 @@ inline constexpr const char* kProfileCsvHeader = "offset_km,r,g,b,luminance";
 
 void writeProfileCsv(vtkTable* profile, const std::string& path);
 
+/// A line of a plot: its table column, its legend, its colour and width.
+struct PlotLine {
+  std::string column, label;
+  unsigned char r = 0, g = 0, b = 0;
+  float width = 1.5f;
+};
+
 /// How a profile is drawn: linear I / I_sun in [0, 1.05] (default), or logarithmic from the
 /// decade below the smallest value (the eclipse paper's Figure 12), with vertical lines
 /// at given offsets (e.g. the umbra's and the penumbra's edges).
@@ -37,9 +44,11 @@ struct ProfilePlotStyle {
   bool legendTop = false;  ///< the legend in the top right corner (curves that fall to the right)
   /// Lines of text beside the plot, on its right (e.g. the Danjon scale).
   std::vector<std::string> notes;
+  /// The lines drawn; none: the profile's r, g, b and luminance.
+  std::vector<PlotLine> lines;
 };
 
-/// Plot r, g, b and luminance over the offset (or style.xColumn, from 0 or from its first
+/// Plot r, g, b and luminance (or style.lines) over the offset (or style.xColumn, from 0 or from its first
 /// value where that is negative), the legend in the bottom right corner (the
 /// curves rise to 1 away from the axis: that corner stays empty; or as the style says); the type follows the
 /// extension (.png or .svg). Throws std::runtime_error naming the path on failure.
@@ -48,11 +57,12 @@ void writeProfilePlot(vtkTable* profile, const std::string& path, const std::str
 
 /// The lower end of a log-scale axis for a profile: the decade below its smallest
 /// positive value (>= 1e-9).
-double logAxisMinimum(vtkTable* profile);
+double logAxisMinimum(vtkTable* profile, const std::vector<PlotLine>& lines = {});
 
 /// The lines of a profile plot, added to a chart (shared by the PNG export and the GUI),
 /// against `xColumn` titled `xLabel`.
 void addProfileLines(vtkChartXY* chart, vtkTable* profile, const std::string& xColumn = "offset_km",
-                     const std::string& xLabel = "offset from the shadow axis [km]");
+                     const std::string& xLabel = "offset from the shadow axis [km]",
+                     const std::vector<PlotLine>& lines = {});
 
 } // namespace umbra::plot

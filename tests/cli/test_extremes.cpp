@@ -222,7 +222,7 @@ const std::vector<Command>& commands() {
        {"--synthetic", "1", "--size", "16", "--from", "2024-03-01T00:00:00Z", "--to", "2024-03-02T00:00:00Z", "--step",
         "6h", "--output", "@/l.exr"},
        {{"--dem", "@/dem.tif"}, {"--body-radius", "1737.4km"}, {"--lat-deg", "-89.5"}, {"--lon-deg", "10"},
-        {"--spacing", "30m"}, {"--method", "dp"}, {"--point", "3,4"}, {"--csv", "@/l.csv"}}},
+        {"--spacing", "30m"}, {"--method", "dp"}, {"--point", "3,4"}, {"--csv", "@/l.csv"}, {"--plot", "@/l.svg"}}},
       {{"sweep"}, {sourcePath("examples/sweeps/moon-in-totality-quick.json"), "--csv", "@/s.csv"},
        {{"--plot", "@/s.svg"}}},
       {{"atmosphere", "eclipse-sky"},

@@ -211,7 +211,7 @@ std::vector<std::vector<std::string>> csvRows(const std::string& path) {
 // zeros), March 2024 at 12-hour steps (a lunar day: the Sun sets and rises): the share of the time lit at the centre is the share of the
 // steps whose Sun (the CSV's elevation column, from the ephemeris) has its disc's top above
 // the horizontal, exactly; the mean visible fraction follows Eq. 7 at those elevations;
-// the Earth is reported; the maps come out finite and in range.
+// the Earth is reported; the maps come out finite and in range; the plot has a line a point.
 TEST(TerrainLightingCli, FlatPlainFollowsTheSunsElevation) {
   TempDir dir;
   terrain::HeightField flat;
@@ -221,7 +221,7 @@ TEST(TerrainLightingCli, FlatPlainFollowsTheSunsElevation) {
   const RunResult r = run(UMBRA_EXE, {"terrain", "lighting", "--dem", dir / "flat.tif", "--lat-deg", "-88", "--lon-deg",
                                       "30", "--from", "2024-03-01T00:00:00Z", "--to", "2024-03-29T00:00:00Z", "--step",
                                       "12h", "--point", "10,10", "--point", "0,20", "--csv", dir / "points.csv",
-                                      "--output", dir / "maps.exr"});
+                                      "--plot", dir / "points.svg", "--output", dir / "maps.exr"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto rows = csvRows(dir / "points.csv");
   ASSERT_EQ(rows.size(), 1u + 57u * 2u);  // header, 57 steps of 2 points
@@ -262,6 +262,13 @@ TEST(TerrainLightingCli, FlatPlainFollowsTheSunsElevation) {
   for (float v : t.data) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
   std::printf("  centre: lit %.0f of %.0f hours (%d steps near the disc's edge)\n", 12.0 * lit, 12.0 * weights, nearTheEdge);
   EXPECT_NE(r.out.find("point 1 (10, 10): lit"), std::string::npos) << r.out;
+  // The plot: one line a point.
+  std::ifstream svg(dir / "points.svg");
+  const std::string plot((std::istreambuf_iterator<char>(svg)), std::istreambuf_iterator<char>());
+  std::size_t lines = 0;
+  for (std::size_t at = plot.find("<polyline"); at != std::string::npos; at = plot.find("<polyline", at + 1)) ++lines;
+  EXPECT_EQ(lines, 2u);
+  EXPECT_NE(plot.find("point 2 (0, 20)"), std::string::npos);
 }
 
 // The extremes: a range of no length and a step longer than the range give one step; a
