@@ -34,11 +34,22 @@ public:
   LightingMaps maps() const;
   std::size_t steps() const { return steps_; }
 
+  /// The steps that follow this one's, reduced elsewhere (another rank's share of the
+  /// time): afterwards this holds what adding them here one by one would have given (to
+  /// the rounding of the sums; a shadow running across the join is one shadow). Throws
+  /// std::invalid_argument for another size.
+  void append(const LightingAccumulator& later);
+  /// The whole state as numbers (to send between ranks), and back. fromState throws
+  /// std::invalid_argument for a state of another size.
+  std::vector<double> state() const;
+  static LightingAccumulator fromState(int width, int height, const double* state, std::size_t count);
+
 private:
   int width_, height_;
   std::size_t steps_ = 0;
   double totalS_ = 0.0;
   std::vector<double> litS_, fractionS_, litSteps_, fractionSum_, runS_, longestS_;
+  std::vector<double> leadingS_, everLit_;  ///< the shadow from the first step on, and whether it ended (0 / 1)
 };
 
 } // namespace umbra::terrain

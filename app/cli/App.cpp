@@ -47,6 +47,8 @@ bool spreadsOverRanks(const CLI::App& app) {
   if (app.got_subcommand("render") || app.got_subcommand("sweep")) return true;  // (a single frame: rank 0)
   const CLI::App* precompute = app.get_subcommand("precompute");
   if (app.got_subcommand(precompute)) return precompute->got_subcommand("shadow") || precompute->got_subcommand("eclipse");
+  const CLI::App* terrain = app.get_subcommand("terrain");
+  if (app.got_subcommand(terrain) && terrain->got_subcommand("lighting")) return true;
   const CLI::App* atmosphere = app.get_subcommand("atmosphere");
   return app.got_subcommand(atmosphere) && atmosphere->got_subcommand("precompute");
 }

@@ -61,7 +61,7 @@ std::string unknownCommandMessage(const CLI::App& app, int argc, const char* con
 /// Whether the command parsed on `app` spreads its work over MPI ranks (the others run on
 /// rank 0 alone): render (an animation's frames), precompute shadow and eclipse (the LuTs'
 /// texels, and the atmosphere tables' wavelengths), atmosphere precompute (the wavelengths),
-/// sweep (its cases).
+/// sweep (its cases), terrain lighting (its time steps).
 bool spreadsOverRanks(const CLI::App& app);
 
 /// Under mpirun, how a command's run went over the ranks, for its last line: " on N ranks in

@@ -2,6 +2,7 @@
 #include "Commands.hpp"
 #include "OutputFile.hpp"
 #include "ProfileExport.hpp"
+#include "Ranks.hpp"
 #include "ShadowCommon.hpp"  // lengthOption
 #include "TerrainDem.hpp"
 
@@ -345,36 +346,28 @@ void writeLightingPlot(const std::string& path, const std::vector<Point>& points
   }
 }
 
-int runLighting(const Options& o) {
-  output::checkWritable(o.output, {".exr", ".vti"});
-  if (!o.csv.empty()) output::checkWritable(o.csv, {".csv"});
-  if (!o.plot.empty()) output::checkWritable(o.plot, {".png", ".svg"});
-  if (o.method != "sweep" && o.method != "dp") throw CommandError("--method: expected sweep or dp, got '" + o.method + "'");
-  const std::vector<scene::UtcTime> times = timeSteps(o.from, o.to, o.step);
-  noteTimesBeyondEphemeris(times);
-  const Site site = loadSite(o);
+/// What one rank makes of its share of the steps: the statistics, the CSV's rows, and for
+/// the plot each step's hours and the points' fractions (1 + points numbers a step).
+struct LightingShare {
+  terrain::LightingAccumulator stats;
+  std::string csv;
+  std::vector<double> series;
+};
+
+/// Steps [begin, end) of `times` on the site: each step's map, the statistics, the points.
+LightingShare lightSteps(const Options& o, const Site& site, const std::vector<Point>& points,
+                         const std::vector<scene::UtcTime>& times, std::size_t begin, std::size_t end, bool showProgress) {
   const terrain::HeightField& field = site.dem.field;
-  const std::vector<Point> points = lightingPoints(o, field);
   // Each step stands for the time nearer to it than to the others, within the range: half
   // a step on each side, the first and the last clipped at --from and --to.
   const double stepS = scene::parseDurationS(o.step);
   const double spanS = scene::secondsBetween(times.front(), scene::parseUtc(o.to));
-  auto durationOf = [&](std::size_t k) {
-    const double at = k * stepS;
-    return std::min(at + 0.5 * stepS, spanS) - std::max(at - 0.5 * stepS, 0.0);
-  };
-
-  std::unique_ptr<terrain::MaximumMipmap> mip;  // the DP's, and the Earth's horizon at the points
-  mip = std::make_unique<terrain::MaximumMipmap>(field);
-  terrain::LightingAccumulator stats(field.width, field.height);
+  const terrain::MaximumMipmap mip(field);  // the DP's, and the Earth's horizon at the points
+  LightingShare share{terrain::LightingAccumulator(field.width, field.height), {}, {}};
   std::ostringstream csv;
-  csv << "time_utc,point,i,j,sun_elevation_deg,sun_azimuth_deg,visible_solar_fraction,earth_elevation_deg,"
-         "earth_visible_fraction\n";
-  std::vector<double> hours;
-  std::vector<std::vector<double>> pointFractions(points.size());
-  ProgressLine progress("terrain lighting");
-  const auto t0 = std::chrono::steady_clock::now();
-  for (std::size_t k = 0; k < times.size(); ++k) {
+  std::optional<ProgressLine> progress;
+  if (showProgress) progress.emplace("terrain lighting");
+  for (std::size_t k = begin; k < end; ++k) {
     terrain::SunDisc sun;
     try {
       const scene::SunFromBody s = scene::sunFromBody(site.body->name, times[k]);
@@ -387,38 +380,42 @@ int runLighting(const Options& o) {
     if (o.method == "sweep") {
       fraction = terrain::sweepVisibleFractionMap(field, sun);
     } else {
-      const std::vector<double> map = terrain::visibleFractionMap(field, *mip, sun, terrain::ShadowOptions{});
+      const std::vector<double> map = terrain::visibleFractionMap(field, mip, sun, terrain::ShadowOptions{});
       fraction.assign(map.begin(), map.end());
     }
-    stats.add(fraction, durationOf(k));
+    const double at = k * stepS;
+    share.stats.add(fraction, std::min(at + 0.5 * stepS, spanS) - std::max(at - 0.5 * stepS, 0.0));
+    share.series.push_back(at / 3600.0);
     const std::optional<terrain::SunDisc> earth = earthFrom(site, times[k]);
-    hours.push_back(k * stepS / 3600.0);
-    for (std::size_t p = 0; p < points.size(); ++p)
-      pointFractions[p].push_back(fraction[static_cast<std::size_t>(points[p].j) * field.width + points[p].i]);
     for (std::size_t p = 0; p < points.size(); ++p) {
       const Point& q = points[p];
+      const double v = fraction[static_cast<std::size_t>(q.j) * field.width + q.i];
+      share.series.push_back(v);
       csv << timeLabel(times[k]) << ',' << p + 1 << ',' << q.i << ',' << q.j << ',' << fmt(elevationDegOf(sun.direction))
-          << ',' << fmt(azimuthDegOf(sun.direction)) << ',' << fmt(fraction[static_cast<std::size_t>(q.j) * field.width + q.i]);
-      if (earth) {
-        const double seen = terrain::visibleFraction(field, *mip, q.i, q.j, *earth, terrain::ShadowOptions{});
-        csv << ',' << fmt(elevationDegOf(earth->direction)) << ',' << fmt(seen);
-      } else {
+          << ',' << fmt(azimuthDegOf(sun.direction)) << ',' << fmt(v);
+      if (earth)
+        csv << ',' << fmt(elevationDegOf(earth->direction)) << ','
+            << fmt(terrain::visibleFraction(field, mip, q.i, q.j, *earth, terrain::ShadowOptions{}));
+      else
         csv << ",,";
-      }
       csv << '\n';
     }
-    progress.update(double(k + 1) / times.size());
+    if (progress) progress->update(double(k + 1 - begin) / double(end - begin));
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const terrain::LightingMaps maps = stats.maps();
+  share.csv = csv.str();
+  return share;
+}
 
-  const std::string ext = output::extensionOf(o.output);
-  if (ext == ".vti") {
+/// The maps, the CSV and the plot of the whole range (on rank 0).
+void writeLighting(const Options& o, const Site& site, const std::vector<Point>& points, std::size_t steps,
+                   const terrain::LightingMaps& maps, const std::string& csvRows, const std::vector<double>& series) {
+  const terrain::HeightField& field = site.dem.field;
+  if (output::extensionOf(o.output) == ".vti") {
     writeLightingVti(o.output, field, maps);
   } else {
     writeLightingExr(o.output, maps,
                      {{"source", site.source}, {"method", o.method}, {"from", o.from}, {"to", o.to}, {"step", o.step},
-                      {"steps", std::to_string(times.size())}, {"body", site.body->name},
+                      {"steps", std::to_string(steps)}, {"body", site.body->name},
                       {"latDeg", fmt(site.latDeg)}, {"lonDeg", fmt(site.lonDeg)}, {"spacingM", fmt(field.spacingM)},
                       {"bodyRadiusM", fmt(field.bodyRadiusM)}, {"totalS", fmt(maps.totalS)}});
   }
@@ -426,16 +423,66 @@ int runLighting(const Options& o) {
     output::OutputFile out(o.csv);
     {
       std::ofstream file(out.tempPath());
-      file << csv.str();
+      file << "time_utc,point,i,j,sun_elevation_deg,sun_azimuth_deg,visible_solar_fraction,earth_elevation_deg,"
+              "earth_visible_fraction\n"
+           << csvRows;
       if (!file) throw CommandError(o.csv + ": cannot write");
     }
     out.commit();
   }
-  if (!o.plot.empty()) writeLightingPlot(o.plot, points, hours, pointFractions, o.from, site.source);
+  if (!o.plot.empty()) {
+    std::vector<double> hours;
+    std::vector<std::vector<double>> fractions(points.size());
+    for (std::size_t k = 0; k + points.size() < series.size(); k += 1 + points.size()) {
+      hours.push_back(series[k]);
+      for (std::size_t p = 0; p < points.size(); ++p) fractions[p].push_back(series[k + 1 + p]);
+    }
+    writeLightingPlot(o.plot, points, hours, fractions, o.from, site.source);
+  }
+}
+
+int runLighting(const Options& o) {
+  const auto start = std::chrono::steady_clock::now();
+  output::checkWritable(o.output, {".exr", ".vti"});
+  if (!o.csv.empty()) output::checkWritable(o.csv, {".csv"});
+  if (!o.plot.empty()) output::checkWritable(o.plot, {".png", ".svg"});
+  if (o.method != "sweep" && o.method != "dp") throw CommandError("--method: expected sweep or dp, got '" + o.method + "'");
+  const std::vector<scene::UtcTime> times = timeSteps(o.from, o.to, o.step);
+  const Site site = loadSite(o);
+  const terrain::HeightField& field = site.dem.field;
+  const std::vector<Point> points = lightingPoints(o, field);
+
+  // Under mpirun the steps are shared by the ranks; rank 0 joins their statistics in time order.
+  parallel::Ranks& ranks = parallel::Ranks::world();
+  if (ranks.root()) noteTimesBeyondEphemeris(times);
+  const auto [begin, end] = parallel::share(times.size(), ranks.rank(), ranks.size());
+  std::optional<LightingShare> mine;
+  std::string error;
+  try {
+    mine.emplace(lightSteps(o, site, points, times, begin, end, ranks.root()));
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  if (const std::string errors = ranks.finish(error); !errors.empty()) throw CommandError(errors);
+  const std::vector<double> states = ranks.gather(mine->stats.state());
+  const std::vector<std::string> csvs = ranks.gather(mine->csv);
+  const std::vector<double> series = ranks.gather(mine->series);
+  if (!ranks.root()) return 0;
+  const std::size_t stateSize = mine->stats.state().size();
+  terrain::LightingAccumulator stats =
+      terrain::LightingAccumulator::fromState(field.width, field.height, states.data(), stateSize);
+  for (std::size_t r = 1; r * stateSize < states.size(); ++r)
+    stats.append(terrain::LightingAccumulator::fromState(field.width, field.height, states.data() + r * stateSize, stateSize));
+  std::string csvRows;
+  for (const std::string& rows : csvs) csvRows += rows;
+  const terrain::LightingMaps maps = stats.maps();
+  writeLighting(o, site, points, times.size(), maps, csvRows, series);
+
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::string others = (o.csv.empty() ? "" : ", " + o.csv) + (o.plot.empty() ? "" : ", " + o.plot);
-  std::printf("wrote %s%s: %d x %d at %.6g m (%s), %zu steps of %s from %s, method %s, %.2f s\n", o.output.c_str(),
-              others.c_str(), field.width, field.height, field.spacingM, site.source.c_str(),
-              times.size(), o.step.c_str(), timeLabel(times.front()).c_str(), o.method.c_str(), seconds);
+  std::printf("wrote %s%s: %d x %d at %.6g m (%s), %zu steps of %s from %s, method %s, %.2f s%s\n", o.output.c_str(),
+              others.c_str(), field.width, field.height, field.spacingM, site.source.c_str(), times.size(),
+              o.step.c_str(), timeLabel(times.front()).c_str(), o.method.c_str(), seconds, ranksNote(start).c_str());
   for (std::size_t p = 0; p < points.size(); ++p) {
     const std::size_t at = static_cast<std::size_t>(points[p].j) * field.width + points[p].i;
     std::printf("point %zu (%d, %d): lit %.1f %% of the time, longest shadow %.1f h, mean visible fraction %.4f\n", p + 1,

@@ -1,8 +1,10 @@
 // umbra across MPI ranks (mpirun -n 2, oversubscribed on a 2-core machine): the frames of
 // an animation split over the ranks are the frames of one process; a failing or killed
 // rank leaves no frames; the eclipse LuTs whose texels the ranks share are the LuTs of one
-// process, to the byte; a sweep's CSV is the same over ranks, in one process and case by case.
+// process, to the byte; a sweep's CSV is the same over ranks, in one process and case by case;
+// terrain lighting's time steps shared by the ranks give the maps and the CSV of one process.
 #include "CliRunner.hpp"
+#include "umbra/tables/Exr.h"
 
 #include <gtest/gtest.h>
 
@@ -327,4 +329,30 @@ TEST(SweepCli, BadFilesNameTheFileAndTheField) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
   }
+}
+
+// 13 steps over 3 ranks (5, 4 and 4): the CSV is the one process's to the byte; the maps
+// agree to the rounding of their sums (a crater floor's shadow runs across both joins).
+TEST(TerrainLightingMpi, StepsOverThreeRanksGiveTheMapsOfOneProcess) {
+  TempDir dir;
+  auto args = [&](const std::string& name) {
+    return std::vector<std::string>{"terrain", "lighting", "--synthetic", "7", "--size", "96", "--from",
+                                    "2024-03-01T00:00:00Z", "--to", "2024-03-02T00:00:00Z", "--step", "2h", "--point",
+                                    "48,48", "--point", "10,80", "--csv", dir / (name + ".csv"), "--output",
+                                    dir / (name + ".exr")};
+  };
+  const RunResult one = run(UMBRA_EXE, args("one"));
+  ASSERT_EQ(one.exitCode, 0) << one.err;
+  const RunResult three = run(UMBRA_MPIEXEC, mpirunArgs(3, args("three")));
+  ASSERT_EQ(three.exitCode, 0) << three.err;
+  EXPECT_NE(three.out.find("on 3 ranks"), std::string::npos) << three.out;
+  EXPECT_EQ(readAll(dir / "one.csv"), readAll(dir / "three.csv"));
+  const umbra::tables::Table a = umbra::tables::readExr(dir / "one.exr"), b = umbra::tables::readExr(dir / "three.exr");
+  ASSERT_EQ(a.data.size(), b.data.size());
+  double longest = 0.0;
+  for (std::size_t k = 0; k < a.data.size(); ++k) {
+    ASSERT_NEAR(a.data[k], b.data[k], k % 3 == 1 ? 1e-3 : 1e-6) << k;  // (channel 1: seconds)
+    if (k % 3 == 1) longest = std::max<double>(longest, a.data[k]);
+  }
+  EXPECT_EQ(longest, 86400.0);  // dark all day somewhere: across both joins
 }

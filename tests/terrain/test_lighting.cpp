@@ -138,3 +138,40 @@ TEST(LightingStatistics, FlatPlainFollowsTheSunsElevationExactly) {
   }
   EXPECT_LT(edges, 100);  // (of 217 800 sample-steps)
 }
+
+// Statistics made in two parts (the ranks' shares of the time) and joined equal those made
+// in one, wherever the series is cut: shadows across the cut, parts all dark or all lit,
+// an empty part; through state() and fromState() as the ranks send them.
+TEST(LightingStatistics, PartsJoinedEqualTheWhole) {
+  const std::vector<std::vector<float>> series{{1, 0, 0, 0.5f, 0, 0, 0, 1, 0},
+                                               {0, 0, 0, 0, 0, 0, 0, 0, 0},
+                                               {1, 1, 0.2f, 1, 1, 1, 0.7f, 1, 1},
+                                               {0, 0, 1, 0, 0, 0, 0, 0, 0.3f}};
+  const int n = static_cast<int>(series.size());  // one sample a series
+  const std::size_t steps = series.front().size();
+  auto stepValues = [&](std::size_t k) {
+    std::vector<float> v;
+    for (const auto& s : series) v.push_back(s[k]);
+    return v;
+  };
+  auto duration = [](std::size_t k) { return 600.0 + 60.0 * k; };
+  LightingAccumulator whole(n, 1);
+  for (std::size_t k = 0; k < steps; ++k) whole.add(stepValues(k), duration(k));
+  for (std::size_t cut = 0; cut <= steps; ++cut) {
+    LightingAccumulator first(n, 1), second(n, 1);
+    for (std::size_t k = 0; k < steps; ++k) (k < cut ? first : second).add(stepValues(k), duration(k));
+    const std::vector<double> state = second.state();
+    first.append(LightingAccumulator::fromState(n, 1, state.data(), state.size()));
+    const LightingMaps a = whole.maps(), b = first.maps();
+    EXPECT_EQ(first.steps(), steps);
+    EXPECT_DOUBLE_EQ(b.totalS, a.totalS);
+    for (int s = 0; s < n; ++s) {
+      EXPECT_NEAR(b.litTimeFraction[s], a.litTimeFraction[s], 1e-6) << "cut " << cut << ", series " << s;
+      EXPECT_NEAR(b.meanVisibleFraction[s], a.meanVisibleFraction[s], 1e-6) << "cut " << cut << ", series " << s;
+      EXPECT_EQ(b.longestShadowS[s], a.longestShadowS[s]) << "cut " << cut << ", series " << s;
+    }
+  }
+  EXPECT_EQ(whole.maps().longestShadowS[1], static_cast<float>(9 * 600.0 + 60.0 * 36));  // all dark: the whole time
+  const std::vector<double> bad(5, 0.0);
+  EXPECT_THROW(LightingAccumulator::fromState(n, 1, bad.data(), bad.size()), std::invalid_argument);
+}
