@@ -26,8 +26,11 @@ struct DiscSlopes {
 /// One Sun over one height field: the strips along its azimuth and each one's sweep.
 class Sweep {
 public:
-  Sweep(const HeightField& f, const SunDisc& sun, const glm::dvec3& towardsSun, glm::dvec2 u)
-      : f(f), sun(sun), s(towardsSun), u(u), W(f.width), H(f.height), R(f.bodyRadiusM), dx(f.spacingM) {
+  Sweep(const HeightField& f, const SunDisc& sun, const glm::dvec3& towardsSun, glm::dvec2 u, const OccluderOnDisc* occluder)
+      : f(f), sun(sun), s(towardsSun), u(u), W(f.width), H(f.height), R(f.bodyRadiusM), dx(f.spacingM),
+        occluder(occluder && overlaps(*occluder) ? occluder : nullptr) {
+    // The disc clear of the horizon: what the occluder leaves of it.
+    if (this->occluder) clearFraction = visibleFractionAboveHorizonOutside(2.0, *this->occluder, sun.limbDarkening);
     sinR = std::sin(sun.angularRadiusRad), cosR = std::cos(sun.angularRadiusRad);
     for (int n = 0; n < kNearSteps; ++n) {
       const double sTexels = kNearTexels * (n + 1) / kNearSteps, t = sTexels * dx;
@@ -99,7 +102,8 @@ public:
   /// The zenith or nadir Sun: no azimuth, no terrain in the way.
   void overhead(std::vector<float>& out) const {
     for (int j = 0; j < H; ++j)
-      for (int i = 0; i < W; ++i) out[static_cast<std::size_t>(j) * W + i] = discAt(i, j).sinE > 0.0 ? 1.0f : 0.0f;
+      for (int i = 0; i < W; ++i)
+        out[static_cast<std::size_t>(j) * W + i] = discAt(i, j).sinE > 0.0 ? static_cast<float>(clearFraction) : 0.0f;
   }
 
 private:
@@ -170,9 +174,10 @@ private:
   /// The visible fraction under a horizon of slope `horizon` (Eq. 7 in the penumbra only).
   float fraction(double horizon, const DiscSlopes& disc) const {
     if (horizon >= disc.topSlope) return 0.0f;
-    if (horizon <= disc.bottomSlope) return 1.0f;
-    return static_cast<float>(
-        discFractionForOffset((disc.elevationRad() - std::atan(horizon)) / sun.angularRadiusRad, sun));
+    if (horizon <= disc.bottomSlope) return static_cast<float>(clearFraction);
+    const double d = (disc.elevationRad() - std::atan(horizon)) / sun.angularRadiusRad;
+    return static_cast<float>(occluder ? visibleFractionAboveHorizonOutside(d, *occluder, sun.limbDarkening)
+                                       : discFractionForOffset(d, sun));
   }
 
   const HeightField& f;
@@ -182,13 +187,15 @@ private:
   int W, H;
   double R, dx, sinR = 0.0, cosR = 1.0;
   bool alongI = true;
+  const OccluderOnDisc* occluder;  ///< in front of the Sun, or null
+  double clearFraction = 1.0;      ///< of the disc clear of the horizon
   glm::dvec2 nearSteps[kNearSteps];
   double nearInverseM[kNearSteps], nearDropSlope[kNearSteps];
 };
 
 } // namespace
 
-std::vector<float> sweepVisibleFractionMap(const HeightField& f, const SunDisc& sun) {
+std::vector<float> sweepVisibleFractionMap(const HeightField& f, const SunDisc& sun, const OccluderOnDisc* occluder) {
   f.validate();
   const double len = glm::length(sun.direction);
   if (!(len > 0.0) || !std::isfinite(len)) throw std::invalid_argument("sun direction must be a finite non-zero vector");
@@ -198,7 +205,7 @@ std::vector<float> sweepVisibleFractionMap(const HeightField& f, const SunDisc& 
   std::vector<float> out(static_cast<std::size_t>(f.width) * f.height);
   const double horizontal = std::hypot(s.x, s.y);
   const glm::dvec2 u = horizontal > 0.0 ? glm::dvec2(s.x, s.y) / horizontal : glm::dvec2(0.0, 1.0);
-  const Sweep sweep(f, sun, s, u);  // u: towards the Sun on the grid
+  const Sweep sweep(f, sun, s, u, occluder);  // u: towards the Sun on the grid
   if (horizontal < 1e-12) {
     sweep.overhead(out);
     return out;

@@ -16,6 +16,7 @@
 // of the footprint, not the bilinear surface under it) and the footprints are parallel;
 // the errors are measured in docs/accuracy-vs-speed/terrain.md ("Lighting over time").
 // No-data samples cast no shadow; a receiver there sits at HeightField::receiverHeight.
+#include "EclipsedDisc.hpp"
 #include "HeightField.hpp"
 #include "SoftShadow.hpp"
 
@@ -24,7 +25,11 @@
 namespace umbra::terrain {
 
 /// The visible fraction of `sun` at every sample, row-major like the heights, strips in
-/// parallel. Throws std::invalid_argument for a bad field or Sun (as visibleFractionMap).
-std::vector<float> sweepVisibleFractionMap(const HeightField& field, const SunDisc& sun);
+/// parallel; with an `occluder` in front of the Sun (EclipsedDisc.hpp: its place on the
+/// disc seen from the grid's centre), the part of the disc above each sample's horizon and
+/// outside the occluder. Throws std::invalid_argument for a bad field or Sun (as
+/// visibleFractionMap).
+std::vector<float> sweepVisibleFractionMap(const HeightField& field, const SunDisc& sun,
+                                           const OccluderOnDisc* occluder = nullptr);
 
 } // namespace umbra::terrain

@@ -252,6 +252,21 @@ std::optional<terrain::SunDisc> earthFrom(const Site& site, scene::UtcTime time)
   return earth;
 }
 
+/// The body that can stand in front of the Sun seen from the site's (the Earth from the
+/// Moon, the Moon from the Earth), on the Sun's disc as the grid's centre sees it; none
+/// when it does not touch the disc.
+std::optional<terrain::OccluderOnDisc> occluderOfSun(const Site& site, scene::UtcTime time, const terrain::SunDisc& sun) {
+  const std::string& body = site.body->name;
+  const char* other = body == "Moon" ? "Earth" : body == "Earth" ? "Moon" : nullptr;
+  if (!other || !scene::hasRotationModel(body)) return std::nullopt;
+  const glm::dvec3 towards = scene::heliocentricPositionM(other, time) - scene::heliocentricPositionM(body, time);
+  const glm::dvec3 bodyFixed = glm::transpose(scene::bodyFixedToInertial(body, time)) * glm::normalize(towards);
+  const double radiusRad = std::asin(std::min(1.0, scene::findPreset(other)->meanRadiusM / glm::length(towards)));
+  const terrain::OccluderOnDisc o = terrain::occluderOnDisc(sun.direction, sun.angularRadiusRad, inTangentFrame(site, bodyFixed),
+                                                            radiusRad, glm::dvec3(0.0, 0.0, 1.0));
+  return terrain::overlaps(o) ? std::optional(o) : std::nullopt;
+}
+
 double elevationDegOf(const glm::dvec3& d) { return std::asin(std::clamp(glm::normalize(d).z, -1.0, 1.0)) / kDeg; }
 double azimuthDegOf(const glm::dvec3& d) {
   const double a = std::atan2(d.x, d.y) / kDeg;
@@ -376,12 +391,23 @@ LightingShare lightSteps(const Options& o, const Site& site, const std::vector<P
     } catch (const std::invalid_argument& e) {
       throw CommandError(std::string("--body: ") + e.what());
     }
+    // An eclipse: the part of the disc above each sample's horizon and outside the occluder.
+    const std::optional<terrain::OccluderOnDisc> occluder = occluderOfSun(site, times[k], sun);
+    const double eclipseFraction =
+        occluder ? terrain::visibleFractionAboveHorizonOutside(2.0, *occluder, sun.limbDarkening) : 1.0;
     std::vector<float> fraction;
     if (o.method == "sweep") {
-      fraction = terrain::sweepVisibleFractionMap(field, sun);
-    } else {
+      fraction = terrain::sweepVisibleFractionMap(field, sun, occluder ? &*occluder : nullptr);
+    } else if (!occluder) {
       const std::vector<double> map = terrain::visibleFractionMap(field, mip, sun, terrain::ShadowOptions{});
       fraction.assign(map.begin(), map.end());
+    } else {
+      for (const terrain::Horizon& h : terrain::horizonMap(field, mip, sun, terrain::ShadowOptions{}))
+        fraction.push_back(static_cast<float>(
+            h.degenerate ? (h.sunElevationRad > 0.0 ? eclipseFraction : 0.0)
+                         : terrain::visibleFractionAboveHorizonOutside(
+                               (h.sunElevationRad - h.horizonElevationRad) / sun.angularRadiusRad, *occluder,
+                               sun.limbDarkening)));
     }
     const double at = k * stepS;
     share.stats.add(fraction, std::min(at + 0.5 * stepS, spanS) - std::max(at - 0.5 * stepS, 0.0));
@@ -392,7 +418,7 @@ LightingShare lightSteps(const Options& o, const Site& site, const std::vector<P
       const double v = fraction[static_cast<std::size_t>(q.j) * field.width + q.i];
       share.series.push_back(v);
       csv << timeLabel(times[k]) << ',' << p + 1 << ',' << q.i << ',' << q.j << ',' << fmt(elevationDegOf(sun.direction))
-          << ',' << fmt(azimuthDegOf(sun.direction)) << ',' << fmt(v);
+          << ',' << fmt(azimuthDegOf(sun.direction)) << ',' << fmt(eclipseFraction) << ',' << fmt(v);
       if (earth)
         csv << ',' << fmt(elevationDegOf(earth->direction)) << ','
             << fmt(terrain::visibleFraction(field, mip, q.i, q.j, *earth, terrain::ShadowOptions{}));
@@ -423,8 +449,8 @@ void writeLighting(const Options& o, const Site& site, const std::vector<Point>&
     output::OutputFile out(o.csv);
     {
       std::ofstream file(out.tempPath());
-      file << "time_utc,point,i,j,sun_elevation_deg,sun_azimuth_deg,visible_solar_fraction,earth_elevation_deg,"
-              "earth_visible_fraction\n"
+      file << "time_utc,point,i,j,sun_elevation_deg,sun_azimuth_deg,eclipse_visible_fraction,visible_solar_fraction,"
+              "earth_elevation_deg,earth_visible_fraction\n"
            << csvRows;
       if (!file) throw CommandError(o.csv + ": cannot write");
     }
@@ -533,8 +559,10 @@ void addLightingCommand(CLI::App* terrainCmd, Action& action) {
       ->capture_default_str();
   lighting->add_option("--point", o->points, "A point for the CSV: I,J (grid column, row; repeat the option for more; "
                                              "default: the centre)");
-  lighting->add_option("--csv", o->csv, "The points' time series: the Sun's elevation, azimuth and visible fraction, "
-                                        "the Earth's elevation and visible fraction (bodies other than Earth)");
+  lighting->add_option("--csv", o->csv, "The points' time series: the Sun's elevation and azimuth, the fraction of "
+                                        "its disc an eclipse leaves (the Earth from the Moon, the Moon from the Earth), "
+                                        "the fraction visible at the point (horizon and eclipse together), the Earth's "
+                                        "elevation and visible fraction (bodies other than Earth)");
   lighting->add_option("--plot", o->plot, "The points' visible fraction of the Sun over time: .png or .svg");
   lighting->add_option("--output", o->output, "The maps: .exr (three float channels) or .vti (with the heights)")->required();
   lighting->callback([&action, o, checkSite] {

@@ -193,6 +193,14 @@ TEST(TerrainCli, VtiHoldsHeightsAndFractionAndGeographicRastersAreRefused) {
 }
 
 namespace {
+/// A flat plain (heights 0), size x size samples, centred on the pole.
+void writeFlatGeoTiff(const std::string& path, int size) {
+  terrain::HeightField flat;
+  flat.width = flat.height = size;
+  flat.heightsM.assign(static_cast<std::size_t>(size) * size, 0.0);
+  writeGeoTiff(path, flat, 0.0);
+}
+
 std::vector<std::vector<std::string>> csvRows(const std::string& path) {
   std::ifstream in(path);
   std::vector<std::vector<std::string>> rows;
@@ -214,10 +222,7 @@ std::vector<std::vector<std::string>> csvRows(const std::string& path) {
 // the Earth is reported; the maps come out finite and in range; the plot has a line a point.
 TEST(TerrainLightingCli, FlatPlainFollowsTheSunsElevation) {
   TempDir dir;
-  terrain::HeightField flat;
-  flat.width = flat.height = 21;
-  flat.heightsM.assign(21 * 21, 0.0);
-  writeGeoTiff(dir / "flat.tif", flat, 0.0);
+  writeFlatGeoTiff(dir / "flat.tif", 21);
   const RunResult r = run(UMBRA_EXE, {"terrain", "lighting", "--dem", dir / "flat.tif", "--lat-deg", "-88", "--lon-deg",
                                       "30", "--from", "2024-03-01T00:00:00Z", "--to", "2024-03-29T00:00:00Z", "--step",
                                       "12h", "--point", "10,10", "--point", "0,20", "--csv", dir / "points.csv",
@@ -231,9 +236,10 @@ TEST(TerrainLightingCli, FlatPlainFollowsTheSunsElevation) {
   double lit = 0.0, expectedLit = 0.0, meanFraction = 0.0, weights = 0.0;
   const double sunRadiusDeg = 0.2690;  // (the Sun from 0.991 au)
   for (std::size_t k = 1; k < rows.size(); ++k) {
-    ASSERT_EQ(rows[k].size(), 9u) << k;
+    ASSERT_EQ(rows[k].size(), 10u) << k;
     if (rows[k][1] != "1") continue;
-    const double e = std::stod(rows[k][4]), v = std::stod(rows[k][6]);
+    const double e = std::stod(rows[k][4]), v = std::stod(rows[k][7]);
+    EXPECT_EQ(rows[k][6], "1");  // no eclipse
     const double w = steps == 0 || steps == 56 ? 0.5 : 1.0;
     ++steps;
     weights += w;
@@ -244,8 +250,8 @@ TEST(TerrainLightingCli, FlatPlainFollowsTheSunsElevation) {
     if (std::abs(e) > 0.3) {
       EXPECT_EQ(v, e > 0.0 ? 1.0 : 0.0) << rows[k][0];
     }
-    EXPECT_GE(std::stod(rows[k][8]), 0.0);  // the Earth's visible fraction
-    EXPECT_TRUE(std::abs(std::stod(rows[k][7])) < 10.0) << "the Earth from near the pole: low in the sky";
+    EXPECT_GE(std::stod(rows[k][9]), 0.0);  // the Earth's visible fraction
+    EXPECT_TRUE(std::abs(std::stod(rows[k][8])) < 10.0) << "the Earth from near the pole: low in the sky";
   }
   ASSERT_EQ(steps, 57);
   const tables::Table t = tables::readExr(dir / "maps.exr");
@@ -305,4 +311,38 @@ TEST(TerrainLightingCli, ExtremesGiveOneStepOrOneLine) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "bad.exr"));
   }
+}
+
+// The lunar eclipse of 2015-09-28 seen from a flat plain at the centre of the Moon's near
+// side (the Sun near the zenith, behind the Earth): the Sun's visible fraction is what the
+// Earth's disc leaves of it (the CSV's eclipse column, from eclipse/SolarDisc's geometry),
+// to 1e-4; none of the Sun while the whole Moon is in the umbra (NASA: U2 02:11:11, U3
+// 03:23:05 UT), all of it before the penumbra's first contact (P1 00:11:47).
+TEST(TerrainLightingCli, LunarEclipseDarkensAFlatSiteAsTheEarthCoversTheSun) {
+  TempDir dir;
+  writeFlatGeoTiff(dir / "flat.tif", 9);
+  const RunResult r = run(UMBRA_EXE, {"terrain", "lighting", "--dem", dir / "flat.tif", "--lat-deg", "0", "--lon-deg", "0",
+                                      "--from", "2015-09-28T00:00:00Z", "--to", "2015-09-28T06:00:00Z", "--step", "15min",
+                                      "--csv", dir / "e.csv", "--output", dir / "e.exr"});
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = csvRows(dir / "e.csv");
+  ASSERT_EQ(rows.size(), 26u);
+  int total = 0, partial = 0;
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const std::string& time = rows[k][0];
+    const double e = std::stod(rows[k][4]), eclipse = std::stod(rows[k][6]), v = std::stod(rows[k][7]);
+    EXPECT_GT(e, 60.0) << time;
+    EXPECT_NEAR(v, eclipse, 1e-4) << time;
+    if (time >= "2015-09-28T02:15:00Z" && time <= "2015-09-28T03:15:00Z") {
+      EXPECT_EQ(eclipse, 0.0) << time;
+      ++total;
+    }
+    if (time == "2015-09-28T00:00:00Z") {
+      EXPECT_EQ(eclipse, 1.0);
+    }
+    partial += eclipse > 0.0 && eclipse < 1.0;
+  }
+  EXPECT_EQ(total, 5);
+  EXPECT_GT(partial, 4);
+  EXPECT_NE(r.out.find("longest shadow"), std::string::npos);
 }
