@@ -85,6 +85,8 @@ void addProfileCommand(CLI::App& app, Action& action);
 void addInspectCommand(CLI::App& app, Action& action);
 void addAtmosphereCommand(CLI::App& app, Action& action);
 void addTerrainCommand(CLI::App& app, Action& action);
+/// `terrain lighting`, under the `terrain` command (TerrainLightingCommand.cpp).
+void addTerrainLightingCommand(CLI::App* terrainCmd, Action& action);
 void addSweepCommand(CLI::App& app, Action& action);
 
 /// Progress for long work on stderr: a live percentage on a terminal, quiet otherwise,
