@@ -30,15 +30,9 @@ void HeightField::validate() const {
   if (!any) throw std::invalid_argument("height field: every sample is no data");
 }
 
-double HeightField::bilinear(double gx, double gy) const {
-  gx = std::clamp(gx, 0.0, width - 1.0);
-  gy = std::clamp(gy, 0.0, height - 1.0);
-  const int i = std::min(static_cast<int>(gx), width - 2);
-  const int j = std::min(static_cast<int>(gy), height - 2);
-  const double fx = gx - i, fy = gy - j;
+double HeightField::bilinearOverNoData(int i, int j, double fx, double fy) const {
   const double h00 = at(i, j), h10 = at(i + 1, j), h01 = at(i, j + 1), h11 = at(i + 1, j + 1);
   const double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
-  if (!std::isnan(h00 + h10 + h01 + h11)) return w00 * h00 + w10 * h10 + w01 * h01 + w11 * h11;
   double sum = 0.0, weight = 0.0;
   auto add = [&](double h, double w) {
     if (!std::isnan(h)) sum += w * h, weight += w;

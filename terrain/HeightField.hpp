@@ -10,6 +10,7 @@
 // are great circles, so a shadow ray's footprint on the grid is a straight line.
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -43,8 +44,20 @@ struct HeightField {
     return glm::normalize(glm::dvec3(p.x, p.y, bodyRadiusM));
   }
   /// Bilinear height at grid coordinates, clamped to the grid; no-data corners are left
-  /// out (weights renormalised); NaN when all four are no data.
-  double bilinear(double gx, double gy) const;
+  /// out (weights renormalised); NaN when all four are no data. (Inline: the searches'
+  /// inner loops; no data goes to bilinearOverNoData.)
+  double bilinear(double gx, double gy) const {
+    gx = std::clamp(gx, 0.0, width - 1.0);
+    gy = std::clamp(gy, 0.0, height - 1.0);
+    const int i = std::min(static_cast<int>(gx), width - 2), j = std::min(static_cast<int>(gy), height - 2);
+    const double fx = gx - i, fy = gy - j;
+    const double* r0 = &heightsM[static_cast<std::size_t>(j) * width + i];
+    const double* r1 = r0 + width;
+    const double v = (1.0 - fy) * ((1.0 - fx) * r0[0] + fx * r0[1]) + fy * ((1.0 - fx) * r1[0] + fx * r1[1]);
+    return std::isnan(v) ? bilinearOverNoData(i, j, fx, fy) : v;
+  }
+  /// bilinear in cell (i, j) at (fx, fy) when a corner has no data.
+  double bilinearOverNoData(int i, int j, double fx, double fy) const;
 
   /// Height to put a receiver at sample (i, j): its own, or for a no-data sample the mean
   /// of its valid 3 x 3 neighbours, else the lowest valid height of the field.

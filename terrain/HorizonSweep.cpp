@@ -145,26 +145,15 @@ private:
     for (int n = 0; n < kNearSteps; ++n) {
       const double gx = p.i + nearSteps[n].x, gy = p.j + nearSteps[n].y;
       if (gx < 0.0 || gy < 0.0 || gx > W - 1.0 || gy > H - 1.0) break;
-      const double hq = bilinear(gx, gy);
+      const double hq = f.bilinear(gx, gy);
       if (!std::isnan(hq)) best = std::max(best, (hq - h) * nearInverseM[n] - nearDropSlope[n]);
     }
     return best;
   }
 
-  /// HeightField::bilinear inside the grid, inlined (the near search's cost); its own for no data.
-  double bilinear(double gx, double gy) const {
-    const int i = std::min(static_cast<int>(gx), W - 2), j = std::min(static_cast<int>(gy), H - 2);
-    const double fx = gx - i, fy = gy - j;
-    const double* r0 = &f.heightsM[static_cast<std::size_t>(j) * W + i];
-    const double* r1 = r0 + W;
-    const double v = (1.0 - fy) * ((1.0 - fx) * r0[0] + fx * r0[1]) + fy * ((1.0 - fx) * r1[0] + fx * r1[1]);
-    return std::isnan(v) ? f.bilinear(gx, gy) : v;
-  }
-
   /// The disc from sample (i, j), without a trigonometric call.
   DiscSlopes discAt(int i, int j) const {
-    const double px = (i - 0.5 * (W - 1)) * dx, py = (j - 0.5 * (H - 1)) * dx;
-    const double sinE = std::clamp((s.x * px + s.y * py + s.z * R) / std::sqrt(px * px + py * py + R * R), -1.0, 1.0);
+    const double sinE = std::clamp(glm::dot(s, f.direction(i, j)), -1.0, 1.0);
     const double cosE = std::sqrt(std::max(0.0, 1.0 - sinE * sinE));
     const double topCos = cosE * cosR - sinE * sinR, bottomCos = cosE * cosR + sinE * sinR;
     return {sinE, topCos > 0.0 ? (sinE * cosR + cosE * sinR) / topCos : 1e300,

@@ -44,16 +44,22 @@ struct LightingOptions {
   std::vector<std::string> points;  // "I,J"
 };
 
-/// The Earth seen from the site's body at `time` (tangent frame, angular radius); none from Earth.
+/// Another body seen from the site's (direction in the tangent frame, angular radius) at
+/// `time`; none where either has no ephemeris or the site's no rotation.
+std::optional<terrain::SunDisc> bodySeenFrom(const Site& site, const std::string& other, scene::UtcTime time) {
+  const std::string& body = site.body->name;
+  if (!scene::hasEphemeris(body) || !scene::hasEphemeris(other) || !scene::hasRotationModel(body)) return std::nullopt;
+  const glm::dvec3 towards = scene::heliocentricPositionM(other, time) - scene::heliocentricPositionM(body, time);
+  const glm::dvec3 bodyFixed = glm::transpose(scene::bodyFixedToInertial(body, time)) * glm::normalize(towards);
+  terrain::SunDisc seen;
+  seen.direction = inTangentFrame(site, bodyFixed);
+  seen.angularRadiusRad = std::asin(std::min(1.0, scene::findPreset(other)->meanRadiusM / glm::length(towards)));
+  return seen;
+}
+
+/// The Earth from the site (for communications); none from the Earth itself.
 std::optional<terrain::SunDisc> earthFrom(const Site& site, scene::UtcTime time) {
-  if (site.body->name == "Earth" || !scene::hasEphemeris(site.body->name) || !scene::hasRotationModel(site.body->name))
-    return std::nullopt;
-  const glm::dvec3 toEarth = scene::heliocentricPositionM("Earth", time) - scene::heliocentricPositionM(site.body->name, time);
-  const glm::dvec3 bodyFixed = glm::transpose(scene::bodyFixedToInertial(site.body->name, time)) * glm::normalize(toEarth);
-  terrain::SunDisc earth;
-  earth.direction = inTangentFrame(site, bodyFixed);
-  earth.angularRadiusRad = std::asin(std::min(1.0, scene::findPreset("Earth")->meanRadiusM / glm::length(toEarth)));
-  return earth;
+  return site.body->name == "Earth" ? std::nullopt : bodySeenFrom(site, "Earth", time);
 }
 
 /// The body that can stand in front of the Sun seen from the site's (the Earth from the
@@ -62,12 +68,10 @@ std::optional<terrain::SunDisc> earthFrom(const Site& site, scene::UtcTime time)
 std::optional<terrain::OccluderOnDisc> occluderOfSun(const Site& site, scene::UtcTime time, const terrain::SunDisc& sun) {
   const std::string& body = site.body->name;
   const char* other = body == "Moon" ? "Earth" : body == "Earth" ? "Moon" : nullptr;
-  if (!other || !scene::hasRotationModel(body)) return std::nullopt;
-  const glm::dvec3 towards = scene::heliocentricPositionM(other, time) - scene::heliocentricPositionM(body, time);
-  const glm::dvec3 bodyFixed = glm::transpose(scene::bodyFixedToInertial(body, time)) * glm::normalize(towards);
-  const double radiusRad = std::asin(std::min(1.0, scene::findPreset(other)->meanRadiusM / glm::length(towards)));
-  const terrain::OccluderOnDisc o = terrain::occluderOnDisc(sun.direction, sun.angularRadiusRad, inTangentFrame(site, bodyFixed),
-                                                            radiusRad, glm::dvec3(0.0, 0.0, 1.0));
+  const std::optional<terrain::SunDisc> seen = other ? bodySeenFrom(site, other, time) : std::nullopt;
+  if (!seen) return std::nullopt;
+  const terrain::OccluderOnDisc o = terrain::occluderOnDisc(sun.direction, sun.angularRadiusRad, seen->direction,
+                                                            seen->angularRadiusRad, glm::dvec3(0.0, 0.0, 1.0));
   return terrain::overlaps(o) ? std::optional(o) : std::nullopt;
 }
 

@@ -74,7 +74,7 @@ bool updateShadowTable(TerrainRendering& t, const TerrainShadowSettings& o) {
   std::vector<tables::Table> made = tables::cachedOrComputed(
       cache, o.useCache, {request},
       [&] {
-        const terrain::ShadowTable table = terrain::makeShadowTable(f, t.GetMipmap(), sun, search, o.nearTexels, o.progress);
+        const terrain::ShadowTable table = terrain::makeShadowTable(f, t.GetMipmap(), sun, search, o.nearTexels);
         tables::Table out;
         out.width = table.width;
         out.height = table.height;

@@ -28,7 +28,6 @@ struct TerrainShadowSettings {
   double nearTexels = terrain::kDefaultNearTexels;
   std::string cacheDirectory;  ///< "": tables::TableCache::defaultDirectory()
   bool useCache = true;
-  std::function<void(double)> progress;  ///< a table's making, 0..1 (optional)
 };
 
 /// The patch of a scene body's terrain: the height field (synthetic crater field or DEM),
