@@ -1,6 +1,7 @@
 #include "PlanetMagnitudes.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace umbra::sky {
 namespace {
@@ -46,6 +47,14 @@ double stirling(const double (&table)[40], double angleDeg) {
 
 }  // namespace
 
+double planetBMinusV(const std::string& planet) {
+  static const std::pair<const char*, double> kColours[] = {
+      {"Mercury", 0.97}, {"Venus", 0.81}, {"Mars", 1.43}, {"Jupiter", 0.87}, {"Saturn", 1.09}};
+  for (const auto& [name, bv] : kColours)
+    if (planet == name) return bv;
+  throw std::invalid_argument("no colour index for '" + planet + "'");
+}
+
 double mercuryMagnitudeV(double r, double delta, double a) {
   static constexpr double c[7] = {-0.613, 6.3280e-2, -1.6336e-3, 3.3644e-5, -3.4265e-7, 1.6893e-9, -3.0334e-12};
   return distanceTerm(r, delta) + polynomial(c, a);
@@ -62,6 +71,27 @@ double jupiterMagnitudeV(double r, double delta, double a) {
   static constexpr double high[6] = {1.0, -1.507, -0.363, -0.062, 2.809, -1.876};
   if (a <= 12.0) return distanceTerm(r, delta) + polynomial(low, a);
   return distanceTerm(r, delta) - 9.428 - 2.5 * std::log10(polynomial(high, a / 180.0));
+}
+
+double saturnRingTiltDeg(double sunLat, double observerLat) {
+  const double product = sunLat * observerLat;
+  return product > 0.0 ? std::sqrt(product) : 0.0;
+}
+
+double saturnMagnitudeV(double r, double delta, double a, double sunLat, double observerLat) {
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  const double b = saturnRingTiltDeg(sunLat, observerLat);
+  if (a <= 6.5 && b <= 27.0) {
+    const double s = std::sin(b * kDeg);
+    return distanceTerm(r, delta) - 8.914 - 1.825 * s + 0.026 * a - 0.378 * s * std::exp(-2.25 * a);
+  }
+  return saturnGlobeMagnitudeV(r, delta, a);
+}
+
+double saturnGlobeMagnitudeV(double r, double delta, double a) {
+  static constexpr double low[3] = {-8.95, -3.7e-4, 6.16e-4};
+  static constexpr double high[5] = {-8.94, 2.446e-4, 2.672e-4, -1.506e-6, 4.767e-9};
+  return distanceTerm(r, delta) + (a <= 6.5 ? polynomial(low, a) : polynomial(high, a));
 }
 
 double marsRotationCorrection(double cm) { return stirling(kMarsRotation, cm); }

@@ -16,12 +16,37 @@
 //   Jupiter  eq. 8 (a <= 12): -9.395 - 3.7e-4 a + 6.16e-4 a^2;
 //            eq. 9 (a > 12): -9.428 - 2.5 log10(1 - 1.507 x - 0.363 x^2 - 0.062 x^3
 //                   + 2.809 x^4 - 1.876 x^5), x = a / 180
-// Saturn (its rings' tilt) is not here yet.
+//   Saturn   eq. 10, globe and rings (a <= 6.5 and b <= 27): -8.914 - 1.825 sin b + 0.026 a
+//                   - 0.378 sin b exp(-2.25 a), b = sqrt(b_sun b_obs) from the saturnicentric
+//                   latitudes of the Sun and the observer over the ring plane (0 when they are
+//                   on opposite sides: the observer sees the rings' unlit face);
+//            the globe alone (the rings have no fit beyond those limits, as seen from beyond
+//            the Earth): eq. 11 (a <= 6.5) -8.95 - 3.7e-4 a + 6.16e-4 a^2; eq. 12 (a > 6.5)
+//                   -8.94 + 2.446e-4 a + 2.672e-4 a^2 - 1.506e-6 a^3 + 4.767e-9 a^4
+#include <string>
+
 namespace umbra::sky {
+
+/// The planets' B-V colour indices, whole disc near full phase: Mercury 0.97, Venus 0.81,
+/// Mars 1.43, Jupiter 0.87, Saturn (with its rings) 1.09 (NASA report NTRS 19710009758's
+/// table, which also gives the Moon's 0.92). Throws std::invalid_argument for another name.
+double planetBMinusV(const std::string& planet);
 
 double mercuryMagnitudeV(double rAu, double deltaAu, double phaseAngleDeg);
 double venusMagnitudeV(double rAu, double deltaAu, double phaseAngleDeg);
 double jupiterMagnitudeV(double rAu, double deltaAu, double phaseAngleDeg);
+/// Saturn with its rings (eq. 10) where the fit holds, else its globe alone (eqs. 11-12:
+/// at 6.5 deg the value steps by the rings' share, 0.2-1.1 mag, as the published fits do).
+/// The latitudes are saturnicentric, over the ring plane (its equator), in degrees.
+double saturnMagnitudeV(double rAu, double deltaAu, double phaseAngleDeg, double sunLatitudeDeg,
+                        double observerLatitudeDeg);
+/// Saturn's globe alone (eqs. 11-12).
+double saturnGlobeMagnitudeV(double rAu, double deltaAu, double phaseAngleDeg);
+/// The rings' effective tilt of eq. 10: sqrt(b_sun b_obs), 0 for opposite signs [deg].
+double saturnRingTiltDeg(double sunLatitudeDeg, double observerLatitudeDeg);
+
+/// The Sun's B-V (Ramirez et al. 2012, ApJ 752, 5: 0.653).
+inline constexpr double kSunBMinusV = 0.653;
 
 /// How Mars is turned and where it is in its year, for its corrections (degrees): the
 /// longitudes of the sub-observer and sub-solar points (west, as the Astronomical Almanac

@@ -65,6 +65,10 @@ glm::dvec3 starFrameColour(double bMinusV) {
   return f < 1e-9 ? table[i] : table[i] * (1.0 - f) + table[i + 1] * f;
 }
 
+glm::dvec3 reflectedFrameColour(double bMinusV, double sunBMinusV) {
+  return starFrameColour(bMinusV) / starFrameColour(sunBMinusV);
+}
+
 glm::dvec3 starFrameIrradianceWm2(double vMag, double bMinusV, double sunIrradianceAt1AuWm2) {
   return sunIrradianceAt1AuWm2 * irradianceRelativeToSun(vMag) * starFrameColour(bMinusV);
 }

@@ -46,6 +46,11 @@ glm::dvec3 sunLinearSrgb();
 /// 0.01 steps of B-V (the catalogue's precision: exact there), linear in between.
 glm::dvec3 starFrameColour(double bMinusV);
 
+/// A planet's colour in the frames' white balance: sunlight reddened by its reflectance,
+/// starFrameColour(bMinusV) / starFrameColour(sunBMinusV) channel by channel, so that a
+/// grey planet (the Sun's own B-V) is (1, 1, 1), the Sun's colour.
+glm::dvec3 reflectedFrameColour(double bMinusV, double sunBMinusV);
+
 /// A star's irradiance above any atmosphere in the frames' units: linear sRGB in W m^-2,
 /// white-balanced to the Sun, for a Sun of `sunIrradianceAt1AuWm2` at 1 au:
 /// sunIrradianceAt1AuWm2 * irradianceRelativeToSun(vMag) * starFrameColour(bMinusV).

@@ -1,7 +1,7 @@
 // umbra planets [--time ISO8601] [--observer LAT,LON[,ALT]] [--csv FILE]
-//   Mercury, Venus, Mars and Jupiter seen from the Earth's centre or an observer on it
+//   Mercury, Venus, Mars, Jupiter and Saturn seen from the Earth's centre or an observer on it
 //   (scene::planetsSeenFrom): right ascension and declination (ICRS, astrometric), altitude
-//   and azimuth, distance, phase angle, illuminated fraction and V magnitude.
+//   and azimuth, distance, phase angle, illuminated fraction, V magnitude and Saturn's ring tilt.
 #include "Commands.hpp"
 #include "OutputFile.hpp"
 #include "ShadowCommon.hpp"  // parseObserver
@@ -35,8 +35,9 @@ struct PlanetRow {
 
 void addPlanetsCommand(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand(
-      "planets", "Mercury, Venus, Mars and Jupiter: right ascension and declination (ICRS), altitude and azimuth, "
-                 "distance, phase angle, illuminated fraction and V magnitude (Mallama & Hilton 2018)");
+      "planets", "Mercury, Venus, Mars, Jupiter and Saturn: right ascension and declination (ICRS), altitude and "
+                 "azimuth, distance, phase angle, illuminated fraction, V magnitude (Mallama & Hilton 2018) and "
+                 "Saturn's ring tilt");
   struct Options {
     std::string time, observer, csv;
   };
@@ -47,7 +48,8 @@ void addPlanetsCommand(CLI::App& app, Action& action) {
                   "0): altitude and azimuth too (default: the Earth's centre)");
   cmd->add_option("--csv", o->csv,
                   "Also write CSV: planet,ra_deg,dec_deg,altitude_deg,azimuth_deg,distance_au,sun_distance_au,"
-                  "phase_angle_deg,illuminated_fraction,magnitude_v");
+                  "phase_angle_deg,illuminated_fraction,magnitude_v,ring_tilt_deg (Saturn's: the observer's latitude "
+                  "over its rings, north positive; empty for the others)");
 
   cmd->callback([&action, o] {
     action = [o] {
@@ -85,15 +87,16 @@ void addPlanetsCommand(CLI::App& app, Action& action) {
         {
           std::ofstream f(out.tempPath());
           f << "planet,ra_deg,dec_deg,altitude_deg,azimuth_deg,distance_au,sun_distance_au,phase_angle_deg,"
-               "illuminated_fraction,magnitude_v\n";
+               "illuminated_fraction,magnitude_v,ring_tilt_deg\n";
           char line[256];
           for (const PlanetRow& r : rows) {
-            char alt[24] = "", az[24] = "";
+            char alt[24] = "", az[24] = "", tilt[24] = "";
             if (r.altitudeDeg) std::snprintf(alt, sizeof alt, "%.4f", *r.altitudeDeg);
             if (r.azimuthDeg) std::snprintf(az, sizeof az, "%.4f", *r.azimuthDeg);
-            std::snprintf(line, sizeof line, "%s,%.6f,%.6f,%s,%s,%.7f,%.7f,%.4f,%.5f,%.3f\n", r.p.name.c_str(), r.raDeg,
-                          r.decDeg, alt, az, r.p.distanceAu, r.p.sunDistanceAu, r.p.phaseAngleDeg, lit(r.p),
-                          r.p.magnitudeV);
+            if (r.p.name == "Saturn") std::snprintf(tilt, sizeof tilt, "%.3f", r.p.ringTiltDeg);
+            std::snprintf(line, sizeof line, "%s,%.6f,%.6f,%s,%s,%.7f,%.7f,%.4f,%.5f,%.3f,%s\n", r.p.name.c_str(),
+                          r.raDeg, r.decDeg, alt, az, r.p.distanceAu, r.p.sunDistanceAu, r.p.phaseAngleDeg, lit(r.p),
+                          r.p.magnitudeV, tilt);
             f << line;
           }
           if (!f.flush()) throw CommandError(o->csv + ": cannot write");

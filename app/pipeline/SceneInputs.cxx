@@ -25,6 +25,7 @@
 #include "Earthshine.hpp"
 #include "MoonGeometry.hpp"  // angleBetween
 #include "Photometry.hpp"
+#include "PlanetMagnitudes.hpp"  // planetBMinusV, kSunBMinusV
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
@@ -112,7 +113,8 @@ std::vector<StarPoint> sceneStars(const scene::Scene& s, const glm::dvec3& camer
   if (s.hasTime)
     for (const scene::PlanetSeen& p : scene::planetsSeenFrom(cameraM, s.time))
       if (p.magnitudeV <= s.stars->limitingMagnitude)
-        stars.push_back({p.directionIcrs, glm::dvec3(sunIrradianceAt1AuWm2 * sky::irradianceRelativeToSun(p.magnitudeV))});
+        stars.push_back({p.directionIcrs, sunIrradianceAt1AuWm2 * sky::irradianceRelativeToSun(p.magnitudeV) *
+                                              sky::reflectedFrameColour(sky::planetBMinusV(p.name), sky::kSunBMinusV)});
   return stars;
 }
 

@@ -25,6 +25,21 @@ double wrapDeg(double deg) {
   return deg < 0.0 ? deg + 360.0 : deg;
 }
 
+/// Saturn's north pole (IAU WGCCRE 2015, Archinal et al. 2018: alpha0 = 40.589 - 0.036 T,
+/// delta0 = 83.537 - 0.004 T degrees, T in Julian centuries from J2000), ICRS axes.
+glm::dvec3 saturnPoleIcrs(UtcTime time) {
+  double t1 = 0.0, t2 = 0.0;
+  toTt(time, t1, t2);
+  const double t = ((t1 - 2451545.0) + t2) / 36525.0;
+  const double a = (40.589 - 0.036 * t) * kDeg, d = (83.537 - 0.004 * t) * kDeg;
+  return {std::cos(d) * std::cos(a), std::cos(d) * std::sin(a), std::sin(d)};
+}
+
+/// The saturnicentric latitude of `direction` (a unit vector from Saturn's centre) [deg].
+double latitudeOverPoleDeg(const glm::dvec3& pole, const glm::dvec3& direction) {
+  return std::asin(std::clamp(glm::dot(pole, direction), -1.0, 1.0)) / kDeg;
+}
+
 /// The longitude (west, degrees, as the Astronomical Almanac gives Mars') of the point of
 /// Mars under `direction` (ICRS axes, from Mars' centre).
 double westLongitudeDeg(const glm::dmat3& bodyToIcrs, const glm::dvec3& direction) {
@@ -35,7 +50,7 @@ double westLongitudeDeg(const glm::dmat3& bodyToIcrs, const glm::dvec3& directio
 }  // namespace
 
 const std::vector<std::string>& planetsWithMagnitudes() {
-  static const std::vector<std::string> names{"Mercury", "Venus", "Mars", "Jupiter"};
+  static const std::vector<std::string> names{"Mercury", "Venus", "Mars", "Jupiter", "Saturn"};
   return names;
 }
 
@@ -66,6 +81,11 @@ std::vector<PlanetSeen> planetsSeenFrom(const glm::dvec3& observerM, UtcTime tim
       p.magnitudeV = sky::venusMagnitudeV(p.sunDistanceAu, p.distanceAu, p.phaseAngleDeg);
     } else if (name == "Jupiter") {
       p.magnitudeV = sky::jupiterMagnitudeV(p.sunDistanceAu, p.distanceAu, p.phaseAngleDeg);
+    } else if (name == "Saturn") {  // its rings, by the Sun's and the observer's latitudes over them
+      const glm::dvec3 pole = saturnPoleIcrs(departure);
+      const double sunLat = latitudeOverPoleDeg(pole, -planet / r);
+      p.ringTiltDeg = latitudeOverPoleDeg(pole, toObserver / delta);
+      p.magnitudeV = sky::saturnMagnitudeV(p.sunDistanceAu, p.distanceAu, p.phaseAngleDeg, sunLat, p.ringTiltDeg);
     } else {  // Mars: its face towards the observer and the Sun, and its season
       const glm::dmat3 bodyToIcrs = bodyFixedToInertial("Mars", departure);
       sky::MarsAspect aspect;

@@ -1,9 +1,9 @@
 #pragma once
 // The naked-eye planets seen from a place in the solar system: where they stand (ERFA's
 // eraPlan94, one light time back) and how bright they are (sky/PlanetMagnitudes.hpp, Mallama
-// & Hilton 2018's phase curves; Mars with its rotation and season corrections). Scenes with
-// stars draw them as stars (app/pipeline/SceneInputs: their light is reflected sunlight,
-// taken with the Sun's colour).
+// & Hilton 2018's phase curves; Mars with its rotation and season corrections, Saturn with
+// its rings' tilt). Scenes with stars draw them as stars (app/pipeline/SceneInputs), in
+// their colours (planetColourBMinusV).
 #include "scene/Time.hpp"
 
 #include <glm/vec3.hpp>
@@ -20,9 +20,12 @@ struct PlanetSeen {
   double sunDistanceAu = 0.0;               ///< from the Sun, then
   double phaseAngleDeg = 0.0;               ///< Sun - planet - observer
   double magnitudeV = 0.0;
+  /// Saturn: the observer's saturnicentric latitude over the ring plane (the rings' tilt as
+  /// almanacs give it, B; north positive) [deg]; 0 for the others.
+  double ringTiltDeg = 0.0;
 };
 
-/// The planets whose phase curves umbra has: Mercury, Venus, Mars, Jupiter.
+/// The planets whose phase curves umbra has: Mercury, Venus, Mars, Jupiter, Saturn.
 const std::vector<std::string>& planetsWithMagnitudes();
 
 /// Each of planetsWithMagnitudes() seen from `observerM` (heliocentric, ICRS axes, m) at

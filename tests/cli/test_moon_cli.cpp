@@ -109,7 +109,7 @@ TEST(MoonCli, BadInput) {
 
 // ---- umbra planets ------------------------------------------------------------------------
 
-// Totality at Luxor, 2027-08-02: the four planets in the CSV with finite numbers, their
+// Totality at Luxor, 2027-08-02: the five planets in the CSV with finite numbers, their
 // altitudes from the horizon frame (Venus next to the Sun, 81.7 deg up: within 10 deg of
 // it), magnitudes within Mallama & Hilton's extremes; the printed table the same rows.
 TEST(PlanetsCli, TheSkyOfTotalityAtLuxor) {
@@ -118,15 +118,21 @@ TEST(PlanetsCli, TheSkyOfTotalityAtLuxor) {
                                       "--csv", dir / "p.csv"});
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto rows = csvCells(dir / "p.csv");
-  ASSERT_EQ(rows.size(), 5u);
+  ASSERT_EQ(rows.size(), 6u);
   EXPECT_EQ(rows[0][0], "planet");
-  const std::vector<std::string> names{"Mercury", "Venus", "Mars", "Jupiter"};
+  EXPECT_EQ(rows[0][10], "ring_tilt_deg");
+  const std::vector<std::string> names{"Mercury", "Venus", "Mars", "Jupiter", "Saturn"};
   for (std::size_t k = 1; k < rows.size(); ++k) {
-    ASSERT_EQ(rows[k].size(), 10u);
+    ASSERT_EQ(rows[k].size(), 11u);
+    EXPECT_EQ(rows[k][10].empty(), names[k - 1] != "Saturn");  // the ring tilt Saturn's alone
     EXPECT_EQ(rows[k][0], names[k - 1]);
     for (std::size_t c = 1; c < 10; ++c) EXPECT_TRUE(std::isfinite(std::stod(rows[k][c]))) << rows[k][0] << " " << c;
     EXPECT_NE(r.out.find(names[k - 1]), std::string::npos);
   }
+  // Saturn 2.4 years past the ring-plane crossing of 2025-03-23: their south face open by
+  // some 27 deg x sin(360 deg x 2.4 / 29.5) ~ 13 deg, give or take the Earth's parallax.
+  EXPECT_LT(std::stod(rows[5][10]), -9.0);
+  EXPECT_GT(std::stod(rows[5][10]), -17.0);
   EXPECT_NEAR(std::stod(rows[2][3]), 81.7, 10.0);  // Venus, near the Sun in the sky
   EXPECT_LT(std::stod(rows[2][9]), -3.8);
   EXPECT_GT(std::stod(rows[2][9]), -4.92);

@@ -8,6 +8,7 @@
 #include "StarCatalogueCache.h"
 #include "Photometry.hpp"
 #include "StarLight.hpp"
+#include "PlanetMagnitudes.hpp"
 #include "scene/Planets.hpp"
 #include "scene/Scene.hpp"
 #include "scene/Stars.hpp"
@@ -219,15 +220,17 @@ TEST(StarRender, SceneStarsAtTheirApparentPlaces) {
   const glm::dvec3 aim = glm::normalize(sirius + std::tan(0.2 * kPi / 180.0) * right + std::tan(0.1 * kPi / 180.0) * up);
   s.camera.targetM = s.camera.positionM + 1.0e9 * aim;
   const SceneInputs in = sceneInputs(s);
-  // The catalogue's two, then the planets (all brighter than V 9), at their places, grey
-  // (reflected sunlight, white-balanced to the Sun), as bright as their magnitudes.
+  // The catalogue's two, then the planets (all brighter than V 9), at their places, in
+  // sunlight tinted by their B-V (white-balanced to the Sun), as bright as their magnitudes.
   const std::vector<scene::PlanetSeen> planets = scene::planetsSeenFrom(in.camera.positionM, s.time);
   ASSERT_EQ(in.stars.size(), 2u + planets.size());
   for (std::size_t k = 0; k < planets.size(); ++k) {
     const StarPoint& p = in.stars[2 + k];
     EXPECT_NEAR(glm::dot(p.direction, planets[k].directionIcrs), 1.0, 1e-12) << planets[k].name;
-    const double e = in.sun.irradianceAt1AuWm2 * sky::irradianceRelativeToSun(planets[k].magnitudeV);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(p.irradianceWm2[c], e, 1e-12 * e) << planets[k].name;
+    const glm::dvec3 e = in.sun.irradianceAt1AuWm2 * sky::irradianceRelativeToSun(planets[k].magnitudeV) *
+                         sky::reflectedFrameColour(sky::planetBMinusV(planets[k].name), sky::kSunBMinusV);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(p.irradianceWm2[c], e[c], 1e-12 * e[c]) << planets[k].name;
+    EXPECT_GT(p.irradianceWm2.r, p.irradianceWm2.b) << planets[k].name;  // every one redder than the Sun
   }
 
   BodyView view(kWidth, kHeight, true);

@@ -31,6 +31,33 @@ TEST(PlanetMagnitudes, MercuryVenusJupiterAgainstTheAuthorsCases) {
     EXPECT_NEAR(jupiterMagnitudeV(c.r, c.delta, c.alpha), c.v, 0.001) << c.alpha;
 }
 
+TEST(PlanetMagnitudes, SaturnWithItsRingsAgainstTheAuthorsCase) {
+  // 2032-12-25: the rings open at 26.279 deg to the Sun and the Earth alike, phase 0.1055
+  // deg: V -0.552.
+  EXPECT_NEAR(saturnMagnitudeV(9.014989659493, 8.03160470546889, 0.1055, 26.279, 26.279), -0.552, 0.001);
+  // The rings' north and south faces alike; seen edge-on, or their unlit face (the Sun and
+  // the observer on opposite sides), they add nothing to the globe's eq. 10 term.
+  EXPECT_DOUBLE_EQ(saturnMagnitudeV(9.0, 8.0, 3.0, -20.0, -10.0), saturnMagnitudeV(9.0, 8.0, 3.0, 20.0, 10.0));
+  EXPECT_NEAR(saturnRingTiltDeg(20.0, 5.0), 10.0, 1e-12);
+  EXPECT_EQ(saturnRingTiltDeg(2.0, -1.0), 0.0);
+  EXPECT_NEAR(saturnMagnitudeV(9.0, 8.0, 3.0, 2.0, -1.0), 5.0 * std::log10(72.0) - 8.914 + 0.026 * 3.0, 1e-12);
+  // Open rings brighten Saturn by ~0.9 mag at 26 deg (-1.825 sin b - 0.378 sin b at phase 0).
+  EXPECT_NEAR(saturnMagnitudeV(9.0, 8.0, 0.0, 26.0, 26.0) - saturnMagnitudeV(9.0, 8.0, 0.0, 0.0, 0.0),
+              -2.203 * std::sin(26.0 * 3.14159265358979323846 / 180.0), 1e-12);
+}
+
+TEST(PlanetMagnitudes, SaturnsGlobeAloneBeyondTheRingsFitJoinsAt6point5Degrees) {
+  // Eqs. 11 and 12 meet at the geocentric limit to 0.002 mag; eq. 12 at 90 deg, the globe
+  // half lit: -8.94 + 0.0220 + 2.1643 - 1.0979 + 0.3128 = -7.5388.
+  const double d = 5.0 * std::log10(9.0 * 8.0);
+  EXPECT_NEAR(saturnGlobeMagnitudeV(9.0, 8.0, 6.5) - saturnGlobeMagnitudeV(9.0, 8.0, 6.5 + 1e-9), 0.0, 0.002);
+  EXPECT_NEAR(saturnGlobeMagnitudeV(9.0, 8.0, 0.0) - d, -8.95, 1e-12);
+  EXPECT_NEAR(saturnGlobeMagnitudeV(9.0, 8.0, 90.0) - d, -7.5388, 0.0005);
+  // Beyond 6.5 deg, or tilted beyond 27 deg, the rings are left out whatever their tilt.
+  EXPECT_DOUBLE_EQ(saturnMagnitudeV(9.0, 8.0, 30.0, 20.0, 20.0), saturnGlobeMagnitudeV(9.0, 8.0, 30.0));
+  EXPECT_DOUBLE_EQ(saturnMagnitudeV(9.0, 8.0, 3.0, 40.0, 30.0), saturnGlobeMagnitudeV(9.0, 8.0, 3.0));
+}
+
 TEST(PlanetMagnitudes, MarsWithItsRotationAndSeasonAgainstTheAuthorsCases) {
   // 2003-08-28 (the close opposition), 2004-07-19 (faint, near conjunction) and 2018-02-11
   // seen from Jupiter (phase 167.9 deg): sub-observer and sub-solar west longitudes and the

@@ -233,6 +233,25 @@ TEST(StarLight, FrameColourIsBalancedToTheSun) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(e[c] / (1361.0 * std::pow(10.0, -0.4 * (6.0 + 26.74))), lo[c], 1e-12);
 }
 
+// A planet's tint: the Sun's own B-V reflects white; redder B-V redder light (red over blue
+// rising with B-V through the planets' values); the V-band luminance kept within 3 % (the
+// magnitudes set it), undoing the white balance.
+TEST(StarLight, ReflectedColourIsTheSunsTintedByTheReflectance) {
+  const glm::dvec3 grey = reflectedFrameColour(0.653, 0.653);
+  for (int c = 0; c < 3; ++c) EXPECT_DOUBLE_EQ(grey[c], 1.0);
+  double lastRedOverBlue = 0.0;
+  for (double bv : {0.81, 0.87, 0.97, 1.09, 1.43}) {  // Venus, Jupiter, Mercury, Saturn, Mars
+    const glm::dvec3 f = reflectedFrameColour(bv, 0.653);
+    EXPECT_GT(f.r / f.b, lastRedOverBlue) << "B-V " << bv;
+    lastRedOverBlue = f.r / f.b;
+    const glm::dvec3 unbalanced = f * sunLinearSrgb();
+    const double y = 0.2126 * unbalanced.r + 0.7152 * unbalanced.g + 0.0722 * unbalanced.b;
+    std::printf("  B-V %.2f: frame colour %.3f %.3f %.3f, luminance %.4f of the Sun's\n", bv, f.r, f.g, f.b, y);
+    EXPECT_NEAR(y, 1.0, 0.03) << "B-V " << bv;
+  }
+  EXPECT_GT(lastRedOverBlue, 1.5);  // Mars: clearly red
+}
+
 // The air mass: 1 at the zenith, 2 at 60 deg (1.994 by Kasten & Young's own table), 38 at
 // the horizon.
 TEST(StarLight, AirMass) {
