@@ -35,17 +35,18 @@ double ShadowTable::farOffsetAt(glm::dvec2 g) const {
 
 ShadowOptions ShadowTable::nearSearch() const {
   ShadowOptions near;
-  near.method = ShadowMethod::Uniform;
+  near.method = ShadowMethod::Cells;
   near.toTexels = nearTexels + 1.0;
-  near.uniformSteps = static_cast<int>(std::ceil(kNearStepsPerTexel * near.toTexels));
   return near;
 }
 
 double ShadowTable::fractionAt(const HeightField& f, const MaximumMipmap& mip, glm::dvec2 g) const {
+  const double far = farOffsetAt(g);
+  if (far <= -1.0) return 0.0;  // the disc is behind the far horizon whatever is near: no search
   const Horizon h = horizonTowardsSunAt(f, mip, g, f.bilinear(g.x, g.y), sun, nearSearch());
   if (h.degenerate) return discFractionAboveHorizon(h, sun);
   const double d = (h.sunElevationRad - h.horizonElevationRad) / sun.angularRadiusRad;
-  return discFractionForOffset(std::min(d, farOffsetAt(g)), sun);
+  return discFractionForOffset(std::min(d, far), sun);
 }
 
 ShadowTable makeShadowTable(const HeightField& f, const MaximumMipmap& mip, const SunDisc& sun,

@@ -9,8 +9,8 @@
 // resolved within kShadowTableOffsetLimit radii of the Sun and clamped there. A point
 // between samples takes d bilinear from its four samples, and the near horizon from its
 // own search over the first nearTexels + 1 texels (the samples' far stretches start up to
-// a texel further along) in uniform steps, a few a texel; its d is the smaller, and the
-// visible fraction follows by Eq. 7.
+// a texel further along), cell by cell and exact (ShadowMethod::Cells); its d is the
+// smaller, and the visible fraction follows by Eq. 7.
 // The split is what makes a table work: the near terrain (the slope at the point, a rim a
 // few samples away) turns the horizon within a sample, which no interpolation follows;
 // seen from further, the horizon changes smoothly from sample to sample.
@@ -33,9 +33,8 @@ namespace umbra::terrain {
 inline constexpr double kShadowTableOffsetLimit = 4.0;  ///< |d| kept [solar radii]
 /// The default rounding of the Sun's direction: 0.01 deg (1/27 of the Sun's radius).
 inline constexpr double kDefaultSunStepRad = 0.01 * 3.14159265358979323846 / 180.0;
-/// The default stretch each point searches itself [texels], and its steps a texel.
+/// The default stretch each point searches itself [texels].
 inline constexpr double kDefaultNearTexels = 16.0;
-inline constexpr int kNearStepsPerTexel = 4;
 
 /// The Sun rounded for a table (direction and angular radius; limb darkening kept).
 /// Throws std::invalid_argument for a step not in (0, 0.1] rad or a zero direction.
@@ -49,7 +48,7 @@ struct ShadowTable {
 
   /// The far d at grid coordinates (fractional; clamped to the grid), bilinear.
   double farOffsetAt(glm::dvec2 grid) const;
-  /// The search near a point: uniform steps, kNearStepsPerTexel a texel, up to nearTexels + 1.
+  /// The search near a point: cell by cell (ShadowMethod::Cells), up to nearTexels + 1.
   ShadowOptions nearSearch() const;
   /// The visible fraction at grid coordinates g on the bilinear surface: the far d, and the
   /// near horizon searched there (nearSearch).

@@ -128,6 +128,24 @@ private:
   }
 };
 
+/// Heights a (at centre - half), m (centre), b (centre + half) along one cell.
+struct Parabola {
+  double centre, half, a, m, b;
+  double at(double s) const {
+    const double u = (s - centre) / half;
+    return m + 0.5 * (b - a) * u + 0.5 * (a + b - 2.0 * m) * u * u;
+  }
+  double maxOver(double s0, double s1) const {
+    double top = std::max(at(s0), at(s1));
+    const double curvature = a + b - 2.0 * m;
+    if (curvature < 0.0) {
+      const double sv = centre - 0.5 * (b - a) / curvature * half;
+      if (sv > s0 && sv < s1) top = std::max(top, at(sv));
+    }
+    return top;
+  }
+};
+
 /// Algorithm 1: the maximum-mipmap search for the highest horizon along the footprint.
 class MipmapSearch {
 public:
@@ -200,23 +218,6 @@ private:
     for (int k = 0; k < n && best < hi; ++k) visit(m, children[k].i, children[k].j, children[k].sa, children[k].sb);
   }
 
-  /// Heights a (at centre - half), m (centre), b (centre + half) along one cell.
-  struct Parabola {
-    double centre, half, a, m, b;
-    double at(double s) const {
-      const double u = (s - centre) / half;
-      return m + 0.5 * (b - a) * u + 0.5 * (a + b - 2.0 * m) * u * u;
-    }
-    double maxOver(double s0, double s1) const {
-      double top = std::max(at(s0), at(s1));
-      const double curvature = a + b - 2.0 * m;
-      if (curvature < 0.0) {
-        const double sv = centre - 0.5 * (b - a) / curvature * half;
-        if (sv > s0 && sv < s1) top = std::max(top, at(sv));
-      }
-      return top;
-    }
-  };
 
   /// Below the texel: bisect the cell's stretch while its bound (the parabola's maximum)
   /// may still raise the horizon by more than kTolerance; near the receiver the elevation
@@ -246,6 +247,58 @@ double uniformSearch(const Profile& p, int steps, double start, double hi, long 
   if (p.sEnd <= start) return best;
   const double step = (p.sEnd - start) / steps;
   for (int k = 1; k <= steps && best < hi; ++k, ++samples) best = std::max(best, p.terrainElevation(start + k * step));
+  return best;
+}
+
+/// Cell by cell along the footprint (no mipmap). Inside a cell the bilinear surface along
+/// the footprint is a parabola in s: relative to the receiver, z(s) = alpha + beta s +
+/// gamma s^2, with gamma = (h00 - h10 - h01 + h11) dir.x dir.y. The tangent of the
+/// elevation, (z(s) - k s^2) / (D s) (D the texel's length on the ground, k = D^2 / 2R the
+/// sphere's drop), is stationary at s^2 = alpha / (gamma - k), a maximum where alpha < 0.
+/// The exact elevation is taken there and at each cell's end: the highest point of the
+/// bilinear surface along the footprint, not a sample of it. A cell with a no-data corner
+/// counts at its end's height (as the DP).
+double cellSearch(const Profile& p, double start, double hi, long long& samples) {
+  const HeightField& f = p.f;
+  double best = p.firstElevation(start);
+  samples = 1;
+  const double k = f.spacingM * f.spacingM / (2.0 * p.rp);
+  const double base = p.rp - f.bodyRadiusM;
+  double s = start;
+  while (s < p.sEnd && best < hi) {
+    // The next grid line the footprint crosses, on either axis.
+    const glm::dvec2 g = p.g0 + s * p.dir;
+    double next = p.sEnd;
+    for (int a = 0; a < 2; ++a) {
+      if (p.dir[a] == 0.0) continue;
+      const double line = p.dir[a] > 0.0 ? std::floor(g[a]) + 1.0 : std::ceil(g[a]) - 1.0;
+      next = std::min(next, s + (line - g[a]) / p.dir[a]);
+    }
+    next = std::max(next, s + 1e-9);
+    const glm::dvec2 gm = p.g0 + 0.5 * (s + next) * p.dir;
+    const int i = std::clamp(static_cast<int>(std::floor(gm.x)), 0, f.width - 2);
+    const int j = std::clamp(static_cast<int>(std::floor(gm.y)), 0, f.height - 2);
+    const double h00 = f.at(i, j), h10 = f.at(i + 1, j), h01 = f.at(i, j + 1), h11 = f.at(i + 1, j + 1);
+    samples += 4;
+    if (std::isnan(h00 + h10 + h01 + h11)) {
+      best = std::max(best, p.terrainElevation(next));
+    } else {
+      // z(s) = e + ax fx + ay fy + x fx fy, fx = fx0 + dir.x s, fy = fy0 + dir.y s.
+      const double e = h00 - base, ax = h10 - h00, ay = h01 - h00, x = h00 - h10 - h01 + h11;
+      const double fx0 = p.g0.x - i, fy0 = p.g0.y - j;
+      const auto z = [&](double t) {
+        const double fx = fx0 + p.dir.x * t, fy = fy0 + p.dir.y * t;
+        return e + ax * fx + ay * fy + x * fx * fy;
+      };
+      best = std::max(best, p.terrainElevation(next, base + z(next)));
+      const double alpha = z(0.0), gamma = x * p.dir.x * p.dir.y;
+      if (alpha < 0.0 && gamma - k < 0.0) {
+        const double sPeak = std::sqrt(alpha / (gamma - k));
+        if (sPeak > s && sPeak < next) best = std::max(best, p.terrainElevation(sPeak, base + z(sPeak)));
+      }
+    }
+    s = next;
+  }
   return best;
 }
 
@@ -303,7 +356,8 @@ ShadowMethod parseShadowMethod(const std::string& name) {
   if (name == "dp") return ShadowMethod::DynamicProgramming;
   if (name == "uniform") return ShadowMethod::Uniform;
   if (name == "reference") return ShadowMethod::Reference;
-  throw std::invalid_argument("unknown shadow method '" + name + "' (expected dp, uniform or reference)");
+  if (name == "cells") return ShadowMethod::Cells;
+  throw std::invalid_argument("unknown shadow method '" + name + "' (expected dp, uniform, cells or reference)");
 }
 
 const char* shadowMethodName(ShadowMethod m) {
@@ -311,6 +365,7 @@ const char* shadowMethodName(ShadowMethod m) {
     case ShadowMethod::DynamicProgramming: return "dp";
     case ShadowMethod::Uniform: return "uniform";
     case ShadowMethod::Reference: return "reference";
+    case ShadowMethod::Cells: return "cells";
   }
   return "?";
 }
@@ -347,6 +402,8 @@ Horizon horizonTowardsSunAt(const HeightField& f, const MaximumMipmap& mip, glm:
   p.sEnd = std::min(p.sEnd, o.toTexels);
   if (o.method == ShadowMethod::Uniform)
     h.horizonElevationRad = uniformSearch(p, o.uniformSteps, o.fromTexels, hi, h.samples);
+  else if (o.method == ShadowMethod::Cells)
+    h.horizonElevationRad = cellSearch(p, o.fromTexels, hi, h.samples);
   else
     h.horizonElevationRad = MipmapSearch(p, lo, hi).run(o.levels, o.fromTexels, h.samples);
   return h;

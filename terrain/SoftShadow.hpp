@@ -19,6 +19,10 @@
 //    elevation (the angle Delta h / t of Eq. 1, not Delta h alone: Eq. 3 would favour the
 //    texels next to the receiver, Fig. 3b). Umbra (horizon above the disc's top) stops it.
 //  - Uniform: a fixed number of equal steps along the footprint (the paper's baseline).
+//  - Cells: every cell the footprint crosses, in order; inside a cell the bilinear height
+//    along the footprint is a parabola and the elevation's highest point has a closed
+//    form (cellSearch). Exact, and a constant few lookups a cell: for short stretches
+//    (the near search of a shadow table), where the DP's mipmap buys nothing.
 //  - Reference: many rays over the solar disc: the disc is cut into vertical strips, each
 //    strip's rays have their own vertical plane, whose horizon is found with fine steps
 //    over the bilinear surface; a ray is blocked when it lies below its strip's horizon.
@@ -40,9 +44,9 @@ namespace umbra::terrain {
 /// Angular radius of the Sun seen from 1 au [rad] (solar radius 696342 km).
 inline constexpr double kSunAngularRadiusAt1AuRad = 696342e3 / 149597870700.0;
 
-enum class ShadowMethod { DynamicProgramming, Uniform, Reference };
+enum class ShadowMethod { DynamicProgramming, Uniform, Reference, Cells };
 
-/// "dp", "uniform", "reference"; throws std::invalid_argument otherwise.
+/// "dp", "uniform", "reference", "cells"; throws std::invalid_argument otherwise.
 ShadowMethod parseShadowMethod(const std::string& name);
 const char* shadowMethodName(ShadowMethod method);
 
@@ -58,11 +62,11 @@ struct ShadowOptions {
   int uniformSteps = 128;            ///< steps along the footprint for Uniform (>= 1)
   int referenceStrips = 32;          ///< vertical strips of the disc for Reference (>= 2)
   double referenceStepTexels = 0.125;  ///< step along each strip's footprint for Reference [texels]
-  /// DP and Uniform: the horizon is resolved where it lies within this many solar radii of
+  /// DP, Uniform and Cells: the horizon is resolved where it lies within this many solar radii of
   /// the Sun's centre (1: on the disc, all the fraction needs; the search stops once it
   /// is above, and leaves out terrain below). Shadow tables take more, to interpolate.
   double windowRadii = 1.0;
-  /// DP and Uniform: the stretch of the footprint searched, from and to [texels] (the whole
+  /// DP, Uniform and Cells: the stretch of the footprint searched, from and to [texels] (the whole
   /// footprint by default; its start is where the local slope is taken). A shadow table
   /// keeps the horizon beyond its first texels; the renderer adds the slope nearby.
   double fromTexels = 1e-3, toTexels = 1e30;
@@ -78,8 +82,8 @@ struct Horizon {
   bool degenerate = false;           ///< the Sun at the receiver's zenith or nadir: no azimuth
 };
 
-/// Horizon towards the Sun for the receiver at sample (i, j) by DynamicProgramming or
-/// Uniform (Reference has no single horizon: use visibleFraction).
+/// Horizon towards the Sun for the receiver at sample (i, j) by DynamicProgramming, Uniform
+/// or Cells (Reference has no single horizon: use visibleFraction).
 Horizon horizonTowardsSun(const HeightField& field, const MaximumMipmap& mip, int i, int j, const SunDisc& sun,
                           const ShadowOptions& options);
 
@@ -109,8 +113,8 @@ std::vector<double> visibleFractionMap(const HeightField& field, const MaximumMi
                                        const std::function<void(double)>& progress = {},
                                        ShadowMapStats* stats = nullptr);
 
-/// The horizon towards the Sun at every sample (row-major), in parallel: the DP or Uniform
-/// search (std::invalid_argument for Reference, which has no single horizon).
+/// The horizon towards the Sun at every sample (row-major), in parallel: the DP, Uniform or
+/// Cells search (std::invalid_argument for Reference, which has no single horizon).
 std::vector<Horizon> horizonMap(const HeightField& field, const MaximumMipmap& mip, const SunDisc& sun,
                                 const ShadowOptions& options, const std::function<void(double)>& progress = {},
                                 ShadowMapStats* stats = nullptr);

@@ -176,7 +176,7 @@ void addTerrainCommand(CLI::App& app, Action& action) {
   shadow->add_option("--sun-elevation-deg", o->elevationDeg, "Sun elevation at the DEM centre [deg]");
   shadow->add_option("--sun-azimuth-deg", o->azimuthDeg, "Sun azimuth at the DEM centre, from north (+y) to east (+x) [deg]");
   shadow->add_option("--time", o->time, "UTC instant (ISO 8601): the Sun from the ephemeris and the body's rotation");
-  shadow->add_option("--method", o->method, "dp (maximum mipmap, Algorithm 1), uniform or reference")->capture_default_str();
+  shadow->add_option("--method", o->method, "dp (maximum mipmap, Algorithm 1), uniform, cells (every cell crossed, exact: slow over long footprints) or reference")->capture_default_str();
   shadow->add_option("--levels", o->levels, "DP: mip levels N' per concatenated interval")->capture_default_str()->check(CLI::Range(1, 30));
   shadow->add_option("--uniform-steps", o->uniformSteps, "uniform: steps along each shadow ray")->capture_default_str()->check(CLI::Range(1, 1 << 20));
   shadow->add_option("--limb-darkening", o->limbDarkening, "Linear limb darkening of the disc (0: uniform)")->capture_default_str()->check(CLI::Range(0.0, 1.0));

@@ -117,7 +117,6 @@ struct TerrainRendering::Impl {
     const terrain::ShadowOptions near = table ? table->nearSearch() : terrain::ShadowOptions{};
     setTerrainShadowUniforms(program, textures, patch.field, *mip, table ? table->sun : exact, kLevels,
                              table ? near.toTexels : 1e30);
-    program.SetUniformi("umbraNearSteps", near.uniformSteps);
     const glm::dvec3 l = glm::normalize(exact.direction);
     const float light[3] = {float(l.x), float(l.y), float(l.z)};
     program.SetUniform3f("umbraTerrainLight", light);
@@ -237,6 +236,11 @@ void TerrainRendering::SetTerrain(const TerrainPatch& patch) {
     // vertexMC must be the plain patch coordinate in the shader.
     m.mapper->SetVBOShiftScaleMethod(vtkOpenGLVertexBufferObject::DISABLE_SHIFT_SCALE);
     m.mapper->ScalarVisibilityOff();
+    // The fragment stage writes its depth, so every fragment is shaded before the depth
+    // test. From above the mesh (where the camera always is: the mesh lies below the
+    // surface) a ray enters the mesh through a front face first; the back faces, where it
+    // comes out again further on, are always hidden: not drawn.
+    m.actor->GetProperty()->BackfaceCullingOn();
     vtkShaderProperty* sp = m.actor->GetShaderProperty();
     sp->AddVertexShaderReplacement("//VTK::Camera::Dec", true, glsl::kReceiverVertex, false);
     sp->AddVertexShaderReplacement("//VTK::CustomEnd::Impl", true,

@@ -15,7 +15,8 @@ public:
   vtkTypeMacro(vtkTerrainHorizonShadowFilter, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum Method { DP = 0, UNIFORM = 1, REFERENCE = 2 };
+  /// terrain::ShadowMethod's, in its order.
+  enum Method { DP = 0, UNIFORM = 1, REFERENCE = 2, CELLS = 3 };
 
   /// Towards the Sun's centre, tangent frame (need not be normalised). Default: zenith.
   vtkSetVector3Macro(SunDirection, double);
@@ -31,7 +32,7 @@ public:
   vtkSetMacro(BodyRadiusM, double);
   vtkGetMacro(BodyRadiusM, double);
 
-  vtkSetClampMacro(Method, int, DP, REFERENCE);
+  vtkSetClampMacro(Method, int, DP, CELLS);
   vtkGetMacro(Method, int);
   /// N': mip levels per concatenated interval (DP).
   vtkSetClampMacro(Levels, int, 1, 30);

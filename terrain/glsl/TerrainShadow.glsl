@@ -160,14 +160,45 @@ float umbraParabola(vec4 cell, vec3 h, float s) {  // cell = (centre, half, -, -
   return h.y + 0.5 * (h.z - h.x) * u + 0.5 * (h.x + h.z - 2.0 * h.y) * u * u;
 }
 
-// Uniform stepping (SoftShadow.cpp uniformSearch): the highest of `steps` equal steps
-// along the footprint, stopped once above the disc.
-float umbraHorizonUniform(UmbraProfile p, int steps) {
+// Cell by cell (SoftShadow.cpp cellSearch): in each cell the footprint crosses, the
+// bilinear surface's highest elevation, at the cell's end and where the tangent of the
+// elevation is stationary (s^2 = alpha / (gamma - k)).
+float umbraHorizonCells(UmbraProfile p) {
   float hi = p.e + umbraSunRadius;
   float best = umbraTerrainElevation(p, umbraStartTexels);
-  if (p.sEnd <= umbraStartTexels) return best;
-  float step = (p.sEnd - umbraStartTexels) / float(steps);
-  for (int k = 1; k <= steps && best < hi; ++k) best = max(best, umbraTerrainElevation(p, umbraStartTexels + float(k) * step));
+  float k = umbraSpacingM * umbraSpacingM / (2.0 * (umbraRadiusM + p.hp));
+  float s = umbraStartTexels;
+  for (int guard = 0; guard < 512 && s < p.sEnd && best < hi; ++guard) {
+    vec2 g = p.g0 + s * p.dir;
+    float next = p.sEnd;
+    for (int a = 0; a < 2; ++a) {
+      if (p.dir[a] == 0.0) continue;
+      float line = p.dir[a] > 0.0 ? floor(g[a]) + 1.0 : ceil(g[a]) - 1.0;
+      next = min(next, s + (line - g[a]) / p.dir[a]);
+    }
+    next = max(next, s + 1e-4);
+    ivec2 c = clamp(ivec2(floor(p.g0 + 0.5 * (s + next) * p.dir)), ivec2(0), umbraGridSize - 2);
+    float h00 = texelFetch(umbraHeights, c, 0).r, h10 = texelFetch(umbraHeights, c + ivec2(1, 0), 0).r;
+    float h01 = texelFetch(umbraHeights, c + ivec2(0, 1), 0).r, h11 = texelFetch(umbraHeights, c + ivec2(1, 1), 0).r;
+    if (min(min(h00, h10), min(h01, h11)) <= umbraNoData) {
+      best = max(best, umbraTerrainElevation(p, next));
+    } else {
+      // z(s) = e + ax fx + ay fy + x fx fy relative to the receiver, fx = fx0 + dir.x s.
+      float e = h00 - p.hp, ax = h10 - h00, ay = h01 - h00, x = (h00 - h10) - (h01 - h11);
+      vec2 f0 = p.g0 - vec2(c);
+      vec2 f = f0 + next * p.dir;
+      best = max(best, umbraElevation(p, umbraAngle(p, next), e + ax * f.x + ay * f.y + x * f.x * f.y));
+      float alpha = e + ax * f0.x + ay * f0.y + x * f0.x * f0.y, gamma = x * p.dir.x * p.dir.y;
+      if (alpha < 0.0 && gamma - k < 0.0) {
+        float sPeak = sqrt(alpha / (gamma - k));
+        if (sPeak > s && sPeak < next) {
+          f = f0 + sPeak * p.dir;
+          best = max(best, umbraElevation(p, umbraAngle(p, sPeak), e + ax * f.x + ay * f.y + x * f.x * f.y));
+        }
+      }
+    }
+    s = next;
+  }
   return best;
 }
 

@@ -59,8 +59,9 @@ TEST(ShadowTable, FlatSiteGivesTheSegmentOfEq7) {
 
 // The lookup against the per-pixel DP search (the renderer's reference path) at random
 // points between samples of a crater field, the Sun rounded to the default step: mean
-// |difference| 3.8e-3 here (below 5e-3; 1.3e-3 on the example scene's field,
-// docs/accuracy-vs-speed/terrain.md, "Shadow tables"), and every lookup finite.
+// |difference| 1.2e-3 here, below the 2e-3 asked of a table (the near stretch searched
+// exactly, cell by cell; docs/accuracy-vs-speed/terrain.md, "Shadow tables"), and every
+// lookup finite.
 TEST(ShadowTable, LookupAgreesWithTheSearchPerPixel) {
   CraterFieldOptions co;
   co.seed = 7;
@@ -85,7 +86,7 @@ TEST(ShadowTable, LookupAgreesWithTheSearchPerPixel) {
   }
   std::printf("  mean |table - DP| %.5f over %d points (%d in the penumbra)\n", sum / n, n, penumbra);
   EXPECT_GT(penumbra, 50);
-  EXPECT_LT(sum / n, 5e-3);
+  EXPECT_LT(sum / n, 2e-3);
 }
 
 // Extremes: no-data holes, the smallest field, the Sun at the zenith and below the

@@ -17,7 +17,8 @@ using umbra::test::kDeg;
 
 namespace {
 
-const ShadowMethod kMethods[] = {ShadowMethod::DynamicProgramming, ShadowMethod::Uniform, ShadowMethod::Reference};
+const ShadowMethod kMethods[] = {ShadowMethod::DynamicProgramming, ShadowMethod::Uniform, ShadowMethod::Cells,
+                                 ShadowMethod::Reference};
 
 void expectFiniteFractions(const std::vector<double>& v) {
   for (double x : v) {
@@ -110,7 +111,7 @@ TEST(SoftShadow, StraightRidgeCastsShadowAndPenumbraOfTheGeometricLength) {
   sun.direction = sunDirectionFromElevationAzimuth(e, 0.0);
   const double r = sun.angularRadiusRad;
   const int column = size / 2;
-  for (ShadowMethod m : {ShadowMethod::DynamicProgramming, ShadowMethod::Uniform, ShadowMethod::Reference}) {
+  for (ShadowMethod m : kMethods) {
     ShadowOptions o = test::method(m);
     o.uniformSteps = 2048;
     // The fraction along the column south of the ridge, with its crossings of 1%, 50% and 99%.
@@ -272,7 +273,7 @@ TEST(SoftShadow, NoDataCellsCastNoShadowAndReceiveFiniteLight) {
     for (int i = 0; i < c.width; i += 3) c.heightsM[j * c.width + i] = std::numeric_limits<double>::quiet_NaN();
   const MaximumMipmap cmip(c);
   sun.direction = sunDirectionFromElevationAzimuth(2.0 * kDeg, 2.0);
-  for (ShadowMethod m : {ShadowMethod::DynamicProgramming, ShadowMethod::Uniform})
+  for (ShadowMethod m : {ShadowMethod::DynamicProgramming, ShadowMethod::Uniform, ShadowMethod::Cells})
     expectFiniteFractions(visibleFractionMap(c, cmip, sun, test::method(m)));
   for (int j = 28; j < 42; ++j)  // the reference is slow: the rows of the holes only
     for (int i = 0; i < c.width; i += 2) {
@@ -312,6 +313,36 @@ TEST(SoftShadow, DynamicProgrammingFindsTheSameHorizonAsDenseStepping) {
     EXPECT_LT(sumAbs / n, 0.003) << "N' = " << levels;
   }
   EXPECT_GT(relevant, 40);  // enough receivers in the penumbra for this to mean something
+}
+
+TEST(SoftShadow, TheCellSearchFindsTheBilinearSurfacesHighestPoint) {
+  // The cell-by-cell search takes each cell's highest point in closed form: never below
+  // dense stepping (1/10 texel: points of the same surface), and the same horizon as the
+  // DP within the DP's tolerance (2e-6 rad) wherever the horizon is on the disc.
+  const HeightField f = smallCraters(128, 11);
+  const MaximumMipmap mip(f);
+  SunDisc sun;
+  sun.direction = sunDirectionFromElevationAzimuth(2.0 * kDeg, 0.7);
+  ShadowOptions dense = test::method(ShadowMethod::Uniform), cells = test::method(ShadowMethod::Cells), dp;
+  dense.uniformSteps = 1600;
+  double belowDense = 0.0, vsDp = 0.0;
+  int relevant = 0;
+  for (int j = 2; j < f.height; j += 3)
+    for (int i = 2; i < f.width; i += 3) {
+      const Horizon c = horizonTowardsSun(f, mip, i, j, sun, cells), d = horizonTowardsSun(f, mip, i, j, sun, dense),
+                    m = horizonTowardsSun(f, mip, i, j, sun, dp);
+      const double e = c.sunElevationRad, r = sun.angularRadiusRad;
+      if (d.horizonElevationRad > e - r && d.horizonElevationRad < e + r) {
+        belowDense = std::max(belowDense, d.horizonElevationRad - c.horizonElevationRad);
+        vsDp = std::max(vsDp, std::abs(m.horizonElevationRad - c.horizonElevationRad));
+        ++relevant;
+      }
+    }
+  std::printf("  %d receivers with the horizon on the disc: dense stepping above the cells' by %.2g rad at most, "
+              "|DP - cells| %.2g rad at most\n", relevant, belowDense, vsDp);
+  EXPECT_GT(relevant, 40);
+  EXPECT_LE(belowDense, 1e-9);
+  EXPECT_LE(vsDp, 2e-6);
 }
 
 TEST(SoftShadow, DynamicProgrammingAgreesWithTheReferenceOnCraters) {

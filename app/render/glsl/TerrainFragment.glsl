@@ -3,9 +3,9 @@
 // the visible fraction of the Sun is found there, and the point is shaded Lambertian:
 // albedo / pi * E_sun * max(0, n . l) * fraction, linear radiance in W m^-2 sr^-1 like
 // the eclipse receivers (ReceiverFragment.glsl). The fraction: with a shadow table
-// (terrain/ShadowTable.hpp) uniform steps of terrain/glsl/TerrainShadow.glsl (which comes
-// before this file) over the first umbraSearchToTexels of the footprint and the table's
-// far horizon, bilinear; without one, the DP search over the whole footprint.
+// (terrain/ShadowTable.hpp) the cell-by-cell search of terrain/glsl/TerrainShadow.glsl
+// (which comes before this file) over the first umbraSearchToTexels of the footprint and
+// the table's far horizon, bilinear; without one, the DP search over the whole footprint.
 //
 // Patch coordinates: the tangent frame of the height field (HeightField.hpp) shifted by
 // -(0, 0, R), so the grid's tangent point is the origin and every position near the
@@ -29,7 +29,7 @@ const float umbraInvPi = 0.31830988618;
 const float umbraLogDepthMinM = 1.0e-3;          // as ReceiverFragment.glsl
 const float umbraLogDepthOctaves = 53.150849518;
 const int umbraMarchSteps = 64;     // half a sample each: 32 samples from the facet at most
-const int umbraBisections = 12;   // then one step of false position
+const int umbraBisections = 12;  // where the crossing has no closed form: then one step of false position
 
 vec2 umbraGridOf(vec3 q) {
   return umbraRadiusM * q.xy / (umbraRadiusM + q.z) / umbraSpacingM + 0.5 * vec2(umbraGridSize - 1);
@@ -69,6 +69,73 @@ vec3 umbraSurfacePoint(vec2 g) {
   return vec3((umbraRadiusM + h) / n * pl, (h * umbraRadiusM - umbraRadiusM * pl2 / (n + umbraRadiusM)) / n);
 }
 
+// The view ray's crossing of the bilinear surface between ta (above it) and tb (below), at
+// most half a sample apart across the ground. The ray projects on the grid along a straight
+// line (a central projection of a straight line): over it each cell's height is a
+// quadratic in v, the fraction of the way from ta's grid point to tb's, and so, closely
+// (to ~1e-7 of the stretch), is the ray's altitude, fitted at v = 0, 1/2, 1 (the ray's
+// parameter follows v by the perspective division). The first root from ta, cell by cell,
+// in closed form: the crossing's t, grid point and height. False where the stretch leaves
+// the grid or touches no data (the caller bisects).
+bool umbraCrossing(vec3 p0, vec3 dir, float ta, float tb, out float t, out vec2 g, out float h) {
+  vec3 qa = p0 + ta * dir, qb = p0 + tb * dir;
+  vec2 ga = umbraGridOf(qa), gb = umbraGridOf(qb), dg = gb - ga;
+  vec2 top = vec2(umbraGridSize - 1);
+  if (any(lessThan(min(ga, gb), vec2(0.0))) || any(greaterThan(max(ga, gb), top))) return false;
+  // lambda(v): the ray's parameter (0 at ta, 1 at tb) where its grid point is ga + v dg.
+  float wa = umbraRadiusM + qa.z, wb = umbraRadiusM + qb.z;
+  float lambdaMid = wa / (wa + wb);
+  float aa = umbraAltitudeOf(qa), ab = umbraAltitudeOf(qb), am = umbraAltitudeOf(mix(qa, qb, lambdaMid));
+  float A2 = 2.0 * (aa + ab - 2.0 * am), A1 = ab - aa - A2;  // altitude(v) = aa + A1 v + A2 v^2
+  float v = 0.0;
+  for (int k = 0; k < 4 && v < 1.0; ++k) {
+    vec2 gv = ga + v * dg;
+    float next = 1.0;
+    for (int a = 0; a < 2; ++a) {
+      if (dg[a] == 0.0) continue;
+      float line = dg[a] > 0.0 ? floor(gv[a]) + 1.0 : ceil(gv[a]) - 1.0;
+      next = min(next, v + (line - gv[a]) / dg[a]);
+    }
+    next = max(next, v + 1e-6);
+    ivec2 c = clamp(ivec2(floor(ga + 0.5 * (v + next) * dg)), ivec2(0), umbraGridSize - 2);
+    float h00 = texelFetch(umbraHeights, c, 0).r, h10 = texelFetch(umbraHeights, c + ivec2(1, 0), 0).r;
+    float h01 = texelFetch(umbraHeights, c + ivec2(0, 1), 0).r, h11 = texelFetch(umbraHeights, c + ivec2(1, 1), 0).r;
+    if (min(min(h00, h10), min(h01, h11)) <= umbraNoData) return false;
+    // Height over the stretch: h00 + ax fx + ay fy + x fx fy, (fx, fy) = f0 + v dg.
+    float ax = h10 - h00, ay = h01 - h00, x = (h00 - h10) - (h01 - h11);
+    vec2 f0 = ga - vec2(c);
+    float c0 = aa - (h00 + ax * f0.x + ay * f0.y + x * f0.x * f0.y);
+    float c1 = A1 - (ax * dg.x + ay * dg.y + x * (f0.x * dg.y + f0.y * dg.x));
+    float c2 = A2 - x * dg.x * dg.y;
+    // The smallest root of c0 + c1 v + c2 v^2 in [v, next].
+    float root = 2.0;
+    float fv = c0 + (c1 + c2 * v) * v;
+    if (fv <= 0.0) {
+      root = v;
+    } else if (abs(c2) < 1e-12 * (abs(c1) + abs(c0))) {
+      if (c1 != 0.0) root = -c0 / c1;
+    } else {
+      float disc = c1 * c1 - 4.0 * c2 * c0;
+      if (disc >= 0.0) {
+        float q = -0.5 * (c1 + (c1 >= 0.0 ? sqrt(disc) : -sqrt(disc)));
+        float r1 = q / c2, r2 = q != 0.0 ? c0 / q : r1;
+        float lo = min(r1, r2), hi = max(r1, r2);
+        root = lo >= v ? lo : hi;
+      }
+    }
+    if (root >= v && root <= next) {
+      g = ga + root * dg;
+      vec2 f = f0 + root * dg;
+      h = h00 + ax * f.x + ay * f.y + x * f.x * f.y;
+      float lambda = root * wa / ((1.0 - root) * wb + root * wa);
+      t = ta + lambda * (tb - ta);
+      return true;
+    }
+    v = next;
+  }
+  return false;
+}
+
 // The table's far horizon at grid coordinates g, bilinear (ShadowTable::farOffsetAt).
 float umbraFarOffsetAt(vec2 g) {
 #if UMBRA_TERRAIN_TABLE
@@ -85,16 +152,16 @@ float umbraFarOffsetAt(vec2 g) {
 
 // The visible fraction of the Sun at grid coordinates g, height h (ShadowTable::fractionAt
 // with a table, else the whole search as terrain::visibleFraction).
-uniform int umbraNearSteps;  // with a table: the near search's uniform steps
-float umbraTerrainFraction(vec2 g, float h) {
+// `far`: the table's far offset there (umbraFarOffsetAt; above -1: the disc is not wholly
+// behind it).
+float umbraTerrainFraction(vec2 g, float h, float far) {
   UmbraProfile p;
   if (!umbraMakeProfileAt(g, h, p)) return p.e > 0.0 ? 1.0 : 0.0;
 #if UMBRA_TERRAIN_TABLE
-  float horizon = umbraHorizonUniform(p, umbraNearSteps);
+  return umbraDiscFraction(min((p.e - umbraHorizonCells(p)) / umbraSunRadius, far), umbraLimbDarkening);
 #else
-  float horizon = umbraHorizonDP(p);
+  return umbraDiscFraction((p.e - umbraHorizonDP(p)) / umbraSunRadius, umbraLimbDarkening);
 #endif
-  return umbraDiscFraction(min((p.e - horizon) / umbraSunRadius, umbraFarOffsetAt(g)), umbraLimbDarkening);
 }
 
 void umbraTerrainShade() {
@@ -105,44 +172,51 @@ void umbraTerrainShade() {
   vec3 up = normalize(umbraPosMC + vec3(0.0, 0.0, umbraRadiusM));
   // View-ray refinement: from the facet point (on the mesh, just below the surface) step
   // back along the ray towards the eye (away from it should the point be above), half a
-  // sample at a time across the ground, until the surface is crossed; then bisect. The
+  // sample at a time across the ground, until the surface is crossed; then close in. The
   // crossing nearest the facet: the mesh's depth test orders the rest.
   float horizontal = sqrt(max(0.0, 1.0 - dot(dir, up) * dot(dir, up)));
   float step = 0.5 * umbraSpacingM / max(horizontal, 0.05);
   float tEye = umbraParallel == 0 ? -0.999 * length(umbraPosMC - eye) : -1e30;
   vec2 g;
   float h;
-  float ta = 0.0, tb = 0.0;  // above, below the surface
-  bool above = umbraAboveTerrain(umbraPosMC, g, h) > 0.0;
+  float ta = 0.0, tb = 0.0, fa = 0.0, fb = 0.0;  // above, below the surface, and how far
+  float tPrev = 0.0, fPrev = umbraAboveTerrain(umbraPosMC, g, h);
+  bool above = fPrev > 0.0;
   bool hit = false;
-  float tPrev = 0.0;
   for (int k = 1; k <= umbraMarchSteps && !hit; ++k) {
     float t = above ? float(k) * step : max(-float(k) * step, tEye);
-    bool over = umbraAboveTerrain(umbraPosMC + t * dir, g, h) > 0.0;
-    if (above && !over) { hit = true; ta = tPrev; tb = t; }
-    else if (!above && over) { hit = true; ta = t; tb = tPrev; }
+    float f = umbraAboveTerrain(umbraPosMC + t * dir, g, h);
+    if (above && !(f > 0.0)) { hit = true; ta = tPrev; fa = fPrev; tb = t; fb = f; }
+    else if (!above && f > 0.0) { hit = true; ta = t; fa = f; tb = tPrev; fb = fPrev; }
     else if (!above && t <= tEye) break;
     tPrev = t;
+    fPrev = f;
   }
   if (!hit) discard;  // the ray misses the surface here (a silhouette)
-  float fa = umbraAboveTerrain(umbraPosMC + ta * dir, g, h), fb = umbraAboveTerrain(umbraPosMC + tb * dir, g, h);
-  for (int k = 0; k < umbraBisections; ++k) {
-    float tm = 0.5 * (ta + tb);
-    float fm = umbraAboveTerrain(umbraPosMC + tm * dir, g, h);
-    if (fm > 0.0) { ta = tm; fa = fm; } else { tb = tm; fb = fm; }
+  // The crossing in closed form (umbraCrossing); where it cannot be had, bisection.
+  float tHit;
+  if (!umbraCrossing(umbraPosMC, dir, ta, tb, tHit, g, h)) {
+    for (int k = 0; k < umbraBisections; ++k) {
+      float tm = 0.5 * (ta + tb);
+      float fm = umbraAboveTerrain(umbraPosMC + tm * dir, g, h);
+      if (fm > 0.0) { ta = tm; fa = fm; } else { tb = tm; fb = fm; }
+    }
+    tHit = fa - fb > 0.0 && fa < 1e29 ? ta + (tb - ta) * fa / (fa - fb) : 0.5 * (ta + tb);
+    if (umbraAboveTerrain(umbraPosMC + tHit * dir, g, h) >= 1e29) discard;  // no data
   }
-  // Within the last bracket (1/4096 of a step) the height along the ray is as good as straight.
-  tb = fa - fb > 0.0 && fa < 1e29 && fb > -1e29 ? ta + (tb - ta) * fa / (fa - fb) : 0.5 * (ta + tb);
-  if (umbraAboveTerrain(umbraPosMC + tb * dir, g, h) >= 1e29) discard;  // no data
+  tb = tHit;
   vec3 q = umbraPosMC + tb * dir;
 
-  // The bilinear surface's normal, by central differences over a texel.
-  vec3 dx = umbraSurfacePoint(g + vec2(0.5, 0.0)) - umbraSurfacePoint(g - vec2(0.5, 0.0));
-  vec3 dy = umbraSurfacePoint(g + vec2(0.0, 0.5)) - umbraSurfacePoint(g - vec2(0.0, 0.5));
-  vec3 n = normalize(cross(dx, dy));
-  float cosi = max(dot(n, umbraTerrainLight), 0.0);
-  // A slope turned away from the Sun is dark whatever the horizon: no search.
-  float fraction = cosi > 0.0 || umbraTerrainOutput == 1 ? umbraTerrainFraction(g, h) : 0.0;
+  // Behind the table's far horizon the point is dark whatever its slope: no normal, no
+  // search. Else the bilinear surface's normal, by central differences over a texel; a
+  // slope turned away from the Sun is dark whatever the horizon: no search.
+  float cosi = 0.0, fraction = 0.0, far = umbraFarOffsetAt(g);
+  if (far > -1.0) {
+    vec3 dx = umbraSurfacePoint(g + vec2(0.5, 0.0)) - umbraSurfacePoint(g - vec2(0.5, 0.0));
+    vec3 dy = umbraSurfacePoint(g + vec2(0.0, 0.5)) - umbraSurfacePoint(g - vec2(0.0, 0.5));
+    cosi = max(dot(normalize(cross(dx, dy)), umbraTerrainLight), 0.0);
+    fraction = cosi > 0.0 || umbraTerrainOutput == 1 ? umbraTerrainFraction(g, h, far) : 0.0;
+  }
   vec3 radiance = umbraTerrainAlbedo * (umbraInvPi * umbraTerrainIrradiance * cosi * fraction);
   fragOutput0 = umbraTerrainOutput == 1 ? vec4(g, fraction, 1.0) : vec4(radiance, 1.0);
 
