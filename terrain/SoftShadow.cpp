@@ -128,24 +128,6 @@ private:
   }
 };
 
-/// Heights a (at centre - half), m (centre), b (centre + half) along one cell.
-struct Parabola {
-  double centre, half, a, m, b;
-  double at(double s) const {
-    const double u = (s - centre) / half;
-    return m + 0.5 * (b - a) * u + 0.5 * (a + b - 2.0 * m) * u * u;
-  }
-  double maxOver(double s0, double s1) const {
-    double top = std::max(at(s0), at(s1));
-    const double curvature = a + b - 2.0 * m;
-    if (curvature < 0.0) {
-      const double sv = centre - 0.5 * (b - a) / curvature * half;
-      if (sv > s0 && sv < s1) top = std::max(top, at(sv));
-    }
-    return top;
-  }
-};
-
 /// Algorithm 1: the maximum-mipmap search for the highest horizon along the footprint.
 class MipmapSearch {
 public:
@@ -218,6 +200,23 @@ private:
     for (int k = 0; k < n && best < hi; ++k) visit(m, children[k].i, children[k].j, children[k].sa, children[k].sb);
   }
 
+  /// Heights a (at centre - half), m (centre), b (centre + half) along one cell.
+  struct Parabola {
+    double centre, half, a, m, b;
+    double at(double s) const {
+      const double u = (s - centre) / half;
+      return m + 0.5 * (b - a) * u + 0.5 * (a + b - 2.0 * m) * u * u;
+    }
+    double maxOver(double s0, double s1) const {
+      double top = std::max(at(s0), at(s1));
+      const double curvature = a + b - 2.0 * m;
+      if (curvature < 0.0) {
+        const double sv = centre - 0.5 * (b - a) / curvature * half;
+        if (sv > s0 && sv < s1) top = std::max(top, at(sv));
+      }
+      return top;
+    }
+  };
 
   /// Below the texel: bisect the cell's stretch while its bound (the parabola's maximum)
   /// may still raise the horizon by more than kTolerance; near the receiver the elevation

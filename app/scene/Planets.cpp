@@ -26,13 +26,13 @@ double wrapDeg(double deg) {
 }
 
 /// Saturn's north pole (IAU WGCCRE 2015, Archinal et al. 2018: alpha0 = 40.589 - 0.036 T,
-/// delta0 = 83.537 - 0.004 T degrees, T in Julian centuries from J2000), ICRS axes.
+/// delta0 = 83.537 - 0.004 T degrees, T in Julian centuries from J2000), ICRS axes: the
+/// body frame's z axis (its rotation about the pole does not matter here).
 glm::dvec3 saturnPoleIcrs(UtcTime time) {
   double t1 = 0.0, t2 = 0.0;
   toTt(time, t1, t2);
   const double t = ((t1 - 2451545.0) + t2) / 36525.0;
-  const double a = (40.589 - 0.036 * t) * kDeg, d = (83.537 - 0.004 * t) * kDeg;
-  return {std::cos(d) * std::cos(a), std::cos(d) * std::sin(a), std::sin(d)};
+  return iauBodyFixedToInertial(40.589 - 0.036 * t, 83.537 - 0.004 * t, 0.0)[2];
 }
 
 /// The saturnicentric latitude of `direction` (a unit vector from Saturn's centre) [deg].

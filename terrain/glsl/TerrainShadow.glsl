@@ -34,6 +34,24 @@ struct UmbraProfile {
   float sEnd;
 };
 
+// The heights at the corners of cell c: (h00, h10, h01, h11).
+vec4 umbraCellCorners(ivec2 c) {
+  return vec4(texelFetch(umbraHeights, c, 0).r, texelFetch(umbraHeights, c + ivec2(1, 0), 0).r,
+              texelFetch(umbraHeights, c + ivec2(0, 1), 0).r, texelFetch(umbraHeights, c + ivec2(1, 1), 0).r);
+}
+
+// From grid point g along d (grid units a unit of the parameter), how far in the
+// parameter the next grid line lies on either axis (1e30 if d is zero).
+float umbraToNextLine(vec2 g, vec2 d) {
+  float next = 1e30;
+  for (int a = 0; a < 2; ++a) {
+    if (d[a] == 0.0) continue;
+    float line = d[a] > 0.0 ? floor(g[a]) + 1.0 : ceil(g[a]) - 1.0;
+    next = min(next, (line - g[a]) / d[a]);
+  }
+  return next;
+}
+
 // Bilinear height at footprint s relative to `base` (so that the small differences near
 // the receiver keep their digits), no-data corners left out (as HeightField::bilinear);
 // umbraNoData if none. The position within the cell is formed from the receiver's integer
@@ -169,17 +187,10 @@ float umbraHorizonCells(UmbraProfile p) {
   float k = umbraSpacingM * umbraSpacingM / (2.0 * (umbraRadiusM + p.hp));
   float s = umbraStartTexels;
   for (int guard = 0; guard < 512 && s < p.sEnd && best < hi; ++guard) {
-    vec2 g = p.g0 + s * p.dir;
-    float next = p.sEnd;
-    for (int a = 0; a < 2; ++a) {
-      if (p.dir[a] == 0.0) continue;
-      float line = p.dir[a] > 0.0 ? floor(g[a]) + 1.0 : ceil(g[a]) - 1.0;
-      next = min(next, s + (line - g[a]) / p.dir[a]);
-    }
-    next = max(next, s + 1e-4);
+    float next = max(min(p.sEnd, s + umbraToNextLine(p.g0 + s * p.dir, p.dir)), s + 1e-4);
     ivec2 c = clamp(ivec2(floor(p.g0 + 0.5 * (s + next) * p.dir)), ivec2(0), umbraGridSize - 2);
-    float h00 = texelFetch(umbraHeights, c, 0).r, h10 = texelFetch(umbraHeights, c + ivec2(1, 0), 0).r;
-    float h01 = texelFetch(umbraHeights, c + ivec2(0, 1), 0).r, h11 = texelFetch(umbraHeights, c + ivec2(1, 1), 0).r;
+    vec4 corners = umbraCellCorners(c);
+    float h00 = corners.x, h10 = corners.y, h01 = corners.z, h11 = corners.w;
     if (min(min(h00, h10), min(h01, h11)) <= umbraNoData) {
       best = max(best, umbraTerrainElevation(p, next));
     } else {

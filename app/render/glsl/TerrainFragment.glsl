@@ -46,9 +46,8 @@ float umbraBilinearHeight(vec2 g) {
   g = clamp(g, vec2(0.0), vec2(umbraGridSize - 1));
   ivec2 c = min(ivec2(floor(g)), umbraGridSize - 2);
   vec2 f = g - vec2(c);
-  float h00 = texelFetch(umbraHeights, c, 0).r, h10 = texelFetch(umbraHeights, c + ivec2(1, 0), 0).r;
-  float h01 = texelFetch(umbraHeights, c + ivec2(0, 1), 0).r, h11 = texelFetch(umbraHeights, c + ivec2(1, 1), 0).r;
-  if (min(min(h00, h10), min(h01, h11)) > umbraNoData) return mix(mix(h00, h10, f.x), mix(h01, h11, f.x), f.y);
+  vec4 h = umbraCellCorners(c);
+  if (min(min(h.x, h.y), min(h.z, h.w)) > umbraNoData) return mix(mix(h.x, h.y, f.x), mix(h.z, h.w, f.x), f.y);
   return umbraHeightAt(g, vec2(0.0), 0.0, 0.0);
 }
 
@@ -89,17 +88,10 @@ bool umbraCrossing(vec3 p0, vec3 dir, float ta, float tb, out float t, out vec2 
   float A2 = 2.0 * (aa + ab - 2.0 * am), A1 = ab - aa - A2;  // altitude(v) = aa + A1 v + A2 v^2
   float v = 0.0;
   for (int k = 0; k < 4 && v < 1.0; ++k) {
-    vec2 gv = ga + v * dg;
-    float next = 1.0;
-    for (int a = 0; a < 2; ++a) {
-      if (dg[a] == 0.0) continue;
-      float line = dg[a] > 0.0 ? floor(gv[a]) + 1.0 : ceil(gv[a]) - 1.0;
-      next = min(next, v + (line - gv[a]) / dg[a]);
-    }
-    next = max(next, v + 1e-6);
+    float next = max(min(1.0, v + umbraToNextLine(ga + v * dg, dg)), v + 1e-6);
     ivec2 c = clamp(ivec2(floor(ga + 0.5 * (v + next) * dg)), ivec2(0), umbraGridSize - 2);
-    float h00 = texelFetch(umbraHeights, c, 0).r, h10 = texelFetch(umbraHeights, c + ivec2(1, 0), 0).r;
-    float h01 = texelFetch(umbraHeights, c + ivec2(0, 1), 0).r, h11 = texelFetch(umbraHeights, c + ivec2(1, 1), 0).r;
+    vec4 corners = umbraCellCorners(c);
+    float h00 = corners.x, h10 = corners.y, h01 = corners.z, h11 = corners.w;
     if (min(min(h00, h10), min(h01, h11)) <= umbraNoData) return false;
     // Height over the stretch: h00 + ax fx + ay fy + x fx fy, (fx, fy) = f0 + v dg.
     float ax = h10 - h00, ay = h01 - h00, x = (h00 - h10) - (h01 - h11);
